@@ -1,0 +1,90 @@
+#include "Model/FiberModel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace fiberpli
+{
+
+std::size_t FiberModel::numberOfPoints() const
+{
+  std::size_t n = 0;
+  for (const Fiber& f : fibers)
+  {
+    n += f.points.size();
+  }
+  return n;
+}
+
+std::size_t FiberModel::numberOfLinks() const
+{
+  std::size_t n = 0;
+  for (const Fiber& f : fibers)
+  {
+    n += f.points.size() > 1 ? f.points.size() - 1 : 0;
+  }
+  return n;
+}
+
+bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi)
+{
+  bool any = false;
+  for (const Fiber& f : model.fibers)
+  {
+    for (std::size_t i = 0; i < f.points.size(); ++i)
+    {
+      const double r = withRadii ? f.radii[i] : 0.0;
+      const Vec3& p = f.points[i];
+      if (!any)
+      {
+        lo = { p.x - r, p.y - r, p.z - r };
+        hi = { p.x + r, p.y + r, p.z + r };
+        any = true;
+        continue;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a] - r);
+        hi[a] = std::max(hi[a], p[a] + r);
+      }
+    }
+  }
+  return any;
+}
+
+std::string validateModel(const FiberModel& model)
+{
+  for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)
+  {
+    const Fiber& f = model.fibers[fi];
+    std::ostringstream where;
+    where << "fiber " << fi << " (fiber_id " << f.id << ")";
+    if (f.points.size() < 2)
+    {
+      return where.str() + " has fewer than 2 points";
+    }
+    if (f.radii.size() != f.points.size())
+    {
+      return where.str() + " has a different number of radii and points";
+    }
+    for (std::size_t i = 0; i < f.points.size(); ++i)
+    {
+      if (!isFinite(f.points[i]))
+      {
+        std::ostringstream msg;
+        msg << where.str() << " point " << i << " has a non-finite coordinate";
+        return msg.str();
+      }
+      if (!std::isfinite(f.radii[i]) || f.radii[i] <= 0.0)
+      {
+        std::ostringstream msg;
+        msg << where.str() << " point " << i << " has radius " << f.radii[i] << " (must be finite and > 0)";
+        return msg.str();
+      }
+    }
+  }
+  return {};
+}
+
+} // namespace fiberpli

@@ -1,0 +1,46 @@
+/// FiberModel: the data contract of api.md in Core form. A fiber is an ordered polyline of points
+/// with one radius per point (µm); a link (p_i, p_i+1) is a capsule of radius max(r_i, r_i+1).
+/// Every fiber carries its fiber id and the bundle (population) it belongs to.
+#pragma once
+
+#include "Geometry/Vec3.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+struct Fiber
+{
+  std::vector<Vec3> points;
+  std::vector<double> radii; ///< one per point, > 0
+  std::int64_t id = 0;       ///< unique within a model (cell array fiber_id)
+  int bundle = 0;            ///< bundle / population (cell array bundle_id)
+
+  std::size_t size() const { return points.size(); }
+  /// Capsule radius of link k (paper eq. 1).
+  double linkRadius(std::size_t k) const { return radii[k] > radii[k + 1] ? radii[k] : radii[k + 1]; }
+};
+
+struct FiberModel
+{
+  std::vector<Fiber> fibers;
+
+  std::size_t numberOfPoints() const;
+  std::size_t numberOfLinks() const;
+  bool empty() const { return fibers.empty(); }
+};
+
+/// Axis-aligned bounds of all points, enlarged by each point's radius when withRadii is true.
+/// Returns false for a model without points.
+bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi);
+
+/// Checks the data contract: every fiber has >= 2 points, radii.size() == points.size(), finite
+/// coordinates, finite radii > 0. Returns an empty string when valid, else a message that names
+/// the fiber (by index and id) and the point.
+std::string validateModel(const FiberModel& model);
+
+} // namespace fiberpli
