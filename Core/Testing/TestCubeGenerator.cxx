@@ -1,0 +1,147 @@
+// Cube benchmark generator (tissue-models.md §6.1): counts, directions, displacement bound, seeds.
+#include "Tissue/CubeGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fiberpli;
+
+namespace
+{
+CubeOptions smallCube(int populations)
+{
+  CubeOptions o;
+  o.populations = populations;
+  o.numberOfFibers = 100;
+  o.edgeLength = 20.0;
+  o.segmentLength = 2.0;
+  o.displacement = 0.5;
+  o.fiberRadius = 0.8;
+  o.seed = 7;
+  return o;
+}
+} // namespace
+
+TEST(CubeGenerator, SplitsFibersEvenlyOverPopulations)
+{
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    CubeOptions o = smallCube(pops);
+    FiberModel m = generateCube(o);
+    ASSERT_EQ(m.fibers.size(), 100u);
+    int count[3] = { 0, 0, 0 };
+    for (const Fiber& f : m.fibers)
+    {
+      ASSERT_GE(f.bundle, 0);
+      ASSERT_LT(f.bundle, pops);
+      ++count[f.bundle];
+    }
+    // 100 over 3 populations is 34 + 33 + 33, as in the reference construction.
+    for (int k = 0; k < pops; ++k)
+    {
+      EXPECT_EQ(count[k], 100 / pops + (k < 100 % pops ? 1 : 0));
+    }
+  }
+  EXPECT_EQ(cubePopulationSize(smallCube(3), 0), 34);
+}
+
+TEST(CubeGenerator, FibersRunAlongTheirPopulationAxisWithinDisplacement)
+{
+  CubeOptions o = smallCube(3);
+  FiberModel m = generateCube(o);
+  const double half = o.edgeLength / 2.0;
+  const int n = static_cast<int>(std::lround(o.edgeLength / o.segmentLength)) + 1;
+  for (const Fiber& f : m.fibers)
+  {
+    ASSERT_EQ(static_cast<int>(f.points.size()), n);
+    const int axis = f.bundle;
+    // The undisplaced fiber is a line along 'axis'; estimate its transverse position by the mean.
+    Vec3 mean;
+    for (const Vec3& p : f.points)
+    {
+      mean += p;
+    }
+    mean = mean / static_cast<double>(n);
+    for (int i = 0; i < n; ++i)
+    {
+      const Vec3& p = f.points[static_cast<std::size_t>(i)];
+      const double nominal = -half + o.edgeLength * i / (n - 1);
+      EXPECT_LE(std::abs(p[axis] - nominal), o.displacement + 1e-12);
+      for (int a = 0; a < 3; ++a)
+      {
+        if (a == axis)
+        {
+          continue;
+        }
+        // Every point is within 2D of every other point transversally (both displaced by <= D).
+        EXPECT_LE(std::abs(p[a] - mean[a]), 2.0 * o.displacement + 1e-12);
+        EXPECT_LE(std::abs(p[a]), half + o.displacement + 1e-12);
+      }
+      EXPECT_EQ(f.radii[static_cast<std::size_t>(i)], o.fiberRadius);
+    }
+  }
+}
+
+TEST(CubeGenerator, TransversePositionsAreUniformOverTheCube)
+{
+  CubeOptions o = smallCube(1);
+  o.numberOfFibers = 4000;
+  o.displacement = 0.0;
+  FiberModel m = generateCube(o);
+  double sum = 0.0;
+  double sumSq = 0.0;
+  for (const Fiber& f : m.fibers)
+  {
+    const double y = f.points[0].y;
+    sum += y;
+    sumSq += y * y;
+  }
+  const double n = static_cast<double>(m.fibers.size());
+  const double mean = sum / n;
+  const double var = sumSq / n - mean * mean;
+  const double L = o.edgeLength;
+  // U[-L/2, L/2]: mean 0, variance L²/12; 4000 samples → standard error of the mean ≈ 0.09.
+  EXPECT_NEAR(mean, 0.0, 0.5);
+  EXPECT_NEAR(var, L * L / 12.0, 0.08 * L * L / 12.0);
+}
+
+TEST(CubeGenerator, SameSeedSameModelOtherSeedOtherModel)
+{
+  CubeOptions o = smallCube(2);
+  FiberModel a = generateCube(o);
+  FiberModel b = generateCube(o);
+  o.seed = 8;
+  FiberModel c = generateCube(o);
+  ASSERT_EQ(a.fibers.size(), b.fibers.size());
+  bool anyDifferent = false;
+  for (std::size_t i = 0; i < a.fibers.size(); ++i)
+  {
+    ASSERT_EQ(a.fibers[i].points.size(), b.fibers[i].points.size());
+    for (std::size_t j = 0; j < a.fibers[i].points.size(); ++j)
+    {
+      EXPECT_EQ(a.fibers[i].points[j], b.fibers[i].points[j]);
+      anyDifferent = anyDifferent || a.fibers[i].points[j] != c.fibers[i].points[j];
+    }
+    EXPECT_EQ(a.fibers[i].id, static_cast<std::int64_t>(i));
+  }
+  EXPECT_TRUE(anyDifferent);
+}
+
+TEST(CubeGenerator, RejectsBadOptionsByName)
+{
+  CubeOptions o = smallCube(1);
+  EXPECT_TRUE(validateCubeOptions(o).empty());
+  o.populations = 4;
+  EXPECT_NE(validateCubeOptions(o).find("Populations"), std::string::npos);
+  o = smallCube(1);
+  o.fiberRadius = -1.0;
+  EXPECT_NE(validateCubeOptions(o).find("FiberRadius"), std::string::npos);
+  o = smallCube(1);
+  o.segmentLength = std::nan("");
+  EXPECT_NE(validateCubeOptions(o).find("SegmentLength"), std::string::npos);
+  o = smallCube(1);
+  o.numberOfFibers = 2000000000;
+  o.segmentLength = 0.001;
+  EXPECT_NE(validateCubeOptions(o).find("would need"), std::string::npos);
+}
