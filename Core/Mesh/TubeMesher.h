@@ -1,0 +1,42 @@
+/// TubeMesher: one closed, consistently oriented (outward) triangle mesh around every fiber.
+/// Rings of `sides` vertices sit at every fiber point, perpendicular to the bisector of the two
+/// adjacent links, with the per-point radius. The ring frame is carried along the fiber by parallel
+/// transport (rotation-minimising), so rings never twist against each other; repeated points are
+/// skipped for directions. Capping closes both ends with a triangle fan around a centre vertex, so
+/// every edge is shared by exactly two triangles (watertight). Point normals are the radial
+/// directions (the tube axis direction at the cap centres).
+#pragma once
+
+#include "Model/FiberModel.h"
+#include "Util/Progress.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fiberpli
+{
+
+struct TubeOptions
+{
+  int sides = 12;      ///< vertices per ring, >= 3
+  bool capping = true; ///< close the ends (watertight tubes)
+  int numberOfThreads = 0;
+};
+
+struct TubeMesh
+{
+  std::vector<double> points;           ///< x, y, z per vertex
+  std::vector<float> normals;           ///< unit normal per vertex
+  std::vector<std::int64_t> triangles;  ///< 3 vertex indices per triangle, counter-clockwise seen from outside
+  std::vector<std::int64_t> triangleFiber; ///< index of the fiber (in model order) of each triangle
+  bool aborted = false;
+
+  std::size_t numberOfPoints() const { return points.size() / 3; }
+  std::size_t numberOfTriangles() const { return triangles.size() / 3; }
+};
+
+/// Meshes every fiber of the model (precondition: validateModel(model) is empty). Fibers are
+/// meshed in parallel into precomputed slots, so the output does not depend on the thread count.
+TubeMesh meshTubes(const FiberModel& model, const TubeOptions& options, const ProgressFn& progress = {});
+
+} // namespace fiberpli
