@@ -53,10 +53,14 @@ bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi)
   return any;
 }
 
-std::string validateModel(const FiberModel& model)
+std::string validateModel(const FiberModel& model, std::size_t* badFiber)
 {
   for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)
   {
+    if (badFiber != nullptr)
+    {
+      *badFiber = fi;
+    }
     const Fiber& f = model.fibers[fi];
     std::ostringstream where;
     where << "fiber " << fi << " (fiber_id " << f.id << ")";

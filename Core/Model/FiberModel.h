@@ -40,7 +40,7 @@ bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi);
 
 /// Checks the data contract: every fiber has >= 2 points, radii.size() == points.size(), finite
 /// coordinates, finite radii > 0. Returns an empty string when valid, else a message that names
-/// the fiber (by index and id) and the point.
-std::string validateModel(const FiberModel& model);
+/// the fiber (by index and id) and the point; badFiber (optional) receives the fiber's index.
+std::string validateModel(const FiberModel& model, std::size_t* badFiber = nullptr);
 
 } // namespace fiberpli

@@ -1,0 +1,170 @@
+#include "FiberPolyData.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <sstream>
+
+namespace fiberpli
+{
+
+bool FiberPolyData::IsEmpty(vtkPolyData* input)
+{
+  return input == nullptr || (input->GetNumberOfPoints() == 0 && input->GetNumberOfCells() == 0);
+}
+
+FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& who)
+{
+  FiberConversion result;
+  if (IsEmpty(input))
+  {
+    return result;
+  }
+  const vtkIdType numLines = input->GetNumberOfLines();
+  const vtkIdType otherCells = input->GetNumberOfVerts() + input->GetNumberOfPolys() + input->GetNumberOfStrips();
+  if (numLines == 0)
+  {
+    result.error = who + ": the input has " + std::to_string(input->GetNumberOfCells()) +
+      " cells but no line cell: fibers are polylines";
+    return result;
+  }
+  vtkDataArray* radius = input->GetPointData()->GetArray("radius");
+  if (radius == nullptr)
+  {
+    result.error = who + ": the input has no point array 'radius' (fiber radius in µm at each point)";
+    return result;
+  }
+  if (radius->GetNumberOfComponents() != 1)
+  {
+    result.error = who + ": the point array 'radius' has " + std::to_string(radius->GetNumberOfComponents()) +
+      " components, expected 1";
+    return result;
+  }
+  vtkDataArray* fiberIds = input->GetCellData()->GetArray("fiber_id");
+  vtkDataArray* bundleIds = input->GetCellData()->GetArray("bundle_id");
+  // Lines come after verts in the cell numbering of vtkPolyData.
+  const vtkIdType firstLineCell = input->GetNumberOfVerts();
+  vtkPoints* points = input->GetPoints();
+
+  std::size_t shortFibers = 0;
+  result.model.fibers.reserve(static_cast<std::size_t>(numLines));
+  vtkIdType lineIndex = 0;
+  auto iter = vtk::TakeSmartPointer(input->GetLines()->NewIterator());
+  for (iter->GoToFirstCell(); !iter->IsDoneWithTraversal(); iter->GoToNextCell(), ++lineIndex)
+  {
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    iter->GetCurrentCell(n, ids);
+    const vtkIdType cellId = firstLineCell + lineIndex;
+    if (n < 2)
+    {
+      ++shortFibers;
+      continue;
+    }
+    Fiber f;
+    f.id = fiberIds ? static_cast<std::int64_t>(fiberIds->GetComponent(cellId, 0)) : cellId;
+    f.bundle = bundleIds ? static_cast<int>(bundleIds->GetComponent(cellId, 0)) : 0;
+    f.points.resize(static_cast<std::size_t>(n));
+    f.radii.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      points->GetPoint(ids[i], p);
+      f.points[static_cast<std::size_t>(i)] = { p[0], p[1], p[2] };
+      f.radii[static_cast<std::size_t>(i)] = radius->GetComponent(ids[i], 0);
+    }
+    result.model.fibers.push_back(std::move(f));
+    result.sourceCell.push_back(cellId);
+  }
+
+  std::size_t modelIndex = 0;
+  const std::string invalid = validateModel(result.model, &modelIndex);
+  if (!invalid.empty())
+  {
+    // The Core message counts fibers of the model; name the input cell as well.
+    std::ostringstream msg;
+    msg << who << ": ";
+    if (modelIndex < result.sourceCell.size())
+    {
+      msg << "line cell " << result.sourceCell[modelIndex] << ", ";
+    }
+    msg << invalid;
+    result.error = msg.str();
+    result.model.fibers.clear();
+    result.sourceCell.clear();
+    return result;
+  }
+
+  std::ostringstream warn;
+  if (shortFibers > 0)
+  {
+    warn << who << ": " << shortFibers << " fiber(s) with fewer than 2 points dropped. ";
+  }
+  if (otherCells > 0)
+  {
+    warn << who << ": " << otherCells << " vertex/polygon/strip cell(s) are not fibers and were ignored.";
+  }
+  result.warning = warn.str();
+  return result;
+}
+
+void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)
+{
+  const auto numPoints = static_cast<vtkIdType>(model.numberOfPoints());
+  const auto numFibers = static_cast<vtkIdType>(model.fibers.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(numPoints);
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  radius->SetNumberOfTuples(numPoints);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfTuples(numFibers + 1);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(numPoints);
+  vtkNew<vtkIdTypeArray> fiberId;
+  fiberId->SetName("fiber_id");
+  fiberId->SetNumberOfTuples(numFibers);
+  vtkNew<vtkIntArray> bundleId;
+  bundleId->SetName("bundle_id");
+  bundleId->SetNumberOfTuples(numFibers);
+
+  vtkIdType next = 0;
+  for (vtkIdType c = 0; c < numFibers; ++c)
+  {
+    const Fiber& f = model.fibers[static_cast<std::size_t>(c)];
+    offsets->SetValue(c, next);
+    for (std::size_t i = 0; i < f.points.size(); ++i, ++next)
+    {
+      points->SetPoint(next, f.points[i].x, f.points[i].y, f.points[i].z);
+      radius->SetValue(next, f.radii[i]);
+      connectivity->SetValue(next, next);
+    }
+    fiberId->SetValue(c, static_cast<vtkIdType>(f.id));
+    bundleId->SetValue(c, f.bundle);
+  }
+  offsets->SetValue(numFibers, next);
+
+  vtkNew<vtkCellArray> lines;
+  lines->SetData(offsets, connectivity);
+
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetLines(lines);
+  output->GetPointData()->AddArray(radius);
+  output->GetPointData()->SetActiveScalars("radius");
+  output->GetCellData()->AddArray(fiberId);
+  output->GetCellData()->AddArray(bundleId);
+}
+
+} // namespace fiberpli

@@ -1,0 +1,55 @@
+/**
+ * @class   FiberPolyData
+ * @brief   THE conversion layer between fiber vtkPolyData (api.md data contract) and fiberpli::FiberModel
+ *
+ * Every FiberPLI filter, reader and writer converts fibers through this class only, so the data
+ * contract is validated in one place:
+ * - no `radius` point array, or one with other than 1 component → error;
+ * - cells but no line cell → error (verts/polys/strips are ignored with a warning otherwise);
+ * - a fiber of fewer than 2 points → dropped with a warning;
+ * - NaN/Inf coordinates or radius <= 0 → error naming the fiber (cell index and fiber_id) and point;
+ * - an input without points and cells → an empty model, no error (empty MPI pieces).
+ * `fiber_id` (any integer array) and `bundle_id` cell arrays are read when present; otherwise the
+ * fiber id is the cell index and the bundle id 0.
+ */
+#ifndef FiberPolyData_h
+#define FiberPolyData_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "Model/FiberModel.h"
+
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+
+namespace fiberpli
+{
+
+struct FiberConversion
+{
+  FiberModel model;
+  std::vector<long long> sourceCell; ///< input cell index of each fiber of the model
+  std::string error;                 ///< empty when the input is usable
+  std::string warning;               ///< one line per kind of recoverable oddity, with counts
+  bool ok() const { return error.empty(); }
+};
+
+class FIBERPLIFILTERS_EXPORT FiberPolyData
+{
+public:
+  /// Converts and validates fiber polydata (see the class documentation). `who` prefixes messages.
+  static FiberConversion ToModel(vtkPolyData* input, const std::string& who);
+
+  /// Replaces `output` by the model: one polyline per fiber, point array `radius` (double), cell
+  /// arrays `fiber_id` (vtkIdType) and `bundle_id` (int). Fields data of `output` is kept.
+  static void FromModel(const FiberModel& model, vtkPolyData* output);
+
+  /// True when the polydata holds neither points nor cells (an empty piece, never an error).
+  static bool IsEmpty(vtkPolyData* input);
+};
+
+} // namespace fiberpli
+
+#endif
+// VTK-HeaderTest-Exclude: FiberPolyData.h

@@ -1,0 +1,64 @@
+/**
+ * @class   vtkFiberTubes
+ * @brief   closed triangle mesh around every fiber, radius from the "radius" point array
+ *
+ * Input: fiber polydata (api.md). Output: one watertight, consistently (outward) oriented tube of
+ * triangles per fiber, following the per-point radius, with point normals; cell arrays `fiber_id`
+ * and `bundle_id` copied from the fiber to each of its triangles. Rings are carried along the
+ * fiber by parallel transport, so tubes do not twist at sharp bends. Other input arrays are not
+ * passed. Bad input (no `radius`, NaN/Inf, radius <= 0, no line cell) is an error naming the
+ * problem; an empty input gives an empty output.
+ */
+#ifndef vtkFiberTubes_h
+#define vtkFiberTubes_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class FIBERPLIFILTERS_EXPORT vtkFiberTubes : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkFiberTubes* New();
+  vtkTypeMacro(vtkFiberTubes, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Number of sides of each ring, 3 to 64. Default is 12.
+   */
+  vtkSetClampMacro(NumberOfSides, int, 3, 64);
+  vtkGetMacro(NumberOfSides, int);
+  ///@}
+
+  ///@{
+  /**
+   * Close both ends of every tube (watertight tubes). Default is on.
+   */
+  vtkSetMacro(Capping, bool);
+  vtkGetMacro(Capping, bool);
+  vtkBooleanMacro(Capping, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads, 0 = all cores. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+protected:
+  vtkFiberTubes() = default;
+  ~vtkFiberTubes() override = default;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberTubes(const vtkFiberTubes&) = delete;
+  void operator=(const vtkFiberTubes&) = delete;
+
+  int NumberOfSides = 12;
+  bool Capping = true;
+  int NumberOfThreads = 0;
+};
+
+#endif

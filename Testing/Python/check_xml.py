@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Checks the server-manager XML (architecture.md §6c): every proxy and property is documented,
+every command= setter exists in the class header, and every proxy has a pvpython-safe label."""
+import glob
+import os
+import re
+import sys
+import xml.etree.ElementTree as ET
+
+plugin_dir, source_dir = sys.argv[1], sys.argv[2]
+PROPERTY_TAGS = {"IntVectorProperty", "DoubleVectorProperty", "StringVectorProperty",
+                 "InputProperty", "ProxyProperty", "IdTypeVectorProperty"}
+errors = []
+
+
+def header_of(cls):
+    for folder in ("Filters", "Readers"):
+        path = os.path.join(source_dir, folder, cls + ".h")
+        if os.path.exists(path):
+            return open(path, encoding="utf-8").read()
+    return None
+
+
+for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
+    root = ET.parse(xml_path).getroot()
+    for proxy in root.iter():
+        if proxy.get("class") is None:
+            continue
+        name = proxy.get("name")
+        if os.path.basename(xml_path) != name + ".xml":
+            errors.append("%s: proxy %s is not in %s.xml" % (xml_path, name, name))
+        if proxy.find("Documentation") is None:
+            errors.append("%s: proxy %s has no Documentation" % (xml_path, name))
+        label = proxy.get("label", name)
+        if re.sub(r"[^A-Za-z0-9_]", "", label) != name:
+            errors.append("%s: label %r does not sanitise to %s" % (xml_path, label, name))
+        header = header_of(proxy.get("class"))
+        if header is None:
+            errors.append("%s: no header for class %s" % (xml_path, proxy.get("class")))
+            continue
+        for prop in proxy:
+            if prop.tag not in PROPERTY_TAGS or prop.get("information_only") == "1":
+                continue
+            pname = prop.get("name")
+            if prop.find("Documentation") is None:
+                errors.append("%s: %s.%s has no Documentation" % (xml_path, name, pname))
+            if "label" in prop.attrib and re.sub(r"[^A-Za-z0-9_]", "", prop.get("label")) != pname:
+                errors.append("%s: %s.%s label changes the Python name" % (xml_path, name, pname))
+            command = prop.get("command")
+            if not command or prop.tag == "InputProperty" or command in ("SetInputArrayToProcess",):
+                continue
+            setter = command[3:] if command.startswith("Set") else command
+            if not re.search(r"\b%s\(|vtkSet\w*Macro\(\s*%s\s*," % (re.escape(command), re.escape(setter)), header):
+                errors.append("%s: %s.%s command %s not found in %s.h" % (
+                    xml_path, name, pname, command, proxy.get("class")))
+
+for e in errors:
+    print("check_xml:", e)
+print("check_xml: %d problem(s)" % len(errors))
+sys.exit(1 if errors else 0)

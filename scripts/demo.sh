@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds in build/ and runs the demo pipeline (Examples/demo.py) with
+# pvbatch under Xvfb: cube source -> tubes -> a PNG image and a .vtp file in the printed folder.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+out="${FIBERPLI_DEMO_OUT:-$PWD/build/demo}"
+mkdir -p "$out"
+plugin=$(find "$PWD/build/lib" -name FiberPLI.so | head -n 1)
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvbatch --dr Examples/demo.py "$plugin" "$out"
+echo "Demo output written to: $out"

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the dependencies, builds in build/ and runs the whole test suite under Xvfb.
+# The exit code is ctest's.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+
+# One HDF5 in the process: our libraries must link ParaView's libhdf5_openmpi only (architecture.md §5).
+libs=$(find build/lib -name 'FiberPLI*.so*' -o -name 'libFiberPLI*.so*' | sort)
+if ldd $libs | grep -q 'libhdf5_serial'; then
+  echo "FiberPLI links the serial HDF5 library beside ParaView's libhdf5_openmpi:" >&2
+  ldd $libs | grep hdf5 >&2
+  exit 1
+fi
+
+cd build
+xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j2
