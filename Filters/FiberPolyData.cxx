@@ -11,7 +11,10 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace fiberpli
@@ -70,6 +73,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
       ++shortFibers;
       continue;
     }
+    std::vector<long long> pointIds(ids, ids + n);
     Fiber f;
     f.id = fiberIds ? static_cast<std::int64_t>(fiberIds->GetComponent(cellId, 0)) : cellId;
     f.bundle = bundleIds ? static_cast<int>(bundleIds->GetComponent(cellId, 0)) : 0;
@@ -84,6 +88,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     }
     result.model.fibers.push_back(std::move(f));
     result.sourceCell.push_back(cellId);
+    result.sourcePoints.push_back(std::move(pointIds));
   }
 
   std::size_t modelIndex = 0;
@@ -101,6 +106,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     result.error = msg.str();
     result.model.fibers.clear();
     result.sourceCell.clear();
+    result.sourcePoints.clear();
     return result;
   }
 
@@ -115,6 +121,72 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
   }
   result.warning = warn.str();
   return result;
+}
+
+void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conversion,
+  const std::vector<std::vector<double>>& sourceIndex, vtkPolyData* output)
+{
+  const auto isContract = [](const char* name) {
+    const std::string n = name ? name : "";
+    return n == "radius" || n == "fiber_id" || n == "bundle_id";
+  };
+  vtkCellData* inCells = input->GetCellData();
+  for (int a = 0; a < inCells->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* src = inCells->GetAbstractArray(a);
+    if (src == nullptr || isContract(src->GetName()))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkAbstractArray> dst = vtk::TakeSmartPointer(src->NewInstance());
+    dst->SetName(src->GetName());
+    dst->SetNumberOfComponents(src->GetNumberOfComponents());
+    dst->SetNumberOfTuples(static_cast<vtkIdType>(conversion.sourceCell.size()));
+    for (std::size_t f = 0; f < conversion.sourceCell.size(); ++f)
+    {
+      dst->SetTuple(static_cast<vtkIdType>(f), static_cast<vtkIdType>(conversion.sourceCell[f]), src);
+    }
+    output->GetCellData()->AddArray(dst);
+  }
+
+  vtkPointData* inPoints = input->GetPointData();
+  const vtkIdType numOut = output->GetNumberOfPoints();
+  for (int a = 0; a < inPoints->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* src = inPoints->GetAbstractArray(a);
+    if (src == nullptr || isContract(src->GetName()))
+    {
+      continue;
+    }
+    vtkDataArray* srcData = vtkDataArray::SafeDownCast(src);
+    const bool interpolate = srcData && (src->GetDataType() == VTK_FLOAT || src->GetDataType() == VTK_DOUBLE);
+    vtkSmartPointer<vtkAbstractArray> dst = vtk::TakeSmartPointer(src->NewInstance());
+    dst->SetName(src->GetName());
+    dst->SetNumberOfComponents(src->GetNumberOfComponents());
+    dst->SetNumberOfTuples(numOut);
+    vtkIdType out = 0;
+    for (std::size_t f = 0; f < conversion.sourcePoints.size(); ++f)
+    {
+      const std::vector<long long>& ids = conversion.sourcePoints[f];
+      const std::size_t count = sourceIndex.empty() ? ids.size() : sourceIndex[f].size();
+      for (std::size_t i = 0; i < count; ++i, ++out)
+      {
+        const double s = sourceIndex.empty() ? static_cast<double>(i) : sourceIndex[f][i];
+        auto i0 = static_cast<std::size_t>(std::max(0.0, std::floor(s)));
+        i0 = std::min(i0, ids.size() - 1);
+        const double t = s - static_cast<double>(i0);
+        if (interpolate && t > 0.0 && i0 + 1 < ids.size())
+        {
+          vtkDataArray::SafeDownCast(dst)->InterpolateTuple(out, ids[i0], srcData, ids[i0 + 1], srcData, t);
+        }
+        else
+        {
+          dst->SetTuple(out, ids[i0], src);
+        }
+      }
+    }
+    output->GetPointData()->AddArray(dst);
+  }
 }
 
 void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)

@@ -30,6 +30,7 @@ struct FiberConversion
 {
   FiberModel model;
   std::vector<long long> sourceCell; ///< input cell index of each fiber of the model
+  std::vector<std::vector<long long>> sourcePoints; ///< input point ids of each fiber of the model
   std::string error;                 ///< empty when the input is usable
   std::string warning;               ///< one line per kind of recoverable oddity, with counts
   bool ok() const { return error.empty(); }
@@ -44,6 +45,14 @@ public:
   /// Replaces `output` by the model: one polyline per fiber, point array `radius` (double), cell
   /// arrays `fiber_id` (vtkIdType) and `bundle_id` (int). Fields data of `output` is kept.
   static void FromModel(const FiberModel& model, vtkPolyData* output);
+
+  /// Copies the input's other point and cell arrays onto `output` (made by FromModel from the
+  /// converted model): cell tuples from each fiber's source cell; point tuples from the source
+  /// position `sourceIndex[f][i]` (fractional input point index along fiber f; floating-point
+  /// arrays are interpolated linearly, other arrays take the tuple of the point before). An empty
+  /// `sourceIndex` means the points are unchanged. radius, fiber_id and bundle_id are not touched.
+  static void PassArrays(vtkPolyData* input, const FiberConversion& conversion,
+    const std::vector<std::vector<double>>& sourceIndex, vtkPolyData* output);
 
   /// True when the polydata holds neither points nor cells (an empty piece, never an error).
   static bool IsEmpty(vtkPolyData* input);

@@ -1,0 +1,238 @@
+#include "vtkFiberCollisionSolver.h"
+
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
+#include "Solver/CollisionSolver.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkFiberCollisionSolver);
+
+// The states of one solve at steps 0, Δ, 2Δ, …, kept while input and properties are unchanged.
+struct vtkFiberCollisionSolver::Snapshots
+{
+  vtkMTimeType inputTime = 0;
+  vtkMTimeType filterTime = 0;
+  std::vector<fiberpli::FiberModel> models;
+  std::vector<std::vector<std::vector<double>>> sourceIndex; // per snapshot: see CollisionSolverResult
+  fiberpli::CollisionSolverResult result;
+  fiberpli::FiberConversion input;
+};
+
+namespace
+{
+void AddFieldValue(vtkPolyData* output, const char* name, double value, bool integer)
+{
+  if (integer)
+  {
+    vtkNew<vtkIntArray> a;
+    a->SetName(name);
+    a->InsertNextValue(static_cast<int>(value));
+    output->GetFieldData()->AddArray(a);
+  }
+  else
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->InsertNextValue(value);
+    output->GetFieldData()->AddArray(a);
+  }
+}
+
+/// Source positions of an unchanged model: point i of every fiber comes from input point i.
+std::vector<std::vector<double>> IdentityIndex(const fiberpli::FiberModel& model)
+{
+  std::vector<std::vector<double>> index(model.fibers.size());
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    index[f].resize(model.fibers[f].points.size());
+    for (std::size_t i = 0; i < index[f].size(); ++i)
+    {
+      index[f][i] = static_cast<double>(i);
+    }
+  }
+  return index;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+// Construct with SegmentLength 2, MinCurvatureRadius 0 (off), MaxSteps 10000, SeparationSpeed
+// 0.05, MinimumGap 0, all threads, IterationsAsTime off, TimeStepInterval 50.
+vtkFiberCollisionSolver::vtkFiberCollisionSolver() = default;
+vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
+
+//------------------------------------------------------------------------------
+int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (this->IterationsAsTime)
+  {
+    std::vector<double> times;
+    for (int step = 0; step < this->MaxSteps; step += this->TimeStepInterval)
+    {
+      times.push_back(step);
+    }
+    times.push_back(this->MaxSteps);
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { 0.0, static_cast<double>(this->MaxSteps) };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  output->Initialize();
+  if (fiberpli::FiberPolyData::IsEmpty(input))
+  {
+    return 1;
+  }
+
+  const bool cached = this->Cache && this->Cache->inputTime == input->GetMTime() &&
+    this->Cache->filterTime == this->GetMTime();
+  if (!cached)
+  {
+    auto cache = std::make_unique<Snapshots>();
+    cache->inputTime = input->GetMTime();
+    cache->filterTime = this->GetMTime();
+    cache->input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
+    if (!cache->input.ok())
+    {
+      vtkErrorMacro(<< cache->input.error);
+      this->Cache.reset();
+      return 0;
+    }
+    if (!cache->input.warning.empty())
+    {
+      vtkWarningMacro(<< cache->input.warning);
+    }
+
+    fiberpli::CollisionSolverOptions options;
+    options.segmentLength = this->SegmentLength;
+    options.minCurvatureRadius = this->MinCurvatureRadius;
+    options.maxSteps = this->MaxSteps;
+    options.separationSpeed = this->SeparationSpeed;
+    options.minimumGap = this->MinimumGap;
+    options.numberOfThreads = this->NumberOfThreads;
+
+    fiberpli::FiberModel model = cache->input.model;
+    fiberpli::StepObserver observer;
+    if (this->IterationsAsTime)
+    {
+      cache->models.push_back(model);
+      cache->sourceIndex.push_back(IdentityIndex(model));
+      const int interval = this->TimeStepInterval;
+      observer = [&cache, interval](int step, const fiberpli::FiberModel& current) {
+        if (step % interval == 0)
+        {
+          cache->models.push_back(current);
+          cache->sourceIndex.emplace_back(); // filled below from the final result when known
+        }
+      };
+    }
+    this->SetProgressText("Solving collisions");
+    // Progress: the solver reports the fraction of MaxSteps; it usually ends much earlier.
+    cache->result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
+    if (!cache->result.error.empty())
+    {
+      vtkErrorMacro(<< "FiberCollisionSolver: " << cache->result.error);
+      this->Cache.reset();
+      return 0;
+    }
+    if (cache->result.aborted)
+    {
+      this->Cache.reset();
+      return 1; // partial results are never passed on
+    }
+    for (const std::string& w : cache->result.warnings)
+    {
+      vtkWarningMacro(<< "FiberCollisionSolver: " << w);
+    }
+    if (!cache->result.solved)
+    {
+      vtkWarningMacro(<< "FiberCollisionSolver: " << cache->result.collisions
+                      << " colliding capsule pairs remain after " << cache->result.steps
+                      << " steps (MaxSteps " << this->MaxSteps << ")");
+    }
+    cache->models.push_back(std::move(model));
+    cache->sourceIndex.push_back(cache->result.sourceIndex);
+    this->Cache = std::move(cache);
+  }
+
+  // Which state to show: the last one, or the snapshot of the requested time step.
+  std::size_t shown = this->Cache->models.size() - 1;
+  int shownStep = this->Cache->result.steps;
+  if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    const auto k = static_cast<std::size_t>(std::max(0.0, std::floor(t / this->TimeStepInterval + 1e-9)));
+    if (k < shown)
+    {
+      shown = k;
+      shownStep = static_cast<int>(k) * this->TimeStepInterval;
+    }
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+  }
+
+  const fiberpli::FiberModel& model = this->Cache->models[shown];
+  fiberpli::FiberPolyData::FromModel(model, output);
+  // Intermediate snapshots carry no source index: their point arrays are passed only when the
+  // point count per fiber is unchanged (no split or merge yet).
+  const auto& index = this->Cache->sourceIndex[shown];
+  bool sameCounts = true;
+  for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
+  {
+    sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
+  }
+  if (!index.empty() || sameCounts)
+  {
+    fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, index, output);
+  }
+
+  const fiberpli::CollisionSolverResult& r = this->Cache->result;
+  const bool final = shown + 1 == this->Cache->models.size();
+  const std::size_t collisions = final ? r.collisions : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads);
+  AddFieldValue(output, "steps", shownStep, true);
+  AddFieldValue(output, "collisions", static_cast<double>(collisions), true);
+  AddFieldValue(output, "solved", collisions == 0 ? 1 : 0, true);
+  if (final) // only known for the solver's last state
+  {
+    AddFieldValue(output, "max_overlap", r.maxOverlap, false);
+    AddFieldValue(output, "shape_ok", r.shapeOk ? 1 : 0, true);
+  }
+  AddFieldValue(output, "segment_length", r.segmentLength, false);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SegmentLength: " << this->SegmentLength << "\n";
+  os << indent << "MinCurvatureRadius: " << this->MinCurvatureRadius << "\n";
+  os << indent << "MaxSteps: " << this->MaxSteps << "\n";
+  os << indent << "SeparationSpeed: " << this->SeparationSpeed << "\n";
+  os << indent << "MinimumGap: " << this->MinimumGap << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
+  os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
+}

@@ -1,0 +1,126 @@
+/**
+ * @class   vtkFiberCollisionSolver
+ * @brief   moves fibers until no two capsules overlap, keeping segment lengths and curvature in limits
+ *
+ * Input and output: fiber polydata (api.md). Every link (p_i, p_i+1) is a capsule of radius
+ * max(r_i, r_i+1); the solver repeats detection (uniform grid), separation of colliding links and
+ * shape control (links kept in [2/3, 4/3] · SegmentLength by splitting and merging, points whose
+ * circumradius is below MinCurvatureRadius flattened) until no pair overlaps or MaxSteps is
+ * reached (collision-solver.md). The output has the same fibers in the same order with their
+ * fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
+ * (floating-point arrays interpolated, integer arrays copied from the point before). Field data:
+ * `steps`, `collisions` (pairs still overlapping), `solved` (1/0), `max_overlap` (µm),
+ * `shape_ok`, `segment_length`. If MaxSteps is reached the output still comes, with a warning
+ * naming the collisions left. The result is identical for any NumberOfThreads.
+ * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …,
+ * MaxSteps) so that ParaView's animation shows the fibers separating; the solve runs once and is
+ * cached.
+ */
+#ifndef vtkFiberCollisionSolver_h
+#define vtkFiberCollisionSolver_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory>
+
+class FIBERPLIFILTERS_EXPORT vtkFiberCollisionSolver : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkFiberCollisionSolver* New();
+  vtkTypeMacro(vtkFiberCollisionSolver, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Mean segment length in µm; link lengths are kept in [2/3, 4/3] of it by splitting and
+   * merging. 0 = automatic (2 × median radius). Default is 2.
+   */
+  vtkSetClampMacro(SegmentLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SegmentLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Minimum radius of curvature in µm (circumradius of three consecutive points); 0 = off.
+   * Default is 0.
+   */
+  vtkSetClampMacro(MinCurvatureRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MinCurvatureRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Maximum number of steps; the solver never runs longer. Default is 10000.
+   */
+  vtkSetClampMacro(MaxSteps, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaxSteps, int);
+  ///@}
+
+  ///@{
+  /**
+   * Smallest push of a colliding pair per step, relative to the smallest radius of its points
+   * (the paper's fixed separation speed), 0 to 1. Default is 0.05.
+   */
+  vtkSetClampMacro(SeparationSpeed, double, 0.0, 1.0);
+  vtkGetMacro(SeparationSpeed, double);
+  ///@}
+
+  ///@{
+  /**
+   * Extra clearance in µm between capsules: a pair collides when its axis distance is below
+   * ρa + ρb + MinimumGap. Default is 0 (the paper).
+   */
+  vtkSetClampMacro(MinimumGap, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MinimumGap, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads, 0 = all cores. The result does not depend on it. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Expose the solver's steps as time steps (0, TimeStepInterval, …, MaxSteps). Default is off.
+   */
+  vtkSetMacro(IterationsAsTime, bool);
+  vtkGetMacro(IterationsAsTime, bool);
+  vtkBooleanMacro(IterationsAsTime, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Steps between two time steps when IterationsAsTime is on, >= 1. Default is 50.
+   */
+  vtkSetClampMacro(TimeStepInterval, int, 1, VTK_INT_MAX);
+  vtkGetMacro(TimeStepInterval, int);
+  ///@}
+
+protected:
+  vtkFiberCollisionSolver();
+  ~vtkFiberCollisionSolver() override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
+  void operator=(const vtkFiberCollisionSolver&) = delete;
+
+  double SegmentLength = 2.0;
+  double MinCurvatureRadius = 0.0;
+  int MaxSteps = 10000;
+  double SeparationSpeed = 0.05;
+  double MinimumGap = 0.0;
+  int NumberOfThreads = 0;
+  bool IterationsAsTime = false;
+  int TimeStepInterval = 50;
+
+  struct Snapshots; // solved states per time step, cached for IterationsAsTime
+  std::unique_ptr<Snapshots> Cache;
+};
+
+#endif
