@@ -28,6 +28,18 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b)
 namespace
 {
 
+inline float floatBelow(double x)
+{
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
+}
+
+inline float floatAbove(double x)
+{
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, HUGE_VALF) : f;
+}
+
 inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi)
 {
   return ahi.x > blo.x && bhi.x > alo.x && ahi.y > blo.y && bhi.y > alo.y && ahi.z > blo.z &&
@@ -166,7 +178,11 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 
   const std::size_t nRegular = sortKeys_.size();
   order_.resize(nRegular);
-  sortedBoxes_.resize(nRegular);
+  for (int d = 0; d < 3; ++d)
+  {
+    lo_[d].resize(nRegular);
+    hi_[d].resize(nRegular);
+  }
   cellKeys_.clear();
   cellStart_.clear();
   for (std::size_t r = 0; r < nRegular; ++r)
@@ -174,7 +190,11 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     const std::uint64_t cell = sortKeys_[r] >> 32;
     const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
     order_[r] = id;
-    sortedBoxes_[r] = boxes_[id];
+    for (int d = 0; d < 3; ++d)
+    {
+      lo_[d][r] = floatBelow(boxes_[id].lo[d]);
+      hi_[d][r] = floatAbove(boxes_[id].hi[d]);
+    }
     if (cellKeys_.empty() || cellKeys_.back() != cell)
     {
       cellKeys_.push_back(cell);
@@ -202,6 +222,36 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 #else
     std::vector<CapsulePair>& out = perThread_[0];
 #endif
+    std::vector<std::uint32_t> cand;
+    const float* lx = lo_[0].data();
+    const float* ly = lo_[1].data();
+    const float* lz = lo_[2].data();
+    const float* hx = hi_[0].data();
+    const float* hy = hi_[1].data();
+    const float* hz = hi_[2].data();
+    // Box r against boxes [qb, qe): branch-free compaction of the overlapping ones first (the
+    // loop the broad phase spends its time in), then the exact test on the few candidates.
+    auto scan = [&](std::uint32_t r, std::uint32_t qb, std::uint32_t qe, std::vector<std::uint32_t>& c) {
+      if (qe <= qb)
+      {
+        return;
+      }
+      c.resize(qe - qb);
+      std::uint32_t* cp = c.data();
+      std::size_t nc = 0;
+      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
+      for (std::uint32_t q = qb; q < qe; ++q)
+      {
+        const bool hit = (rhx > lx[q]) & (hx[q] > rlx) & (rhy > ly[q]) & (hy[q] > rly) &
+          (rhz > lz[q]) & (hz[q] > rlz);
+        cp[nc] = q;
+        nc += hit ? 1u : 0u;
+      }
+      for (std::size_t i = 0; i < nc; ++i)
+      {
+        testPair(links, order_[r], order_[cp[i]], minimumGap, out);
+      }
+    };
 #pragma omp for schedule(dynamic, 8)
     for (std::int64_t ci = 0; ci < nCells; ++ci)
     {
@@ -213,14 +263,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
       for (std::uint32_t r = begin; r < end; ++r)
       {
-        const Box& br = sortedBoxes_[r];
-        for (std::uint32_t q = r + 1; q < end; ++q)
-        {
-          if (boxesOverlap(br.lo, br.hi, sortedBoxes_[q].lo, sortedBoxes_[q].hi))
-          {
-            testPair(links, order_[r], order_[q], minimumGap, out);
-          }
-        }
+        scan(r, r + 1, end, cand);
       }
       for (const auto& off : kForward)
       {
@@ -243,14 +286,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
         const std::uint32_t e2 = cellStart_[cj + 1];
         for (std::uint32_t r = begin; r < end; ++r)
         {
-          const Box& br = sortedBoxes_[r];
-          for (std::uint32_t q = b2; q < e2; ++q)
-          {
-            if (boxesOverlap(br.lo, br.hi, sortedBoxes_[q].lo, sortedBoxes_[q].hi))
-            {
-              testPair(links, order_[r], order_[q], minimumGap, out);
-            }
-          }
+          scan(r, b2, e2, cand);
         }
       }
     }
@@ -263,7 +299,8 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       const Box& bo = boxes_[o];
       for (std::size_t r = 0; r < nRegular; ++r)
       {
-        if (boxesOverlap(bo.lo, bo.hi, sortedBoxes_[r].lo, sortedBoxes_[r].hi))
+        const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
+        if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
           testPair(links, o, order_[r], minimumGap, out);
         }

@@ -58,7 +58,10 @@ private:
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
   std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
-  std::vector<Box> sortedBoxes_;        // boxes in 'order_' order: contiguous per cell
+  // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
+  // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
+  std::vector<float> lo_[3];
+  std::vector<float> hi_[3];
   std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t> oversize_; // links queried against all links
