@@ -1,0 +1,335 @@
+#include "Index/CollisionGrid.h"
+
+#include "Geometry/SegmentDistance.h"
+#include "Util/Threads.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fiberpli
+{
+
+bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b)
+{
+  if (a.fiber != b.fiber)
+  {
+    return false;
+  }
+  const CapsuleLink& first = a.k < b.k ? a : b;
+  const CapsuleLink& second = a.k < b.k ? b : a;
+  if (second.k - first.k <= 1)
+  {
+    return true;
+  }
+  // Arc length instead of fastPLI's |Δk|·mean length: a fold-back (u ≈ −v) is still detected.
+  return second.arc0 - first.arc1 < 2.0 * (a.rho + b.rho);
+}
+
+namespace
+{
+
+inline float floatBelow(double x)
+{
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
+}
+
+inline float floatAbove(double x)
+{
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, HUGE_VALF) : f;
+}
+
+inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi)
+{
+  return ahi.x > blo.x && bhi.x > alo.x && ahi.y > blo.y && bhi.y > alo.y && ahi.z > blo.z &&
+    bhi.z > alo.z;
+}
+
+// Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
+// the result does not depend on which cell found the pair.
+inline void testPair(const std::vector<CapsuleLink>& links, std::uint32_t i, std::uint32_t j,
+  double gap, std::vector<CapsulePair>& out)
+{
+  const std::uint32_t a = i < j ? i : j;
+  const std::uint32_t b = i < j ? j : i;
+  const CapsuleLink& la = links[a];
+  const CapsuleLink& lb = links[b];
+  if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
+  {
+    return;
+  }
+  const SegmentClosest c = closestPoints(la.p0, la.p1, lb.p0, lb.p1);
+  if (c.distance < la.rho + lb.rho + gap)
+  {
+    CapsulePair p;
+    p.a = a;
+    p.b = b;
+    p.s = c.s;
+    p.t = c.t;
+    p.distance = c.distance;
+    p.direction = separationDirection(c, la.p1 - la.p0, lb.p1 - lb.p0);
+    out.push_back(p);
+  }
+}
+} // namespace
+
+void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
+  int threads, std::vector<CapsulePair>& pairs)
+{
+  pairs.clear();
+  const std::size_t n = links.size();
+  if (n < 2)
+  {
+    return;
+  }
+  const int nThreads = resolveThreadCount(threads);
+  const double halfGap = 0.5 * minimumGap;
+
+  boxes_.resize(n);
+  std::vector<double> edges(n);
+  Vec3 origin{ HUGE_VAL, HUGE_VAL, HUGE_VAL };
+  Vec3 top{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const CapsuleLink& l = links[i];
+    const double g = l.rho + halfGap;
+    Box& bx = boxes_[i];
+    for (int d = 0; d < 3; ++d)
+    {
+      bx.lo[d] = std::min(l.p0[d], l.p1[d]) - g;
+      bx.hi[d] = std::max(l.p0[d], l.p1[d]) + g;
+      origin[d] = std::min(origin[d], bx.lo[d]);
+      top[d] = std::max(top[d], bx.hi[d]);
+    }
+    edges[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
+  }
+
+  // Cell size: the largest "regular" box edge (§3.3). A few oversize links are tested against
+  // everything instead of blowing up the cell size for all.
+  std::vector<double> sorted(edges);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
+  const double limit = 2.0 * sorted[n / 2];
+  double h = 0.0;
+  double hAll = 0.0;
+  std::size_t nOversize = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    hAll = std::max(hAll, edges[i]);
+    if (edges[i] <= limit)
+    {
+      h = std::max(h, edges[i]);
+    }
+    else
+    {
+      ++nOversize;
+    }
+  }
+  if (nOversize * 64 > n)
+  {
+    h = hAll;
+    nOversize = 0;
+  }
+  // Margin: floor((c − origin)/h) is rounded, keep neighbours at most one cell apart.
+  h = std::max(h, 1e-300) * (1.0 + 1e-9);
+  double dims[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    dims[d] = std::floor((top[d] - origin[d]) / h) + 1.0;
+  }
+  // The linear cell index must fit 32 bits (sort key = cell << 32 | id): coarser cells stay
+  // correct, only slower.
+  while (dims[0] * dims[1] * dims[2] >= 4.0e9)
+  {
+    h *= 2.0;
+    for (int d = 0; d < 3; ++d)
+    {
+      dims[d] = std::floor((top[d] - origin[d]) / h) + 1.0;
+    }
+  }
+  const std::int64_t nx = static_cast<std::int64_t>(dims[0]);
+  const std::int64_t ny = static_cast<std::int64_t>(dims[1]);
+  const std::int64_t nz = static_cast<std::int64_t>(dims[2]);
+
+  oversize_.clear();
+  sortKeys_.clear();
+  sortKeys_.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (nOversize > 0 && edges[i] > limit)
+    {
+      oversize_.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
+    const Box& bx = boxes_[i];
+    std::int64_t c[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
+      c[d] = static_cast<std::int64_t>(std::floor((centre - origin[d]) / h));
+    }
+    c[0] = std::min(std::max<std::int64_t>(c[0], 0), nx - 1);
+    c[1] = std::min(std::max<std::int64_t>(c[1], 0), ny - 1);
+    c[2] = std::min(std::max<std::int64_t>(c[2], 0), nz - 1);
+    const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + nx * (c[1] + ny * c[2]));
+    sortKeys_.push_back((cell << 32) | static_cast<std::uint64_t>(i));
+  }
+  std::sort(sortKeys_.begin(), sortKeys_.end());
+
+  const std::size_t nRegular = sortKeys_.size();
+  order_.resize(nRegular);
+  for (int d = 0; d < 3; ++d)
+  {
+    lo_[d].resize(nRegular);
+    hi_[d].resize(nRegular);
+  }
+  cellKeys_.clear();
+  cellStart_.clear();
+  for (std::size_t r = 0; r < nRegular; ++r)
+  {
+    const std::uint64_t cell = sortKeys_[r] >> 32;
+    const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+    order_[r] = id;
+    for (int d = 0; d < 3; ++d)
+    {
+      lo_[d][r] = floatBelow(boxes_[id].lo[d]);
+      hi_[d][r] = floatAbove(boxes_[id].hi[d]);
+    }
+    if (cellKeys_.empty() || cellKeys_.back() != cell)
+    {
+      cellKeys_.push_back(cell);
+      cellStart_.push_back(static_cast<std::uint32_t>(r));
+    }
+  }
+  cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
+
+  const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
+  perThread_.resize(static_cast<std::size_t>(nThreads));
+  for (auto& v : perThread_)
+  {
+    v.clear();
+  }
+
+  // 13 forward neighbours: every unordered pair of neighbouring cells is visited once.
+  static const int kForward[13][3] = { { 1, 0, 0 }, { -1, 1, 0 }, { 0, 1, 0 }, { 1, 1, 0 },
+    { -1, -1, 1 }, { 0, -1, 1 }, { 1, -1, 1 }, { -1, 0, 1 }, { 0, 0, 1 }, { 1, 0, 1 },
+    { -1, 1, 1 }, { 0, 1, 1 }, { 1, 1, 1 } };
+
+#pragma omp parallel num_threads(nThreads)
+  {
+#ifdef _OPENMP
+    std::vector<CapsulePair>& out = perThread_[static_cast<std::size_t>(omp_get_thread_num())];
+#else
+    std::vector<CapsulePair>& out = perThread_[0];
+#endif
+    std::vector<std::uint32_t> cand;
+    const float* lx = lo_[0].data();
+    const float* ly = lo_[1].data();
+    const float* lz = lo_[2].data();
+    const float* hx = hi_[0].data();
+    const float* hy = hi_[1].data();
+    const float* hz = hi_[2].data();
+    // Box r against boxes [qb, qe): branch-free compaction of the overlapping ones first (the
+    // loop the broad phase spends its time in), then the exact test on the few candidates.
+    auto scan = [&](std::uint32_t r, std::uint32_t qb, std::uint32_t qe, std::vector<std::uint32_t>& c) {
+      if (qe <= qb)
+      {
+        return;
+      }
+      c.resize(qe - qb);
+      std::uint32_t* cp = c.data();
+      std::size_t nc = 0;
+      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
+      for (std::uint32_t q = qb; q < qe; ++q)
+      {
+        const bool hit = (rhx > lx[q]) & (hx[q] > rlx) & (rhy > ly[q]) & (hy[q] > rly) &
+          (rhz > lz[q]) & (hz[q] > rlz);
+        cp[nc] = q;
+        nc += hit ? 1u : 0u;
+      }
+      for (std::size_t i = 0; i < nc; ++i)
+      {
+        testPair(links, order_[r], order_[cp[i]], minimumGap, out);
+      }
+    };
+#pragma omp for schedule(dynamic, 8)
+    for (std::int64_t ci = 0; ci < nCells; ++ci)
+    {
+      const std::uint64_t cell = cellKeys_[static_cast<std::size_t>(ci)];
+      const std::int64_t cx = static_cast<std::int64_t>(cell) % nx;
+      const std::int64_t cy = (static_cast<std::int64_t>(cell) / nx) % ny;
+      const std::int64_t cz = static_cast<std::int64_t>(cell) / (nx * ny);
+      const std::uint32_t begin = cellStart_[static_cast<std::size_t>(ci)];
+      const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
+      for (std::uint32_t r = begin; r < end; ++r)
+      {
+        scan(r, r + 1, end, cand);
+      }
+      for (const auto& off : kForward)
+      {
+        const std::int64_t x = cx + off[0];
+        const std::int64_t y = cy + off[1];
+        const std::int64_t z = cz + off[2];
+        if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz)
+        {
+          continue;
+        }
+        const std::uint64_t key = static_cast<std::uint64_t>(x + nx * (y + ny * z));
+        // Forward cells have larger keys: search only the tail.
+        const auto it = std::lower_bound(cellKeys_.begin() + ci + 1, cellKeys_.end(), key);
+        if (it == cellKeys_.end() || *it != key)
+        {
+          continue;
+        }
+        const std::size_t cj = static_cast<std::size_t>(it - cellKeys_.begin());
+        const std::uint32_t b2 = cellStart_[cj];
+        const std::uint32_t e2 = cellStart_[cj + 1];
+        for (std::uint32_t r = begin; r < end; ++r)
+        {
+          scan(r, b2, e2, cand);
+        }
+      }
+    }
+    // Oversize links: against every regular link, and against later oversize links.
+    const std::int64_t nOver = static_cast<std::int64_t>(oversize_.size());
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t oi = 0; oi < nOver; ++oi)
+    {
+      const std::uint32_t o = oversize_[static_cast<std::size_t>(oi)];
+      const Box& bo = boxes_[o];
+      for (std::size_t r = 0; r < nRegular; ++r)
+      {
+        const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
+        if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
+        {
+          testPair(links, o, order_[r], minimumGap, out);
+        }
+      }
+      for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
+      {
+        const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
+        if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
+        {
+          testPair(links, o, p, minimumGap, out);
+        }
+      }
+    }
+  }
+
+  std::size_t total = 0;
+  for (const auto& v : perThread_)
+  {
+    total += v.size();
+  }
+  pairs.reserve(total);
+  for (const auto& v : perThread_)
+  {
+    pairs.insert(pairs.end(), v.begin(), v.end());
+  }
+  // Each pair is found exactly once, so sorting makes the list independent of the schedule.
+  std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+}
+
+} // namespace fiberpli

@@ -1,0 +1,71 @@
+/// CollisionGrid: broad + narrow phase collision detection of capsule links on a uniform grid
+/// (collision-solver.md §3). Memory is linear in the number of links; the pair list is sorted by
+/// (a, b) and therefore identical for any thread count or schedule.
+#pragma once
+
+#include "Geometry/Vec3.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// One link of a fiber as the detector sees it (collision-solver.md §1). Its index in the link
+/// array is its global link id (fibers in input order, links in fiber order).
+struct CapsuleLink
+{
+  Vec3 p0;
+  Vec3 p1;
+  double rho = 0.0;        ///< capsule radius max(r_k, r_k+1)
+  std::uint32_t fiber = 0; ///< fiber index (same-fiber skip rule)
+  std::uint32_t k = 0;     ///< link index inside the fiber
+  double arc0 = 0.0;       ///< arc length from the fiber's first point to p0 (S[k])
+  double arc1 = 0.0;       ///< arc length to p1 (S[k+1])
+};
+
+/// A colliding pair, a < b (global link ids), with the closest points of §2 evaluated as
+/// closestPoints(link a, link b).
+struct CapsulePair
+{
+  std::uint32_t a = 0;
+  std::uint32_t b = 0;
+  double s = 0.0;        ///< parameter on a
+  double t = 0.0;        ///< parameter on b
+  double distance = 0.0; ///< axis distance δ
+  Vec3 direction;        ///< unit push direction of a (b moves opposite), §2.4 when δ ≈ 0
+};
+
+/// Same-fiber rule of collision-solver.md §3.1 [ours]: true when the pair is never tested
+/// (other fiber: false; adjacent links; arc length strictly between them < 2·(ρa + ρb)).
+bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
+
+/// Uniform grid (§3.3). Reuse one object across solver steps: its buffers are kept.
+class CollisionGrid
+{
+public:
+  /// All pairs with δ < ρa + ρb + minimumGap (strict), skip rules of §3.1 applied, sorted by
+  /// (a, b). threads: 0 = all cores. Links must have finite coordinates.
+  void findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
+    std::vector<CapsulePair>& pairs);
+
+private:
+  struct Box
+  {
+    Vec3 lo;
+    Vec3 hi;
+  };
+  std::vector<Box> boxes_;              // per link, grown by rho + gap/2
+  std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
+  std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
+  // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
+  // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
+  std::vector<float> lo_[3];
+  std::vector<float> hi_[3];
+  std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
+  std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
+  std::vector<std::uint32_t> oversize_; // links queried against all links
+  std::vector<std::vector<CapsulePair>> perThread_;
+};
+
+} // namespace fiberpli

@@ -1,0 +1,496 @@
+#include "Solver/CollisionSolver.h"
+
+#include "Index/CollisionGrid.h"
+#include "Util/Threads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace fiberpli
+{
+
+namespace
+{
+// Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
+void buildLinks(const FiberModel& model, const std::vector<char>* active,
+  std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset)
+{
+  links.clear();
+  std::size_t points = 0;
+  if (pointOffset)
+  {
+    pointOffset->assign(model.fibers.size() + 1, 0);
+  }
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fib = model.fibers[f];
+    if (pointOffset)
+    {
+      (*pointOffset)[f] = points;
+    }
+    points += fib.points.size();
+    if (fib.points.size() < 2 || (active && !(*active)[f]))
+    {
+      continue;
+    }
+    double arc = 0.0;
+    for (std::size_t k = 0; k + 1 < fib.points.size(); ++k)
+    {
+      CapsuleLink l;
+      l.p0 = fib.points[k];
+      l.p1 = fib.points[k + 1];
+      l.rho = fib.linkRadius(k);
+      l.fiber = static_cast<std::uint32_t>(f);
+      l.k = static_cast<std::uint32_t>(k);
+      l.arc0 = arc;
+      arc += distance(l.p0, l.p1);
+      l.arc1 = arc;
+      links.push_back(l);
+    }
+  }
+  if (pointOffset)
+  {
+    (*pointOffset)[model.fibers.size()] = points;
+  }
+}
+
+std::string validateInput(const FiberModel& model)
+{
+  std::ostringstream msg;
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fib = model.fibers[f];
+    if (fib.radii.size() != fib.points.size())
+    {
+      msg << "fiber " << f << " (id " << fib.id << ") has " << fib.points.size() << " points but "
+          << fib.radii.size() << " radii";
+      return msg.str();
+    }
+    for (std::size_t i = 0; i < fib.points.size(); ++i)
+    {
+      if (!isFinite(fib.points[i]))
+      {
+        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has a non-finite coordinate";
+        return msg.str();
+      }
+      if (!std::isfinite(fib.radii[i]) || fib.radii[i] <= 0.0)
+      {
+        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has radius " << fib.radii[i]
+            << ", must be finite and > 0";
+        return msg.str();
+      }
+    }
+  }
+  return {};
+}
+
+double medianRadius(const FiberModel& model)
+{
+  std::vector<double> r;
+  for (const Fiber& f : model.fibers)
+  {
+    if (f.points.size() >= 2)
+    {
+      r.insert(r.end(), f.radii.begin(), f.radii.end());
+    }
+  }
+  if (r.empty())
+  {
+    return 0.0;
+  }
+  std::nth_element(r.begin(), r.begin() + static_cast<long>(r.size() / 2), r.end());
+  return r[r.size() / 2];
+}
+
+// Repeated consecutive points have no direction (§9): keep the first of a run.
+std::size_t removeRepeatedPoints(Fiber& f, FiberPointState& st)
+{
+  std::size_t removed = 0;
+  std::size_t out = 0;
+  for (std::size_t i = 0; i < f.points.size(); ++i)
+  {
+    if (out > 0 && f.points[i] == f.points[out - 1])
+    {
+      ++removed;
+      continue;
+    }
+    f.points[out] = f.points[i];
+    f.radii[out] = f.radii[i];
+    st.source[out] = st.source[i];
+    ++out;
+  }
+  f.points.resize(out);
+  f.radii.resize(out);
+  st.source.resize(out);
+  st.velocity.assign(out, Vec3{});
+  return removed;
+}
+
+struct PairPush
+{
+  Vec3 a0, a1, b0, b1;
+};
+
+class Solver
+{
+public:
+  Solver(FiberModel& model, const CollisionSolverOptions& o, int threads)
+    : model_(model), o_(o), threads_(threads)
+  {
+  }
+
+  FiberModel& model_;
+  const CollisionSolverOptions& o_;
+  int threads_;
+  double segmentLength_ = -1.0;
+  double vMax_ = 0.0;
+  std::vector<FiberPointState> state_;
+  std::vector<char> active_; // fiber has >= 2 distinct points: solved
+  std::vector<CapsuleLink> links_;
+  std::vector<std::size_t> pointOffset_;
+  std::vector<CapsulePair> pairs_;
+  std::vector<PairPush> push_;
+  std::vector<Vec3> force_;
+  CollisionGrid grid_;
+
+  // Length then curvature per fiber; parallel over fibers, each fiber sequential (§5).
+  bool shapeControl()
+  {
+    const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
+    int changed = 0;
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(| : changed)
+    for (std::int64_t f = 0; f < nf; ++f)
+    {
+      Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
+      if (!active_[static_cast<std::size_t>(f)])
+      {
+        continue;
+      }
+      FiberPointState& st = state_[static_cast<std::size_t>(f)];
+      bool c = controlSegmentLength(fib, st, segmentLength_);
+      c = controlCurvature(fib, o_.minCurvatureRadius, vMax_, o_.endPoints) || c;
+      changed |= c ? 1 : 0;
+    }
+    return changed != 0;
+  }
+
+  void detect()
+  {
+    buildLinks(model_, &active_, links_, &pointOffset_);
+    grid_.findPairs(links_, o_.minimumGap, threads_, pairs_);
+  }
+
+  double maxOverlap() const
+  {
+    double m = 0.0;
+    for (const CapsulePair& p : pairs_)
+    {
+      m = std::max(m, links_[p.a].rho + links_[p.b].rho + o_.minimumGap - p.distance);
+    }
+    return m;
+  }
+
+  // §4.4: pushes in parallel into their own slots, summed serially in pair order, then moved per
+  // fiber in parallel: no floating result depends on the thread that computed it.
+  void separate()
+  {
+    const std::int64_t np = static_cast<std::int64_t>(pairs_.size());
+    push_.resize(pairs_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::int64_t pi = 0; pi < np; ++pi)
+    {
+      const CapsulePair& p = pairs_[static_cast<std::size_t>(pi)];
+      const CapsuleLink& la = links_[p.a];
+      const CapsuleLink& lb = links_[p.b];
+      const Fiber& fa = model_.fibers[la.fiber];
+      const Fiber& fb = model_.fibers[lb.fiber];
+      const double rMin = std::min(std::min(fa.radii[la.k], fa.radii[la.k + 1]),
+        std::min(fb.radii[lb.k], fb.radii[lb.k + 1]));
+      const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
+      const double sigma = std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
+      const Vec3 n = sigma * p.direction;
+      PairPush& out = push_[static_cast<std::size_t>(pi)];
+      out.a0 = (1.0 - p.s) * n;
+      out.a1 = p.s * n;
+      out.b0 = -((1.0 - p.t) * n);
+      out.b1 = -(p.t * n);
+    }
+    force_.assign(pointOffset_.back(), Vec3{});
+    for (std::size_t pi = 0; pi < pairs_.size(); ++pi)
+    {
+      const CapsuleLink& la = links_[pairs_[pi].a];
+      const CapsuleLink& lb = links_[pairs_[pi].b];
+      const std::size_t ia = pointOffset_[la.fiber] + la.k;
+      const std::size_t ib = pointOffset_[lb.fiber] + lb.k;
+      force_[ia] += push_[pi].a0;
+      force_[ia + 1] += push_[pi].a1;
+      force_[ib] += push_[pi].b0;
+      force_[ib + 1] += push_[pi].b1;
+    }
+    const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
+    const double drag = o_.drag;
+    const double vMax = vMax_;
+    const EndPointRule rule = o_.endPoints;
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::int64_t f = 0; f < nf; ++f)
+    {
+      Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
+      const std::size_t n = fib.points.size();
+      if (!active_[static_cast<std::size_t>(f)])
+      {
+        continue;
+      }
+      std::vector<Vec3>& vel = state_[static_cast<std::size_t>(f)].velocity;
+      const Vec3* force = force_.data() + pointOffset_[static_cast<std::size_t>(f)];
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        Vec3 v = drag == 0.0 ? force[i] : drag * vel[i] + force[i];
+        const double vv = norm2(v);
+        if (vv > vMax * vMax)
+        {
+          v *= vMax / std::sqrt(vv);
+        }
+        vel[i] = v;
+      }
+      // End-point rule after the cap, on the end links before this move (§4.2).
+      vel[0] = constrainEndMove(fib, 0, vel[0], rule);
+      vel[n - 1] = constrainEndMove(fib, n - 1, vel[n - 1], rule);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        fib.points[i] += vel[i];
+      }
+    }
+  }
+};
+} // namespace
+
+std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
+{
+  std::ostringstream msg;
+  if (!std::isfinite(o.segmentLength))
+  {
+    msg << "SegmentLength is " << o.segmentLength << ", must be finite (0 = auto, < 0 = off)";
+  }
+  else if (!std::isfinite(o.minCurvatureRadius) || o.minCurvatureRadius < 0.0)
+  {
+    msg << "MinCurvatureRadius is " << o.minCurvatureRadius << ", must be >= 0 (0 = off)";
+  }
+  else if (o.maxSteps < 0)
+  {
+    msg << "MaxSteps is " << o.maxSteps << ", must be >= 0";
+  }
+  else if (!std::isfinite(o.separationSpeed) || o.separationSpeed <= 0.0)
+  {
+    msg << "SeparationSpeed is " << o.separationSpeed << ", must be > 0";
+  }
+  else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
+  {
+    msg << "OverlapPush is " << o.overlapPush << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.maxDisplacement) || o.maxDisplacement <= 0.0)
+  {
+    msg << "MaxDisplacement is " << o.maxDisplacement << ", must be > 0";
+  }
+  else if (!std::isfinite(o.drag) || o.drag < 0.0 || o.drag >= 1.0)
+  {
+    msg << "Drag is " << o.drag << ", must be in [0, 1)";
+  }
+  else if (o.numberOfThreads < 0)
+  {
+    msg << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0 (0 = all cores)";
+  }
+  else if (!std::isfinite(o.minimumGap) || o.minimumGap < 0.0)
+  {
+    msg << "MinimumGap is " << o.minimumGap << ", must be >= 0";
+  }
+  else if (o.stallSteps < 0)
+  {
+    msg << "StallSteps is " << o.stallSteps << ", must be >= 0 (0 = off)";
+  }
+  return msg.str();
+}
+
+CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& o,
+  const ProgressFn& progress, const StepObserver& observer)
+{
+  CollisionSolverResult result;
+  result.error = validateCollisionSolverOptions(o);
+  if (result.error.empty())
+  {
+    result.error = validateInput(model);
+  }
+  if (!result.error.empty())
+  {
+    return result;
+  }
+  const int threads = resolveThreadCount(o.numberOfThreads);
+  Solver s(model, o, threads);
+
+  const std::size_t nf = model.fibers.size();
+  s.state_.resize(nf);
+  s.active_.assign(nf, 1);
+  std::size_t repeated = 0;
+  std::size_t tooShort = 0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    Fiber& fib = model.fibers[f];
+    FiberPointState& st = s.state_[f];
+    st.source.resize(fib.points.size());
+    for (std::size_t i = 0; i < fib.points.size(); ++i)
+    {
+      st.source[i] = static_cast<double>(i);
+    }
+    if (fib.points.size() >= 2)
+    {
+      // A fiber of identical points would collapse to one point: leave it as it came.
+      Fiber copy = fib;
+      FiberPointState stCopy = st;
+      const std::size_t r = removeRepeatedPoints(copy, stCopy);
+      if (copy.points.size() >= 2)
+      {
+        fib = std::move(copy);
+        st = std::move(stCopy);
+        repeated += r;
+      }
+    }
+    st.velocity.assign(fib.points.size(), Vec3{});
+    bool degenerate = fib.points.size() < 2;
+    for (std::size_t i = 1; !degenerate && i < fib.points.size(); ++i)
+    {
+      degenerate = fib.points[i] == fib.points[i - 1];
+    }
+    if (degenerate)
+    {
+      ++tooShort;
+      s.active_[f] = 0;
+    }
+  }
+  if (repeated > 0)
+  {
+    result.warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
+  }
+  if (tooShort > 0)
+  {
+    result.warnings.push_back(std::to_string(tooShort) +
+      " fibers with fewer than 2 distinct points are not solved (copied through)");
+  }
+
+  const double rMedian = medianRadius(model);
+  double rMin = HUGE_VAL;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : model.fibers[f].radii)
+      {
+        rMin = std::min(rMin, r);
+      }
+    }
+  }
+  if (rMin == HUGE_VAL)
+  {
+    rMin = 0.0;
+  }
+  if (rMin < 0.25 * rMedian)
+  {
+    result.warnings.push_back("smallest radius " + std::to_string(rMin) +
+      " is below 1/4 of the median radius " + std::to_string(rMedian) +
+      ": every fiber moves at most " + std::to_string(o.maxDisplacement) +
+      " x this radius per step (slow)");
+  }
+  s.segmentLength_ = o.segmentLength == 0.0 ? 2.0 * rMedian : o.segmentLength;
+  if (s.segmentLength_ == 0.0)
+  {
+    s.segmentLength_ = -1.0; // no fibers to take a radius from
+  }
+  s.vMax_ = o.maxDisplacement * rMin;
+  result.segmentLength = s.segmentLength_;
+
+  bool changed = false;
+  bool first = true;
+  int sinceImprovement = 0;
+  bool warnedStall = false;
+  while (true)
+  {
+    changed = s.shapeControl();
+    s.detect();
+    const std::size_t count = s.pairs_.size();
+    if (first || count < result.bestCollisions)
+    {
+      result.bestCollisions = count;
+      result.bestStep = result.steps;
+      sinceImprovement = 0;
+      first = false;
+    }
+    else
+    {
+      ++sinceImprovement;
+    }
+    if (count == 0 && !changed)
+    {
+      break;
+    }
+    if (result.steps >= o.maxSteps)
+    {
+      break;
+    }
+    if (o.stallSteps > 0 && sinceImprovement >= o.stallSteps)
+    {
+      result.warnings.push_back("stopped after " + std::to_string(sinceImprovement) +
+        " steps without fewer collisions (StallSteps)");
+      break;
+    }
+    if (!warnedStall && sinceImprovement >= 1000)
+    {
+      warnedStall = true;
+      result.warnings.push_back("1000 steps passed without fewer collisions");
+    }
+    s.separate();
+    ++result.steps;
+    if (observer)
+    {
+      observer(result.steps, model);
+    }
+    const double fraction =
+      o.maxSteps > 0 ? static_cast<double>(result.steps) / static_cast<double>(o.maxSteps) : 1.0;
+    if (!reportProgress(progress, fraction))
+    {
+      result.aborted = true;
+      s.detect(); // collisions must describe the geometry that is returned
+      changed = false;
+      break;
+    }
+  }
+  result.collisions = s.pairs_.size();
+  result.solved = result.collisions == 0;
+  result.shapeOk = !changed;
+  result.maxOverlap = s.maxOverlap();
+  if (!result.solved && !result.aborted)
+  {
+    std::ostringstream w;
+    w << result.collisions << " capsule pairs still overlap after " << result.steps
+      << " steps (best " << result.bestCollisions << " at step " << result.bestStep
+      << ", max overlap " << result.maxOverlap
+      << " um); raise MaxSteps, lower the density or the radii";
+    result.warnings.push_back(w.str());
+  }
+  result.sourceIndex.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    result.sourceIndex[f] = std::move(s.state_[f].source);
+  }
+  return result;
+}
+
+std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads)
+{
+  std::vector<CapsuleLink> links;
+  buildLinks(model, nullptr, links, nullptr);
+  std::vector<CapsulePair> pairs;
+  CollisionGrid grid;
+  grid.findPairs(links, minimumGap, numberOfThreads, pairs);
+  return pairs.size();
+}
+
+} // namespace fiberpli

@@ -1,0 +1,90 @@
+/// CollisionSolver: moves fibers until no two capsules overlap, keeping segment lengths and
+/// curvature within limits (collision-solver.md, paper "Disentangling colliding fibers").
+/// Deterministic: the output is bit-identical for any thread count (§4.4).
+#pragma once
+
+#include "Model/FiberModel.h"
+#include "Solver/ShapeControl.h"
+#include "Util/Progress.h"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// Parameters (collision-solver.md §7). Lengths in µm.
+struct CollisionSolverOptions
+{
+  /// Mean segment length L̄ (µm); links are kept in [2/3, 4/3]·L̄ by split/merge (§5.1).
+  /// 0 = automatic (2 × median point radius), < 0 = off (no split/merge). Default 2.
+  double segmentLength = 2.0;
+  /// Minimum circumradius of three consecutive points (µm); also enables the 60° vertex rule
+  /// (§5.2). 0 = off. Default 0.
+  double minCurvatureRadius = 0.0;
+  /// Upper bound of move steps; the solver never runs longer (§6). Default 10000.
+  int maxSteps = 10000;
+  /// Smallest push of a colliding pair per step, relative to the smallest radius of its four
+  /// points (§4.1, fastPLI 0.05). Default 0.05.
+  double separationSpeed = 0.05;
+  /// [ours] Push a colliding pair by at least this fraction of its overlap
+  /// (ρa + ρb + gap − δ) per step, so deep overlaps are resolved in few steps instead of many
+  /// fixed small ones. 0 = the fixed push of fastPLI. Default 0.5.
+  double overlapPush = 0.5;
+  /// Largest move of a point per step, relative to the smallest radius of all fibers (§4.2,
+  /// fastPLI 0.2). Default 0.2.
+  double maxDisplacement = 0.2;
+  /// Velocity retention per step in [0, 1): 0 = no memory (paper, fastPLI default). Default 0.
+  double drag = 0.0;
+  /// Threads for detection, pushes and shape control; 0 = all cores. Default 0.
+  int numberOfThreads = 0;
+  /// [ours] Extra clearance g >= 0 (µm): a pair collides iff δ < ρa + ρb + g. Default 0.
+  double minimumGap = 0.0;
+  /// What end points may do (§4.2). Default Perpendicular.
+  EndPointRule endPoints = EndPointRule::Perpendicular;
+  /// Stop early when the best collision count has not improved for this many steps; 0 = off.
+  int stallSteps = 0;
+};
+
+/// Outcome of solveCollisions (field data of §9).
+struct CollisionSolverResult
+{
+  int steps = 0;              ///< move phases run
+  std::size_t collisions = 0; ///< colliding capsule pairs in the output geometry
+  bool solved = false;        ///< collisions == 0
+  bool shapeOk = true;        ///< the last shape control pass changed nothing
+  bool aborted = false;       ///< progress returned false
+  double maxOverlap = 0.0;    ///< max over colliding pairs of ρa + ρb + g − δ (µm), 0 if none
+  double segmentLength = 0.0; ///< L̄ used (< 0 = off)
+  std::size_t bestCollisions = 0; ///< smallest collision count seen ...
+  int bestStep = 0;               ///< ... and the step it occurred
+  /// Per output fiber, per output point: its position along the input fiber as a fractional input
+  /// point index (3.5 = midpoint of input points 3 and 4), for interpolating other point arrays
+  /// (floats: linear; integers: take floor). Points are moved, so this is the origin, not the place.
+  std::vector<std::vector<double>> sourceIndex;
+  std::vector<std::string> warnings; ///< recoverable oddities, one message each, with counts
+  std::string error;                 ///< non-empty: nothing was done, the model is unchanged
+};
+
+/// Called after every move step with the step number (1, 2, …) and the current model, from the
+/// calling thread (e.g. to expose iterations as time steps).
+using StepObserver = std::function<void(int step, const FiberModel& model)>;
+
+/// Solves the model in place (collision-solver.md §6): fibers keep count, order, id and bundle;
+/// first and last points stay first and last. Fibers with fewer than 2 points (after removing
+/// repeated consecutive points) are left unchanged and excluded (warning). Errors (bad options,
+/// mismatched radii, non-finite coordinates, radius <= 0) leave the model unchanged and name the
+/// option or the fiber and point. Never throws, never prints.
+CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
+  const ProgressFn& progress = {}, const StepObserver& observer = {});
+
+/// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
+/// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports.
+std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0);
+
+/// Empty when the options are usable, else a message naming the option and its value.
+std::string validateCollisionSolverOptions(const CollisionSolverOptions& options);
+
+} // namespace fiberpli

@@ -1,0 +1,187 @@
+#include "Solver/ShapeControl.h"
+
+#include <cmath>
+
+namespace fiberpli
+{
+
+namespace
+{
+// Radius feature strength (a Ranvier node point has a large one): the dev rule of §5.1.
+double radiusDeviation(const Fiber& f, std::size_t j)
+{
+  return std::fabs(f.radii[j] - 0.5 * (f.radii[j - 1] + f.radii[j + 1]));
+}
+
+void erasePoint(Fiber& f, FiberPointState& st, std::size_t j)
+{
+  const auto off = static_cast<std::ptrdiff_t>(j);
+  f.points.erase(f.points.begin() + off);
+  f.radii.erase(f.radii.begin() + off);
+  st.velocity.erase(st.velocity.begin() + off);
+  st.source.erase(st.source.begin() + off);
+}
+
+void insertMidpoint(Fiber& f, FiberPointState& st, std::size_t i)
+{
+  const auto off = static_cast<std::ptrdiff_t>(i + 1);
+  const Vec3 p = 0.5 * (f.points[i] + f.points[i + 1]);
+  const double r = 0.5 * (f.radii[i] + f.radii[i + 1]);
+  const Vec3 v = 0.5 * (st.velocity[i] + st.velocity[i + 1]);
+  const double s = 0.5 * (st.source[i] + st.source[i + 1]);
+  f.points.insert(f.points.begin() + off, p);
+  f.radii.insert(f.radii.begin() + off, r);
+  st.velocity.insert(st.velocity.begin() + off, v);
+  st.source.insert(st.source.begin() + off, s);
+}
+
+enum class Bend
+{
+  Ok,
+  Violated,
+  Degenerate
+};
+
+// §5.2 [ours]: R < R_min ⇔ 2·|e1 × e2|·R_min > a·b·c (R = abc / (2|e1 × e2|)); angle < 60° ⇔
+// (p_{i−1} − p_i)·(p_{i+1} − p_i) > ½·a·b. No division, no acos, no NaN.
+Bend classifyVertex(const Vec3& pm, const Vec3& pi, const Vec3& pp, double minRadius)
+{
+  const Vec3 e1 = pi - pm;
+  const Vec3 e2 = pp - pi;
+  const double a = norm(e1);
+  const double b = norm(e2);
+  if (!(a > 1e-12 * b) || !(b > 1e-12 * a))
+  {
+    return Bend::Degenerate;
+  }
+  const double c = distance(pp, pm);
+  if (2.0 * norm(cross(e1, e2)) * minRadius > a * b * c)
+  {
+    return Bend::Violated;
+  }
+  if (dot(pm - pi, pp - pi) > 0.5 * a * b)
+  {
+    return Bend::Violated;
+  }
+  return Bend::Ok;
+}
+} // namespace
+
+Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule rule)
+{
+  const std::size_t n = f.points.size();
+  if (rule == EndPointRule::Free || n < 2 || (i != 0 && i != n - 1))
+  {
+    return d;
+  }
+  if (rule == EndPointRule::Fixed)
+  {
+    return Vec3{};
+  }
+  const Vec3 t = normalized(i == 0 ? f.points[1] - f.points[0] : f.points[n - 1] - f.points[n - 2]);
+  return d - dot(d, t) * t;
+}
+
+bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength)
+{
+  if (!(segmentLength > 0.0))
+  {
+    return false;
+  }
+  const double lMin = segmentLength * (2.0 / 3.0);
+  const double lMax = segmentLength * (4.0 / 3.0);
+  bool changed = false;
+  std::size_t i = 0;
+  while (i + 1 < f.points.size())
+  {
+    const std::size_t n = f.points.size();
+    const double len = distance(f.points[i], f.points[i + 1]);
+    if (len > lMax)
+    {
+      insertMidpoint(f, st, i);
+      changed = true;
+      continue; // re-check link i, now half as long
+    }
+    if (len < lMin && n > 2)
+    {
+      if (i == 0)
+      {
+        erasePoint(f, st, 1); // end points are never removed
+      }
+      else if (i == n - 2)
+      {
+        erasePoint(f, st, n - 2);
+        --i; // the merged link i−1 may now be too long: re-check it in this pass
+      }
+      else if (radiusDeviation(f, i + 1) > radiusDeviation(f, i))
+      {
+        erasePoint(f, st, i); // keep the stronger radius feature (Ranvier node)
+        --i;
+      }
+      else
+      {
+        erasePoint(f, st, i + 1);
+      }
+      changed = true;
+      continue;
+    }
+    ++i;
+  }
+  return changed;
+}
+
+bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule)
+{
+  const std::size_t n = f.points.size();
+  if (!(minRadius > 0.0) || n < 3)
+  {
+    return false;
+  }
+  std::vector<Vec3> delta(n);
+  bool violated = false;
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    const Vec3& pm = f.points[i - 1];
+    const Vec3& pi = f.points[i];
+    const Vec3& pp = f.points[i + 1];
+    if (classifyVertex(pm, pi, pp, minRadius) != Bend::Violated)
+    {
+      continue;
+    }
+    violated = true;
+    const Vec3 d = normalized((pm - pi) + (pp - pi)); // towards the inside of the bend
+    delta[i] += (0.2 * step) * d;
+    delta[i - 1] -= (0.05 * step) * d;
+    delta[i + 1] -= (0.05 * step) * d;
+  }
+  if (!violated)
+  {
+    return false;
+  }
+  // End-point rule on the geometry before the move (the end link of this moment).
+  delta[0] = constrainEndMove(f, 0, delta[0], rule);
+  delta[n - 1] = constrainEndMove(f, n - 1, delta[n - 1], rule);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    f.points[i] += delta[i];
+  }
+  return true;
+}
+
+bool curvatureOk(const Fiber& f, double minRadius)
+{
+  if (!(minRadius > 0.0))
+  {
+    return true;
+  }
+  for (std::size_t i = 1; i + 1 < f.points.size(); ++i)
+  {
+    if (classifyVertex(f.points[i - 1], f.points[i], f.points[i + 1], minRadius) == Bend::Violated)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace fiberpli

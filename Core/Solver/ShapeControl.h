@@ -1,0 +1,51 @@
+/// ShapeControl: the solver's shape rules per fiber (collision-solver.md §5): segment length
+/// (split / merge, §5.1) and curvature (minimum circumradius and 60° vertex angle, §5.2).
+/// Both are sequential inside one fiber and independent between fibers (parallel over fibers).
+#pragma once
+
+#include "Geometry/Vec3.h"
+#include "Model/FiberModel.h"
+
+#include <vector>
+
+namespace fiberpli
+{
+
+/// What end points may do when they move (collision-solver.md §4.2).
+enum class EndPointRule
+{
+  Perpendicular = 0, ///< move only perpendicular to the end link (paper; fibers keep their length)
+  Free = 1,          ///< move like any other point (fastPLI)
+  Fixed = 2          ///< never move (anchored ends, stitched tiles)
+};
+
+/// Per-point data that travels with the points through split and merge: the velocity (drag
+/// memory) and the fractional input point index (3.5 = midpoint of input points 3 and 4).
+struct FiberPointState
+{
+  std::vector<Vec3> velocity;
+  std::vector<double> source;
+};
+
+/// Applies the end-point rule to a displacement d of point i (0 or n−1) of fiber f; interior
+/// points are returned unchanged (collision-solver.md §4.2).
+Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule rule);
+
+/// Split / merge of collision-solver.md §5.1 with l_min = 2/3·L̄, l_max = 4/3·L̄ (segmentLength =
+/// L̄ > 0). A split inserts the mean position, radius, velocity and source index; a merge deletes
+/// one point (never an end point, the one with the weaker radius feature). A 2-point fiber is never
+/// shortened. state arrays must have f.size() entries. Returns true when a point was inserted or
+/// removed.
+bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength);
+
+/// Curvature rule of collision-solver.md §5.2 (division-free): a vertex whose circumradius is
+/// below minRadius or whose angle is below 60° moves by +0.2·step towards the inside of the bend,
+/// its neighbours by −0.05·step; all moves of the fiber are summed in vertex order, then applied
+/// (end points obey rule). minRadius <= 0 disables it. Returns true when a vertex violated.
+bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule);
+
+/// True when every interior vertex has circumradius >= minRadius and angle >= 60° (same tests as
+/// controlCurvature; degenerate vertices with a zero-length link are skipped).
+bool curvatureOk(const Fiber& f, double minRadius);
+
+} // namespace fiberpli

@@ -1,0 +1,142 @@
+// Uniform-grid collision detection (collision-solver.md §3, tests 9–13 of §10) against an
+// independent O(N²) reference.
+#include "Index/CollisionGrid.h"
+
+#include "BruteForceOverlap.h"
+#include "Tissue/CubeGenerator.h"
+#include "Util/Random.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+using namespace fiberpli;
+
+namespace
+{
+std::vector<CapsuleLink> linksOf(const FiberModel& m)
+{
+  std::vector<CapsuleLink> out;
+  for (const auto& r : fiberpli_test::refLinks(m))
+  {
+    CapsuleLink l;
+    l.p0 = r.p0;
+    l.p1 = r.p1;
+    l.rho = r.rho;
+    l.fiber = static_cast<std::uint32_t>(r.fiber);
+    l.k = static_cast<std::uint32_t>(r.k);
+    l.arc0 = r.arc0;
+    l.arc1 = r.arc1;
+    out.push_back(l);
+  }
+  return out;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> gridPairs(const FiberModel& m, int threads = 1, double gap = 0.0)
+{
+  CollisionGrid grid;
+  std::vector<CapsulePair> pairs;
+  grid.findPairs(linksOf(m), gap, threads, pairs);
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (const CapsulePair& p : pairs)
+    out.emplace_back(p.a, p.b);
+  return out;
+}
+
+Fiber fiber(std::vector<Vec3> pts, double r, std::int64_t id = 0)
+{
+  Fiber f;
+  f.points = std::move(pts);
+  f.radii.assign(f.points.size(), r);
+  f.id = id;
+  return f;
+}
+} // namespace
+
+TEST(CollisionGrid, TouchingIsNotColliding)
+{
+  for (double d : { 1.0, 1.0 - 1e-9 })
+  {
+    FiberModel m;
+    m.fibers.push_back(fiber({ { -1, 0, 0 }, { 1, 0, 0 } }, 0.5, 0));
+    m.fibers.push_back(fiber({ { 0, -1, d }, { 0, 1, d } }, 0.5, 1));
+    EXPECT_EQ(gridPairs(m).size(), d == 1.0 ? 0u : 1u) << d;
+  }
+}
+
+TEST(CollisionGrid, AdjacentLinksNeverCollide)
+{
+  FiberModel straight;
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= 20; ++i)
+    pts.push_back({ double(i), 0, 0 });
+  straight.fibers.push_back(fiber(pts, 2.0));
+  EXPECT_TRUE(gridPairs(straight).empty());
+
+  FiberModel zigzag;
+  pts.clear();
+  for (int i = 0; i <= 20; ++i)
+    pts.push_back({ double((i + 1) / 2), double(i / 2), 0 }); // 90° corners, links of 1
+  zigzag.fibers.push_back(fiber(pts, 2.0));
+  EXPECT_TRUE(gridPairs(zigzag).empty());
+  EXPECT_TRUE(fiberpli_test::refPairs(fiberpli_test::refLinks(zigzag)).empty());
+}
+
+TEST(CollisionGrid, HairpinCollidesWithItself)
+{
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= 10; ++i)
+    pts.push_back({ double(i), 0, 0 });
+  pts.push_back({ 10.5, 0.5, 0 });
+  for (int i = 0; i <= 10; ++i)
+    pts.push_back({ 10.0 - i, 1, 0 });
+  FiberModel m;
+  m.fibers.push_back(fiber(pts, 0.6));
+  const auto pairs = gridPairs(m);
+  EXPECT_GT(pairs.size(), 10u);
+  EXPECT_EQ(pairs, fiberpli_test::refPairs(fiberpli_test::refLinks(m)));
+}
+
+TEST(CollisionGrid, RandomCapsulesMatchBruteForce)
+{
+  FiberModel m;
+  RandomStream rng(11, 0, 0);
+  for (int i = 0; i < 500; ++i)
+  {
+    const Vec3 a{ rng.uniform(0, 20), rng.uniform(0, 20), rng.uniform(0, 20) };
+    const Vec3 d{ rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2) };
+    Fiber f = fiber({ a, a + d }, 0.3, i);
+    f.radii[1] = rng.uniform(0.2, 0.8);
+    m.fibers.push_back(f);
+  }
+  // A few oversize links take the grid's fallback path.
+  m.fibers.push_back(fiber({ { 0, 0, 0 }, { 20, 20, 20 } }, 0.5, 500));
+  m.fibers.push_back(fiber({ { 20, 0, 0 }, { 0, 20, 20 } }, 0.5, 501));
+  const auto ref = fiberpli_test::refPairs(fiberpli_test::refLinks(m));
+  EXPECT_GT(ref.size(), 50u);
+  EXPECT_EQ(gridPairs(m, 1), ref);
+  EXPECT_EQ(gridPairs(m, 2), ref);
+  const auto refGap = fiberpli_test::refPairs(fiberpli_test::refLinks(m), 0.25);
+  EXPECT_GT(refGap.size(), ref.size());
+  EXPECT_EQ(gridPairs(m, 2, 0.25), refGap);
+}
+
+TEST(CollisionGrid, CubeMatchesBruteForceAndIsTranslationInvariant)
+{
+  CubeOptions o;
+  o.numberOfFibers = 200;
+  o.populations = 3;
+  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(0.2);
+  o.seed = 3;
+  FiberModel m = generateCube(o);
+  const auto ref = fiberpli_test::refPairs(fiberpli_test::refLinks(m));
+  EXPECT_GT(ref.size(), 100u);
+  EXPECT_EQ(gridPairs(m, 1), ref);
+  EXPECT_EQ(gridPairs(m, 3), ref);
+  for (Fiber& f : m.fibers)
+    for (Vec3& p : f.points)
+      p += Vec3{ 1000, -500, 3 };
+  EXPECT_EQ(gridPairs(m, 2), ref);
+}

@@ -1,0 +1,208 @@
+// Collision solver benchmark (bench/README.md): the workloads of shared/bench/README.md on cubes
+// from generateCube (seed 42), timed against the fastPLI reference figures (REFERENCE.md).
+// Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|quick|cube|all]...
+//        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--overlap-push X] [--samples N]
+#include "Solver/CollisionSolver.h"
+#include "Tissue/CubeGenerator.h"
+#include "Util/Random.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace fiberpli;
+
+namespace
+{
+struct Workload
+{
+  const char* name;
+  int populations;
+  int fibers;
+  double referenceSeconds; // fastPLI, 1 thread (REFERENCE.md); cube-b hit the 540 s cap
+};
+
+const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200, 10.6 },
+  { "quick-c", 3, 200, 9.0 }, { "cube-a", 1, 1000, 76.9 }, { "cube-b", 2, 1000, 540.0 },
+  { "cube-c", 3, 1000, 491.1 } };
+
+double peakRssMB()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0; // Linux: kilobytes
+}
+
+// Squared distance of point x to segment [a, b]: an independent check, not the solver's code.
+double pointSegment2(const Vec3& x, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ab = b - a;
+  const double l2 = dot(ab, ab);
+  double t = l2 > 0.0 ? dot(x - a, ab) / l2 : 0.0;
+  t = std::min(1.0, std::max(0.0, t));
+  return norm2(x - (a + t * ab));
+}
+
+// Volume fraction of the central cube (edge e, centred at 0) covered by capsules of radius
+// max(r_i, r_i+1): Monte Carlo with 'samples' uniform points through a coarse cell list.
+double volumeFraction(const FiberModel& m, double e, long samples)
+{
+  struct Seg
+  {
+    Vec3 a, b;
+    double r;
+  };
+  const double half = 0.5 * e;
+  const double cell = 2.0;
+  const int nc = static_cast<int>(std::ceil(e / cell));
+  std::vector<std::vector<Seg>> cells(static_cast<std::size_t>(nc * nc * nc));
+  for (const Fiber& f : m.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+    {
+      const Seg s{ f.points[k], f.points[k + 1], std::max(f.radii[k], f.radii[k + 1]) };
+      int lo[3], hi[3];
+      bool inside = true;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double mn = std::min(s.a[d], s.b[d]) - s.r + half;
+        const double mx = std::max(s.a[d], s.b[d]) + s.r + half;
+        lo[d] = std::max(0, static_cast<int>(std::floor(mn / cell)));
+        hi[d] = std::min(nc - 1, static_cast<int>(std::floor(mx / cell)));
+        inside = inside && lo[d] <= hi[d];
+      }
+      if (!inside)
+      {
+        continue;
+      }
+      for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y)
+          for (int x = lo[0]; x <= hi[0]; ++x)
+            cells[static_cast<std::size_t>(x + nc * (y + nc * z))].push_back(s);
+    }
+  }
+  RandomStream rng(12345);
+  long hits = 0;
+  for (long i = 0; i < samples; ++i)
+  {
+    const Vec3 p{ rng.uniform(-half, half), rng.uniform(-half, half), rng.uniform(-half, half) };
+    const int x = std::min(nc - 1, static_cast<int>((p.x + half) / cell));
+    const int y = std::min(nc - 1, static_cast<int>((p.y + half) / cell));
+    const int z = std::min(nc - 1, static_cast<int>((p.z + half) / cell));
+    for (const Seg& s : cells[static_cast<std::size_t>(x + nc * (y + nc * z))])
+    {
+      if (pointSegment2(p, s.a, s.b) <= s.r * s.r)
+      {
+        ++hits;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(hits) / static_cast<double>(samples);
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  std::vector<const Workload*> selected;
+  std::vector<int> threads{ 1, 2 };
+  double cap = 540.0;
+  int maxSteps = 100000;
+  double overlapPush = -1.0;
+  long samples = 1000000;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc)
+    {
+      threads.clear();
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ","))
+        threads.push_back(std::atoi(t));
+    }
+    else if (a == "--cap" && i + 1 < argc)
+      cap = std::atof(argv[++i]);
+    else if (a == "--max-steps" && i + 1 < argc)
+      maxSteps = std::atoi(argv[++i]);
+    else if (a == "--overlap-push" && i + 1 < argc)
+      overlapPush = std::atof(argv[++i]);
+    else if (a == "--samples" && i + 1 < argc)
+      samples = std::atol(argv[++i]);
+    else
+    {
+      bool found = false;
+      for (const Workload& w : kWorkloads)
+      {
+        const std::string n = w.name;
+        if (a == n || a == "all" || (a == "quick" && n.rfind("quick", 0) == 0) ||
+          (a == "cube" && n.rfind("cube", 0) == 0))
+        {
+          selected.push_back(&w);
+          found = true;
+        }
+      }
+      if (!found)
+      {
+        std::fprintf(stderr, "unknown argument '%s'\n", a.c_str());
+        return 2;
+      }
+    }
+  }
+  if (selected.empty())
+  {
+    for (int k = 0; k < 3; ++k)
+      selected.push_back(&kWorkloads[k]);
+  }
+
+  std::printf("| workload | fibers | threads | steps | solve [s] | ref 1-thread [s] | ratio | peak RSS "
+              "[MB] | solved | collisions left | links | phi (MC) | central cube [um] |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Workload* w : selected)
+  {
+    for (int t : threads)
+    {
+      CubeOptions c;
+      c.populations = w->populations;
+      c.numberOfFibers = w->fibers;
+      c.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(w->fibers / 1000.0);
+      c.fiberRadius = 0.8;
+      c.segmentLength = 2.0;
+      c.displacement = 0.5;
+      c.seed = 42;
+      FiberModel m = generateCube(c);
+      CollisionSolverOptions o;
+      o.segmentLength = 2.0;
+      o.minCurvatureRadius = 4.0;
+      o.maxSteps = maxSteps;
+      o.numberOfThreads = t;
+      if (overlapPush >= 0.0)
+        o.overlapPush = overlapPush;
+      const auto t0 = std::chrono::steady_clock::now();
+      auto elapsed = [&]() {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      };
+      const CollisionSolverResult r =
+        solveCollisions(m, o, [&](double) { return elapsed() < cap; });
+      const double seconds = elapsed();
+      if (!r.error.empty())
+      {
+        std::printf("%s: error %s\n", w->name, r.error.c_str());
+        continue;
+      }
+      const double edge = c.edgeLength / std::sqrt(3.0);
+      const double phi = volumeFraction(m, edge, samples);
+      std::printf("| %s | %d | %d | %d | %.2f | %.1f | %.3f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
+        w->name, w->fibers, t, r.steps, seconds, w->referenceSeconds, seconds / w->referenceSeconds,
+        peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
+        m.numberOfLinks(), 100.0 * phi, edge);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
