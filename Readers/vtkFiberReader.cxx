@@ -1,0 +1,112 @@
+#include "vtkFiberReader.h"
+
+#include "FiberH5Format.h"
+#include "FiberPolyData.h"
+#include "IO/FiberFile.h"
+
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cctype>
+
+vtkStandardNewMacro(vtkFiberReader);
+
+namespace
+{
+bool HasH5Extension(const std::string& path)
+{
+  if (path.size() < 3)
+  {
+    return false;
+  }
+  std::string ext = path.substr(path.size() - 3);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".h5";
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+// Construct with no file name and DefaultRadius 1 µm.
+vtkFiberReader::vtkFiberReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+vtkFiberReader::~vtkFiberReader()
+{
+  this->SetFileName(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberReader::CanReadFile(const char* fileName)
+{
+  if (fileName == nullptr)
+  {
+    return 0;
+  }
+  const std::string path(fileName);
+  if (HasH5Extension(path))
+  {
+    return fiberpli::FiberH5Format::LooksLikeFiberH5(path) ? 1 : 0;
+  }
+  return fiberpli::canReadFiberFile(path) ? 1 : 0;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (this->FileName == nullptr || this->FileName[0] == '\0')
+  {
+    vtkErrorMacro(<< "FiberReader: no FileName set");
+    return 0;
+  }
+  const std::string path(this->FileName);
+  this->SetProgressText("Reading fibers");
+  this->UpdateProgress(0.0);
+
+  fiberpli::FiberReadResult result;
+  if (HasH5Extension(path))
+  {
+    result.error = fiberpli::FiberH5Format::Read(path, result.model);
+    if (result.ok())
+    {
+      // .h5 files hold all points; validate like the text formats do.
+      result.error = fiberpli::validateModel(result.model);
+      if (!result.ok())
+      {
+        result.error = path + ": " + result.error;
+      }
+    }
+  }
+  else
+  {
+    result = fiberpli::readFiberFile(path, this->DefaultRadius);
+  }
+  if (!result.ok())
+  {
+    vtkErrorMacro(<< "FiberReader: " << result.error);
+    return 0;
+  }
+  if (result.droppedFibers > 0)
+  {
+    vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
+                    << " fiber(s) with fewer than 2 points dropped");
+  }
+  this->UpdateProgress(0.8);
+  fiberpli::FiberPolyData::FromModel(result.model, output);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "DefaultRadius: " << this->DefaultRadius << "\n";
+}

@@ -1,0 +1,61 @@
+/**
+ * @class   vtkFiberReader
+ * @brief   reads fiber files: fastPLI .dat and .h5, MRtrix .tck, TrackVis .trk
+ *
+ * Output: fiber polydata (api.md): one polyline per fiber, point array `radius` (µm), cell arrays
+ * `fiber_id` (position of the fiber in the file) and `bundle_id` (bundle of .dat/.h5 files, 0 for
+ * .tck/.trk). The format is chosen by the extension; CanReadFile looks at the content, so other
+ * files with these extensions (Tecplot .dat, CONVERGE .h5, …) are left to their readers. Files
+ * without radii (.tck, .trk) get DefaultRadius. A file that is not what it claims gives an error
+ * naming the file and the line or byte offset, and an empty output. Fibers of fewer than 2 points
+ * are dropped with one warning. In a distributed run the fibers are read on piece 0 only.
+ */
+#ifndef vtkFiberReader_h
+#define vtkFiberReader_h
+
+#include "FiberPLIReadersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class FIBERPLIREADERS_EXPORT vtkFiberReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkFiberReader* New();
+  vtkTypeMacro(vtkFiberReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The file to read (.dat, .h5, .tck or .trk). Default is none.
+   */
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /**
+   * Radius in µm given to every point of formats that store none (.tck, .trk), > 0.
+   * Default is 1.
+   */
+  vtkSetClampMacro(DefaultRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkGetMacro(DefaultRadius, double);
+  ///@}
+
+  /**
+   * 1 when the file has one of our extensions and its content is of that format, else 0.
+   */
+  int CanReadFile(const char* fileName);
+
+protected:
+  vtkFiberReader();
+  ~vtkFiberReader() override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberReader(const vtkFiberReader&) = delete;
+  void operator=(const vtkFiberReader&) = delete;
+
+  char* FileName = nullptr;
+  double DefaultRadius = 1.0;
+};
+
+#endif

@@ -1,0 +1,47 @@
+/**
+ * @class   vtkFiberWriter
+ * @brief   writes fiber polydata as fastPLI .dat or .h5, or MRtrix .tck, never destroying a file
+ *
+ * Input: fiber polydata (api.md), validated like every filter's input. The format is chosen by
+ * the extension of FileName. The file is written to a temporary file beside the target and
+ * renamed over it, so a failed write leaves an existing file intact. .dat and .h5 keep points,
+ * radii and the grouping into bundles (by bundle_id); .tck keeps points only (the format has no
+ * radii). Errors name the file.
+ */
+#ifndef vtkFiberWriter_h
+#define vtkFiberWriter_h
+
+#include "FiberPLIReadersModule.h" // for export macro
+#include "vtkWriter.h"
+
+class vtkPolyData;
+
+class FIBERPLIREADERS_EXPORT vtkFiberWriter : public vtkWriter
+{
+public:
+  static vtkFiberWriter* New();
+  vtkTypeMacro(vtkFiberWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The file to write (.dat, .h5 or .tck). Default is none.
+   */
+  vtkSetStringMacro(FileName);
+  vtkGetStringMacro(FileName);
+  ///@}
+
+protected:
+  vtkFiberWriter() = default;
+  ~vtkFiberWriter() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  void WriteData() override;
+
+private:
+  vtkFiberWriter(const vtkFiberWriter&) = delete;
+  void operator=(const vtkFiberWriter&) = delete;
+
+  char* FileName = nullptr;
+};
+
+#endif
