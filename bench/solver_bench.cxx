@@ -33,6 +33,27 @@ const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200,
   { "quick-c", 3, 200, 9.0 }, { "cube-a", 1, 1000, 76.9 }, { "cube-b", 2, 1000, 540.0 },
   { "cube-c", 3, 1000, 491.1 } };
 
+double cpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+    1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// 1-minute load average of the machine (includes this process): a rough noise indicator.
+double loadAverage()
+{
+  double l = -1.0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r"))
+  {
+    if (std::fscanf(f, "%lf", &l) != 1)
+      l = -1.0;
+    std::fclose(f);
+  }
+  return l;
+}
+
 double peakRssMB()
 {
   rusage u{};
@@ -160,9 +181,9 @@ int main(int argc, char** argv)
       selected.push_back(&kWorkloads[k]);
   }
 
-  std::printf("| workload | fibers | threads | steps | solve [s] | ref 1-thread [s] | ratio | peak RSS "
+  std::printf("| workload | fibers | threads | steps | solve [s] | CPU [s] | ref 1-thread [s] | ratio | load after | peak RSS "
               "[MB] | solved | collisions left | links | phi (MC) | central cube [um] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Workload* w : selected)
   {
     for (int t : threads)
@@ -183,6 +204,7 @@ int main(int argc, char** argv)
       o.numberOfThreads = t;
       if (overlapPush >= 0.0)
         o.overlapPush = overlapPush;
+      const double cpu0 = cpuSeconds();
       const auto t0 = std::chrono::steady_clock::now();
       auto elapsed = [&]() {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -190,6 +212,8 @@ int main(int argc, char** argv)
       const CollisionSolverResult r =
         solveCollisions(m, o, [&](double) { return elapsed() < cap; });
       const double seconds = elapsed();
+      const double cpu = cpuSeconds() - cpu0;
+      const double load = loadAverage();
       if (!r.error.empty())
       {
         std::printf("%s: error %s\n", w->name, r.error.c_str());
@@ -197,9 +221,9 @@ int main(int argc, char** argv)
       }
       const double edge = c.edgeLength / std::sqrt(3.0);
       const double phi = volumeFraction(m, edge, samples);
-      std::printf("| %s | %d | %d | %d | %.2f | %.1f | %.3f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
-        w->name, w->fibers, t, r.steps, seconds, w->referenceSeconds, seconds / w->referenceSeconds,
-        peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
+      std::printf("| %s | %d | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
+        w->name, w->fibers, t, r.steps, seconds, cpu, w->referenceSeconds,
+        seconds / w->referenceSeconds, load, peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
         m.numberOfLinks(), 100.0 * phi, edge);
       std::fflush(stdout);
     }

@@ -28,16 +28,18 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b)
 namespace
 {
 
+// float rounding moves a value by at most 2^-24 relative; widen by 2^-22 relative (plus a tiny
+// absolute amount for values near 0) so the float box always contains the double box.
 inline float floatBelow(double x)
 {
-  float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
+  const float f = static_cast<float>(x);
+  return f - (std::fabs(f) * 2.4e-7f + 1e-30f);
 }
 
 inline float floatAbove(double x)
 {
-  float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, HUGE_VALF) : f;
+  const float f = static_cast<float>(x);
+  return f + (std::fabs(f) * 2.4e-7f + 1e-30f);
 }
 
 inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi)
@@ -56,6 +58,14 @@ inline void testPair(const std::vector<CapsuleLink>& links, std::uint32_t i, std
   const CapsuleLink& la = links[a];
   const CapsuleLink& lb = links[b];
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
+  {
+    return;
+  }
+  // Bounding spheres around the link centres: a cheap reject before the exact distance (every
+  // point of a segment lies within half its length of its centre).
+  const Vec3 dc = (la.p0 + la.p1) - (lb.p0 + lb.p1); // twice the centre distance
+  const double reach = (la.arc1 - la.arc0) + (lb.arc1 - lb.arc0) + 2.0 * (la.rho + lb.rho + gap);
+  if (norm2(dc) >= reach * reach)
   {
     return;
   }

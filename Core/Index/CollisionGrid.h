@@ -21,7 +21,7 @@ struct CapsuleLink
   std::uint32_t fiber = 0; ///< fiber index (same-fiber skip rule)
   std::uint32_t k = 0;     ///< link index inside the fiber
   double arc0 = 0.0;       ///< arc length from the fiber's first point to p0 (S[k])
-  double arc1 = 0.0;       ///< arc length to p1 (S[k+1])
+  double arc1 = 0.0;       ///< arc length to p1 (S[k+1]); arc1 − arc0 = |p1 − p0|, the detector relies on it
 };
 
 /// A colliding pair, a < b (global link ids), with the closest points of §2 evaluated as
