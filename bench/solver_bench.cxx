@@ -1,7 +1,9 @@
 // Collision solver benchmark (bench/README.md): the workloads of shared/bench/README.md on cubes
 // from generateCube (seed 42), timed against the fastPLI reference figures (REFERENCE.md).
 // Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|quick|cube|all]...
-//        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--overlap-push X] [--samples N]
+//        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
+//        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
+//        [--end-points perpendicular|free|fixed] (solver knobs)
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
@@ -137,6 +139,11 @@ int main(int argc, char** argv)
   double cap = 540.0;
   int maxSteps = 100000;
   double overlapPush = -1.0;
+  double separationSpeed = -1.0;
+  double maxDisplacement = -1.0;
+  double drag = -1.0;
+  int endPoints = -1;
+  double pushSpread = -1.0;
   long samples = 1000000;
   for (int i = 1; i < argc; ++i)
   {
@@ -153,6 +160,19 @@ int main(int argc, char** argv)
       maxSteps = std::atoi(argv[++i]);
     else if (a == "--overlap-push" && i + 1 < argc)
       overlapPush = std::atof(argv[++i]);
+    else if (a == "--separation-speed" && i + 1 < argc)
+      separationSpeed = std::atof(argv[++i]);
+    else if (a == "--max-displacement" && i + 1 < argc)
+      maxDisplacement = std::atof(argv[++i]);
+    else if (a == "--end-points" && i + 1 < argc)
+    {
+      const std::string e = argv[++i];
+      endPoints = e == "free" ? 1 : (e == "fixed" ? 2 : 0);
+    }
+    else if (a == "--push-spread" && i + 1 < argc)
+      pushSpread = std::atof(argv[++i]);
+    else if (a == "--drag" && i + 1 < argc)
+      drag = std::atof(argv[++i]);
     else if (a == "--samples" && i + 1 < argc)
       samples = std::atol(argv[++i]);
     else
@@ -204,6 +224,16 @@ int main(int argc, char** argv)
       o.numberOfThreads = t;
       if (overlapPush >= 0.0)
         o.overlapPush = overlapPush;
+      if (separationSpeed > 0.0)
+        o.separationSpeed = separationSpeed;
+      if (maxDisplacement > 0.0)
+        o.maxDisplacement = maxDisplacement;
+      if (drag >= 0.0)
+        o.drag = drag;
+      if (pushSpread >= 0.0)
+        o.pushSpread = pushSpread;
+      if (endPoints >= 0)
+        o.endPoints = static_cast<EndPointRule>(endPoints);
       const double cpu0 = cpuSeconds();
       const auto t0 = std::chrono::steady_clock::now();
       auto elapsed = [&]() {

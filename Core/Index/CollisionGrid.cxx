@@ -233,6 +233,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     std::vector<CapsulePair>& out = perThread_[0];
 #endif
     std::vector<std::uint32_t> cand;
+    std::vector<std::uint8_t> mask;
     const float* lx = lo_[0].data();
     const float* ly = lo_[1].data();
     const float* lz = lo_[2].data();
@@ -246,16 +247,32 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       {
         return;
       }
-      c.resize(qe - qb);
+      const std::uint32_t len = qe - qb;
+      if (mask.size() < len)
+      {
+        mask.resize(len);
+      }
+      std::uint8_t* mk = mask.data();
+      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
+      const float* qlx = lx + qb;
+      const float* qly = ly + qb;
+      const float* qlz = lz + qb;
+      const float* qhx = hx + qb;
+      const float* qhy = hy + qb;
+      const float* qhz = hz + qb;
+      // Plain mask loop: the compiler vectorises it (SSE2 is enough).
+      for (std::uint32_t j = 0; j < len; ++j)
+      {
+        mk[j] = static_cast<std::uint8_t>((rhx > qlx[j]) & (qhx[j] > rlx) & (rhy > qly[j]) &
+          (qhy[j] > rly) & (rhz > qlz[j]) & (qhz[j] > rlz));
+      }
+      c.resize(len);
       std::uint32_t* cp = c.data();
       std::size_t nc = 0;
-      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
-      for (std::uint32_t q = qb; q < qe; ++q)
+      for (std::uint32_t j = 0; j < len; ++j)
       {
-        const bool hit = (rhx > lx[q]) & (hx[q] > rlx) & (rhy > ly[q]) & (hy[q] > rly) &
-          (rhz > lz[q]) & (hz[q] > rlz);
-        cp[nc] = q;
-        nc += hit ? 1u : 0u;
+        cp[nc] = qb + j;
+        nc += mk[j];
       }
       for (std::size_t i = 0; i < nc; ++i)
       {

@@ -217,6 +217,7 @@ public:
       out.b1 = -(p.t * n);
     }
     force_.assign(pointOffset_.back(), Vec3{});
+    const double spread = o_.pushSpread;
     for (std::size_t pi = 0; pi < pairs_.size(); ++pi)
     {
       const CapsuleLink& la = links_[pairs_[pi].a];
@@ -227,6 +228,19 @@ public:
       force_[ia + 1] += push_[pi].a1;
       force_[ib] += push_[pi].b0;
       force_[ib + 1] += push_[pi].b1;
+      if (spread > 0.0)
+      {
+        // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
+        // create the curvature violations that shape control then undoes step after step.
+        if (la.k > 0)
+          force_[ia - 1] += spread * push_[pi].a0;
+        if (la.k + 2 < model_.fibers[la.fiber].size())
+          force_[ia + 2] += spread * push_[pi].a1;
+        if (lb.k > 0)
+          force_[ib - 1] += spread * push_[pi].b0;
+        if (lb.k + 2 < model_.fibers[lb.fiber].size())
+          force_[ib + 2] += spread * push_[pi].b1;
+      }
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
@@ -287,6 +301,10 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
   {
     msg << "OverlapPush is " << o.overlapPush << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.pushSpread) || o.pushSpread < 0.0 || o.pushSpread > 1.0)
+  {
+    msg << "PushSpread is " << o.pushSpread << ", must be in [0, 1]";
   }
   else if (!std::isfinite(o.maxDisplacement) || o.maxDisplacement <= 0.0)
   {

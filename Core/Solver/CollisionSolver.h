@@ -33,6 +33,10 @@ struct CollisionSolverOptions
   /// (ρa + ρb + gap − δ) per step, so deep overlaps are resolved in few steps instead of many
   /// fixed small ones. 0 = the fixed push of fastPLI. Default 0.5.
   double overlapPush = 0.5;
+  /// [ours] Fraction of a pair's push on a link end point that is also given to the next point
+  /// outwards along the fiber (p_{k−1}, p_{k+2}): the fiber bends as a smooth bump instead of a
+  /// kink, which fights the curvature rule much less. 0 = only the link's two points (fastPLI).
+  double pushSpread = 0.0;
   /// Largest move of a point per step, relative to the smallest radius of all fibers (§4.2,
   /// fastPLI 0.2). Default 0.2.
   double maxDisplacement = 0.2;
