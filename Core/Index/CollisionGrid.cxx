@@ -97,11 +97,16 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const double halfGap = 0.5 * minimumGap;
 
   boxes_.resize(n);
-  std::vector<double> edges(n);
-  Vec3 origin{ HUGE_VAL, HUGE_VAL, HUGE_VAL };
-  Vec3 top{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-  for (std::size_t i = 0; i < n; ++i)
+  edges_.resize(n);
+  double ox = HUGE_VAL, oy = HUGE_VAL, oz = HUGE_VAL;
+  double tx = -HUGE_VAL, ty = -HUGE_VAL, tz = -HUGE_VAL;
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+  // min/max are exact, so the reduction gives the same bits for any thread count.
+#pragma omp parallel for num_threads(nThreads) schedule(static) \
+  reduction(min : ox, oy, oz) reduction(max : tx, ty, tz)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
   {
+    const std::size_t i = static_cast<std::size_t>(ii);
     const CapsuleLink& l = links[i];
     const double g = l.rho + halfGap;
     Box& bx = boxes_[i];
@@ -109,11 +114,18 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     {
       bx.lo[d] = std::min(l.p0[d], l.p1[d]) - g;
       bx.hi[d] = std::max(l.p0[d], l.p1[d]) + g;
-      origin[d] = std::min(origin[d], bx.lo[d]);
-      top[d] = std::max(top[d], bx.hi[d]);
     }
-    edges[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
+    ox = std::min(ox, bx.lo.x);
+    oy = std::min(oy, bx.lo.y);
+    oz = std::min(oz, bx.lo.z);
+    tx = std::max(tx, bx.hi.x);
+    ty = std::max(ty, bx.hi.y);
+    tz = std::max(tz, bx.hi.z);
+    edges_[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
   }
+  const Vec3 origin{ ox, oy, oz };
+  const Vec3 top{ tx, ty, tz };
+  const std::vector<double>& edges = edges_;
 
   // Cell size: the largest "regular" box edge (§3.3). A few oversize links are tested against
   // everything instead of blowing up the cell size for all.
@@ -162,13 +174,34 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const std::int64_t nz = static_cast<std::int64_t>(dims[2]);
 
   oversize_.clear();
-  sortKeys_.clear();
-  sortKeys_.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; nOversize > 0 && i < n; ++i)
   {
-    if (nOversize > 0 && edges[i] > limit)
+    if (edges[i] > limit)
     {
       oversize_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  // Links keep their ids between solver steps unless shape control changed a fiber, and move
+  // little: visiting them in last step's order makes the key array nearly sorted, and an
+  // insertion sort then costs O(N) instead of O(N log N). Any order gives the same sorted result.
+  const bool reuse = prevOrder_.size() == n && nOversize == 0;
+  if (!reuse)
+  {
+    prevOrder_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      prevOrder_[i] = static_cast<std::uint32_t>(i);
+    }
+  }
+  sortKeys_.resize(n);
+  constexpr std::uint64_t kOversizeKey = ~std::uint64_t(0);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t jj = 0; jj < nn; ++jj)
+  {
+    const std::uint32_t i = prevOrder_[static_cast<std::size_t>(jj)];
+    if (nOversize > 0 && edges[i] > limit)
+    {
+      sortKeys_[static_cast<std::size_t>(jj)] = kOversizeKey; // sorts last, then dropped
       continue;
     }
     const Box& bx = boxes_[i];
@@ -182,9 +215,45 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     c[1] = std::min(std::max<std::int64_t>(c[1], 0), ny - 1);
     c[2] = std::min(std::max<std::int64_t>(c[2], 0), nz - 1);
     const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + nx * (c[1] + ny * c[2]));
-    sortKeys_.push_back((cell << 32) | static_cast<std::uint64_t>(i));
+    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
   }
-  std::sort(sortKeys_.begin(), sortKeys_.end());
+  bool inOrder = false;
+  if (reuse)
+  {
+    // Insertion sort with a work budget; fall back to std::sort when the order changed a lot.
+    std::size_t work = 0;
+    const std::size_t budget = 16 * n;
+    inOrder = true;
+    for (std::size_t i = 1; i < n && inOrder; ++i)
+    {
+      const std::uint64_t v = sortKeys_[i];
+      std::size_t j = i;
+      while (j > 0 && sortKeys_[j - 1] > v)
+      {
+        sortKeys_[j] = sortKeys_[j - 1];
+        --j;
+        if (++work > budget)
+        {
+          inOrder = false;
+          break;
+        }
+      }
+      sortKeys_[j] = v;
+    }
+  }
+  if (!inOrder)
+  {
+    std::sort(sortKeys_.begin(), sortKeys_.end());
+  }
+  sortKeys_.resize(n - oversize_.size());
+  for (std::size_t r = 0; r < sortKeys_.size(); ++r)
+  {
+    prevOrder_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+  }
+  if (!oversize_.empty())
+  {
+    prevOrder_.clear(); // no reuse next time
+  }
 
   const std::size_t nRegular = sortKeys_.size();
   order_.resize(nRegular);

@@ -58,6 +58,8 @@ private:
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
   std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
+  std::vector<std::uint32_t> prevOrder_; // last call's order: nearly sorted start for this call
+  std::vector<double> edges_;           // per link largest box edge
   // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
   // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
   std::vector<float> lo_[3];

@@ -13,16 +13,19 @@ namespace fiberpli
 namespace
 {
 // Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
-void buildLinks(const FiberModel& model, const std::vector<char>* active,
+// Offsets first (serial prefix sums), then the fibers in parallel: each writes its own range.
+void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
   std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset)
 {
-  links.clear();
-  std::size_t points = 0;
+  const std::size_t nf = model.fibers.size();
+  std::vector<std::size_t> linkOffset(nf + 1, 0);
   if (pointOffset)
   {
-    pointOffset->assign(model.fibers.size() + 1, 0);
+    pointOffset->assign(nf + 1, 0);
   }
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  std::size_t points = 0;
+  std::size_t nLinks = 0;
+  for (std::size_t f = 0; f < nf; ++f)
   {
     const Fiber& fib = model.fibers[f];
     if (pointOffset)
@@ -30,14 +33,29 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active,
       (*pointOffset)[f] = points;
     }
     points += fib.points.size();
-    if (fib.points.size() < 2 || (active && !(*active)[f]))
+    linkOffset[f] = nLinks;
+    if (fib.points.size() >= 2 && !(active && !(*active)[f]))
     {
-      continue;
+      nLinks += fib.points.size() - 1;
     }
+  }
+  linkOffset[nf] = nLinks;
+  if (pointOffset)
+  {
+    (*pointOffset)[nf] = points;
+  }
+  links.resize(nLinks);
+  const std::int64_t n = static_cast<std::int64_t>(nf);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t ff = 0; ff < n; ++ff)
+  {
+    const std::size_t f = static_cast<std::size_t>(ff);
+    const Fiber& fib = model.fibers[f];
+    const std::size_t count = linkOffset[f + 1] - linkOffset[f];
     double arc = 0.0;
-    for (std::size_t k = 0; k + 1 < fib.points.size(); ++k)
+    for (std::size_t k = 0; k < count; ++k)
     {
-      CapsuleLink l;
+      CapsuleLink& l = links[linkOffset[f] + k];
       l.p0 = fib.points[k];
       l.p1 = fib.points[k + 1];
       l.rho = fib.linkRadius(k);
@@ -46,12 +64,7 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active,
       l.arc0 = arc;
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
-      links.push_back(l);
     }
-  }
-  if (pointOffset)
-  {
-    (*pointOffset)[model.fibers.size()] = points;
   }
 }
 
@@ -177,7 +190,7 @@ public:
 
   void detect()
   {
-    buildLinks(model_, &active_, links_, &pointOffset_);
+    buildLinks(model_, &active_, threads_, links_, &pointOffset_);
     grid_.findPairs(links_, o_.minimumGap, threads_, pairs_);
   }
 
@@ -423,6 +436,35 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     s.segmentLength_ = -1.0; // no fibers to take a radius from
   }
   s.vMax_ = o.maxDisplacement * rMin;
+  // Parameter sanity (§5.2): warn, do not fail.
+  double rMax = 0.0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : model.fibers[f].radii)
+      {
+        rMax = std::max(rMax, r);
+      }
+    }
+  }
+  if (o.minCurvatureRadius > 0.0 && o.minCurvatureRadius < rMax)
+  {
+    result.warnings.push_back("MinCurvatureRadius " + std::to_string(o.minCurvatureRadius) +
+      " is below the largest radius " + std::to_string(rMax) +
+      ": a tube bent that tightly intersects itself on the inside");
+  }
+  if (s.segmentLength_ > 0.0 && o.minCurvatureRadius > 0.0 &&
+    o.minCurvatureRadius < s.segmentLength_ / std::sqrt(3.0))
+  {
+    result.warnings.push_back("MinCurvatureRadius " + std::to_string(o.minCurvatureRadius) +
+      " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
+  }
+  if (s.segmentLength_ > 0.0 && s.segmentLength_ < 0.25 * rMedian)
+  {
+    result.warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
+      " is below 1/4 of the median radius: many points, slow and memory hungry");
+  }
   result.segmentLength = s.segmentLength_;
 
   bool changed = false;
@@ -504,7 +546,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads)
 {
   std::vector<CapsuleLink> links;
-  buildLinks(model, nullptr, links, nullptr);
+  buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
   std::vector<CapsulePair> pairs;
   CollisionGrid grid;
   grid.findPairs(links, minimumGap, numberOfThreads, pairs);
