@@ -129,9 +129,17 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 
   // Cell size: the largest "regular" box edge (§3.3). A few oversize links are tested against
   // everything instead of blowing up the cell size for all.
-  std::vector<double> sorted(edges);
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
-  const double limit = 2.0 * sorted[n / 2];
+  // The median only sets the cell size (performance, never the result): a strided sample of
+  // at most ~4096 links is enough.
+  const std::size_t stride = n / 4096 + 1;
+  std::vector<double> sample;
+  sample.reserve(n / stride + 1);
+  for (std::size_t i = 0; i < n; i += stride)
+  {
+    sample.push_back(edges[i]);
+  }
+  std::nth_element(sample.begin(), sample.begin() + static_cast<long>(sample.size() / 2), sample.end());
+  const double limit = 2.0 * sample[sample.size() / 2];
   double h = 0.0;
   double hAll = 0.0;
   std::size_t nOversize = 0;
@@ -262,11 +270,11 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     lo_[d].resize(nRegular);
     hi_[d].resize(nRegular);
   }
-  cellKeys_.clear();
-  cellStart_.clear();
-  for (std::size_t r = 0; r < nRegular; ++r)
+  const std::int64_t nr = static_cast<std::int64_t>(nRegular);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t rr = 0; rr < nr; ++rr)
   {
-    const std::uint64_t cell = sortKeys_[r] >> 32;
+    const std::size_t r = static_cast<std::size_t>(rr);
     const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
     order_[r] = id;
     for (int d = 0; d < 3; ++d)
@@ -274,6 +282,12 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       lo_[d][r] = floatBelow(boxes_[id].lo[d]);
       hi_[d][r] = floatAbove(boxes_[id].hi[d]);
     }
+  }
+  cellKeys_.clear();
+  cellStart_.clear();
+  for (std::size_t r = 0; r < nRegular; ++r)
+  {
+    const std::uint64_t cell = sortKeys_[r] >> 32;
     if (cellKeys_.empty() || cellKeys_.back() != cell)
     {
       cellKeys_.push_back(cell);
@@ -412,6 +426,18 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     }
   }
 
+  // Each pair is found exactly once, so the sorted list is independent of the schedule: every
+  // thread sorts its own part (in parallel), then the parts are merged.
+  auto less = [](const CapsulePair& x, const CapsulePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  const std::int64_t nParts = static_cast<std::int64_t>(perThread_.size());
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t t = 0; t < nParts; ++t)
+  {
+    auto& v = perThread_[static_cast<std::size_t>(t)];
+    std::sort(v.begin(), v.end(), less);
+  }
   std::size_t total = 0;
   for (const auto& v : perThread_)
   {
@@ -420,12 +446,10 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   pairs.reserve(total);
   for (const auto& v : perThread_)
   {
+    const std::size_t mid = pairs.size();
     pairs.insert(pairs.end(), v.begin(), v.end());
+    std::inplace_merge(pairs.begin(), pairs.begin() + static_cast<long>(mid), pairs.end(), less);
   }
-  // Each pair is found exactly once, so sorting makes the list independent of the schedule.
-  std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
 }
 
 } // namespace fiberpli
