@@ -510,3 +510,53 @@ TEST(CollisionSolver, ShortFibersAreCopiedThrough)
   EXPECT_EQ(m.fibers[2].points, dup.points);
   EXPECT_FALSE(r.warnings.empty());
 }
+
+TEST(CollisionSolver, MinimumGapIsKept)
+{
+  FiberModel m;
+  m.fibers.push_back(line({ 0, 0, 0 }, { 1, 0, 0 }, 11, 1.0, 0));
+  m.fibers.push_back(line({ 0, 1.5, 0 }, { 1, 0, 0 }, 11, 1.0, 1));
+  CollisionSolverOptions o;
+  o.segmentLength = 1.0;
+  o.minimumGap = 0.5;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_TRUE(r.solved);
+  EXPECT_GE(minAxisDistance(m.fibers[0], m.fibers[1]), 2.5);
+  EXPECT_EQ(fiberpli_test::refCollisionCount(m, 0.5), 0u);
+  EXPECT_EQ(countCollisions(m, 0.5, 1), 0u);
+}
+
+TEST(CollisionSolver, StallStepsStopsEarly)
+{
+  FiberModel m; // cannot move: fixed ends, no split
+  m.fibers.push_back(line({ -1, 0, 0 }, { 2, 0, 0 }, 2, 0.5, 0));
+  m.fibers.push_back(line({ 0, -1, 0 }, { 0, 2, 0 }, 2, 0.5, 1));
+  CollisionSolverOptions o;
+  o.endPoints = EndPointRule::Fixed;
+  o.segmentLength = -1.0;
+  o.maxSteps = 1000;
+  o.stallSteps = 5;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_EQ(r.steps, 5);
+  EXPECT_FALSE(r.solved);
+  EXPECT_EQ(r.bestCollisions, 1u);
+  EXPECT_EQ(r.bestStep, 0);
+}
+
+TEST(CollisionSolver, DragKeepsVelocityAndStillSolves)
+{
+  FiberModel a = paperCube(2, 40, 6);
+  FiberModel b = a;
+  CollisionSolverOptions o;
+  o.minCurvatureRadius = 4.0;
+  o.drag = 0.5;
+  o.numberOfThreads = 1;
+  const CollisionSolverResult ra = solveCollisions(a, o);
+  o.numberOfThreads = 2;
+  const CollisionSolverResult rb = solveCollisions(b, o);
+  EXPECT_TRUE(ra.solved);
+  EXPECT_TRUE(allFinite(a));
+  EXPECT_EQ(fiberpli_test::refCollisionCount(a), 0u);
+  EXPECT_EQ(ra.steps, rb.steps);
+  EXPECT_TRUE(bitwiseEqual(a, b));
+}
