@@ -188,6 +188,34 @@ public:
     return changed != 0;
   }
 
+  // The state shape control would leave untouched (used after an abort, where it did not run).
+  bool shapeWithinLimits() const
+  {
+    const double lMin = segmentLength_ * (2.0 / 3.0);
+    const double lMax = segmentLength_ * (4.0 / 3.0);
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+    {
+      const Fiber& fib = model_.fibers[f];
+      if (!active_[f])
+      {
+        continue;
+      }
+      if (!curvatureOk(fib, o_.minCurvatureRadius))
+      {
+        return false;
+      }
+      for (std::size_t i = 0; segmentLength_ > 0.0 && i + 1 < fib.size(); ++i)
+      {
+        const double len = distance(fib.points[i], fib.points[i + 1]);
+        if (len > lMax || (len < lMin && fib.size() > 2))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   void detect()
   {
     buildLinks(model_, &active_, threads_, links_, &pointOffset_);
@@ -518,7 +546,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     {
       result.aborted = true;
       s.detect(); // collisions must describe the geometry that is returned
-      changed = false;
+      changed = !s.shapeWithinLimits();
       break;
     }
   }

@@ -60,7 +60,7 @@ struct CollisionSolverResult
   int steps = 0;              ///< move phases run
   std::size_t collisions = 0; ///< colliding capsule pairs in the output geometry
   bool solved = false;        ///< collisions == 0
-  bool shapeOk = true;        ///< the last shape control pass changed nothing
+  bool shapeOk = true;        ///< lengths and curvature within limits (last pass changed nothing)
   bool aborted = false;       ///< progress returned false
   double maxOverlap = 0.0;    ///< max over colliding pairs of ρa + ρb + g − δ (µm), 0 if none
   double segmentLength = 0.0; ///< L̄ used (< 0 = off)
