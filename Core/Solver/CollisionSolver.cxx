@@ -318,6 +318,125 @@ public:
     }
   }
 };
+
+// Per fiber: source indices, repeated points removed (§9), fibers without 2 distinct points
+// excluded from solving.
+void prepareFibers(Solver& s, std::vector<std::string>& warnings)
+{
+  const std::size_t nf = s.model_.fibers.size();
+  s.state_.resize(nf);
+  s.active_.assign(nf, 1);
+  std::size_t repeated = 0;
+  std::size_t tooShort = 0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    Fiber& fib = s.model_.fibers[f];
+    FiberPointState& st = s.state_[f];
+    st.source.resize(fib.points.size());
+    for (std::size_t i = 0; i < fib.points.size(); ++i)
+    {
+      st.source[i] = static_cast<double>(i);
+    }
+    if (fib.points.size() >= 2)
+    {
+      // A fiber of identical points would collapse to one point: leave it as it came.
+      Fiber copy = fib;
+      FiberPointState stCopy = st;
+      const std::size_t r = removeRepeatedPoints(copy, stCopy);
+      if (copy.points.size() >= 2)
+      {
+        fib = std::move(copy);
+        st = std::move(stCopy);
+        repeated += r;
+      }
+    }
+    st.velocity.assign(fib.points.size(), Vec3{});
+    bool degenerate = fib.points.size() < 2;
+    for (std::size_t i = 1; !degenerate && i < fib.points.size(); ++i)
+    {
+      degenerate = fib.points[i] == fib.points[i - 1];
+    }
+    if (degenerate)
+    {
+      ++tooShort;
+      s.active_[f] = 0;
+    }
+  }
+  if (repeated > 0)
+  {
+    warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
+  }
+  if (tooShort > 0)
+  {
+    warnings.push_back(std::to_string(tooShort) +
+      " fibers with fewer than 2 distinct points are not solved (copied through)");
+  }
+}
+
+// L̄, v_max and the parameter sanity warnings of §4.2 / §5.2.
+void configure(Solver& s, std::vector<std::string>& warnings)
+{
+  const std::size_t nf = s.model_.fibers.size();
+  const double rMedian = medianRadius(s.model_);
+  double rMin = HUGE_VAL;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : s.model_.fibers[f].radii)
+      {
+        rMin = std::min(rMin, r);
+      }
+    }
+  }
+  if (rMin == HUGE_VAL)
+  {
+    rMin = 0.0;
+  }
+  if (rMin < 0.25 * rMedian)
+  {
+    warnings.push_back("smallest radius " + std::to_string(rMin) +
+      " is below 1/4 of the median radius " + std::to_string(rMedian) +
+      ": every fiber moves at most " + std::to_string(s.o_.maxDisplacement) +
+      " x this radius per step (slow)");
+  }
+  s.segmentLength_ = s.o_.segmentLength == 0.0 ? 2.0 * rMedian : s.o_.segmentLength;
+  if (s.segmentLength_ == 0.0)
+  {
+    s.segmentLength_ = -1.0; // no fibers to take a radius from
+  }
+  s.vMax_ = s.o_.maxDisplacement * rMin;
+  // Parameter sanity (§5.2): warn, do not fail.
+  double rMax = 0.0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : s.model_.fibers[f].radii)
+      {
+        rMax = std::max(rMax, r);
+      }
+    }
+  }
+  if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
+  {
+    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
+      " is below the largest radius " + std::to_string(rMax) +
+      ": a tube bent that tightly intersects itself on the inside");
+  }
+  if (s.segmentLength_ > 0.0 && s.o_.minCurvatureRadius > 0.0 &&
+    s.o_.minCurvatureRadius < s.segmentLength_ / std::sqrt(3.0))
+  {
+    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
+      " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
+  }
+  if (s.segmentLength_ > 0.0 && s.segmentLength_ < 0.25 * rMedian)
+  {
+    warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
+      " is below 1/4 of the median radius: many points, slow and memory hungry");
+  }
+}
+
 } // namespace
 
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
@@ -387,112 +506,8 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   Solver s(model, o, threads);
 
   const std::size_t nf = model.fibers.size();
-  s.state_.resize(nf);
-  s.active_.assign(nf, 1);
-  std::size_t repeated = 0;
-  std::size_t tooShort = 0;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    Fiber& fib = model.fibers[f];
-    FiberPointState& st = s.state_[f];
-    st.source.resize(fib.points.size());
-    for (std::size_t i = 0; i < fib.points.size(); ++i)
-    {
-      st.source[i] = static_cast<double>(i);
-    }
-    if (fib.points.size() >= 2)
-    {
-      // A fiber of identical points would collapse to one point: leave it as it came.
-      Fiber copy = fib;
-      FiberPointState stCopy = st;
-      const std::size_t r = removeRepeatedPoints(copy, stCopy);
-      if (copy.points.size() >= 2)
-      {
-        fib = std::move(copy);
-        st = std::move(stCopy);
-        repeated += r;
-      }
-    }
-    st.velocity.assign(fib.points.size(), Vec3{});
-    bool degenerate = fib.points.size() < 2;
-    for (std::size_t i = 1; !degenerate && i < fib.points.size(); ++i)
-    {
-      degenerate = fib.points[i] == fib.points[i - 1];
-    }
-    if (degenerate)
-    {
-      ++tooShort;
-      s.active_[f] = 0;
-    }
-  }
-  if (repeated > 0)
-  {
-    result.warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
-  }
-  if (tooShort > 0)
-  {
-    result.warnings.push_back(std::to_string(tooShort) +
-      " fibers with fewer than 2 distinct points are not solved (copied through)");
-  }
-
-  const double rMedian = medianRadius(model);
-  double rMin = HUGE_VAL;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    if (s.active_[f])
-    {
-      for (double r : model.fibers[f].radii)
-      {
-        rMin = std::min(rMin, r);
-      }
-    }
-  }
-  if (rMin == HUGE_VAL)
-  {
-    rMin = 0.0;
-  }
-  if (rMin < 0.25 * rMedian)
-  {
-    result.warnings.push_back("smallest radius " + std::to_string(rMin) +
-      " is below 1/4 of the median radius " + std::to_string(rMedian) +
-      ": every fiber moves at most " + std::to_string(o.maxDisplacement) +
-      " x this radius per step (slow)");
-  }
-  s.segmentLength_ = o.segmentLength == 0.0 ? 2.0 * rMedian : o.segmentLength;
-  if (s.segmentLength_ == 0.0)
-  {
-    s.segmentLength_ = -1.0; // no fibers to take a radius from
-  }
-  s.vMax_ = o.maxDisplacement * rMin;
-  // Parameter sanity (§5.2): warn, do not fail.
-  double rMax = 0.0;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    if (s.active_[f])
-    {
-      for (double r : model.fibers[f].radii)
-      {
-        rMax = std::max(rMax, r);
-      }
-    }
-  }
-  if (o.minCurvatureRadius > 0.0 && o.minCurvatureRadius < rMax)
-  {
-    result.warnings.push_back("MinCurvatureRadius " + std::to_string(o.minCurvatureRadius) +
-      " is below the largest radius " + std::to_string(rMax) +
-      ": a tube bent that tightly intersects itself on the inside");
-  }
-  if (s.segmentLength_ > 0.0 && o.minCurvatureRadius > 0.0 &&
-    o.minCurvatureRadius < s.segmentLength_ / std::sqrt(3.0))
-  {
-    result.warnings.push_back("MinCurvatureRadius " + std::to_string(o.minCurvatureRadius) +
-      " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
-  }
-  if (s.segmentLength_ > 0.0 && s.segmentLength_ < 0.25 * rMedian)
-  {
-    result.warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
-      " is below 1/4 of the median radius: many points, slow and memory hungry");
-  }
+  prepareFibers(s, result.warnings);
+  configure(s, result.warnings);
   result.segmentLength = s.segmentLength_;
 
   bool changed = false;

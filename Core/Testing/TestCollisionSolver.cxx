@@ -560,3 +560,31 @@ TEST(CollisionSolver, DragKeepsVelocityAndStillSolves)
   EXPECT_EQ(ra.steps, rb.steps);
   EXPECT_TRUE(bitwiseEqual(a, b));
 }
+
+TEST(CollisionSolver, SourceIndexLocatesSplitPoints)
+{
+  // One 2-point fiber of length 10 with radii 1 → 2, L̄ = 2 (l_max 8/3): halved twice into links
+  // of 2.5; every new
+  // point's source index is its fraction along the input link, and its radius the interpolation.
+  FiberModel m;
+  Fiber f;
+  f.points = { { 0, 0, 0 }, { 10, 0, 0 } };
+  f.radii = { 1.0, 2.0 };
+  m.fibers.push_back(f);
+  CollisionSolverOptions o;
+  o.segmentLength = 2.0;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  ASSERT_TRUE(r.solved);
+  const Fiber& out = m.fibers[0];
+  ASSERT_EQ(out.size(), 5u);
+  ASSERT_EQ(r.sourceIndex[0].size(), 5u);
+  for (std::size_t i = 0; i < out.size(); ++i)
+  {
+    const double u = r.sourceIndex[0][i];
+    EXPECT_DOUBLE_EQ(u, double(i) / 4.0);
+    EXPECT_DOUBLE_EQ(out.points[i].x, 10.0 * u);
+    EXPECT_DOUBLE_EQ(out.radii[i], 1.0 + u);
+    EXPECT_GE(out.radii[i], 1.0); // radii stay within the input fiber's range (§10 test 21)
+    EXPECT_LE(out.radii[i], 2.0);
+  }
+}
