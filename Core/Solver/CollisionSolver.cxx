@@ -373,7 +373,14 @@ void prepareFibers(Solver& s, std::vector<std::string>& warnings)
   }
 }
 
-// L̄, v_max and the parameter sanity warnings of §4.2 / §5.2.
+// L̄ (§5.1): 0 = automatic, 2 × median radius (the fastPLI author's choice); < 0 = off.
+double resolveSegmentLength(const FiberModel& model, const CollisionSolverOptions& o)
+{
+  const double l = o.segmentLength == 0.0 ? 2.0 * medianRadius(model) : o.segmentLength;
+  return l == 0.0 ? -1.0 : l; // no fibers to take a radius from
+}
+
+// v_max and the parameter sanity warnings of §4.2 / §5.2.
 void configure(Solver& s, std::vector<std::string>& warnings)
 {
   const std::size_t nf = s.model_.fibers.size();
@@ -399,11 +406,6 @@ void configure(Solver& s, std::vector<std::string>& warnings)
       " is below 1/4 of the median radius " + std::to_string(rMedian) +
       ": every fiber moves at most " + std::to_string(s.o_.maxDisplacement) +
       " x this radius per step (slow)");
-  }
-  s.segmentLength_ = s.o_.segmentLength == 0.0 ? 2.0 * rMedian : s.o_.segmentLength;
-  if (s.segmentLength_ == 0.0)
-  {
-    s.segmentLength_ = -1.0; // no fibers to take a radius from
   }
   s.vMax_ = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.
@@ -435,6 +437,37 @@ void configure(Solver& s, std::vector<std::string>& warnings)
     warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
       " is below 1/4 of the median radius: many points, slow and memory hungry");
   }
+}
+
+// §8: splitting makes up to (arc length / l_min) points per fiber; refuse absurd sizes before
+// any allocation instead of running out of memory in the middle of a step.
+std::string checkMemory(const Solver& s)
+{
+  constexpr double kMaxPoints = 2.0e8; // ~20 GB of solver state
+  if (!(s.segmentLength_ > 0.0))
+  {
+    return {};
+  }
+  double length = 0.0;
+  double points = 0.0;
+  for (const Fiber& f : s.model_.fibers)
+  {
+    for (std::size_t i = 0; i + 1 < f.size(); ++i)
+    {
+      length += distance(f.points[i], f.points[i + 1]);
+    }
+    points += static_cast<double>(f.size());
+  }
+  const double estimate = points + length / (s.segmentLength_ * (2.0 / 3.0));
+  if (estimate > kMaxPoints)
+  {
+    std::ostringstream msg;
+    msg << "SegmentLength " << s.segmentLength_ << " with a total fiber length of " << length
+        << " would need up to " << estimate << " points (limit " << kMaxPoints
+        << "); raise SegmentLength";
+    return msg.str();
+  }
+  return {};
 }
 
 } // namespace
@@ -506,6 +539,13 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   Solver s(model, o, threads);
 
   const std::size_t nf = model.fibers.size();
+  // Before anything touches the model: a refused run leaves it unchanged.
+  s.segmentLength_ = resolveSegmentLength(model, o);
+  result.error = checkMemory(s);
+  if (!result.error.empty())
+  {
+    return result;
+  }
   prepareFibers(s, result.warnings);
   configure(s, result.warnings);
   result.segmentLength = s.segmentLength_;

@@ -588,3 +588,15 @@ TEST(CollisionSolver, SourceIndexLocatesSplitPoints)
     EXPECT_LE(out.radii[i], 2.0);
   }
 }
+
+TEST(CollisionSolver, AbsurdSegmentLengthIsRefusedBeforeAllocating)
+{
+  FiberModel m;
+  m.fibers.push_back(line({ 0, 0, 0 }, { 1e6, 0, 0 }, 3, 1.0, 0)); // 2 m of fiber
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.segmentLength = 1e-3;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("SegmentLength"), std::string::npos) << r.error;
+  EXPECT_TRUE(bitwiseEqual(m, in));
+}
