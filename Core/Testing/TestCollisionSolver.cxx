@@ -4,6 +4,7 @@
 
 #include "BruteForceOverlap.h"
 #include "Tissue/CubeGenerator.h"
+#include "Util/Random.h"
 
 #include <gtest/gtest.h>
 
@@ -599,4 +600,29 @@ TEST(CollisionSolver, AbsurdSegmentLengthIsRefusedBeforeAllocating)
   const CollisionSolverResult r = solveCollisions(m, o);
   EXPECT_NE(r.error.find("SegmentLength"), std::string::npos) << r.error;
   EXPECT_TRUE(bitwiseEqual(m, in));
+}
+
+TEST(CollisionSolver, MixedRadiiWithOneThickFiber)
+{
+  // Random directions and radii 0.4–1.2 µm plus one 4 µm fiber (boxes 4× the median: the grid's
+  // cell size follows the largest box): solved, checked by the independent counter.
+  FiberModel m;
+  RandomStream rng(77, 0, 0);
+  for (int i = 0; i < 30; ++i)
+  {
+    const Vec3 c{ rng.uniform(-6, 6), rng.uniform(-6, 6), rng.uniform(-6, 6) };
+    const Vec3 d = normalized(Vec3{ rng.normal(), rng.normal(), rng.normal() });
+    Fiber f = line(c - 8.0 * d, 1.0 * d, 17, rng.uniform(0.4, 1.2), i);
+    m.fibers.push_back(f);
+  }
+  m.fibers.push_back(line({ -10, 0, 0 }, { 2, 0, 0 }, 11, 4.0, 30));
+  ASSERT_GT(fiberpli_test::refCollisionCount(m), 0u);
+  CollisionSolverOptions o;
+  o.segmentLength = 1.0;
+  o.maxSteps = 20000;
+  o.numberOfThreads = 2;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_TRUE(r.solved) << r.collisions;
+  EXPECT_EQ(fiberpli_test::refCollisionCount(m), 0u);
+  EXPECT_TRUE(allFinite(m));
 }
