@@ -1,7 +1,9 @@
 // Collision solver benchmark (bench/README.md): the workloads of shared/bench/README.md on cubes
 // from generateCube (seed 42), timed against the fastPLI reference figures (REFERENCE.md).
 // Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|quick|cube|all]...
-//        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--overlap-push X] [--samples N]
+//        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
+//        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
+//        [--end-points perpendicular|free|fixed] (solver knobs)
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
@@ -32,6 +34,27 @@ struct Workload
 const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200, 10.6 },
   { "quick-c", 3, 200, 9.0 }, { "cube-a", 1, 1000, 76.9 }, { "cube-b", 2, 1000, 540.0 },
   { "cube-c", 3, 1000, 491.1 } };
+
+double cpuSeconds()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+    1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// 1-minute load average of the machine (includes this process): a rough noise indicator.
+double loadAverage()
+{
+  double l = -1.0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r"))
+  {
+    if (std::fscanf(f, "%lf", &l) != 1)
+      l = -1.0;
+    std::fclose(f);
+  }
+  return l;
+}
 
 double peakRssMB()
 {
@@ -116,6 +139,11 @@ int main(int argc, char** argv)
   double cap = 540.0;
   int maxSteps = 100000;
   double overlapPush = -1.0;
+  double separationSpeed = -1.0;
+  double maxDisplacement = -1.0;
+  double drag = -1.0;
+  int endPoints = -1;
+  double pushSpread = -1.0;
   long samples = 1000000;
   for (int i = 1; i < argc; ++i)
   {
@@ -132,6 +160,19 @@ int main(int argc, char** argv)
       maxSteps = std::atoi(argv[++i]);
     else if (a == "--overlap-push" && i + 1 < argc)
       overlapPush = std::atof(argv[++i]);
+    else if (a == "--separation-speed" && i + 1 < argc)
+      separationSpeed = std::atof(argv[++i]);
+    else if (a == "--max-displacement" && i + 1 < argc)
+      maxDisplacement = std::atof(argv[++i]);
+    else if (a == "--end-points" && i + 1 < argc)
+    {
+      const std::string e = argv[++i];
+      endPoints = e == "free" ? 1 : (e == "fixed" ? 2 : 0);
+    }
+    else if (a == "--push-spread" && i + 1 < argc)
+      pushSpread = std::atof(argv[++i]);
+    else if (a == "--drag" && i + 1 < argc)
+      drag = std::atof(argv[++i]);
     else if (a == "--samples" && i + 1 < argc)
       samples = std::atol(argv[++i]);
     else
@@ -160,9 +201,9 @@ int main(int argc, char** argv)
       selected.push_back(&kWorkloads[k]);
   }
 
-  std::printf("| workload | fibers | threads | steps | solve [s] | ref 1-thread [s] | ratio | peak RSS "
+  std::printf("| workload | fibers | threads | steps | solve [s] | CPU [s] | ref 1-thread [s] | ratio | load after | peak RSS "
               "[MB] | solved | collisions left | links | phi (MC) | central cube [um] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Workload* w : selected)
   {
     for (int t : threads)
@@ -183,6 +224,17 @@ int main(int argc, char** argv)
       o.numberOfThreads = t;
       if (overlapPush >= 0.0)
         o.overlapPush = overlapPush;
+      if (separationSpeed > 0.0)
+        o.separationSpeed = separationSpeed;
+      if (maxDisplacement > 0.0)
+        o.maxDisplacement = maxDisplacement;
+      if (drag >= 0.0)
+        o.drag = drag;
+      if (pushSpread >= 0.0)
+        o.pushSpread = pushSpread;
+      if (endPoints >= 0)
+        o.endPoints = static_cast<EndPointRule>(endPoints);
+      const double cpu0 = cpuSeconds();
       const auto t0 = std::chrono::steady_clock::now();
       auto elapsed = [&]() {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -190,6 +242,8 @@ int main(int argc, char** argv)
       const CollisionSolverResult r =
         solveCollisions(m, o, [&](double) { return elapsed() < cap; });
       const double seconds = elapsed();
+      const double cpu = cpuSeconds() - cpu0;
+      const double load = loadAverage();
       if (!r.error.empty())
       {
         std::printf("%s: error %s\n", w->name, r.error.c_str());
@@ -197,9 +251,9 @@ int main(int argc, char** argv)
       }
       const double edge = c.edgeLength / std::sqrt(3.0);
       const double phi = volumeFraction(m, edge, samples);
-      std::printf("| %s | %d | %d | %d | %.2f | %.1f | %.3f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
-        w->name, w->fibers, t, r.steps, seconds, w->referenceSeconds, seconds / w->referenceSeconds,
-        peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
+      std::printf("| %s | %d | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
+        w->name, w->fibers, t, r.steps, seconds, cpu, w->referenceSeconds,
+        seconds / w->referenceSeconds, load, peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
         m.numberOfLinks(), 100.0 * phi, edge);
       std::fflush(stdout);
     }

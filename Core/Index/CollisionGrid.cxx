@@ -28,16 +28,18 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b)
 namespace
 {
 
+// float rounding moves a value by at most 2^-24 relative; widen by 2^-22 relative (plus a tiny
+// absolute amount for values near 0) so the float box always contains the double box.
 inline float floatBelow(double x)
 {
-  float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
+  const float f = static_cast<float>(x);
+  return f - (std::fabs(f) * 2.4e-7f + 1e-30f);
 }
 
 inline float floatAbove(double x)
 {
-  float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, HUGE_VALF) : f;
+  const float f = static_cast<float>(x);
+  return f + (std::fabs(f) * 2.4e-7f + 1e-30f);
 }
 
 inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi)
@@ -56,6 +58,14 @@ inline void testPair(const std::vector<CapsuleLink>& links, std::uint32_t i, std
   const CapsuleLink& la = links[a];
   const CapsuleLink& lb = links[b];
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
+  {
+    return;
+  }
+  // Bounding spheres around the link centres: a cheap reject before the exact distance (every
+  // point of a segment lies within half its length of its centre).
+  const Vec3 dc = (la.p0 + la.p1) - (lb.p0 + lb.p1); // twice the centre distance
+  const double reach = (la.arc1 - la.arc0) + (lb.arc1 - lb.arc0) + 2.0 * (la.rho + lb.rho + gap);
+  if (norm2(dc) >= reach * reach)
   {
     return;
   }
@@ -87,11 +97,16 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const double halfGap = 0.5 * minimumGap;
 
   boxes_.resize(n);
-  std::vector<double> edges(n);
-  Vec3 origin{ HUGE_VAL, HUGE_VAL, HUGE_VAL };
-  Vec3 top{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-  for (std::size_t i = 0; i < n; ++i)
+  edges_.resize(n);
+  double ox = HUGE_VAL, oy = HUGE_VAL, oz = HUGE_VAL;
+  double tx = -HUGE_VAL, ty = -HUGE_VAL, tz = -HUGE_VAL;
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+  // min/max are exact, so the reduction gives the same bits for any thread count.
+#pragma omp parallel for num_threads(nThreads) schedule(static) \
+  reduction(min : ox, oy, oz) reduction(max : tx, ty, tz)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
   {
+    const std::size_t i = static_cast<std::size_t>(ii);
     const CapsuleLink& l = links[i];
     const double g = l.rho + halfGap;
     Box& bx = boxes_[i];
@@ -99,17 +114,32 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     {
       bx.lo[d] = std::min(l.p0[d], l.p1[d]) - g;
       bx.hi[d] = std::max(l.p0[d], l.p1[d]) + g;
-      origin[d] = std::min(origin[d], bx.lo[d]);
-      top[d] = std::max(top[d], bx.hi[d]);
     }
-    edges[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
+    ox = std::min(ox, bx.lo.x);
+    oy = std::min(oy, bx.lo.y);
+    oz = std::min(oz, bx.lo.z);
+    tx = std::max(tx, bx.hi.x);
+    ty = std::max(ty, bx.hi.y);
+    tz = std::max(tz, bx.hi.z);
+    edges_[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
   }
+  const Vec3 origin{ ox, oy, oz };
+  const Vec3 top{ tx, ty, tz };
+  const std::vector<double>& edges = edges_;
 
   // Cell size: the largest "regular" box edge (§3.3). A few oversize links are tested against
   // everything instead of blowing up the cell size for all.
-  std::vector<double> sorted(edges);
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(n / 2), sorted.end());
-  const double limit = 2.0 * sorted[n / 2];
+  // The median only sets the cell size (performance, never the result): a strided sample of
+  // at most ~4096 links is enough.
+  const std::size_t stride = n / 4096 + 1;
+  std::vector<double> sample;
+  sample.reserve(n / stride + 1);
+  for (std::size_t i = 0; i < n; i += stride)
+  {
+    sample.push_back(edges[i]);
+  }
+  std::nth_element(sample.begin(), sample.begin() + static_cast<long>(sample.size() / 2), sample.end());
+  const double limit = 2.0 * sample[sample.size() / 2];
   double h = 0.0;
   double hAll = 0.0;
   std::size_t nOversize = 0;
@@ -152,13 +182,34 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const std::int64_t nz = static_cast<std::int64_t>(dims[2]);
 
   oversize_.clear();
-  sortKeys_.clear();
-  sortKeys_.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; nOversize > 0 && i < n; ++i)
   {
-    if (nOversize > 0 && edges[i] > limit)
+    if (edges[i] > limit)
     {
       oversize_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  // Links keep their ids between solver steps unless shape control changed a fiber, and move
+  // little: visiting them in last step's order makes the key array nearly sorted, and an
+  // insertion sort then costs O(N) instead of O(N log N). Any order gives the same sorted result.
+  const bool reuse = prevOrder_.size() == n && nOversize == 0;
+  if (!reuse)
+  {
+    prevOrder_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      prevOrder_[i] = static_cast<std::uint32_t>(i);
+    }
+  }
+  sortKeys_.resize(n);
+  constexpr std::uint64_t kOversizeKey = ~std::uint64_t(0);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t jj = 0; jj < nn; ++jj)
+  {
+    const std::uint32_t i = prevOrder_[static_cast<std::size_t>(jj)];
+    if (nOversize > 0 && edges[i] > limit)
+    {
+      sortKeys_[static_cast<std::size_t>(jj)] = kOversizeKey; // sorts last, then dropped
       continue;
     }
     const Box& bx = boxes_[i];
@@ -172,9 +223,45 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     c[1] = std::min(std::max<std::int64_t>(c[1], 0), ny - 1);
     c[2] = std::min(std::max<std::int64_t>(c[2], 0), nz - 1);
     const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + nx * (c[1] + ny * c[2]));
-    sortKeys_.push_back((cell << 32) | static_cast<std::uint64_t>(i));
+    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
   }
-  std::sort(sortKeys_.begin(), sortKeys_.end());
+  bool inOrder = false;
+  if (reuse)
+  {
+    // Insertion sort with a work budget; fall back to std::sort when the order changed a lot.
+    std::size_t work = 0;
+    const std::size_t budget = 16 * n;
+    inOrder = true;
+    for (std::size_t i = 1; i < n && inOrder; ++i)
+    {
+      const std::uint64_t v = sortKeys_[i];
+      std::size_t j = i;
+      while (j > 0 && sortKeys_[j - 1] > v)
+      {
+        sortKeys_[j] = sortKeys_[j - 1];
+        --j;
+        if (++work > budget)
+        {
+          inOrder = false;
+          break;
+        }
+      }
+      sortKeys_[j] = v;
+    }
+  }
+  if (!inOrder)
+  {
+    std::sort(sortKeys_.begin(), sortKeys_.end());
+  }
+  sortKeys_.resize(n - oversize_.size());
+  for (std::size_t r = 0; r < sortKeys_.size(); ++r)
+  {
+    prevOrder_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+  }
+  if (!oversize_.empty())
+  {
+    prevOrder_.clear(); // no reuse next time
+  }
 
   const std::size_t nRegular = sortKeys_.size();
   order_.resize(nRegular);
@@ -183,11 +270,11 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     lo_[d].resize(nRegular);
     hi_[d].resize(nRegular);
   }
-  cellKeys_.clear();
-  cellStart_.clear();
-  for (std::size_t r = 0; r < nRegular; ++r)
+  const std::int64_t nr = static_cast<std::int64_t>(nRegular);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t rr = 0; rr < nr; ++rr)
   {
-    const std::uint64_t cell = sortKeys_[r] >> 32;
+    const std::size_t r = static_cast<std::size_t>(rr);
     const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
     order_[r] = id;
     for (int d = 0; d < 3; ++d)
@@ -195,6 +282,12 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       lo_[d][r] = floatBelow(boxes_[id].lo[d]);
       hi_[d][r] = floatAbove(boxes_[id].hi[d]);
     }
+  }
+  cellKeys_.clear();
+  cellStart_.clear();
+  for (std::size_t r = 0; r < nRegular; ++r)
+  {
+    const std::uint64_t cell = sortKeys_[r] >> 32;
     if (cellKeys_.empty() || cellKeys_.back() != cell)
     {
       cellKeys_.push_back(cell);
@@ -223,6 +316,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     std::vector<CapsulePair>& out = perThread_[0];
 #endif
     std::vector<std::uint32_t> cand;
+    std::vector<std::uint8_t> mask;
     const float* lx = lo_[0].data();
     const float* ly = lo_[1].data();
     const float* lz = lo_[2].data();
@@ -236,16 +330,32 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       {
         return;
       }
-      c.resize(qe - qb);
+      const std::uint32_t len = qe - qb;
+      if (mask.size() < len)
+      {
+        mask.resize(len);
+      }
+      std::uint8_t* mk = mask.data();
+      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
+      const float* qlx = lx + qb;
+      const float* qly = ly + qb;
+      const float* qlz = lz + qb;
+      const float* qhx = hx + qb;
+      const float* qhy = hy + qb;
+      const float* qhz = hz + qb;
+      // Plain mask loop: the compiler vectorises it (SSE2 is enough).
+      for (std::uint32_t j = 0; j < len; ++j)
+      {
+        mk[j] = static_cast<std::uint8_t>((rhx > qlx[j]) & (qhx[j] > rlx) & (rhy > qly[j]) &
+          (qhy[j] > rly) & (rhz > qlz[j]) & (qhz[j] > rlz));
+      }
+      c.resize(len);
       std::uint32_t* cp = c.data();
       std::size_t nc = 0;
-      const float rlx = lx[r], rly = ly[r], rlz = lz[r], rhx = hx[r], rhy = hy[r], rhz = hz[r];
-      for (std::uint32_t q = qb; q < qe; ++q)
+      for (std::uint32_t j = 0; j < len; ++j)
       {
-        const bool hit = (rhx > lx[q]) & (hx[q] > rlx) & (rhy > ly[q]) & (hy[q] > rly) &
-          (rhz > lz[q]) & (hz[q] > rlz);
-        cp[nc] = q;
-        nc += hit ? 1u : 0u;
+        cp[nc] = qb + j;
+        nc += mk[j];
       }
       for (std::size_t i = 0; i < nc; ++i)
       {
@@ -316,6 +426,18 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     }
   }
 
+  // Each pair is found exactly once, so the sorted list is independent of the schedule: every
+  // thread sorts its own part (in parallel), then the parts are merged.
+  auto less = [](const CapsulePair& x, const CapsulePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  const std::int64_t nParts = static_cast<std::int64_t>(perThread_.size());
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t t = 0; t < nParts; ++t)
+  {
+    auto& v = perThread_[static_cast<std::size_t>(t)];
+    std::sort(v.begin(), v.end(), less);
+  }
   std::size_t total = 0;
   for (const auto& v : perThread_)
   {
@@ -324,12 +446,10 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   pairs.reserve(total);
   for (const auto& v : perThread_)
   {
+    const std::size_t mid = pairs.size();
     pairs.insert(pairs.end(), v.begin(), v.end());
+    std::inplace_merge(pairs.begin(), pairs.begin() + static_cast<long>(mid), pairs.end(), less);
   }
-  // Each pair is found exactly once, so sorting makes the list independent of the schedule.
-  std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
 }
 
 } // namespace fiberpli

@@ -21,7 +21,7 @@ struct CapsuleLink
   std::uint32_t fiber = 0; ///< fiber index (same-fiber skip rule)
   std::uint32_t k = 0;     ///< link index inside the fiber
   double arc0 = 0.0;       ///< arc length from the fiber's first point to p0 (S[k])
-  double arc1 = 0.0;       ///< arc length to p1 (S[k+1])
+  double arc1 = 0.0;       ///< arc length to p1 (S[k+1]); arc1 − arc0 = |p1 − p0|, the detector relies on it
 };
 
 /// A colliding pair, a < b (global link ids), with the closest points of §2 evaluated as
@@ -58,6 +58,8 @@ private:
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
   std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
+  std::vector<std::uint32_t> prevOrder_; // last call's order: nearly sorted start for this call
+  std::vector<double> edges_;           // per link largest box edge
   // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
   // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
   std::vector<float> lo_[3];

@@ -13,16 +13,19 @@ namespace fiberpli
 namespace
 {
 // Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
-void buildLinks(const FiberModel& model, const std::vector<char>* active,
+// Offsets first (serial prefix sums), then the fibers in parallel: each writes its own range.
+void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
   std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset)
 {
-  links.clear();
-  std::size_t points = 0;
+  const std::size_t nf = model.fibers.size();
+  std::vector<std::size_t> linkOffset(nf + 1, 0);
   if (pointOffset)
   {
-    pointOffset->assign(model.fibers.size() + 1, 0);
+    pointOffset->assign(nf + 1, 0);
   }
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  std::size_t points = 0;
+  std::size_t nLinks = 0;
+  for (std::size_t f = 0; f < nf; ++f)
   {
     const Fiber& fib = model.fibers[f];
     if (pointOffset)
@@ -30,14 +33,29 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active,
       (*pointOffset)[f] = points;
     }
     points += fib.points.size();
-    if (fib.points.size() < 2 || (active && !(*active)[f]))
+    linkOffset[f] = nLinks;
+    if (fib.points.size() >= 2 && !(active && !(*active)[f]))
     {
-      continue;
+      nLinks += fib.points.size() - 1;
     }
+  }
+  linkOffset[nf] = nLinks;
+  if (pointOffset)
+  {
+    (*pointOffset)[nf] = points;
+  }
+  links.resize(nLinks);
+  const std::int64_t n = static_cast<std::int64_t>(nf);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t ff = 0; ff < n; ++ff)
+  {
+    const std::size_t f = static_cast<std::size_t>(ff);
+    const Fiber& fib = model.fibers[f];
+    const std::size_t count = linkOffset[f + 1] - linkOffset[f];
     double arc = 0.0;
-    for (std::size_t k = 0; k + 1 < fib.points.size(); ++k)
+    for (std::size_t k = 0; k < count; ++k)
     {
-      CapsuleLink l;
+      CapsuleLink& l = links[linkOffset[f] + k];
       l.p0 = fib.points[k];
       l.p1 = fib.points[k + 1];
       l.rho = fib.linkRadius(k);
@@ -46,12 +64,7 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active,
       l.arc0 = arc;
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
-      links.push_back(l);
     }
-  }
-  if (pointOffset)
-  {
-    (*pointOffset)[model.fibers.size()] = points;
   }
 }
 
@@ -175,9 +188,37 @@ public:
     return changed != 0;
   }
 
+  // The state shape control would leave untouched (used after an abort, where it did not run).
+  bool shapeWithinLimits() const
+  {
+    const double lMin = segmentLength_ * (2.0 / 3.0);
+    const double lMax = segmentLength_ * (4.0 / 3.0);
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+    {
+      const Fiber& fib = model_.fibers[f];
+      if (!active_[f])
+      {
+        continue;
+      }
+      if (!curvatureOk(fib, o_.minCurvatureRadius))
+      {
+        return false;
+      }
+      for (std::size_t i = 0; segmentLength_ > 0.0 && i + 1 < fib.size(); ++i)
+      {
+        const double len = distance(fib.points[i], fib.points[i + 1]);
+        if (len > lMax || (len < lMin && fib.size() > 2))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   void detect()
   {
-    buildLinks(model_, &active_, links_, &pointOffset_);
+    buildLinks(model_, &active_, threads_, links_, &pointOffset_);
     grid_.findPairs(links_, o_.minimumGap, threads_, pairs_);
   }
 
@@ -217,6 +258,7 @@ public:
       out.b1 = -(p.t * n);
     }
     force_.assign(pointOffset_.back(), Vec3{});
+    const double spread = o_.pushSpread;
     for (std::size_t pi = 0; pi < pairs_.size(); ++pi)
     {
       const CapsuleLink& la = links_[pairs_[pi].a];
@@ -227,6 +269,19 @@ public:
       force_[ia + 1] += push_[pi].a1;
       force_[ib] += push_[pi].b0;
       force_[ib + 1] += push_[pi].b1;
+      if (spread > 0.0)
+      {
+        // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
+        // create the curvature violations that shape control then undoes step after step.
+        if (la.k > 0)
+          force_[ia - 1] += spread * push_[pi].a0;
+        if (la.k + 2 < model_.fibers[la.fiber].size())
+          force_[ia + 2] += spread * push_[pi].a1;
+        if (lb.k > 0)
+          force_[ib - 1] += spread * push_[pi].b0;
+        if (lb.k + 2 < model_.fibers[lb.fiber].size())
+          force_[ib + 2] += spread * push_[pi].b1;
+      }
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
@@ -263,6 +318,158 @@ public:
     }
   }
 };
+
+// Per fiber: source indices, repeated points removed (§9), fibers without 2 distinct points
+// excluded from solving.
+void prepareFibers(Solver& s, std::vector<std::string>& warnings)
+{
+  const std::size_t nf = s.model_.fibers.size();
+  s.state_.resize(nf);
+  s.active_.assign(nf, 1);
+  std::size_t repeated = 0;
+  std::size_t tooShort = 0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    Fiber& fib = s.model_.fibers[f];
+    FiberPointState& st = s.state_[f];
+    st.source.resize(fib.points.size());
+    for (std::size_t i = 0; i < fib.points.size(); ++i)
+    {
+      st.source[i] = static_cast<double>(i);
+    }
+    if (fib.points.size() >= 2)
+    {
+      // A fiber of identical points would collapse to one point: leave it as it came.
+      Fiber copy = fib;
+      FiberPointState stCopy = st;
+      const std::size_t r = removeRepeatedPoints(copy, stCopy);
+      if (copy.points.size() >= 2)
+      {
+        fib = std::move(copy);
+        st = std::move(stCopy);
+        repeated += r;
+      }
+    }
+    st.velocity.assign(fib.points.size(), Vec3{});
+    bool degenerate = fib.points.size() < 2;
+    for (std::size_t i = 1; !degenerate && i < fib.points.size(); ++i)
+    {
+      degenerate = fib.points[i] == fib.points[i - 1];
+    }
+    if (degenerate)
+    {
+      ++tooShort;
+      s.active_[f] = 0;
+    }
+  }
+  if (repeated > 0)
+  {
+    warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
+  }
+  if (tooShort > 0)
+  {
+    warnings.push_back(std::to_string(tooShort) +
+      " fibers with fewer than 2 distinct points are not solved (copied through)");
+  }
+}
+
+// L̄ (§5.1): 0 = automatic, 2 × median radius (the fastPLI author's choice); < 0 = off.
+double resolveSegmentLength(const FiberModel& model, const CollisionSolverOptions& o)
+{
+  const double l = o.segmentLength == 0.0 ? 2.0 * medianRadius(model) : o.segmentLength;
+  return l == 0.0 ? -1.0 : l; // no fibers to take a radius from
+}
+
+// v_max and the parameter sanity warnings of §4.2 / §5.2.
+void configure(Solver& s, std::vector<std::string>& warnings)
+{
+  const std::size_t nf = s.model_.fibers.size();
+  const double rMedian = medianRadius(s.model_);
+  double rMin = HUGE_VAL;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : s.model_.fibers[f].radii)
+      {
+        rMin = std::min(rMin, r);
+      }
+    }
+  }
+  if (rMin == HUGE_VAL)
+  {
+    rMin = 0.0;
+  }
+  if (rMin < 0.25 * rMedian)
+  {
+    warnings.push_back("smallest radius " + std::to_string(rMin) +
+      " is below 1/4 of the median radius " + std::to_string(rMedian) +
+      ": every fiber moves at most " + std::to_string(s.o_.maxDisplacement) +
+      " x this radius per step (slow)");
+  }
+  s.vMax_ = s.o_.maxDisplacement * rMin;
+  // Parameter sanity (§5.2): warn, do not fail.
+  double rMax = 0.0;
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    if (s.active_[f])
+    {
+      for (double r : s.model_.fibers[f].radii)
+      {
+        rMax = std::max(rMax, r);
+      }
+    }
+  }
+  if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
+  {
+    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
+      " is below the largest radius " + std::to_string(rMax) +
+      ": a tube bent that tightly intersects itself on the inside");
+  }
+  if (s.segmentLength_ > 0.0 && s.o_.minCurvatureRadius > 0.0 &&
+    s.o_.minCurvatureRadius < s.segmentLength_ / std::sqrt(3.0))
+  {
+    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
+      " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
+  }
+  if (s.segmentLength_ > 0.0 && s.segmentLength_ < 0.25 * rMedian)
+  {
+    warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
+      " is below 1/4 of the median radius: many points, slow and memory hungry");
+  }
+}
+
+// §8: splitting makes up to (arc length / l_min) points per fiber; refuse absurd sizes before
+// any allocation instead of running out of memory in the middle of a step.
+std::string checkMemory(const Solver& s)
+{
+  constexpr double kMaxPoints = 2.0e8; // ~20 GB of solver state
+  if (!(s.segmentLength_ > 0.0))
+  {
+    return {};
+  }
+  double length = 0.0;
+  double points = 0.0;
+  for (const Fiber& f : s.model_.fibers)
+  {
+    for (std::size_t i = 0; i + 1 < f.size(); ++i)
+    {
+      length += distance(f.points[i], f.points[i + 1]);
+    }
+    points += static_cast<double>(f.size());
+  }
+  const double estimate = points + length / (s.segmentLength_ * (2.0 / 3.0));
+  if (estimate > kMaxPoints)
+  {
+    std::ostringstream msg;
+    msg << "SegmentLength " << s.segmentLength_ << " with a total fiber length of " << length
+        << " would need up to " << estimate << " points (limit " << kMaxPoints
+        << "); raise SegmentLength";
+    return msg.str();
+  }
+  return {};
+}
+
 } // namespace
 
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
@@ -287,6 +494,10 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
   {
     msg << "OverlapPush is " << o.overlapPush << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.pushSpread) || o.pushSpread < 0.0 || o.pushSpread > 1.0)
+  {
+    msg << "PushSpread is " << o.pushSpread << ", must be in [0, 1]";
   }
   else if (!std::isfinite(o.maxDisplacement) || o.maxDisplacement <= 0.0)
   {
@@ -328,83 +539,15 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   Solver s(model, o, threads);
 
   const std::size_t nf = model.fibers.size();
-  s.state_.resize(nf);
-  s.active_.assign(nf, 1);
-  std::size_t repeated = 0;
-  std::size_t tooShort = 0;
-  for (std::size_t f = 0; f < nf; ++f)
+  // Before anything touches the model: a refused run leaves it unchanged.
+  s.segmentLength_ = resolveSegmentLength(model, o);
+  result.error = checkMemory(s);
+  if (!result.error.empty())
   {
-    Fiber& fib = model.fibers[f];
-    FiberPointState& st = s.state_[f];
-    st.source.resize(fib.points.size());
-    for (std::size_t i = 0; i < fib.points.size(); ++i)
-    {
-      st.source[i] = static_cast<double>(i);
-    }
-    if (fib.points.size() >= 2)
-    {
-      // A fiber of identical points would collapse to one point: leave it as it came.
-      Fiber copy = fib;
-      FiberPointState stCopy = st;
-      const std::size_t r = removeRepeatedPoints(copy, stCopy);
-      if (copy.points.size() >= 2)
-      {
-        fib = std::move(copy);
-        st = std::move(stCopy);
-        repeated += r;
-      }
-    }
-    st.velocity.assign(fib.points.size(), Vec3{});
-    bool degenerate = fib.points.size() < 2;
-    for (std::size_t i = 1; !degenerate && i < fib.points.size(); ++i)
-    {
-      degenerate = fib.points[i] == fib.points[i - 1];
-    }
-    if (degenerate)
-    {
-      ++tooShort;
-      s.active_[f] = 0;
-    }
+    return result;
   }
-  if (repeated > 0)
-  {
-    result.warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
-  }
-  if (tooShort > 0)
-  {
-    result.warnings.push_back(std::to_string(tooShort) +
-      " fibers with fewer than 2 distinct points are not solved (copied through)");
-  }
-
-  const double rMedian = medianRadius(model);
-  double rMin = HUGE_VAL;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    if (s.active_[f])
-    {
-      for (double r : model.fibers[f].radii)
-      {
-        rMin = std::min(rMin, r);
-      }
-    }
-  }
-  if (rMin == HUGE_VAL)
-  {
-    rMin = 0.0;
-  }
-  if (rMin < 0.25 * rMedian)
-  {
-    result.warnings.push_back("smallest radius " + std::to_string(rMin) +
-      " is below 1/4 of the median radius " + std::to_string(rMedian) +
-      ": every fiber moves at most " + std::to_string(o.maxDisplacement) +
-      " x this radius per step (slow)");
-  }
-  s.segmentLength_ = o.segmentLength == 0.0 ? 2.0 * rMedian : o.segmentLength;
-  if (s.segmentLength_ == 0.0)
-  {
-    s.segmentLength_ = -1.0; // no fibers to take a radius from
-  }
-  s.vMax_ = o.maxDisplacement * rMin;
+  prepareFibers(s, result.warnings);
+  configure(s, result.warnings);
   result.segmentLength = s.segmentLength_;
 
   bool changed = false;
@@ -458,7 +601,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     {
       result.aborted = true;
       s.detect(); // collisions must describe the geometry that is returned
-      changed = false;
+      changed = !s.shapeWithinLimits();
       break;
     }
   }
@@ -486,7 +629,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads)
 {
   std::vector<CapsuleLink> links;
-  buildLinks(model, nullptr, links, nullptr);
+  buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
   std::vector<CapsulePair> pairs;
   CollisionGrid grid;
   grid.findPairs(links, minimumGap, numberOfThreads, pairs);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -139,4 +140,32 @@ TEST(CollisionGrid, CubeMatchesBruteForceAndIsTranslationInvariant)
     for (Vec3& p : f.points)
       p += Vec3{ 1000, -500, 3 };
   EXPECT_EQ(gridPairs(m, 2), ref);
+}
+
+TEST(CollisionGrid, ReusedGridGivesTheSameAnswerAsAFreshOne)
+{
+  // The grid starts its sort from the previous call's order; the result must not depend on it.
+  CubeOptions o;
+  o.numberOfFibers = 100;
+  o.populations = 2;
+  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(0.1);
+  o.seed = 9;
+  FiberModel m = generateCube(o);
+  CollisionGrid grid;
+  std::vector<CapsulePair> pairs;
+  RandomStream rng(9, 9, 9);
+  for (int round = 0; round < 4; ++round)
+  {
+    grid.findPairs(linksOf(m), 0.0, 2, pairs);
+    std::vector<std::pair<std::size_t, std::size_t>> got;
+    for (const CapsulePair& p : pairs)
+      got.emplace_back(p.a, p.b);
+    EXPECT_EQ(got, fiberpli_test::refPairs(fiberpli_test::refLinks(m))) << round;
+    // Small moves (the solver's case), then a full reshuffle of the fibers (same link count).
+    for (Fiber& f : m.fibers)
+      for (Vec3& p : f.points)
+        p += Vec3{ rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2) };
+    if (round == 2)
+      std::reverse(m.fibers.begin(), m.fibers.end());
+  }
 }
