@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -264,4 +265,25 @@ TEST(TckFormat, Sniffing)
   EXPECT_FALSE(sniff("mrtrix tracksX\n"));
   EXPECT_FALSE(sniff("1 2 3 0.5\n"));
   EXPECT_FALSE(sniff(""));
+}
+
+TEST(TckFormat, CommittedSampleEqualsWriterOutput)
+{
+  // Testing/Data/tracks/sample.tck was written with Python's struct module from the spec (the
+  // same two streamlines as WriterMatchesTheSpecByteByByte).
+  const std::string path = std::string(FIBERPLI_TEST_DATA_DIR) + "/tracks/sample.tck";
+  std::ifstream in(path, std::ios::binary);
+  ASSERT_TRUE(in) << path;
+  EXPECT_TRUE(looksLikeTck(in));
+  const FiberReadResult r = readTck(in, path, 1.0);
+  ASSERT_TRUE(r.ok()) << r.error;
+  ASSERT_EQ(r.model.fibers.size(), 2u);
+  EXPECT_EQ(r.model.fibers[0].points[1], (Vec3{ 4, 5, 6 }));
+  EXPECT_EQ(r.model.fibers[1].points[1], (Vec3{ 0.25, 0, 1 }));
+  std::ostringstream out;
+  ASSERT_EQ(writeTck(out, r.model), "");
+  std::ifstream again(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << again.rdbuf();
+  EXPECT_EQ(out.str(), bytes.str());
 }
