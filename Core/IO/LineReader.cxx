@@ -7,7 +7,7 @@ namespace fiberpli
 
 namespace
 {
-constexpr std::size_t blockSize = std::size_t(1) << 20;
+constexpr std::size_t blockSize = std::size_t(1) << 16; // 64 KiB: big enough that read() calls are rare
 }
 
 LineReader::LineReader(std::istream& in, std::size_t maxLineLength)

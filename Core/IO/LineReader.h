@@ -1,5 +1,5 @@
 /// LineReader: block-buffered line splitter over a std::istream for the text formats of Core/IO.
-/// Reads 1 MiB blocks (much faster than std::getline per line) and hands out views into its own
+/// Reads 64 KiB blocks (much faster than std::getline per line) and hands out views into its own
 /// buffer, so memory stays bounded whatever the file: a line longer than maxLineLength is reported
 /// instead of being buffered. Internal helper, not part of the public API.
 #pragma once

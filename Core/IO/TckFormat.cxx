@@ -224,7 +224,7 @@ FiberReadResult readTck(std::istream& in, const std::string& fileName, double de
   {
     return fail(at(fileName, "byte", offset, "cannot seek to the data"));
   }
-  const std::size_t tripletsPerBlock = 1 << 14;
+  const std::size_t tripletsPerBlock = 1 << 12;
   std::vector<unsigned char> block(static_cast<std::size_t>(tripletSize) * tripletsPerBlock);
   std::uint64_t remaining = dataBytes;
   std::uint64_t position = offset;
