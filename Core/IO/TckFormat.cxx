@@ -234,6 +234,7 @@ FiberReadResult readTck(std::istream& in, const std::string& fileName, double de
   auto finishFiber = [&]() {
     if (fiber.points.size() >= 2)
     {
+      fiber.points.shrink_to_fit(); // drop push_back's growth slack: the model holds the data once
       fiber.id = static_cast<std::int64_t>(streamlines);
       fiber.bundle = 0;
       fiber.radii.assign(fiber.points.size(), defaultRadius);

@@ -166,3 +166,20 @@ TEST(AtomicFile, FiberWriterKeepsOldFileOnInvalidModel)
   EXPECT_NE(writeFiberFile(dir.path + "/model.trk", good).find("cannot write this extension"), std::string::npos);
   EXPECT_NE(readFiberFile(dir.path + "/nothing.dat", 1.0).error.find(dir.path + "/nothing.dat"), std::string::npos);
 }
+
+TEST(AtomicFile, FailedRenameRemovesTheTemporaryFile)
+{
+  // The target turns into a non-empty directory while the content is written, so rename(2) fails
+  // after the temporary file is complete: the error names the path and no temporary file remains.
+  TempDir dir;
+  const std::string target = dir.path + "/late.dat";
+  const std::string err = writeFileAtomically(target, [&](std::ostream& out) {
+    out << "content";
+    ::mkdir(target.c_str(), 0755);
+    std::ofstream(target + "/inside") << "x";
+    return std::string();
+  });
+  EXPECT_NE(err.find("cannot replace " + target), std::string::npos) << err;
+  EXPECT_EQ(dir.entries().size(), 1u) << "temporary file left behind";
+  ::unlink((target + "/inside").c_str());
+}
