@@ -145,6 +145,18 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
       tiles.push_back(ColumnRange{ std::max(cols.i0, tx * B), std::min(cols.i1, (tx + 1) * B),
         std::max(cols.j0, ty * B), std::min(cols.j1, (ty + 1) * B) });
 
+  // Bow-tie of the tilted rays: at depth k a sample lies within (|k + ½ − n_z/2| + 1)·tan θ of its
+  // column centre (the +1 covers the z stencil), plus 1 for floor and 1 for the lateral stencil.
+  std::vector<std::int64_t> reach(static_cast<std::size_t>(lat.n[2]), halo);
+  double tanMax = 0.0;
+  for (const View& v : views)
+    tanMax = std::max(tanMax, std::tan(v.theta));
+  for (std::int64_t k = 0; k < lat.n[2]; ++k)
+  {
+    const double dz = std::fabs(static_cast<double>(k) + 0.5 - 0.5 * static_cast<double>(lat.n[2])) + 1.0;
+    reach[static_cast<std::size_t>(k)] = std::min<std::int64_t>(halo, static_cast<std::int64_t>(std::ceil(dz * tanMax)) + 2);
+  }
+
   const int threads = resolveThreadCount(par.threads);
   std::vector<TissueBlock> blocks(static_cast<std::size_t>(threads));
   std::vector<double> tVox(static_cast<std::size_t>(threads), 0.0), tProp(static_cast<std::size_t>(threads), 0.0);
@@ -176,7 +188,8 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
       const double t0 = now();
       block.reset(grow(tile, halo), lat.n[2]);
       VoxeliseStats vs;
-      voxeliseBlock(table, spec, lat, par.lateral, block, vs);
+      HaloShape shape{ tile, reach };
+      voxeliseBlock(table, spec, lat, par.lateral, block, vs, &shape);
       overlap[static_cast<std::size_t>(ti)] = vs.overlap ? 1 : 0;
       std::int64_t inside = 0;
       for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]); ++j)

@@ -127,7 +127,7 @@ inline double radiusAt(const LinkTable::Link& L, double tt, RadiusModel m)
 } // namespace
 
 void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const Lattice& lat,
-  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats)
+  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats, const HaloShape* shape)
 {
   stats = VoxeliseStats();
   ColumnRange fill = block.cols;
@@ -188,8 +188,16 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const Lattice& la
       {
         std::uint32_t* col = w + 4 * block.index(i, j, 0);
         const double cx = static_cast<double>(i) + 0.5, cy = static_cast<double>(j) + 0.5;
+        std::int64_t out = 0;
+        if (shape)
+        {
+          const ColumnRange& c = shape->core;
+          out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
+        }
         for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
         {
+          if (out > 0 && out > shape->reach[static_cast<std::size_t>(k)])
+            continue;
           const Vec3 c{ cx, cy, static_cast<double>(k) + 0.5 };
           double tt = dot(c - lk.p, ax) / L2;
           tt = tt < 0.0 ? 0.0 : (tt > 1.0 ? 1.0 : tt);

@@ -74,8 +74,16 @@ struct VoxeliseStats
 /// order (d2, larger g wins ties) of §3.3, then the optic axes (p: link direction, r: from the axis
 /// to the voxel centre, b: none). With LateralOutside::Background, voxels outside the lateral
 /// lattice stay label 0. The result does not depend on the block split or the link order.
+/// `reach`, when given, lists per depth k the largest lateral distance (voxels) outside `core`
+/// at which a ray of the core columns can read voxel k; voxels farther out are skipped (they stay
+/// label 0 and are never read). This trims the tilt halo of §3.5 to the "bow-tie" the rays use.
+struct HaloShape
+{
+  ColumnRange core;
+  std::vector<std::int64_t> reach;
+};
 void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const Lattice& lattice,
-  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats);
+  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats, const HaloShape* shape = nullptr);
 
 /// Convenience for tests and field export: links for `cols`, then voxeliseBlock.
 VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const Lattice& lattice,
