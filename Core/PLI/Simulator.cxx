@@ -165,7 +165,8 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
   std::vector<char> overlap(tiles.size(), 0);
 
   const std::int64_t nt = static_cast<std::int64_t>(tiles.size());
-  const std::int64_t batch = std::max<std::int64_t>(1, std::min<std::int64_t>(4 * threads, nt / 50 + 1));
+  // Batches keep every thread busy and give about 50 progress reports per run.
+  const std::int64_t batch = std::max<std::int64_t>(2 * threads, (nt + 49) / 50);
   for (std::int64_t b0 = 0; b0 < nt; b0 += batch)
   {
     if (!reportProgress(progress, static_cast<double>(b0) / static_cast<double>(nt)))

@@ -183,9 +183,32 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const Lattice& la
     hi[1] = std::min(hi[1], fill.j1 - 1);
     lo[2] = std::max<std::int64_t>(lo[2], 0);
     hi[2] = std::min<std::int64_t>(hi[2], nz - 1);
+    const Vec3 u = ax / std::sqrt(L2);
+    const double qa = 1.0 - u.z * u.z;
     for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
       for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
       {
+        // Only a cheap superset: the k where the centre is within `grow` of the infinite axis
+        // line (a quadratic in z), widened by a voxel; the exact test below decides.
+        const double wx = static_cast<double>(i) + 0.5 - lk.p.x, wy = static_cast<double>(j) + 0.5 - lk.p.y;
+        const double e = wx * u.x + wy * u.y;
+        const double qc = wx * wx + wy * wy - e * e - grow * grow;
+        std::int64_t k0 = lo[2], k1 = hi[2];
+        if (qa > 1e-9)
+        {
+          const double qb = -2.0 * e * u.z;
+          const double disc = qb * qb - 4.0 * qa * qc;
+          if (disc < 0.0)
+            continue;
+          const double sq = std::sqrt(disc);
+          const double z1 = lk.p.z + (-qb - sq) / (2.0 * qa), z2 = lk.p.z + (-qb + sq) / (2.0 * qa);
+          k0 = std::max(k0, static_cast<std::int64_t>(std::floor(z1 - 0.5)) - 1);
+          k1 = std::min(k1, static_cast<std::int64_t>(std::ceil(z2 - 0.5)) + 1);
+        }
+        else if (qc > 1e-9 * grow * grow + 1e-9)
+        {
+          continue;
+        }
         std::uint32_t* col = w + 4 * block.index(i, j, 0);
         const double cx = static_cast<double>(i) + 0.5, cy = static_cast<double>(j) + 0.5;
         std::int64_t out = 0;
@@ -194,7 +217,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const Lattice& la
           const ColumnRange& c = shape->core;
           out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
         }
-        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+        for (std::int64_t k = k0; k <= k1; ++k)
         {
           if (out > 0 && out > shape->reach[static_cast<std::size_t>(k)])
             continue;
