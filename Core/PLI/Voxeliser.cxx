@@ -144,18 +144,18 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const Lattice& la
   std::vector<std::uint32_t> cand;
   if (anything)
   {
-  const std::int64_t bxa = std::max<std::int64_t>(0, (fill.i0 - t.bx0) / t.binSize);
-  const std::int64_t bxb = std::min<std::int64_t>(t.nbx - 1, (fill.i1 - 1 - t.bx0) / t.binSize);
-  const std::int64_t bya = std::max<std::int64_t>(0, (fill.j0 - t.by0) / t.binSize);
-  const std::int64_t byb = std::min<std::int64_t>(t.nby - 1, (fill.j1 - 1 - t.by0) / t.binSize);
-  for (std::int64_t by = bya; by <= byb; ++by)
-    for (std::int64_t bx = bxa; bx <= bxb; ++bx)
-    {
-      const auto& bin = t.bins[static_cast<std::size_t>(by * t.nbx + bx)];
-      cand.insert(cand.end(), bin.begin(), bin.end());
-    }
-  std::sort(cand.begin(), cand.end());
-  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    const std::int64_t bxa = std::max<std::int64_t>(0, (fill.i0 - t.bx0) / t.binSize);
+    const std::int64_t bxb = std::min<std::int64_t>(t.nbx - 1, (fill.i1 - 1 - t.bx0) / t.binSize);
+    const std::int64_t bya = std::max<std::int64_t>(0, (fill.j0 - t.by0) / t.binSize);
+    const std::int64_t byb = std::min<std::int64_t>(t.nby - 1, (fill.j1 - 1 - t.by0) / t.binSize);
+    for (std::int64_t by = bya; by <= byb; ++by)
+      for (std::int64_t bx = bxa; bx <= bxb; ++bx)
+      {
+        const auto& bin = t.bins[static_cast<std::size_t>(by * t.nbx + bx)];
+        cand.insert(cand.end(), bin.begin(), bin.end());
+      }
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
   }
 
   const int L = spec.maxLayers();
