@@ -1,0 +1,264 @@
+#include "PLI/PLIPipeline.h"
+
+#include "PLI/Optics.h"
+#include "PLI/Simulator.h"
+#include "PLI/TissueSpec.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace fiberpli
+{
+namespace pli
+{
+
+namespace
+{
+constexpr double kDeg = M_PI / 180.0;
+}
+
+Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
+{
+  Status st;
+  plan = PLIPlan();
+  std::ostringstream m;
+  double voi[6];
+  std::copy(o.volumeOfInterest, o.volumeOfInterest + 6, voi);
+  const bool sentinel = voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
+  if (!(o.voxelSize > 0.0) || !std::isfinite(o.voxelSize))
+    m << "VoxelSize is " << o.voxelSize << ", must be > 0";
+  else if (!(o.pixelSize >= o.voxelSize) || !std::isfinite(o.pixelSize))
+    m << "PixelSize is " << o.pixelSize << ", must be >= VoxelSize (" << o.voxelSize << ")";
+  else if (!(o.wavelength > 0.0) || !std::isfinite(o.wavelength))
+    m << "Wavelength is " << o.wavelength << ", must be > 0";
+  else if (!(o.lightIntensity >= 0.0) || !std::isfinite(o.lightIntensity))
+    m << "LightIntensity is " << o.lightIntensity << ", must be >= 0";
+  else if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
+    m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
+  else if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
+    m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
+  else if (!(o.stepSize > 0.0) || !std::isfinite(o.stepSize))
+    m << "StepSize is " << o.stepSize << ", must be > 0";
+  else if (!(o.opticalSigma >= 0.0) || !std::isfinite(o.opticalSigma))
+    m << "OpticalSigma is " << o.opticalSigma << ", must be >= 0";
+  else if (!(o.noiseGain == 0.0 || o.noiseGain >= 1.0) || !std::isfinite(o.noiseGain))
+    m << "NoiseGain is " << o.noiseGain << ", must be 0 or >= 1";
+  else if (!(o.refractiveIndex >= 1.0) || !std::isfinite(o.refractiveIndex))
+    m << "RefractiveIndex is " << o.refractiveIndex << ", must be >= 1";
+  else if (o.numberOfThreads < 0)
+    m << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0";
+  else if (o.tileSize < 1)
+    m << "tile size is " << o.tileSize << ", must be >= 1";
+  if (!m.str().empty())
+  {
+    st.error = m.str();
+    return st;
+  }
+  if (sentinel)
+  {
+    Vec3 lo, hi;
+    if (!modelBounds(model, true, lo, hi))
+    {
+      st.error = "VolumeOfInterest is the input-bounds sentinel but the input has no fibers";
+      return st;
+    }
+    voi[0] = lo.x, voi[1] = hi.x, voi[2] = lo.y, voi[3] = hi.y, voi[4] = lo.z, voi[5] = hi.z;
+  }
+  const char* axisName[3] = { "x", "y", "z" };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!std::isfinite(voi[2 * a]) || !std::isfinite(voi[2 * a + 1]) || !(voi[2 * a] < voi[2 * a + 1]))
+    {
+      m << "VolumeOfInterest " << axisName[a] << " range [" << voi[2 * a] << ", " << voi[2 * a + 1]
+        << "] must have min < max (or min > max on every axis for the input bounds)";
+      st.error = m.str();
+      return st;
+    }
+    const double n = std::round((voi[2 * a + 1] - voi[2 * a]) / o.voxelSize);
+    if (n < 1.0 || n > 1e9)
+    {
+      m << "VolumeOfInterest " << axisName[a] << " extent " << voi[2 * a + 1] - voi[2 * a] << " at VoxelSize "
+        << o.voxelSize << " gives " << n << " voxels, needs 1 .. 1e9";
+      st.error = m.str();
+      return st;
+    }
+    plan.lattice.origin[a] = voi[2 * a];
+    plan.lattice.n[a] = static_cast<std::int64_t>(n);
+  }
+  plan.lattice.voxel = o.voxelSize;
+
+  std::vector<int> bundles;
+  for (const Fiber& f : model.fibers)
+    bundles.push_back(f.bundle);
+  Status ts = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue);
+  st.warnings = ts.warnings;
+  if (!ts.ok())
+  {
+    st.error = ts.error;
+    return st;
+  }
+  plan.tissue.radius = o.radiusModel;
+
+  plan.tiltInTissue = std::asin(std::sin(o.tiltAngle * kDeg) / o.refractiveIndex);
+  plan.views.push_back(View{ 0.0, 0.0 });
+  if (o.tiltAngle > 0.0)
+    for (int a = 0; a < 4; ++a)
+      plan.views.push_back(View{ plan.tiltInTissue, a * 90.0 * kDeg });
+  for (int k = 0; k < o.numberOfRotations; ++k)
+    plan.rho.push_back(k * M_PI / o.numberOfRotations);
+
+  const double scale = o.voxelSize / o.pixelSize;
+  plan.pixels[0] = pixelCount(plan.lattice.n[0], scale);
+  plan.pixels[1] = pixelCount(plan.lattice.n[1], scale);
+  if (plan.pixels[0] < 1 || plan.pixels[1] < 1)
+  {
+    m << "PixelSize " << o.pixelSize << " is larger than the VolumeOfInterest: no pixel";
+    st.error = m.str();
+    return st;
+  }
+  plan.thickness = static_cast<double>(plan.lattice.n[2]) * o.voxelSize;
+  plan.imageOrigin[0] = voi[0] + 0.5 * o.pixelSize;
+  plan.imageOrigin[1] = voi[2] + 0.5 * o.pixelSize;
+  plan.imageOrigin[2] = voi[4] + 0.5 * plan.thickness;
+  plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
+  plan.bytesPerVoxel = kTileBytesPerVoxel;
+
+  SimParams sp;
+  sp.rho = plan.rho;
+  sp.threads = o.numberOfThreads;
+  sp.tile = o.tileSize;
+  sp.interp = o.interpolation;
+  const ColumnRange all{ 0, plan.lattice.n[0], 0, plan.lattice.n[1] };
+  plan.estimatedBytes = estimateSimulationBytes(plan.lattice, sp, plan.views, all);
+  // Blur and binning buffers of one view at voxel resolution.
+  plan.estimatedBytes += 2.0 * static_cast<double>(all.nx()) * static_cast<double>(all.ny()) * plan.rho.size() * 8.0;
+  if (plan.estimatedBytes > kMaxSimulationBytes)
+  {
+    m << "VoxelSize " << o.voxelSize << " with VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
+      << " x " << plan.lattice.n[2] << " voxels and NumberOfRotations " << o.numberOfRotations << " needs about "
+      << plan.estimatedBytes / (1024.0 * 1024.0 * 1024.0) << " GiB (> 16 GiB): increase VoxelSize or reduce the volume";
+    st.error = m.str();
+    return st;
+  }
+  double rmin = 0.0;
+  bool first = true;
+  for (const Fiber& f : model.fibers)
+    for (double r : f.radii)
+    {
+      rmin = first ? r : std::min(rmin, r);
+      first = false;
+    }
+  if (!first && o.voxelSize > 0.5 * rmin)
+    st.warnings.push_back("VoxelSize " + std::to_string(o.voxelSize) + " > half the smallest fiber radius " +
+      std::to_string(rmin) + ": layers are not resolved");
+  return st;
+}
+
+namespace
+{
+// Voxel columns that bin into px, grown by R and clipped to the voxel image.
+ColumnRange binnedVoxels(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px, std::int64_t R)
+{
+  const double scale = o.voxelSize / o.pixelSize;
+  std::int64_t a, b, c, d, tmp;
+  voxelsOfPixel(px.i0, scale, plan.lattice.n[0], a, tmp);
+  voxelsOfPixel(px.i1 - 1, scale, plan.lattice.n[0], tmp, b);
+  voxelsOfPixel(px.j0, scale, plan.lattice.n[1], c, tmp);
+  voxelsOfPixel(px.j1 - 1, scale, plan.lattice.n[1], tmp, d);
+  // The mirror at the global edge only reads inside [0, n); clipping keeps that exact.
+  return ColumnRange{ std::max<std::int64_t>(0, a - R), std::min(plan.lattice.n[0], b + R),
+    std::max<std::int64_t>(0, c - R), std::min(plan.lattice.n[1], d + R) };
+}
+} // namespace
+
+ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
+{
+  return binnedVoxels(plan, o, px, static_cast<std::int64_t>(gaussianWeights(plan.sigmaVox).size() / 2));
+}
+
+Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
+{
+  image = PLIImage();
+  Status st = planPLI(model, o, image.plan);
+  if (!st.ok())
+    return st;
+  const PLIPlan& plan = image.plan;
+  if (px.nx() <= 0 && px.ny() <= 0 && px.i0 == 0 && px.j0 == 0)
+    px = PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] };
+  if (px.i0 < 0 || px.j0 < 0 || px.i1 > plan.pixels[0] || px.j1 > plan.pixels[1] || px.nx() < 1 || px.ny() < 1)
+  {
+    std::ostringstream m;
+    m << "pixel range [" << px.i0 << "," << px.i1 << ")x[" << px.j0 << "," << px.j1 << ") is not inside the image "
+      << plan.pixels[0] << " x " << plan.pixels[1];
+    st.error = m.str();
+    return st;
+  }
+  image.range = px;
+  const ColumnRange cols = voxelColumnsFor(plan, o, px);
+
+  SimParams sp;
+  sp.wavelengthNm = o.wavelength;
+  sp.lightIntensity = o.lightIntensity;
+  sp.step = o.stepSize;
+  sp.rho = plan.rho;
+  sp.interp = o.interpolation;
+  sp.conv = o.tiltConvention;
+  sp.stepRule = o.stepRule;
+  sp.lateral = o.lateralOutside;
+  sp.tile = o.tileSize;
+  sp.threads = o.numberOfThreads;
+  // Progress: propagation is nearly all of the work.
+  ProgressFn simProgress;
+  if (progress)
+    simProgress = [&progress](double f) { return progress(0.95 * f); };
+  std::vector<Stack> voxelStacks;
+  SimResult sr = simulate(model, plan.tissue, plan.lattice, sp, plan.views, cols, voxelStacks, simProgress);
+  st.warnings.insert(st.warnings.end(), sr.status.warnings.begin(), sr.status.warnings.end());
+  if (!sr.status.ok())
+  {
+    st.error = sr.status.error;
+    return st;
+  }
+  image.emptySection = sr.emptySection;
+  image.voxeliseCpuSeconds = sr.voxeliseCpuSeconds;
+  image.propagateCpuSeconds = sr.propagateCpuSeconds;
+  image.raySteps = sr.raySteps;
+  image.peakTissueBytes = sr.estimatedBytes;
+  if (sr.aborted)
+  {
+    image.aborted = true;
+    return st;
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const double scale = o.voxelSize / o.pixelSize;
+  // Blur only the voxels that bin into the pixels (the halo was simulated for the kernel).
+  const ColumnRange needed = binnedVoxels(plan, o, px, 0);
+  for (std::size_t v = 0; v < voxelStacks.size(); ++v)
+  {
+    Stack blurred, pix;
+    Status b = blurStack(voxelStacks[v], plan.lattice.n[0], plan.lattice.n[1], plan.sigmaVox, needed, blurred);
+    voxelStacks[v] = Stack(); // free the voxel stack early
+    if (!b.ok())
+    {
+      st.error = b.error;
+      return st;
+    }
+    b = binStack(blurred, plan.lattice.n[0], plan.lattice.n[1], scale, px, pix);
+    if (!b.ok())
+    {
+      st.error = b.error;
+      return st;
+    }
+    addNoise(pix, o.noiseGain, o.seed, static_cast<int>(v), plan.pixels[0], o.numberOfThreads);
+    image.views.push_back(std::move(pix));
+  }
+  image.opticsSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  reportProgress(progress, 1.0);
+  return st;
+}
+
+} // namespace pli
+} // namespace fiberpli

@@ -1,0 +1,90 @@
+/// PLIPipeline: the whole `PLISimulation` filter in Core form (pli-simulation.md §2.1, §6.2, §7):
+/// options → lattice, layers and views → simulate the voxel columns a pixel range needs (with
+/// the blur halo) → blur → bin → noise. Any pixel sub-rectangle gives exactly the crop of the
+/// whole image, so the VTK filter can split the plane over MPI ranks without communication.
+#pragma once
+
+#include "Model/FiberModel.h"
+#include "PLI/PLITypes.h"
+#include "Util/Progress.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+namespace pli
+{
+
+/// The filter properties of §2.1 (angles in degrees, as at the ParaView boundary).
+struct PLIOptions
+{
+  double volumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 }; ///< µm; min > max on every axis = model bounds
+  double voxelSize = 0.5;        ///< µm, > 0
+  double pixelSize = 2.0;        ///< µm, >= voxelSize
+  double wavelength = 525.0;     ///< nm
+  double lightIntensity = 26000.0;
+  int numberOfRotations = 18;    ///< >= 3; ρ_k = k·180°/N
+  double tiltAngle = 0.0;        ///< deg, [0, 45); 0 = no tilted views
+  double birefringence = -0.001;
+  double absorption = 0.0;       ///< 1/mm
+  std::uint64_t seed = 0;
+  std::string layers;            ///< §3.2 grammar; overrides birefringence/absorption
+  double backgroundAbsorption = 0.0;
+  double stepSize = 1.0;         ///< voxels
+  Interp interpolation = Interp::Slerp;
+  double opticalSigma = 0.71;    ///< output pixels, 0 = off
+  double noiseGain = 3.0;        ///< 0 = off, else >= 1
+  double refractiveIndex = 1.0;
+  int numberOfThreads = 0;
+  // Core-only switches (§2.1).
+  TiltConvention tiltConvention = TiltConvention::Physical;
+  StepRule stepRule = StepRule::ExactLength;
+  LateralOutside lateralOutside = LateralOutside::SampleFibers;
+  RadiusModel radiusModel = RadiusModel::Linear;
+  int tileSize = 64;
+};
+
+/// What RequestInformation needs, computed without voxelising (§3.1, §5.2).
+struct PLIPlan
+{
+  Lattice lattice;
+  TissueSpec tissue;
+  std::vector<View> views;          ///< untilted, then azimuth 0°, 90°, 180°, 270°
+  std::vector<double> rho;          ///< radians
+  std::int64_t pixels[2] = { 0, 0 }; ///< whole image n_px × n_py
+  double imageOrigin[3] = { 0, 0, 0 };
+  double thickness = 0.0;           ///< n_z·VoxelSize, µm
+  double tiltInTissue = 0.0;        ///< θ_t, radians
+  double sigmaVox = 0.0;            ///< blur σ in voxels
+  std::size_t bytesPerVoxel = 0;    ///< tile buffer bytes per voxel (§3.4)
+  double estimatedBytes = 0.0;      ///< whole-image run
+};
+
+/// Validates options (before any allocation) and derives the plan. Errors name the property.
+Status planPLI(const FiberModel& model, const PLIOptions& options, PLIPlan& plan);
+
+struct PLIImage
+{
+  PLIPlan plan;
+  PixelRange range;                 ///< pixels computed (global pixel indices)
+  std::vector<Stack> views;         ///< one pixel stack per view, covering range
+  bool emptySection = false;        ///< background only (warning in status)
+  bool aborted = false;
+  double voxeliseCpuSeconds = 0.0, propagateCpuSeconds = 0.0, opticsSeconds = 0.0;
+  std::int64_t raySteps = 0;
+  std::size_t peakTissueBytes = 0;  ///< estimate of the tile buffers + voxel stacks
+};
+
+/// Voxel columns (global, clipped to the voxel image) whose rays a pixel range needs: the voxels
+/// that bin into it, grown by the blur radius (§6.2 step 3).
+ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
+
+/// Runs the simulation for `pixels` (an empty range = the whole image). status.error set on
+/// invalid options; the model must be valid (validateModel).
+Status runPLI(const FiberModel& model, const PLIOptions& options, PixelRange pixels, PLIImage& image,
+  const ProgressFn& progress = {});
+
+} // namespace pli
+} // namespace fiberpli

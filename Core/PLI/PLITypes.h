@@ -1,0 +1,163 @@
+/// PLITypes: the value types shared by the 3D-PLI simulation (pli-simulation.md §7.1). Units: µm,
+/// nm for the wavelength, 1/mm for absorption, radians inside Core.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+namespace pli
+{
+
+/// Optic-axis model of one layer (§3.2): p = parallel, r = radial, b = isotropic.
+enum class AxisModel : std::uint8_t
+{
+  Background,
+  Parallel,
+  Radial
+};
+
+/// One concentric layer (§3.2): covers s_{l-1}·r < ρ <= scale·r of the local fiber radius r.
+struct Layer
+{
+  double scale = 1.0;
+  double dn = -0.001;
+  double muPerMm = 0.0;
+  AxisModel model = AxisModel::Parallel;
+};
+
+/// Local radius of a link (§3.3): Linear taper (fastPLI) or the api.md capsule radius max(rP, rQ).
+enum class RadiusModel : std::uint8_t
+{
+  Linear,
+  Max
+};
+
+/// Optic-axis interpolation (§4.5).
+enum class Interp : std::uint8_t
+{
+  NN,
+  Lerp,
+  Slerp
+};
+
+/// How a tissue vector is seen by the tilted beam (§4.3): Physical v_b = Rᵀv, FastPLI v_b = Rv.
+enum class TiltConvention : std::uint8_t
+{
+  Physical,
+  FastPLI
+};
+
+/// Ray step lengths (§4.4).
+enum class StepRule : std::uint8_t
+{
+  ExactLength,
+  FastPLIMidpoint
+};
+
+/// What tilted rays see outside the lateral VOI (§2.1 Core switches).
+enum class LateralOutside : std::uint8_t
+{
+  SampleFibers,
+  Background
+};
+
+/// Layers of every bundle (§3.2). Slot b belongs to bundleIds[b] (sorted, distinct); labels are
+/// 1 + b·L + l with L = max layer count; label 0 is the embedding medium (Δn 0, backgroundMu).
+struct TissueSpec
+{
+  std::vector<int> bundleIds;
+  std::vector<std::vector<Layer>> layers;
+  double backgroundMu = 0.0;
+  RadiusModel radius = RadiusModel::Linear;
+
+  int maxLayers() const;
+  int labelCount() const { return 1 + static_cast<int>(bundleIds.size()) * maxLayers(); }
+  /// Slot of a bundle id, -1 when the bundle has no layers.
+  int slotOf(int bundleId) const;
+};
+
+/// Voxel lattice (§3.1): voxel (i,j,k) is [i,i+1)×[j,j+1)×[k,k+1) in voxel units from origin (µm).
+struct Lattice
+{
+  double origin[3] = { 0.0, 0.0, 0.0 };
+  double voxel = 1.0;
+  std::int64_t n[3] = { 0, 0, 0 };
+};
+
+/// One view (§4.3): in-tissue tilt θ_t and tilt azimuth φ_t, radians. (0, 0) = untilted.
+struct View
+{
+  double theta = 0.0;
+  double phi = 0.0;
+};
+
+/// Light propagation settings (§4, §6.1).
+struct SimParams
+{
+  double wavelengthNm = 525.0;
+  double lightIntensity = 26000.0;
+  double step = 1.0;        ///< voxels
+  std::vector<double> rho;  ///< polarizer angles, radians
+  Interp interp = Interp::Slerp;
+  TiltConvention conv = TiltConvention::Physical;
+  StepRule stepRule = StepRule::ExactLength;
+  LateralOutside lateral = LateralOutside::SampleFibers;
+  int tile = 64;            ///< B of the column tiles (§3.5)
+  int threads = 0;          ///< 0 = all cores
+};
+
+/// Half-open range of global voxel columns [i0,i1)×[j0,j1), or of pixels for PixelRange.
+struct ColumnRange
+{
+  std::int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  std::int64_t nx() const { return i1 - i0; }
+  std::int64_t ny() const { return j1 - j0; }
+};
+using PixelRange = ColumnRange;
+
+/// Image stack of one view: value of column/pixel (x0 + i, y0 + j) and rotation k at
+/// data[(j·nx + i)·nrho + k] (x fastest, §4.4).
+struct Stack
+{
+  std::int64_t x0 = 0, y0 = 0; ///< global index of the first column/pixel
+  std::int64_t nx = 0, ny = 0;
+  int nrho = 0;
+  std::vector<double> data;
+
+  void resize(const ColumnRange& r, int rotations)
+  {
+    x0 = r.i0;
+    y0 = r.j0;
+    nx = r.nx();
+    ny = r.ny();
+    nrho = rotations;
+    data.assign(static_cast<std::size_t>(nx * ny * nrho), 0.0);
+  }
+  double& at(std::int64_t i, std::int64_t j, int k)
+  {
+    return data[static_cast<std::size_t>(((j - y0) * nx + (i - x0)) * nrho + k)];
+  }
+  const double* ptr(std::int64_t i, std::int64_t j) const
+  {
+    return data.data() + ((j - y0) * nx + (i - x0)) * nrho;
+  }
+  double at(std::int64_t i, std::int64_t j, int k) const
+  {
+    return data[static_cast<std::size_t>(((j - y0) * nx + (i - x0)) * nrho + k)];
+  }
+};
+
+/// Outcome of a Core PLI call: error empty = ok; warnings are reported once per call.
+struct Status
+{
+  std::string error;
+  std::vector<std::string> warnings;
+  bool ok() const { return error.empty(); }
+};
+
+} // namespace pli
+} // namespace fiberpli

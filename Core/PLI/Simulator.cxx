@@ -1,0 +1,242 @@
+#include "PLI/Simulator.h"
+
+#include "PLI/RayMarcher.h"
+#include "PLI/Voxeliser.h"
+#include "Util/Threads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace fiberpli
+{
+namespace pli
+{
+
+namespace
+{
+double now()
+{
+#ifdef _OPENMP
+  return omp_get_wtime();
+#else
+  return 0.0;
+#endif
+}
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b)
+{
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+ColumnRange grow(const ColumnRange& c, std::int64_t h)
+{
+  return ColumnRange{ c.i0 - h, c.i1 + h, c.j0 - h, c.j1 + h };
+}
+} // namespace
+
+std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, Interp interp)
+{
+  double th = 0.0;
+  for (const View& v : views)
+    th = std::max(th, v.theta);
+  if (th > 0.0)
+    return RayMarcher::lateralReach(lattice.n[2], th) + 2;
+  // Untilted rays still read the +1 neighbour of the interpolation stencil.
+  return interp == Interp::NN ? 0 : 1;
+}
+
+double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+  const ColumnRange& cols)
+{
+  const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
+  const double B = std::min<double>(par.tile, std::max<double>(cols.nx(), cols.ny()));
+  const double threads = resolveThreadCount(par.threads);
+  const double tile = (B + 2 * h) * (B + 2 * h) * static_cast<double>(lat.n[2]) * kTileBytesPerVoxel;
+  const double outBytes = static_cast<double>(views.size()) * static_cast<double>(cols.nx()) *
+    static_cast<double>(cols.ny()) * static_cast<double>(par.rho.size()) * sizeof(double);
+  return threads * tile + outBytes;
+}
+
+std::string validateSimulation(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+  const ColumnRange& cols)
+{
+  std::ostringstream m;
+  if (!std::isfinite(lat.voxel) || lat.voxel <= 0.0)
+    m << "VoxelSize is " << lat.voxel << ", must be > 0";
+  else if (lat.n[0] < 1 || lat.n[1] < 1 || lat.n[2] < 1)
+    m << "VolumeOfInterest gives " << lat.n[0] << " x " << lat.n[1] << " x " << lat.n[2]
+      << " voxels at VoxelSize " << lat.voxel << ", needs at least one voxel per axis";
+  else if (!(par.wavelengthNm > 0.0) || !std::isfinite(par.wavelengthNm))
+    m << "Wavelength is " << par.wavelengthNm << ", must be > 0";
+  else if (!(par.lightIntensity >= 0.0) || !std::isfinite(par.lightIntensity))
+    m << "LightIntensity is " << par.lightIntensity << ", must be >= 0";
+  else if (!(par.step > 0.0) || !std::isfinite(par.step))
+    m << "StepSize is " << par.step << ", must be > 0";
+  else if (par.rho.empty())
+    m << "NumberOfRotations is 0, needs polarizer angles";
+  else if (par.tile < 1)
+    m << "tile size is " << par.tile << ", must be >= 1";
+  else if (cols.nx() < 1 || cols.ny() < 1)
+    m << "column range [" << cols.i0 << "," << cols.i1 << ")x[" << cols.j0 << "," << cols.j1 << ") is empty";
+  if (!m.str().empty())
+    return m.str();
+  for (std::size_t v = 0; v < views.size(); ++v)
+  {
+    if (!(views[v].theta >= 0.0 && views[v].theta < M_PI / 4.0))
+    {
+      m << "TiltAngle of view " << v << " is " << views[v].theta * 180.0 / M_PI << " deg in tissue, must be in [0, 45)";
+      return m.str();
+    }
+  }
+  const double bytes = estimateSimulationBytes(lat, par, views, cols);
+  if (bytes > kMaxSimulationBytes)
+  {
+    m << "VoxelSize " << lat.voxel << " with VolumeOfInterest (" << lat.n[0] << " x " << lat.n[1] << " x "
+      << lat.n[2] << " voxels) needs about " << bytes / (1024.0 * 1024.0 * 1024.0)
+      << " GiB, more than the limit of 16 GiB: increase VoxelSize or reduce the volume";
+    return m.str();
+  }
+  // Steps per ray: StepSize far below the voxel size would take forever.
+  if (static_cast<double>(lat.n[2]) / par.step > 1e7)
+    m << "StepSize " << par.step << " gives more than 1e7 steps per ray";
+  return m.str();
+}
+
+SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattice& lat,
+  const SimParams& par, const std::vector<View>& views, const ColumnRange& cols,
+  std::vector<Stack>& out, const ProgressFn& progress)
+{
+  SimResult res;
+  res.status.error = validateSimulation(lat, par, views, cols);
+  if (!res.status.ok())
+    return res;
+  const int nrho = static_cast<int>(par.rho.size());
+  const std::int64_t halo = tiltHalo(lat, views, par.interp);
+  const std::int64_t B = par.tile;
+  res.estimatedBytes = static_cast<std::size_t>(estimateSimulationBytes(lat, par, views, cols));
+
+  LinkTable table;
+  buildLinkTable(model, spec, lat, grow(cols, halo), B, table);
+  res.estimatedBytes += table.links.size() * sizeof(LinkTable::Link);
+  if (table.zeroLengthLinks > 0)
+    res.status.warnings.push_back(std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
+  if (table.unknownBundleFibers > 0)
+    res.status.warnings.push_back(std::to_string(table.unknownBundleFibers) + " fibers of bundles without layers skipped");
+
+  out.assign(views.size(), Stack());
+  for (Stack& s : out)
+    s.resize(cols, nrho);
+
+  const LabelProps props = LabelProps::fromSpec(spec);
+  std::vector<RayMarcher> marchers;
+  for (const View& v : views)
+    marchers.emplace_back(lat, par, v, props);
+
+  // Tiles aligned to the global B grid, so a split changes which tile a column is in but never
+  // how it is computed.
+  std::vector<ColumnRange> tiles;
+  for (std::int64_t ty = floorDiv(cols.j0, B); ty * B < cols.j1; ++ty)
+    for (std::int64_t tx = floorDiv(cols.i0, B); tx * B < cols.i1; ++tx)
+      tiles.push_back(ColumnRange{ std::max(cols.i0, tx * B), std::min(cols.i1, (tx + 1) * B),
+        std::max(cols.j0, ty * B), std::min(cols.j1, (ty + 1) * B) });
+
+  // Bow-tie of the tilted rays: at depth k a sample lies within (|k + ½ − n_z/2| + 1)·tan θ of its
+  // column centre (the +1 covers the z stencil), plus 1 for floor and 1 for the lateral stencil.
+  std::vector<std::int64_t> reach(static_cast<std::size_t>(lat.n[2]), halo);
+  double tanMax = 0.0;
+  for (const View& v : views)
+    tanMax = std::max(tanMax, std::tan(v.theta));
+  for (std::int64_t k = 0; k < lat.n[2]; ++k)
+  {
+    const double dz = std::fabs(static_cast<double>(k) + 0.5 - 0.5 * static_cast<double>(lat.n[2])) + 1.0;
+    reach[static_cast<std::size_t>(k)] = std::min<std::int64_t>(halo, static_cast<std::int64_t>(std::ceil(dz * tanMax)) + 2);
+  }
+
+  const int threads = resolveThreadCount(par.threads);
+  std::vector<TissueBlock> blocks(static_cast<std::size_t>(threads));
+  std::vector<double> tVox(static_cast<std::size_t>(threads), 0.0), tProp(static_cast<std::size_t>(threads), 0.0);
+  std::vector<std::int64_t> nVox(static_cast<std::size_t>(threads), 0), nSteps(static_cast<std::size_t>(threads), 0);
+  std::vector<std::int64_t> labelled(tiles.size(), 0);
+  std::vector<char> overlap(tiles.size(), 0);
+
+  const std::int64_t nt = static_cast<std::int64_t>(tiles.size());
+  // Batches keep every thread busy and give about 50 progress reports per run.
+  const std::int64_t batch = std::max<std::int64_t>(2 * threads, (nt + 49) / 50);
+  for (std::int64_t b0 = 0; b0 < nt; b0 += batch)
+  {
+    if (!reportProgress(progress, static_cast<double>(b0) / static_cast<double>(nt)))
+    {
+      res.aborted = true;
+      out.clear();
+      return res;
+    }
+    const std::int64_t b1 = std::min(nt, b0 + batch);
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (std::int64_t ti = b0; ti < b1; ++ti)
+    {
+#ifdef _OPENMP
+      const std::size_t me = static_cast<std::size_t>(omp_get_thread_num());
+#else
+      const std::size_t me = 0;
+#endif
+      const ColumnRange& tile = tiles[static_cast<std::size_t>(ti)];
+      TissueBlock& block = blocks[me];
+      const double t0 = now();
+      block.reset(grow(tile, halo), lat.n[2]);
+      VoxeliseStats vs;
+      HaloShape shape{ tile, reach };
+      voxeliseBlock(table, spec, lat, par.lateral, block, vs, &shape);
+      overlap[static_cast<std::size_t>(ti)] = vs.overlap ? 1 : 0;
+      std::int64_t inside = 0;
+      for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]); ++j)
+        for (std::int64_t i = std::max<std::int64_t>(tile.i0, 0); i < std::min(tile.i1, lat.n[0]); ++i)
+          for (std::int64_t k = 0; k < lat.n[2]; ++k)
+            inside += block.label(i, j, k) != 0 ? 1 : 0;
+      labelled[static_cast<std::size_t>(ti)] = inside;
+      const double t1 = now();
+      ColumnRange clamp = block.cols;
+      if (par.lateral == LateralOutside::Background)
+        clamp = ColumnRange{ 0, lat.n[0], 0, lat.n[1] };
+      for (std::size_t v = 0; v < views.size(); ++v)
+      {
+        for (std::int64_t j = tile.j0; j < tile.j1; ++j)
+          for (std::int64_t i = tile.i0; i < tile.i1; ++i)
+            marchers[v].march(block, i, j, clamp, &out[v].at(i, j, 0));
+        nSteps[me] += marchers[v].numberOfSteps() * tile.nx() * tile.ny();
+      }
+      tVox[me] += t1 - t0;
+      tProp[me] += now() - t1;
+      nVox[me] += block.cols.nx() * block.cols.ny() * lat.n[2];
+    }
+  }
+  reportProgress(progress, 1.0);
+  for (int t = 0; t < threads; ++t)
+  {
+    res.voxeliseCpuSeconds += tVox[static_cast<std::size_t>(t)];
+    res.propagateCpuSeconds += tProp[static_cast<std::size_t>(t)];
+    res.voxelsVoxelised += nVox[static_cast<std::size_t>(t)];
+    res.raySteps += nSteps[static_cast<std::size_t>(t)];
+  }
+  std::int64_t total = 0;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+  {
+    total += labelled[t];
+    res.overlap = res.overlap || overlap[t] != 0;
+  }
+  if (total == 0)
+  {
+    res.emptySection = true;
+    res.status.warnings.push_back("no fiber in the section: the image shows background only");
+  }
+  if (res.overlap)
+    res.status.warnings.push_back("fibers overlap: the nearest fiber owns the shared voxels");
+  return res;
+}
+
+} // namespace pli
+} // namespace fiberpli
