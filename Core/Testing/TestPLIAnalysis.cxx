@@ -1,6 +1,7 @@
 // PLI analysis (pli-analysis.md §2, §3; test vectors A-1 … A-5): EPA on equidistant and arbitrary
 // polarizer angles, inclination from retardation, and the tilt fit on closed-form views.
 #include "Analysis/Epa.h"
+#include "Analysis/RetardationInclination.h"
 
 #include "Util/Random.h"
 
@@ -290,4 +291,53 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
   // Cancellation is reported, not ignored.
   EXPECT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part, [](double) { return false; }),
     "cancelled");
+}
+
+// inclination from retardation with r_ref = 0.6579387259 (t_rel 0.4571428571).
+TEST(PLIAnalysis, InclinationFromRetardationA3)
+{
+  const double rRef = 0.6579387259;
+  for (double aDeg : { 0.0, 20.0, 45.0, 60.0, 89.0, 90.0 })
+  {
+    const double c = std::cos(aDeg * kDeg);
+    const double r = std::abs(std::sin(0.7180783208 * c * c));
+    EXPECT_NEAR(inclinationFromRetardation(r, rRef) / kDeg, aDeg, 1e-6) << aDeg;
+  }
+  EXPECT_NEAR(inclinationFromRetardation(0.351375, rRef) / kDeg, 45.0, 1e-3);
+  EXPECT_NEAR(inclinationFromRetardation(0.592436, rRef) / kDeg, 20.0, 1e-3);
+  EXPECT_EQ(inclinationFromRetardation(rRef, rRef), 0.0);
+  EXPECT_EQ(inclinationFromRetardation(0.7, rRef), 0.0);
+  EXPECT_EQ(inclinationFromRetardation(0.0, rRef), M_PI / 2);
+  EXPECT_TRUE(std::isnan(inclinationFromRetardation(NAN, rRef)));
+}
+
+TEST(PLIAnalysis, InclinationMapAutomaticReference)
+{
+  // Row of fibers at inclinations 0°, 20°, 45°, 90° plus a NaN pixel: the automatic reference is
+  // the in-plane pixel's retardation, so the map returns the inclinations themselves.
+  const double incl[] = { 0, 20, 45, 90 };
+  std::vector<double> ret;
+  for (double a : incl)
+  {
+    const double c = std::cos(a * kDeg);
+    ret.push_back(std::abs(std::sin(0.7180783208 * c * c)));
+  }
+  ret.push_back(NAN);
+  std::vector<double> out;
+  ASSERT_EQ(inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 0.0, 2, out), "");
+  EXPECT_NEAR(maxRetardation(ret.data(), 5, wholeImage(5, 1)), 0.6579387259, 1e-9);
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_NEAR(out[k] / kDeg, incl[k], 1e-6);
+  }
+  EXPECT_TRUE(std::isnan(out[4]));
+  // Explicit reference larger than every r: the in-plane pixel is now inclined.
+  ASSERT_EQ(inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 0.9, 1, out), "");
+  EXPECT_GT(out[0] / kDeg, 10.0);
+  const std::string err = inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 1.5, 1, out);
+  EXPECT_NE(err.find("ReferenceRetardation"), std::string::npos) << err;
+  // All-zero retardation (automatic r_ref = 0): every pixel is vertical, no division by zero.
+  std::vector<double> zero(3, 0.0);
+  ASSERT_EQ(inclinationMapFromRetardation(zero.data(), 3, 1, wholeImage(3, 1), 0.0, 1, out), "");
+  EXPECT_EQ(out[1], M_PI / 2);
 }
