@@ -18,6 +18,7 @@ Vec3 canonicalAxis(const Vec3& v)
   if (u.y < 0.0 || (u.y == 0.0 && u.x < 0.0) || (u.x == 0.0 && u.y == 0.0 && u.z < 0.0))
   {
     u = -u;
+    u += Vec3{ 0.0, 0.0, 0.0 }; // −0.0 + 0.0 = +0.0: atan2(−0, −0) would give −π for a vertical axis
   }
   return u;
 }
