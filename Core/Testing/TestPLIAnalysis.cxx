@@ -4,6 +4,7 @@
 #include "Analysis/RetardationInclination.h"
 #include "Analysis/Axis.h"
 #include "Analysis/TiltFit.h"
+#include "Analysis/PliAnalysis.h"
 
 #include "Util/Random.h"
 
@@ -598,4 +599,85 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
   const std::array<const double*, 4> missing{ stacks[1].data(), nullptr, stacks[3].data(), stacks[4].data() };
   const std::string e2 = computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two);
   EXPECT_NE(e2.find("intensity_tilt_1"), std::string::npos) << e2;
+}
+
+// The whole PLIAnalysis computation on the closed-form S-6 column (Core part of A-8): Auto picks
+// the tilt fit when the tilts exist; the Retardation method with r_ref 0.6579387259 gives 20°.
+TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
+{
+  const std::int64_t nx = 3, ny = 2;
+  const std::vector<double> rho = equidistant(18);
+  const Views v = columnViews(Column{ 30, 20 }, 5.5 * kDeg, true, rho);
+  std::vector<double> stacks[5];
+  for (std::int64_t p = 0; p < nx * ny; ++p)
+  {
+    for (int j = 0; j < 5; ++j)
+    {
+      stacks[j].insert(stacks[j].end(), v.v[j].begin(), v.v[j].end());
+    }
+  }
+  PliStack s;
+  s.intensity = stacks[0].data();
+  s.tilts = { stacks[1].data(), stacks[2].data(), stacks[3].data(), stacks[4].data() };
+  s.nx = nx;
+  s.ny = ny;
+  s.rho = rho;
+  s.tiltAngle = 5.5 * kDeg;
+  s.noiseGain = 0.0; // noise-free simulation → weights with g = 1
+
+  PliAnalysisOptions o;
+  PliAnalysisMaps m;
+  std::vector<double> fractions;
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m, [&](double f) { fractions.push_back(f); return true; }), "");
+  EXPECT_EQ(m.method, InclinationMethod::Tilt);
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_EQ(fractions.back(), 1.0);
+  for (std::size_t p = 0; p < 6; ++p)
+  {
+    EXPECT_LE(dirDiffDeg(m.direction[p], 30 * kDeg), 1e-4);
+    EXPECT_NEAR(m.inclination[p] / kDeg, 20.0, 1e-4);
+    EXPECT_NEAR(m.inclinationSigned[p] / kDeg, 20.0, 1e-4);
+    EXPECT_NEAR(m.relativeThickness[p], 0.4571428571, 1e-6);
+    EXPECT_NEAR(m.retardation[p], 0.592436, 1e-6);
+    EXPECT_NEAR(m.transmittance[p], 13000.0, 13000.0 * 1e-6);
+    EXPECT_LT(m.chi2[p], 1e-20);
+  }
+
+  o.method = InclinationMethod::Retardation;
+  o.referenceRetardation = 0.6579387259;
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m), "");
+  EXPECT_EQ(m.method, InclinationMethod::Retardation);
+  EXPECT_TRUE(m.inclinationSigned.empty());
+  for (std::size_t p = 0; p < 6; ++p)
+  {
+    EXPECT_NEAR(m.inclination[p] / kDeg, 20.0, 1e-4);
+  }
+
+  // Automatic reference with a "global" maximum supplied by the caller (MPI AllReduce stand-in).
+  o.referenceRetardation = 0.0;
+  int calls = 0;
+  o.globalMaxRetardation = [&](double local) {
+    ++calls;
+    EXPECT_NEAR(local, 0.592436, 1e-6);
+    return 0.6579387259;
+  };
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m), "");
+  EXPECT_EQ(calls, 1);
+  EXPECT_NEAR(m.inclination[0] / kDeg, 20.0, 1e-4);
+
+  // Auto without tilts → Retardation; Tilt without tilts → an error naming the missing array.
+  PliStack flat = s;
+  flat.tilts[2] = nullptr;
+  PliAnalysisOptions a;
+  ASSERT_EQ(analysePli(flat, a, wholeImage(nx, ny), m), "");
+  EXPECT_EQ(m.method, InclinationMethod::Retardation);
+  EXPECT_NEAR(m.inclination[0], 0.0, 0.0); // automatic r_ref = the uniform retardation
+  a.method = InclinationMethod::Tilt;
+  const std::string err = analysePli(flat, a, wholeImage(nx, ny), m);
+  EXPECT_NE(err.find("intensity_tilt_2"), std::string::npos) << err;
+  flat.tilts = s.tilts;
+  flat.tiltAngle = 0.0;
+  EXPECT_NE(analysePli(flat, a, wholeImage(nx, ny), m).find("tilt_angle"), std::string::npos);
+  flat.rho = anglesDeg({ 0, 90 });
+  EXPECT_NE(analysePli(flat, PliAnalysisOptions{}, wholeImage(nx, ny), m), "");
 }
