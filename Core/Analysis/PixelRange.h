@@ -63,11 +63,11 @@ bool forEachPixel(std::int64_t nx, const PixelRange& r, int threads, const Progr
   {
     return reportProgress(progress, 1.0);
   }
-  // About 100 progress reports, but never blocks so small that the thread start-up dominates.
+  // About 100 progress reports, but never blocks so small that starting the threads dominates.
   std::int64_t block = rows / 100;
-  if (block * width < 4096)
+  if (block * width < 16384)
   {
-    block = (4096 + width - 1) / width;
+    block = (16384 + width - 1) / width;
   }
   for (std::int64_t jb = r.j0; jb < r.j1; jb += block)
   {
