@@ -1,0 +1,51 @@
+/// FiberOrientationMap: colour coding of direction and inclination (pli-analysis.md §4) in the
+/// HSV-black and RGB schemes of fastPLI, with the channel quantisation
+/// q(x) = clamp(floor(255·x + 1e-6), 0, 255), plus a legend image in the same mapping.
+/// Angles here are in degrees (they come straight from the VTK arrays, and H = 2·d mod 360 must
+/// be exact for directions like 30°).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// api.md ColorScheme: HSV-black (default) or RGB.
+enum class FomScheme
+{
+  HsvBlack = 0,
+  Rgb = 1
+};
+
+/// "HSV-black" / "RGB" (api.md spelling) → scheme; false for any other text.
+bool parseFomScheme(const std::string& name, FomScheme& scheme);
+/// The api.md spelling of a scheme.
+const char* fomSchemeName(FomScheme scheme);
+
+struct Rgb8
+{
+  std::uint8_t r = 0;
+  std::uint8_t g = 0;
+  std::uint8_t b = 0;
+};
+
+/// §4: colour of direction d and inclination i (degrees; the sign of i is ignored, |i| > 90 is
+/// treated as 90). Any NaN input → black.
+Rgb8 fomColor(double directionDeg, double inclinationDeg, FomScheme scheme);
+
+/// FOM of n pixels: rgb receives 3·n bytes (r, g, b per pixel, the layout of a 3-component VTK
+/// unsigned char array). OpenMP over pixels with `threads` (0 = all). Null pointers with n > 0 are
+/// an error.
+std::string fomMap(const double* directionDeg, const double* inclinationDeg, std::size_t n, FomScheme scheme,
+  int threads, std::uint8_t* rgb);
+
+/// Legend (§4): a size × size image (x fastest, row 0 at the bottom = y −1, as vtkImageData) of the
+/// upper hemisphere seen from +z. Pixel centre (x, y) in [−1, 1]² inside the unit disc gets
+/// d = atan2(y, x) folded into [0°, 180°) and i = asin(√(1 − x² − y²)); pixels outside the disc
+/// get `background`. rgb is resized to 3·size². Error when size < 1 or size > 16384.
+std::string fomLegend(int size, FomScheme scheme, std::vector<std::uint8_t>& rgb, Rgb8 background = { 255, 255, 255 });
+
+} // namespace fiberpli

@@ -1,0 +1,76 @@
+/// GroundTruth: orientation ground truth of a fiber model on the pixel grid of a simulated
+/// section (pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
+/// unit(Q − P) of the link that owns them (nearest capsule axis, pli-simulation.md §3.3: key
+/// (d², g), ties to the larger global link index g, label > 0 iff d² <= S²·r² with the Linear
+/// radius taper); voxels bin into pixels as in pli-simulation.md §5.2 (voxel i → pixel
+/// floor((i + ½)·VoxelSize/PixelSize), all z), and each pixel summarises its voxels with
+/// TruthAccumulator (tensor mean axis, anisotropy, tissue fraction, histogram).
+#pragma once
+
+#include "Analysis/OrientationTensor.h"
+#include "Analysis/PixelRange.h"
+#include "Model/FiberModel.h"
+#include "Util/Progress.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// The voxel lattice of the simulation (pli-simulation.md §3.1) and its CCD pixel size (§5.2).
+struct TruthLattice
+{
+  Vec3 origin;                    ///< µm, lower corner of voxel (0, 0, 0)
+  double voxelSize = 1.0;         ///< µm
+  std::int64_t n[3] = { 0, 0, 0 }; ///< voxels along x, y, z
+  double pixelSize = 1.0;         ///< µm, >= voxelSize
+};
+
+/// A lattice whose pixels are exactly the nx × ny grid with lower corner `corner` (x, y) and the
+/// given pixel size, sampled by samplesPerPixel² voxel columns per pixel over z ∈ [zMin, zMax]
+/// (nz = max(1, round((zMax − zMin)/voxel)) voxels). For the ground truth of a grid that does not
+/// come from PLISimulation.
+TruthLattice latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx, std::int64_t ny,
+  double zMin, double zMax, int samplesPerPixel);
+
+struct GroundTruthOptions
+{
+  double radiusScale = 1.0; ///< S = largest layer scale: tissue where d <= S·r
+  bool maxRadius = false;   ///< RadiusModel Max (max(r_P, r_Q)) instead of the Linear taper
+  int nPhi = 18;            ///< histogram direction bins over [0°, 180°)
+  int nAlpha = 9;           ///< histogram |inclination| bins over [0°, 90°]
+  int threads = 0;          ///< OpenMP threads, 0 = all
+};
+
+/// Per-pixel truth maps on the pixel grid of the lattice (x fastest). Angles in radians.
+struct GroundTruthMaps
+{
+  std::int64_t nx = 0, ny = 0; ///< round(n_vox·VoxelSize/PixelSize)
+  std::vector<double> fraction, direction, inclination, inclinationSigned, anisotropy;
+  std::vector<double> histogram; ///< nPhi·nAlpha values per pixel, pixel-major
+};
+
+/// Pixel-grid size of a lattice (§5.2): n_px = round(n_vox·scale). Returns "" or an error naming
+/// the bad field (voxel or pixel size, negative counts, PixelSize < VoxelSize).
+std::string truthPixelGrid(const TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny);
+
+/// Ground truth of the pixels in `range` (pixel indices of the truthPixelGrid). The maps are
+/// resized to the whole grid; pixels outside the range keep their values (NaN / 0 when new).
+/// Result is bit-identical for any thread count. Returns "" on success, the error (invalid
+/// model: the validateModel message; bad lattice/options/range; more than 2^31 voxels in one
+/// pixel row), or "cancelled" when progress asked to stop.
+std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lattice,
+  const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
+  const ProgressFn& progress = {});
+
+/// Whole-model orientation histogram (fastPLI orientation.py): every link (φ = atan2(dy, dx),
+/// θ = arccos(dz/|d|), antipode when θ > 90°) counted in nPhi bins over φ ∈ [0°, 360°) × nTheta
+/// bins over θ ∈ [0°, 90°]; component iθ·nPhi + iφ. normalise: divide by the sum (so it sums to
+/// 1); perSolidAngle additionally divides each bin by (cos θ_lo − cos θ_hi)·Δφ (Δφ in radians).
+/// Zero-length links are skipped. Empty vector when nPhi or nTheta < 1.
+std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi, int nTheta, bool normalise,
+  bool perSolidAngle);
+
+} // namespace fiberpli

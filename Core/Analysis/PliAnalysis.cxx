@@ -1,0 +1,122 @@
+#include "Analysis/PliAnalysis.h"
+
+#include "Analysis/RetardationInclination.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace fiberpli
+{
+
+std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+  PliAnalysisMaps& maps, const ProgressFn& progress)
+{
+  bool haveTilts = stack.tiltAngle > 0.0;
+  for (const double* t : stack.tilts)
+  {
+    haveTilts = haveTilts && t != nullptr;
+  }
+  InclinationMethod method = options.method;
+  if (method == InclinationMethod::Auto)
+  {
+    method = haveTilts ? InclinationMethod::Tilt : InclinationMethod::Retardation;
+  }
+  if (method == InclinationMethod::Tilt && !haveTilts)
+  {
+    std::ostringstream msg;
+    msg << "InclinationMethod is Tilt but the input has ";
+    if (!(stack.tiltAngle > 0.0))
+    {
+      msg << "tilt_angle " << stack.tiltAngle * 180.0 / M_PI << " deg (needs > 0)";
+    }
+    else
+    {
+      for (int t = 0; t < kTiltViews; ++t)
+      {
+        if (!stack.tilts[t])
+        {
+          msg << "no intensity_tilt_" << t;
+          break;
+        }
+      }
+    }
+    return msg.str();
+  }
+  maps.method = method;
+
+  // EPA first: up to half of the progress for the tilt fit's sake, all of it otherwise.
+  const double epaShare = method == InclinationMethod::Tilt ? 0.1 : 0.9;
+  EpaMaps epa;
+  epa.transmittance.swap(maps.transmittance);
+  epa.direction.swap(maps.direction);
+  epa.retardation.swap(maps.retardation);
+  std::string err = computeEpa(stack.intensity, stack.nx, stack.ny, stack.rho, range, options.threads, epa,
+    [&](double f) { return reportProgress(progress, epaShare * f); });
+  maps.transmittance.swap(epa.transmittance);
+  maps.direction.swap(epa.direction);
+  maps.retardation.swap(epa.retardation);
+  if (!err.empty())
+  {
+    return err;
+  }
+
+  if (method == InclinationMethod::Retardation)
+  {
+    maps.inclinationSigned.clear();
+    maps.relativeThickness.clear();
+    maps.chi2.clear();
+    double rRef = options.referenceRetardation;
+    if (rRef == 0.0)
+    {
+      rRef = maxRetardation(maps.retardation.data(), stack.nx, range);
+      if (options.globalMaxRetardation)
+      {
+        rRef = options.globalMaxRetardation(rRef);
+      }
+      // A zero maximum leaves the automatic mode: every pixel then reads 90° by the r = 0 rule.
+      rRef = rRef > 0.0 ? rRef : 1.0;
+    }
+    maps.referenceRetardation = rRef;
+    err = inclinationMapFromRetardation(maps.retardation.data(), stack.nx, stack.ny, range, rRef,
+      options.threads, maps.inclination);
+    if (!err.empty())
+    {
+      return err;
+    }
+    return reportProgress(progress, 1.0) ? std::string() : std::string("cancelled");
+  }
+
+  TiltFitOptions to;
+  to.tiltAngle = stack.tiltAngle;
+  to.convention = stack.convention;
+  to.gain = options.noiseGain >= 0.0 ? options.noiseGain : (stack.noiseGain >= 0.0 ? stack.noiseGain : 3.0);
+  TiltMaps tm;
+  err = computeTiltFit(stack.intensity, stack.tilts, stack.nx, stack.ny, stack.rho, to, range, options.threads, tm,
+    [&](double f) { return reportProgress(progress, epaShare + (1.0 - epaShare) * f); });
+  if (!err.empty())
+  {
+    return err;
+  }
+  maps.referenceRetardation = 0.0;
+  maps.inclination.swap(tm.inclination);
+  maps.inclinationSigned.swap(tm.inclinationSigned);
+  maps.relativeThickness.swap(tm.relativeThickness);
+  maps.chi2.swap(tm.chi2);
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::int64_t j = range.j0; j < range.j1; ++j)
+  {
+    for (std::int64_t i = range.i0; i < range.i1; ++i)
+    {
+      const std::size_t p = static_cast<std::size_t>(i + stack.nx * j);
+      if (std::isnan(tm.direction[p]))
+      {
+        maps.transmittance[p] = maps.retardation[p] = nan;
+      }
+      maps.direction[p] = tm.direction[p];
+    }
+  }
+  return {};
+}
+
+} // namespace fiberpli

@@ -1,0 +1,68 @@
+/// PliAnalysis: the whole `PLIAnalysis` computation of pli-analysis.md §1 on plain arrays —
+/// EPA of the untilted stack (§2), then the inclination by the chosen method (§3.1 retardation
+/// or §3.2 tilt fit). Angles in radians (the VTK side converts to degrees).
+#pragma once
+
+#include "Analysis/Epa.h"
+#include "Analysis/PixelRange.h"
+#include "Analysis/TiltFit.h"
+#include "Util/Progress.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// api.md/pli-analysis.md §1 InclinationMethod.
+enum class InclinationMethod
+{
+  Auto = 0,        ///< Tilt when all four tilt stacks exist and tiltAngle > 0, else Retardation
+  Retardation = 1, ///< §3.1, unsigned
+  Tilt = 2         ///< §3.2, signed, with relative thickness and χ²
+};
+
+/// The simulation output (pli-simulation.md §7) as plain arrays.
+struct PliStack
+{
+  const double* intensity = nullptr;            ///< nx·ny pixels × rho.size(), pixel-major, x fastest
+  std::array<const double*, kTiltViews> tilts{}; ///< intensity_tilt_0..3 or null
+  std::int64_t nx = 0, ny = 0;
+  std::vector<double> rho;                       ///< polarizer angles, radians
+  double tiltAngle = 0.0;                        ///< in-tissue θ_t, radians; 0 = no tilts
+  TiltConvention convention = TiltConvention::Physical;
+  double noiseGain = -1.0;                       ///< field data noise_gain; < 0 = absent
+};
+
+struct PliAnalysisOptions
+{
+  InclinationMethod method = InclinationMethod::Auto;
+  double referenceRetardation = 0.0; ///< §3.1 r_ref in [0, 1]; 0 = largest retardation (automatic)
+  double noiseGain = -1.0;           ///< −1 = stack.noiseGain if present, else 3; g <= 0 → 1 in the fit
+  int threads = 0;                   ///< OpenMP threads, 0 = all
+  /// Automatic r_ref across MPI pieces: receives the local maximum, returns the global one (the
+  /// VTK side passes an AllReduce(MAX)); called exactly once, from the calling thread, whenever the
+  /// Retardation method runs with referenceRetardation = 0, even for an empty range.
+  std::function<double(double)> globalMaxRetardation;
+};
+
+/// Maps on the nx·ny grid (pixels outside the range stay NaN when freshly allocated).
+struct PliAnalysisMaps
+{
+  InclinationMethod method = InclinationMethod::Retardation; ///< the method actually used
+  double referenceRetardation = 0.0;                         ///< r_ref used (Retardation method)
+  std::vector<double> transmittance, direction, retardation, inclination; ///< api.md outputs
+  std::vector<double> inclinationSigned, relativeThickness, chi2;         ///< Tilt method only, else empty
+};
+
+/// Runs §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
+/// direction (consistent with inclinationSigned) and a pixel whose fit has invalid data is NaN
+/// in every output. Errors name the fix: missing tilt stacks or tilt_angle for Tilt, too few or
+/// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range.
+std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+  PliAnalysisMaps& maps, const ProgressFn& progress = {});
+
+} // namespace fiberpli

@@ -1,0 +1,389 @@
+#include "Analysis/TiltFit.h"
+
+#include "Analysis/Axis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace fiberpli
+{
+
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kViews = 1 + kTiltViews;
+
+// sinc(x) = sin x / x and its derivative, with series where the closed forms cancel.
+void sinc(double x, double& f, double& df)
+{
+  if (std::abs(x) < 1e-2)
+  {
+    const double x2 = x * x;
+    f = 1.0 - x2 / 6.0 + x2 * x2 / 120.0;
+    df = x * (-1.0 / 3.0 + x2 / 30.0 - x2 * x2 / 840.0);
+  }
+  else
+  {
+    f = std::sin(x) / x;
+    df = (x * std::cos(x) - std::sin(x)) / (x * x);
+  }
+}
+
+// Solves the 3×3 system a·x = b by Gaussian elimination with partial pivoting; false if singular.
+bool solve3(double a[3][3], double b[3], double x[3])
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    int piv = c;
+    for (int r = c + 1; r < 3; ++r)
+    {
+      if (std::abs(a[r][c]) > std::abs(a[piv][c]))
+      {
+        piv = r;
+      }
+    }
+    if (!(std::abs(a[piv][c]) > 0.0))
+    {
+      return false;
+    }
+    if (piv != c)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        std::swap(a[c][k], a[piv][k]);
+      }
+      std::swap(b[c], b[piv]);
+    }
+    for (int r = c + 1; r < 3; ++r)
+    {
+      const double f = a[r][c] / a[c][c];
+      for (int k = c; k < 3; ++k)
+      {
+        a[r][k] -= f * a[c][k];
+      }
+      b[r] -= f * b[c];
+    }
+  }
+  for (int r = 2; r >= 0; --r)
+  {
+    double s = b[r];
+    for (int k = r + 1; k < 3; ++k)
+    {
+      s -= a[r][k] * x[k];
+    }
+    x[r] = s / a[r][r];
+  }
+  return true;
+}
+} // namespace
+
+struct TiltFit::Data
+{
+  std::vector<double> y; // kViews·N normalised intensities
+  std::vector<double> w; // weights 1/σ
+};
+
+std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& options)
+{
+  if (rho.size() < 4)
+  {
+    std::ostringstream msg;
+    msg << "the tilt fit needs at least 4 polarizer angles, polarizer_angles has " << rho.size();
+    return msg.str();
+  }
+  std::string err = epa_.init(rho);
+  if (!err.empty())
+  {
+    return err;
+  }
+  const double tau = options.tiltAngle;
+  if (!std::isfinite(tau) || tau <= 0.0 || tau >= M_PI / 2)
+  {
+    std::ostringstream msg;
+    msg << "tilt_angle is " << tau * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
+    return msg.str();
+  }
+  if (options.maxIterations < 1)
+  {
+    std::ostringstream msg;
+    msg << "maxIterations is " << options.maxIterations << ", must be >= 1";
+    return msg.str();
+  }
+  maxIterations_ = options.maxIterations;
+  gain_ = options.gain > 0.0 && std::isfinite(options.gain) ? options.gain : 1.0;
+  s_.resize(rho.size());
+  c_.resize(rho.size());
+  for (std::size_t k = 0; k < rho.size(); ++k)
+  {
+    s_[k] = std::sin(2.0 * rho[k]);
+    c_[k] = std::cos(2.0 * rho[k]);
+  }
+  // View 0 is the identity; views 1..4 use R(τ, ψ) of pli-simulation.md §4.3.
+  for (int j = 0; j < kViews; ++j)
+  {
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int q = 0; q < 3; ++q)
+      {
+        m_[j][r][q] = r == q ? 1.0 : 0.0;
+      }
+    }
+    kappa_[j] = M_PI / 2.0;
+  }
+  const double c = std::cos(tau), s = std::sin(tau);
+  for (int j = 1; j < kViews; ++j)
+  {
+    // Azimuths 0°, 90°, 180°, 270°: exact quarter turns keep cos, sin at 0/±1 without rounding noise.
+    const double cp = j == 1 ? 1.0 : (j == 3 ? -1.0 : 0.0);
+    const double sp = j == 2 ? 1.0 : (j == 4 ? -1.0 : 0.0);
+    const double R[3][3] = { { c * cp * cp + sp * sp, (c - 1) * sp * cp, s * cp },
+      { (c - 1) * sp * cp, c * sp * sp + cp * cp, s * sp }, { -s * cp, -s * sp, c } };
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int q = 0; q < 3; ++q)
+      {
+        m_[j][r][q] = options.convention == TiltConvention::Physical ? R[q][r] : R[r][q];
+      }
+    }
+    kappa_[j] = M_PI / (2.0 * c); // path d/cos τ: t_j = t/cos τ
+  }
+  return {};
+}
+
+// χ² at p = (φ, α, t); fills r (kViews·N weighted residuals) and, if J is set, dr/dp.
+double TiltFit::residuals(const Data& d, const double p[3], double* r, double (*J)[3]) const
+{
+  const std::size_t n = s_.size();
+  const double ca = std::cos(p[1]), sa = std::sin(p[1]), cf = std::cos(p[0]), sf = std::sin(p[0]);
+  const double v[3] = { ca * cf, ca * sf, sa };
+  const double dvf[3] = { -ca * sf, ca * cf, 0.0 };
+  const double dva[3] = { -sa * cf, -sa * sf, ca };
+  const double at = std::abs(p[2]);
+  const double sgn = p[2] < 0.0 ? -1.0 : 1.0;
+  double chi2 = 0.0;
+  for (int j = 0; j < kViews; ++j)
+  {
+    const auto& m = m_[j];
+    const double vx = m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2];
+    const double vy = m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2];
+    const double q = vx * vx + vy * vy; // cos²α_j
+    const double P = vx * vx - vy * vy; // q·cos 2φ_j
+    const double Q = 2.0 * vx * vy;     // q·sin 2φ_j
+    // m_jk = sin(κ|t|q)·(s_k P − c_k Q)/q = κ|t|·sinc(κ|t|q)·g_k: finite for a vertical axis.
+    const double a = kappa_[j] * at;
+    double sc, dsc;
+    sinc(a * q, sc, dsc);
+    const double f = a * sc;        // sin(aq)/q
+    const double fq = a * a * dsc;  // d f / d q
+    const double ft = kappa_[j] * std::cos(a * q) * sgn; // d(sin(aq)/q)/dt · q / q
+    double dxf = 0, dyf = 0, dxa = 0, dya = 0;
+    if (J)
+    {
+      dxf = m[0][0] * dvf[0] + m[0][1] * dvf[1] + m[0][2] * dvf[2];
+      dyf = m[1][0] * dvf[0] + m[1][1] * dvf[1] + m[1][2] * dvf[2];
+      dxa = m[0][0] * dva[0] + m[0][1] * dva[1] + m[0][2] * dva[2];
+      dya = m[1][0] * dva[0] + m[1][1] * dva[1] + m[1][2] * dva[2];
+    }
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::size_t idx = j * n + k;
+      const double g = s_[k] * P - c_[k] * Q;
+      const double model = f * g;
+      const double w = d.w[idx];
+      r[idx] = w * (d.y[idx] - model);
+      chi2 += r[idx] * r[idx];
+      if (J)
+      {
+        const double dmx = fq * 2.0 * vx * g + f * 2.0 * (s_[k] * vx - c_[k] * vy);
+        const double dmy = fq * 2.0 * vy * g + f * 2.0 * (-s_[k] * vy - c_[k] * vx);
+        J[idx][0] = -w * (dmx * dxf + dmy * dyf);
+        J[idx][1] = -w * (dmx * dxa + dmy * dya);
+        J[idx][2] = -w * ft * g;
+      }
+    }
+  }
+  return chi2;
+}
+
+TiltFitResult TiltFit::pixel(const std::array<const double*, 1 + kTiltViews>& views) const
+{
+  TiltFitResult res{ kNaN, kNaN, kNaN, kNaN, kNaN, 0 };
+  const std::size_t n = s_.size();
+  const double dn = static_cast<double>(n);
+  Data d;
+  d.y.resize(kViews * n);
+  d.w.resize(kViews * n);
+  double phi0 = 0.0;
+  for (int j = 0; j < kViews; ++j)
+  {
+    const double* I = views[j];
+    const Harmonic h = epa_.harmonic(I);
+    const double A = h.a0;
+    if (!std::isfinite(A) || A <= 0.0)
+    {
+      return res;
+    }
+    if (j == 0)
+    {
+      phi0 = epaFromHarmonic(h).direction;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      if (!std::isfinite(I[k]))
+      {
+        return res;
+      }
+      const double var = gain_ * (I[k] / (A * A) + I[k] * I[k] / (A * A * A * dn));
+      const double sigma = var > 0.0 ? std::sqrt(var) : 0.0;
+      d.y[j * n + k] = I[k] / A - 1.0;
+      d.w[j * n + k] = 1.0 / (sigma > 1e-12 ? sigma : 1e-12);
+    }
+  }
+
+  std::vector<double> r(kViews * n), rTry(kViews * n);
+  std::vector<double> Jstore(3 * kViews * n);
+  auto* J = reinterpret_cast<double(*)[3]>(Jstore.data());
+
+  // Start grid of fastPLI's ROFL: interior of linspace(−90°, 90°, 8) × interior of linspace(0, 0.9, 8).
+  double p[3] = { phi0, 0.0, 0.0 };
+  double best = std::numeric_limits<double>::infinity();
+  for (int ia = 1; ia <= 6; ++ia)
+  {
+    for (int it = 1; it <= 6; ++it)
+    {
+      const double trial[3] = { phi0, (-90.0 + ia * 180.0 / 7.0) * M_PI / 180.0, it * 0.9 / 7.0 };
+      const double c2 = residuals(d, trial, r.data(), nullptr);
+      if (c2 < best)
+      {
+        best = c2;
+        p[1] = trial[1];
+        p[2] = trial[2];
+      }
+    }
+  }
+
+  // Levenberg–Marquardt with Marquardt's diagonal scaling.
+  double chi2 = residuals(d, p, r.data(), J);
+  double lambda = 1e-3;
+  int iter = 0;
+  while (iter < maxIterations_ && chi2 > 0.0)
+  {
+    ++iter;
+    double A[3][3] = {}, g[3] = {};
+    for (std::size_t i = 0; i < kViews * n; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        g[a] += J[i][a] * r[i];
+        for (int b = 0; b < 3; ++b)
+        {
+          A[a][b] += J[i][a] * J[i][b];
+        }
+      }
+    }
+    const double maxDiag = std::max(A[0][0], std::max(A[1][1], A[2][2]));
+    double M[3][3], rhs[3] = { -g[0], -g[1], -g[2] }, step[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        M[a][b] = A[a][b];
+      }
+      M[a][a] += lambda * std::max(A[a][a], 1e-15 * maxDiag);
+    }
+    if (!solve3(M, rhs, step))
+    {
+      lambda *= 10.0;
+      if (lambda > 1e20)
+      {
+        break;
+      }
+      continue;
+    }
+    const double trial[3] = { p[0] + step[0], p[1] + step[1], p[2] + step[2] };
+    const double c2 = residuals(d, trial, rTry.data(), nullptr);
+    const double stepNorm = std::sqrt(step[0] * step[0] + step[1] * step[1] + step[2] * step[2]);
+    if (c2 < chi2)
+    {
+      const double rel = (chi2 - c2) / chi2;
+      p[0] = trial[0];
+      p[1] = trial[1];
+      p[2] = trial[2];
+      chi2 = residuals(d, p, r.data(), J);
+      lambda = std::max(lambda * 0.1, 1e-12);
+      if (rel < 1e-12 || stepNorm < 1e-10)
+      {
+        break;
+      }
+    }
+    else
+    {
+      lambda *= 10.0;
+      if (stepNorm < 1e-10 || lambda > 1e20)
+      {
+        break; // no downhill step is left at this precision
+      }
+    }
+  }
+
+  axisAngles(axisFromAngles(p[0], p[1]), res.direction, res.inclinationSigned);
+  res.inclination = std::abs(res.inclinationSigned);
+  res.relativeThickness = std::abs(p[2]);
+  res.chi2 = chi2;
+  res.iterations = iter;
+  return res;
+}
+
+std::string computeTiltFit(const double* flat, const std::array<const double*, kTiltViews>& tilts,
+  std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
+  const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
+{
+  TiltFit fit;
+  std::string err = fit.init(rho, options);
+  if (!err.empty())
+  {
+    return err;
+  }
+  err = validatePixelRange(nx, ny, range);
+  if (!err.empty())
+  {
+    return err;
+  }
+  if (range.count() > 0)
+  {
+    if (!flat)
+    {
+      return "intensity stack is null";
+    }
+    for (int t = 0; t < kTiltViews; ++t)
+    {
+      if (!tilts[t])
+      {
+        std::ostringstream msg;
+        msg << "intensity_tilt_" << t << " is missing";
+        return msg.str();
+      }
+    }
+  }
+  const std::size_t npx = static_cast<std::size_t>(nx * ny);
+  for (auto* v : { &maps.direction, &maps.inclination, &maps.inclinationSigned, &maps.relativeThickness, &maps.chi2 })
+  {
+    v->resize(npx, kNaN);
+  }
+  const std::size_t n = rho.size();
+  const bool done = forEachPixel(nx, range, threads, progress, [&](std::int64_t p) {
+    const std::size_t off = static_cast<std::size_t>(p) * n;
+    const TiltFitResult f =
+      fit.pixel({ flat + off, tilts[0] + off, tilts[1] + off, tilts[2] + off, tilts[3] + off });
+    maps.direction[p] = f.direction;
+    maps.inclination[p] = f.inclination;
+    maps.inclinationSigned[p] = f.inclinationSigned;
+    maps.relativeThickness[p] = f.relativeThickness;
+    maps.chi2[p] = f.chi2;
+  });
+  return done ? std::string() : std::string("cancelled");
+}
+
+} // namespace fiberpli

@@ -1,0 +1,92 @@
+/// TiltFit: signed inclination, direction and relative thickness from one untilted and four
+/// tilted views (ROFL, Schmitz et al. 2018; pli-analysis.md §3.2). Per pixel: EPA of each view,
+/// normalised data y_jk = I_jk/A_j − 1 with camera-noise weights, a start grid over (α, t) at the
+/// EPA direction of the flat view, then Levenberg–Marquardt on (φ, α, t) with an analytic
+/// Jacobian. Angles in radians.
+#pragma once
+
+#include "Analysis/Epa.h"
+#include "Analysis/PixelRange.h"
+#include "Util/Progress.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// How the simulation rotated the optic axis into the beam frame (pli-simulation.md §4.3);
+/// the values are those of the field data `tilt_convention`.
+enum class TiltConvention
+{
+  Physical = 0, ///< v_b = Rᵀ·v
+  FastPLI = 1   ///< v_b = R·v (fastPLI's simulator and ROFL)
+};
+
+struct TiltFitOptions
+{
+  double tiltAngle = 0.0; ///< in-tissue tilt θ_t (field data tilt_angle), radians, in (0, π/2)
+  TiltConvention convention = TiltConvention::Physical;
+  double gain = 3.0;      ///< camera gain g of the weights; g <= 0 (noise-free data) means 1
+  int maxIterations = 100;
+};
+
+/// Fit of one pixel; every field NaN (iterations 0) when a view has a0 <= 0 or non-finite data.
+struct TiltFitResult
+{
+  double direction;          ///< canonical axis (§3.2 step 4), [0, π)
+  double inclinationSigned;  ///< [−π/2, π/2]
+  double inclination;        ///< |inclinationSigned|
+  double relativeThickness;  ///< |t| = 4·d·|Δn|/λ of the untilted section
+  double chi2;               ///< weighted χ² at the optimum
+  int iterations;            ///< Levenberg–Marquardt iterations used
+};
+
+/// Tilt azimuths of views 1..4 (pli-simulation.md §4.3): 0°, 90°, 180°, 270°.
+constexpr int kTiltViews = 4;
+
+/// Per-image set-up (angles, rotations, EPA weights) and the per-pixel fit.
+class TiltFit
+{
+public:
+  /// Errors: fewer than 4 polarizer angles (§3.2), angles EPA refuses, tiltAngle not in (0, 90°),
+  /// maxIterations < 1.
+  std::string init(const std::vector<double>& rho, const TiltFitOptions& options);
+
+  /// views[0] = untilted, views[1..4] = tilt azimuths 0°, 90°, 180°, 270°; each points to the
+  /// N = rho.size() intensities of this pixel.
+  TiltFitResult pixel(const std::array<const double*, 1 + kTiltViews>& views) const;
+
+private:
+  struct Data; // normalised data and weights of one pixel
+  double residuals(const Data& d, const double p[3], double* r, double (*J)[3]) const;
+
+  EpaFit epa_;
+  std::vector<double> s_, c_;   // sin 2ρ_k, cos 2ρ_k
+  double m_[1 + kTiltViews][3][3] = {}; // tissue → beam frame per view
+  double kappa_[1 + kTiltViews] = {};  // (π/2)·(path / d)
+  double gain_ = 1.0;
+  int maxIterations_ = 100;
+};
+
+/// Maps of the tilt fit (all radians except chi2 and thickness); resized to nx·ny.
+struct TiltMaps
+{
+  std::vector<double> direction;
+  std::vector<double> inclination;
+  std::vector<double> inclinationSigned;
+  std::vector<double> relativeThickness;
+  std::vector<double> chi2;
+};
+
+/// Tilt fit of the pixels in range. flat and tilts[0..3] are stacks of nx·ny pixels with
+/// rho.size() intensities each (pixel-major, x fastest), tilts in azimuth order 0°, 90°, 180°,
+/// 270°. OpenMP over pixels with `threads` (0 = all); bit-identical for any thread count.
+/// Returns "" on success, an error message, or "cancelled" when progress asked to stop.
+std::string computeTiltFit(const double* flat, const std::array<const double*, kTiltViews>& tilts,
+  std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
+  const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress = {});
+
+} // namespace fiberpli
