@@ -1,0 +1,218 @@
+#include "Tissue/BundleGenerator.h"
+
+#include "Tissue/BundleShapes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace fiberpli
+{
+
+namespace
+{
+constexpr double kDegree = M_PI / 180.0;
+
+struct Path
+{
+  ResampledTrajectory trajectory;
+  TrajectoryFrames frames;
+};
+
+Path makePath(const std::vector<Vec3>& control, const std::vector<double>* scale, double segmentLength)
+{
+  Path p;
+  p.trajectory = resampleTrajectory(control, scale, segmentLength);
+  p.frames = transportFrames(p.trajectory.points);
+  return p;
+}
+
+RanvierOptions ranvierOf(const BundleOptions& o)
+{
+  RanvierOptions r;
+  r.spacing = effectiveRanvierSpacing(o);
+  r.depth = o.ranvierDepth;
+  r.length = o.ranvierLength;
+  return r;
+}
+
+// Appends the fibers of `members` (indices into cs) laid along path as bundle `bundle`.
+void addBundle(FiberModel& model, const Path& path, std::vector<CrossSectionFiber>& cs,
+  const std::vector<std::size_t>& members, int bundle, const BundleOptions& o)
+{
+  const RanvierOptions ranvier = ranvierOf(o);
+  for (std::size_t idx : members)
+  {
+    Fiber f = layFiber(path.trajectory, path.frames, cs[idx], ranvier, o.displacement);
+    f.id = static_cast<std::int64_t>(model.fibers.size());
+    f.bundle = bundle;
+    model.fibers.push_back(std::move(f));
+  }
+}
+
+std::vector<std::size_t> allOf(const std::vector<CrossSectionFiber>& cs)
+{
+  std::vector<std::size_t> idx(cs.size());
+  std::iota(idx.begin(), idx.end(), std::size_t{ 0 });
+  return idx;
+}
+
+void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& straight, const Vec3& lateral,
+  double fraction, std::vector<std::size_t>& crossing, std::vector<std::size_t>& uncrossed)
+{
+  const Vec3& u0 = straight.frames.u.front();
+  const Vec3& v0 = straight.frames.v.front();
+  std::vector<std::size_t> order = allOf(cs);
+  std::vector<double> key(cs.size());
+  for (std::size_t j = 0; j < cs.size(); ++j)
+  {
+    key[j] = dot(cs[j].seed.x * u0 + cs[j].seed.y * v0, lateral);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] > key[b]; });
+  // The 1e-9 keeps an exact product such as 0.25·76 = 19 from rounding up through a last-bit error.
+  const std::size_t count = std::min(cs.size(),
+    static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(cs.size()) - 1e-9)));
+  uncrossed.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count));
+  crossing.assign(order.begin() + static_cast<std::ptrdiff_t>(count), order.end());
+  std::sort(uncrossed.begin(), uncrossed.end());
+  std::sort(crossing.begin(), crossing.end());
+}
+
+double yTurnRadius(const BundleOptions& o) { return std::max(2.0 * o.bundleRadius, 5.0 * o.fiberRadius); }
+} // namespace
+
+Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
+  const RanvierOptions& ranvier, double displacement)
+{
+  Fiber f;
+  const std::size_t n = t.points.size();
+  f.points.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    f.points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
+  }
+  applyRanvier(f, cf.radius, cf.phase, ranvier);
+  for (Vec3& p : f.points)
+  {
+    p.x += cf.rng.uniform(-displacement, displacement);
+    p.y += cf.rng.uniform(-displacement, displacement);
+    p.z += cf.rng.uniform(-displacement, displacement);
+  }
+  return f;
+}
+
+FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* trajectory,
+  const std::vector<double>* trajectoryScale)
+{
+  FiberModel model;
+  if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
+  {
+    return model;
+  }
+  const double H = 0.5 * o.length;
+  const double omega = o.crossingAngle * kDegree;
+  switch (o.shape)
+  {
+    case BundleShape::Cylinder:
+    case BundleShape::Trajectory:
+    {
+      const Path path = o.shape == BundleShape::Cylinder
+        ? makePath(straightPath(H, 0.0), nullptr, o.segmentLength)
+        : makePath(*trajectory, trajectoryScale, o.segmentLength);
+      std::vector<CrossSectionFiber> cs = makeCrossSection(o, 0);
+      addBundle(model, path, cs, allOf(cs), 0, o);
+      break;
+    }
+    case BundleShape::Crossing:
+    {
+      for (int b = 0; b < 2; ++b)
+      {
+        const Path path = makePath(straightPath(H, b * omega), nullptr, o.segmentLength);
+        std::vector<CrossSectionFiber> cs = makeCrossSection(o, static_cast<std::uint64_t>(b));
+        addBundle(model, path, cs, allOf(cs), b, o);
+      }
+      break;
+    }
+    case BundleShape::YShape:
+    {
+      std::vector<CrossSectionFiber> cs = makeCrossSection(o, 0);
+      std::vector<std::size_t> left;
+      std::vector<std::size_t> right;
+      for (std::size_t j = 0; j < cs.size(); ++j)
+      {
+        // The trunk runs along +y; the minimal rotation e_z → e_y keeps e_x, so seed x is world x.
+        (cs[j].seed.x < 0.0 ? left : right).push_back(j);
+      }
+      const double step = 0.25 * o.segmentLength;
+      addBundle(model, makePath(yBranchPath(H, omega, yTurnRadius(o), true, step), nullptr, o.segmentLength),
+        cs, left, 0, o);
+      addBundle(model, makePath(yBranchPath(H, omega, yTurnRadius(o), false, step), nullptr, o.segmentLength),
+        cs, right, 1, o);
+      break;
+    }
+    case BundleShape::Chiasm:
+    {
+      std::vector<CrossSectionFiber> cs[2];
+      std::vector<std::size_t> crossing[2];
+      std::vector<std::size_t> uncrossed[2];
+      Path straight[2];
+      for (int side = 0; side < 2; ++side)
+      {
+        const Vec3 d = chiasmDirection(omega, side == 1);
+        straight[side] = makePath({ -H * d, H * d }, nullptr, o.segmentLength);
+        cs[side] = makeCrossSection(o, static_cast<std::uint64_t>(side));
+        splitChiasmNerve(cs[side], straight[side], chiasmLateralNormal(omega, side == 1), o.uncrossedFraction,
+          crossing[side], uncrossed[side]);
+      }
+      for (int side = 0; side < 2; ++side)
+      {
+        addBundle(model, straight[side], cs[side], crossing[side], side, o);
+      }
+      for (int side = 0; side < 2; ++side)
+      {
+        const Path sidePath = makePath(chiasmSidePath(H, omega, side == 1), nullptr, o.segmentLength);
+        addBundle(model, sidePath, cs[side], uncrossed[side], 2 + side, o);
+      }
+      break;
+    }
+  }
+  return model;
+}
+
+std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* trajectory,
+  const std::vector<double>* trajectoryScale)
+{
+  if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
+  {
+    return std::string();
+  }
+  ResampledTrajectory t;
+  if (o.shape == BundleShape::Trajectory)
+  {
+    t = resampleTrajectory(*trajectory, trajectoryScale, o.segmentLength);
+  }
+  else if (o.shape == BundleShape::Chiasm)
+  {
+    t = resampleTrajectory(chiasmSidePath(0.5 * o.length, o.crossingAngle * kDegree, false), nullptr, o.segmentLength);
+  }
+  else
+  {
+    return std::string();
+  }
+  std::size_t where = 0;
+  const double rc = minimumCircumradius(t.points, &where);
+  const double reach = o.bundleRadius * *std::max_element(t.scale.begin(), t.scale.end());
+  if (rc >= reach)
+  {
+    return std::string();
+  }
+  std::ostringstream msg;
+  msg << (o.shape == BundleShape::Chiasm ? "Chiasm side path" : "Trajectory") << " radius of curvature "
+      << rc << " um near resampled point " << where << " (" << t.points[where].x << ", "
+      << t.points[where].y << ", " << t.points[where].z << ") is smaller than BundleRadius x scale " << reach
+      << " um: fibers on the inside of the bend fold over; smooth the trajectory or reduce BundleRadius";
+  return msg.str();
+}
+
+} // namespace fiberpli

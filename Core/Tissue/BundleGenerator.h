@@ -1,0 +1,53 @@
+/// BundleGenerator: FiberBundleSource's Core (tissue-models.md §2, §5, §6.2–§6.5, §7, §8). Builds
+/// bundles of fibers along trajectories: a straight cylinder, a user polyline, or the paper's
+/// crossing, Y-shaped and chiasm-like models, ready for the collision solver.
+#pragma once
+
+#include "Model/FiberModel.h"
+#include "Tissue/BundleOptions.h"
+#include "Tissue/CrossSection.h"
+#include "Tissue/Ranvier.h"
+#include "Tissue/Trajectory.h"
+
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// Lays one cross-section fiber along a resampled trajectory (tissue-models.md §2, §5.2, §5.4):
+/// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
+/// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
+/// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
+Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
+  const RanvierOptions& ranvier, double displacement);
+
+/// FiberBundleSource (tissue-models.md §8). Shapes and bundle ids:
+/// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
+/// - Trajectory: along *trajectory (optional per-point scale σ_k multiplies the offsets); bundle 0.
+/// - Crossing (§6.3): axes (1, 0, 0) and (cos ω, sin ω, 0), each of length Length through the
+///   origin; bundles 0, 1 with independent cross-sections 0, 1.
+/// - YShape (§6.4): trunk along +y to the fork at the origin, seeds with x < 0 turn to
+///   b− = (−sin(ω/2), cos(ω/2), 0) (bundle 0), x >= 0 to b+ (bundle 1); turn radius
+///   max(2R, 5r); trunk and branch Length/2 each.
+/// - Chiasm (§6.5): H = Length/2; bundles 0 left→right crossing, 1 right→left crossing, 2 left
+///   uncrossed, 3 right uncrossed (the ⌈f·N⌉ fibers of each nerve with the largest entry offset
+///   along the lateral normal, ties by index); Ranvier on by default. Known limitation: the §6.5
+///   side path has a radius of curvature of 0.144·H at its tip, so with BundleRadius > 0.144·H
+///   (defaults: 4.3 µm < 10 µm) uncrossed fibers on the inside of the bend fold over (measured:
+///   32 of 44 with the defaults); bundleWarnings reports it. Length >= 2·BundleRadius/0.144 avoids it.
+/// All paths are resampled by arc length at SegmentLength (resampleTrajectory). Fiber ids are
+/// 0..N−1 in output order (bundle by bundle). Randomness: see makeCrossSection (cross-section index,
+/// seed index) — same options → bit-identical model. Returns an empty model when
+/// validateBundleOptions(options, trajectory, trajectoryScale) is not empty (call it first to get
+/// the message).
+FiberModel generateBundle(const BundleOptions& options, const std::vector<Vec3>* trajectory,
+  const std::vector<double>* trajectoryScale = nullptr);
+
+/// Non-fatal problems of valid options, tissue-models.md §2 "Corners": a (resampled) trajectory
+/// whose smallest radius of curvature is below BundleRadius·max σ, where inner fibers fold over.
+/// Empty when none; else one message naming the radius, the point and the fix.
+std::string bundleWarnings(const BundleOptions& options, const std::vector<Vec3>* trajectory,
+  const std::vector<double>* trajectoryScale = nullptr);
+
+} // namespace fiberpli

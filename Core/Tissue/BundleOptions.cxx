@@ -1,0 +1,182 @@
+#include "Tissue/BundleOptions.h"
+
+#include "Tissue/Trajectory.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace fiberpli
+{
+
+namespace
+{
+int crossSectionCount(BundleShape shape)
+{
+  return (shape == BundleShape::Crossing || shape == BundleShape::Chiasm) ? 2 : 1;
+}
+
+// Seeds examined per cross-section (the grid before cropping, or the random count).
+double seedCandidates(const BundleOptions& o)
+{
+  if (o.numberOfFibers > 0)
+  {
+    return static_cast<double>(o.numberOfFibers);
+  }
+  const double half = o.bundleRadius + o.fiberSpacing;
+  const double h = o.fiberSpacing * std::sqrt(3.0) / 2.0;
+  return (2.0 * half / o.fiberSpacing + 3.0) * (2.0 * half / h + 1.0);
+}
+} // namespace
+
+const char* bundleShapeName(BundleShape shape)
+{
+  switch (shape)
+  {
+    case BundleShape::Cylinder: return "Cylinder";
+    case BundleShape::Trajectory: return "Trajectory";
+    case BundleShape::Crossing: return "Crossing";
+    case BundleShape::YShape: return "YShape";
+    case BundleShape::Chiasm: return "Chiasm";
+  }
+  return "Unknown";
+}
+
+bool parseBundleShape(const std::string& text, BundleShape& shape)
+{
+  for (BundleShape s : { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing,
+         BundleShape::YShape, BundleShape::Chiasm })
+  {
+    if (text == bundleShapeName(s))
+    {
+      shape = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* radiusDistributionName(RadiusDistribution kind)
+{
+  return kind == RadiusDistribution::Uniform ? "Uniform" : "LogNormal";
+}
+
+double effectiveRanvierSpacing(const BundleOptions& o)
+{
+  if (o.ranvierSpacing >= 0.0)
+  {
+    return o.ranvierSpacing;
+  }
+  return o.shape == BundleShape::Chiasm ? 20.0 : 0.0;
+}
+
+std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3>* trajectory,
+  const std::vector<double>* trajectoryScale)
+{
+  std::ostringstream msg;
+  const double ranvier = effectiveRanvierSpacing(o);
+  const bool usesLength = o.shape != BundleShape::Trajectory;
+  if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
+  {
+    msg << "FiberRadius is " << o.fiberRadius << ", must be > 0";
+  }
+  else if (!std::isfinite(o.bundleRadius) || o.bundleRadius < o.fiberRadius)
+  {
+    msg << "BundleRadius " << o.bundleRadius << " is smaller than FiberRadius " << o.fiberRadius
+        << " (or not finite)";
+  }
+  else if (usesLength && (!std::isfinite(o.length) || o.length <= 0.0))
+  {
+    msg << "Length is " << o.length << ", must be > 0";
+  }
+  else if (!std::isfinite(o.radiusSpread) || o.radiusSpread < 0.0)
+  {
+    msg << "RadiusSpread is " << o.radiusSpread << ", must be >= 0";
+  }
+  else if (o.radiusDistribution == RadiusDistribution::Uniform && o.radiusSpread >= 1.0)
+  {
+    msg << "RadiusSpread is " << o.radiusSpread << ", must be < 1 for RadiusDistribution Uniform";
+  }
+  else if (o.numberOfFibers < 0)
+  {
+    msg << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0 (0 = triangular grid)";
+  }
+  else if (o.numberOfFibers == 0 && (!std::isfinite(o.fiberSpacing) || o.fiberSpacing <= 0.0))
+  {
+    msg << "FiberSpacing is " << o.fiberSpacing << ", must be > 0 when NumberOfFibers is 0";
+  }
+  else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
+  {
+    msg << "SegmentLength is " << o.segmentLength << ", must be > 0";
+  }
+  else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
+  {
+    msg << "Displacement is " << o.displacement << ", must be >= 0";
+  }
+  else if (o.shape == BundleShape::Crossing &&
+    (!std::isfinite(o.crossingAngle) || o.crossingAngle <= 0.0 || o.crossingAngle > 180.0))
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", must be in (0, 180] for Shape Crossing";
+  }
+  else if ((o.shape == BundleShape::YShape || o.shape == BundleShape::Chiasm) &&
+    (!std::isfinite(o.crossingAngle) || o.crossingAngle <= 0.0 || o.crossingAngle >= 180.0))
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", must be in (0, 180) for Shape "
+        << bundleShapeName(o.shape);
+  }
+  else if (o.shape == BundleShape::Chiasm &&
+    (!std::isfinite(o.uncrossedFraction) || o.uncrossedFraction < 0.0 || o.uncrossedFraction > 1.0))
+  {
+    msg << "UncrossedFraction is " << o.uncrossedFraction << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.ranvierSpacing))
+  {
+    msg << "RanvierSpacing is " << o.ranvierSpacing << ", must be finite";
+  }
+  else if (ranvier > 0.0 && (!std::isfinite(o.ranvierDepth) || o.ranvierDepth < 0.0 || o.ranvierDepth >= 1.0))
+  {
+    msg << "RanvierDepth is " << o.ranvierDepth << ", must be in [0, 1)";
+  }
+  else if (ranvier > 0.0 && (!std::isfinite(o.ranvierLength) || o.ranvierLength <= 0.0 || 2.0 * o.ranvierLength > ranvier))
+  {
+    msg << "RanvierLength is " << o.ranvierLength << ", must be > 0 and at most RanvierSpacing/2 = "
+        << 0.5 * ranvier;
+  }
+  if (!msg.str().empty())
+  {
+    return msg.str();
+  }
+
+  double pathLength = o.length;
+  if (o.shape == BundleShape::Trajectory)
+  {
+    if (!trajectory)
+    {
+      return "Shape Trajectory needs an input polyline (input port 0)";
+    }
+    const std::string bad = validateTrajectory(*trajectory, trajectoryScale);
+    if (!bad.empty())
+    {
+      return bad;
+    }
+    pathLength = polylineLength(*trajectory);
+  }
+  // The chiasm's side path and a Catmull–Rom curve are longer than the straight estimate: × 1.5.
+  pathLength *= 1.5;
+  const double fibers = seedCandidates(o) * crossSectionCount(o.shape);
+  const double perFiber = pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
+  if (fibers > kMaxBundleFibers)
+  {
+    msg << "BundleRadius " << o.bundleRadius << " with FiberSpacing " << o.fiberSpacing
+        << " / NumberOfFibers " << o.numberOfFibers << " would need about " << fibers
+        << " fibers, more than the limit " << kMaxBundleFibers;
+  }
+  else if (perFiber > kMaxBundlePoints || fibers * perFiber > kMaxBundlePoints)
+  {
+    msg << "Length " << pathLength / 1.5 << " with SegmentLength " << o.segmentLength
+        << " (and RanvierSpacing " << ranvier << ") for about " << fibers << " fibers would need about "
+        << fibers * perFiber << " points, more than the limit " << kMaxBundlePoints;
+  }
+  return msg.str();
+}
+
+} // namespace fiberpli
