@@ -69,7 +69,7 @@ std::vector<std::vector<double>> IdentityIndex(const fiberpli::FiberModel& model
 
 //------------------------------------------------------------------------------
 // Construct with SegmentLength 2, MinCurvatureRadius 0 (off), MaxSteps 10000, SeparationSpeed
-// 0.05, MinimumGap 0, all threads, IterationsAsTime off, TimeStepInterval 50.
+// 0.025, MinimumGap 0, all threads, IterationsAsTime off, TimeStepInterval 50.
 vtkFiberCollisionSolver::vtkFiberCollisionSolver() = default;
 vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
 

@@ -60,7 +60,7 @@ public:
   ///@{
   /**
    * Smallest push of a colliding pair per step, relative to the smallest radius of its points
-   * (the paper's fixed separation speed), 0 to 1. Default is 0.05.
+   * (the paper's value at r = 0.8 µm, collision-solver.md §4.1), 0 to 1. Default is 0.025.
    */
   vtkSetClampMacro(SeparationSpeed, double, 0.0, 1.0);
   vtkGetMacro(SeparationSpeed, double);
@@ -113,7 +113,7 @@ private:
   double SegmentLength = 2.0;
   double MinCurvatureRadius = 0.0;
   int MaxSteps = 10000;
-  double SeparationSpeed = 0.05;
+  double SeparationSpeed = 0.025;
   double MinimumGap = 0.0;
   int NumberOfThreads = 0;
   bool IterationsAsTime = false;

@@ -50,7 +50,7 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
             if not command or prop.tag == "InputProperty" or command in ("SetInputArrayToProcess",):
                 continue
             setter = command[3:] if command.startswith("Set") else command
-            if not re.search(r"\b%s\(|vtkSet\w*Macro\(\s*%s\s*," % (re.escape(command), re.escape(setter)), header):
+            if not re.search(r"\b%s\(|vtkSet\w*Macro\(\s*%s\s*[,)]" % (re.escape(command), re.escape(setter)), header):
                 errors.append("%s: %s.%s command %s not found in %s.h" % (
                     xml_path, name, pname, command, proxy.get("class")))
 

@@ -19,7 +19,7 @@ def field(proxy, name):
 cube = FiberCubeSource(Populations=2, NumberOfFibers=30, EdgeLength=51.96 * (30 / 1000.0) ** 0.5,
                        FiberRadius=0.8, SegmentLength=2.0, Displacement=0.5, Seed=3)
 solver = FiberCollisionSolver(Input=cube, SegmentLength=2.0, MinCurvatureRadius=4.0, MaxSteps=20000,
-                              SeparationSpeed=0.05, NumberOfThreads=2)
+                              SeparationSpeed=0.025, NumberOfThreads=2)
 solver.UpdatePipeline()
 check(field(solver, "solved") == 1, "cube not solved")
 check(field(solver, "collisions") == 0, "collisions left")
@@ -61,7 +61,7 @@ out.GetPointData().AddArray(radius)
 """
 crossing = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=CROSSING)
 solved = FiberCollisionSolver(Input=crossing, SegmentLength=1.0, MinCurvatureRadius=0.0, MaxSteps=1000,
-                              SeparationSpeed=0.05, NumberOfThreads=1)
+                              SeparationSpeed=0.025, NumberOfThreads=1)
 solved.UpdatePipeline()
 check(field(solved, "solved") == 1, "crossing not solved")
 bounds = servermanager.Fetch(solved).GetBounds()
