@@ -3,6 +3,9 @@
 # pvbatch under Xvfb: cube source -> tubes -> a PNG image and a .vtp file in the printed folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ctest -j2 runs multi-threaded tests side by side on 2 cores: spinning OpenMP threads then wait
+# for descheduled ones and a 0.5 s solve can take 20 s. Passive waiting keeps them robust.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 bash scripts/install-deps.sh
 bash scripts/build.sh
 out="${FIBERPLI_DEMO_OUT:-$PWD/build/demo}"

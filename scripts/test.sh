@@ -3,6 +3,9 @@
 # The exit code is ctest's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ctest -j2 runs multi-threaded tests side by side on 2 cores: spinning OpenMP threads then wait
+# for descheduled ones and a 0.5 s solve can take 20 s. Passive waiting keeps them robust.
+export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 bash scripts/install-deps.sh
 bash scripts/build.sh
 
