@@ -51,3 +51,28 @@ class ErrorCatcher:
     def clear(self):
         self.errors.clear()
         self.warnings.clear()
+
+
+def compare_image(proxy, cell_array, position, up=(0, 1, 0), focal=(0, 0, 0)):
+    """Renders proxy (coloured by a cell array) in a fixed 400x300 view with an explicit camera and
+    compares it with the baseline given by -V (smtesting); raises when it differs."""
+    from paraview.simple import ColorBy, CreateView, Render, Show
+    from paraview import smtesting
+
+    smtesting.ProcessCommandLineArguments()
+    view = CreateView("RenderView")
+    view.ViewSize = [400, 300]
+    view.OrientationAxesVisibility = 0
+    view.Background = [0.1, 0.1, 0.15]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    display = Show(proxy, view)
+    ColorBy(display, ("CELLS", cell_array))
+    view.CameraPosition = list(position)
+    view.CameraFocalPoint = list(focal)
+    view.CameraViewUp = list(up)
+    Render(view)
+    if not smtesting.DoRegressionTesting(view.SMProxy):
+        raise RuntimeError("image differs from the baseline")

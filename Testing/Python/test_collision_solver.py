@@ -4,9 +4,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import check, load_plugin  # noqa: E402
+from fiberpli_test import check, compare_image, load_plugin  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
-from paraview import servermanager, smtesting  # noqa: E402
+from paraview import servermanager  # noqa: E402
 
 load_plugin(globals())
 
@@ -68,21 +68,5 @@ bounds = servermanager.Fetch(solved).GetBounds()
 check(bounds[5] - bounds[4] >= 2.0, "the crossing axes must end >= r1 + r2 = 2 apart: %s" % (bounds,))
 tubes = FiberTubes(Input=solved, NumberOfSides=16, Capping=1)
 
-smtesting.ProcessCommandLineArguments()
-view = CreateView("RenderView")
-view.ViewSize = [400, 300]
-view.OrientationAxesVisibility = 0
-view.Background = [0.1, 0.1, 0.15]
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
-display = Show(tubes, view)
-ColorBy(display, ("CELLS", "fiber_id"))
-view.CameraPosition = [16, -20, 10]
-view.CameraFocalPoint = [0, 0, 0]
-view.CameraViewUp = [0, 0, 1]
-Render(view)
-if not smtesting.DoRegressionTesting(view.SMProxy):
-    raise RuntimeError("image differs from the baseline")
+compare_image(tubes, "fiber_id", position=(16, -20, 10), up=(0, 0, 1))
 print("test_collision_solver passed")

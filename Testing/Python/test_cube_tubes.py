@@ -3,9 +3,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import check, load_plugin  # noqa: E402
+from fiberpli_test import check, compare_image, load_plugin  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
-from paraview import servermanager, smtesting  # noqa: E402
+from paraview import servermanager  # noqa: E402
 
 load_plugin(globals())
 src = FiberCubeSource(Populations=2, NumberOfFibers=50, EdgeLength=40.0, FiberRadius=0.8,
@@ -26,21 +26,5 @@ check("fiber_id" in tub.CellData.keys() and "bundle_id" in tub.CellData.keys(), 
 rng = tub.CellData["bundle_id"].GetRange()
 check(rng[0] == 0 and rng[1] == 1, "bundle ids %s" % (rng,))
 
-smtesting.ProcessCommandLineArguments()
-view = CreateView("RenderView")
-view.ViewSize = [400, 300]
-view.OrientationAxesVisibility = 0
-view.Background = [0.1, 0.1, 0.15]
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
-display = Show(tub, view)
-ColorBy(display, ("CELLS", "bundle_id"))
-view.CameraPosition = [70, 50, 90]
-view.CameraFocalPoint = [0, 0, 0]
-view.CameraViewUp = [0, 1, 0]
-Render(view)
-if not smtesting.DoRegressionTesting(view.SMProxy):
-    raise RuntimeError("image differs from the baseline")
+compare_image(tub, "bundle_id", position=(70, 50, 90))
 print("test_cube_tubes passed")
