@@ -96,9 +96,14 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
-  if (input && !fiberpli::FiberPolyData::IsEmpty(input))
+  const bool sentinel = this->VolumeOfInterest[0] > this->VolumeOfInterest[1];
   {
-    const fiberpli::FiberConversion c = fiberpli::FiberPolyData::ToModel(input, "FiberOrientationGroundTruth");
+    // An explicit VolumeOfInterest does not need the fibers; the sentinel needs their bounds.
+    fiberpli::FiberConversion c;
+    if (sentinel && input && !fiberpli::FiberPolyData::IsEmpty(input))
+    {
+      c = fiberpli::FiberPolyData::ToModel(input, "FiberOrientationGroundTruth");
+    }
     fiberpli::TruthLattice lattice;
     std::int64_t nx = 0, ny = 0;
     if (c.ok() && PlanGrid(c.model, this->VolumeOfInterest, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin).empty())
