@@ -22,7 +22,9 @@ check(len(rows) >= 7, "api.md table not parsed: %s" % rows)
 built = [name for name in rows if name in globals()]
 check("FiberCubeSource" in built and "FiberTubes" in built, "core proxies missing: %s" % built)
 for name in built:
-    proxy = globals()[name]() if name.endswith("Source") else globals()[name](Input=FiberCubeSource())
+    image_input = name in ("PLIAnalysis", "FiberOrientationMap")  # these take an image
+    proxy = globals()[name]() if name.endswith("Source") else globals()[name](
+        Input=Wavelet() if image_input else FiberCubeSource())
     props = proxy.ListProperties()
     for prop in rows[name]:
         check(prop in props, "%s lacks property %s (has %s)" % (name, prop, props))

@@ -1,0 +1,81 @@
+/**
+ * @class   vtkFiberOrientationGroundTruth
+ * @brief   orientation ground truth of a fiber model on the pixel grid of PLISimulation
+ *
+ * Input: fiber polydata (api.md). Output: a one-slice vtkImageData with the geometry that
+ * PLISimulation gives for the same VolumeOfInterest, VoxelSize and PixelSize (pli-simulation.md
+ * §3.1, §5.2): n_a = round((max_a − min_a)/VoxelSize) voxels, round(n·VoxelSize/PixelSize)
+ * pixels, origin (xmin + PixelSize/2, ymin + PixelSize/2, zmin + n_z·VoxelSize/2), spacing
+ * PixelSize. Every voxel centre inside a fiber (nearest capsule axis, distance <= the linearly
+ * tapered radius) gets the axis of the link that owns it; each pixel summarises its voxels (all z)
+ * by the orientation tensor (pli-analysis.md §5). Point arrays (double): `direction` (degrees in
+ * [0, 180)), `inclination` (degrees in [0, 90]), `inclination_signed` (degrees in [−90, 90]),
+ * `fraction` (tissue voxels / voxels of the pixel), `anisotropy` (λ1 − λ2 of the tensor, 0 = no
+ * dominant axis). Pixels without tissue have NaN angles. FiberOrientationMap colours the result.
+ * Invalid fibers, bad sizes or an empty volume give an error naming the fiber or property.
+ */
+#ifndef vtkFiberOrientationGroundTruth_h
+#define vtkFiberOrientationGroundTruth_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class FIBERPLIFILTERS_EXPORT vtkFiberOrientationGroundTruth : public vtkImageAlgorithm
+{
+public:
+  static vtkFiberOrientationGroundTruth* New();
+  vtkTypeMacro(vtkFiberOrientationGroundTruth, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Section volume xmin xmax ymin ymax zmin zmax in µm; z is the section's thickness. min > max
+   * on every axis means the input's bounds (radii included). Default is 1 −1 1 −1 1 −1.
+   */
+  vtkSetVector6Macro(VolumeOfInterest, double);
+  vtkGetVector6Macro(VolumeOfInterest, double);
+  ///@}
+
+  ///@{
+  /**
+   * Edge of a tissue voxel in µm, 1e-3 to 1e6. Default is 0.5.
+   */
+  vtkSetClampMacro(VoxelSize, double, 1e-3, 1e6);
+  vtkGetMacro(VoxelSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Edge of an output pixel in µm, >= VoxelSize, 1e-3 to 1e6. Default is 2.
+   */
+  vtkSetClampMacro(PixelSize, double, 1e-3, 1e6);
+  vtkGetMacro(PixelSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads, 0 = all cores. The result does not depend on it. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+protected:
+  vtkFiberOrientationGroundTruth();
+  ~vtkFiberOrientationGroundTruth() override = default;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberOrientationGroundTruth(const vtkFiberOrientationGroundTruth&) = delete;
+  void operator=(const vtkFiberOrientationGroundTruth&) = delete;
+
+  double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
+  double VoxelSize = 0.5;
+  double PixelSize = 2.0;
+  int NumberOfThreads = 0;
+};
+
+#endif

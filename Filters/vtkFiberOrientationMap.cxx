@@ -1,0 +1,152 @@
+#include "vtkFiberOrientationMap.h"
+
+#include "Analysis/FiberOrientationMap.h"
+
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cstring>
+#include <vector>
+
+vtkStandardNewMacro(vtkFiberOrientationMap);
+
+namespace
+{
+/// The values of a one-component point array as doubles.
+std::vector<double> ToDoubles(vtkDataArray* a)
+{
+  std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
+  {
+    v[static_cast<std::size_t>(k)] = a->GetComponent(k, 0);
+  }
+  return v;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+// Construct with ColorScheme HSV-black, LegendSize 256, all threads; two output ports (map, legend).
+vtkFiberOrientationMap::vtkFiberOrientationMap()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationMap::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* mapInfo = outputVector->GetInformationObject(0);
+  vtkDataObject::SetPointDataActiveScalarInfo(mapInfo, VTK_UNSIGNED_CHAR, 3);
+
+  // The legend spans [−1, 1]²: pixel centres at −1 + (k + ½)·2/size.
+  vtkInformation* legendInfo = outputVector->GetInformationObject(1);
+  const int n = this->LegendSize;
+  const int extent[6] = { 0, n - 1, 0, n - 1, 0, 0 };
+  const double spacing[3] = { 2.0 / n, 2.0 / n, 2.0 / n };
+  const double origin[3] = { -1.0 + 1.0 / n, -1.0 + 1.0 / n, 0.0 };
+  legendInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  legendInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  legendInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(legendInfo, VTK_UNSIGNED_CHAR, 3);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // A request on the legend port must not become the input's extent: ask for what port 0 wants,
+  // or the whole input when port 0 has no request.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* mapInfo = outputVector->GetInformationObject(0);
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT();
+  if (mapInfo->Has(key))
+  {
+    inInfo->Set(key, mapInfo->Get(key), 6);
+  }
+  else if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Set(key, inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  vtkImageData* legend = vtkImageData::GetData(outputVector, 1);
+  output->Initialize();
+  legend->Initialize();
+  const auto scheme = this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb : fiberpli::FomScheme::HsvBlack;
+
+  // Legend first: it does not depend on the input.
+  std::vector<std::uint8_t> rgb;
+  std::string err = fiberpli::fomLegend(this->LegendSize, scheme, rgb);
+  if (!err.empty())
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: LegendSize " << this->LegendSize << ": " << err);
+    return 0;
+  }
+  const int n = this->LegendSize;
+  legend->SetExtent(0, n - 1, 0, n - 1, 0, 0);
+  legend->SetSpacing(2.0 / n, 2.0 / n, 2.0 / n);
+  legend->SetOrigin(-1.0 + 1.0 / n, -1.0 + 1.0 / n, 0.0);
+  vtkNew<vtkUnsignedCharArray> legendFom;
+  legendFom->SetName("fom");
+  legendFom->SetNumberOfComponents(3);
+  legendFom->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
+  std::memcpy(legendFom->GetPointer(0), rgb.data(), rgb.size());
+  legend->GetPointData()->SetScalars(legendFom);
+
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return 1; // empty input or piece: empty map, no error
+  }
+  vtkDataArray* direction = input->GetPointData()->GetArray("direction");
+  vtkDataArray* inclination = input->GetPointData()->GetArray("inclination");
+  if (!direction || !inclination)
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: the input has no point array '" << (direction ? "inclination" : "direction")
+                  << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
+    output->Initialize();
+    return 0;
+  }
+  output->ShallowCopy(input);
+  const std::vector<double> d = ToDoubles(direction);
+  const std::vector<double> i = ToDoubles(inclination);
+  vtkNew<vtkUnsignedCharArray> fom;
+  fom->SetName("fom");
+  fom->SetNumberOfComponents(3);
+  fom->SetNumberOfTuples(static_cast<vtkIdType>(d.size()));
+  this->UpdateProgress(0.0);
+  err = fiberpli::fomMap(d.data(), i.data(), d.size(), scheme, this->NumberOfThreads, fom->GetPointer(0));
+  if (!err.empty())
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: " << err);
+    output->Initialize();
+    return 0;
+  }
+  output->GetPointData()->AddArray(fom);
+  output->GetPointData()->SetActiveScalars("fom");
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberOrientationMap::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ColorScheme: " << fiberpli::fomSchemeName(this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb
+                                                                                       : fiberpli::FomScheme::HsvBlack)
+     << "\n";
+  os << indent << "LegendSize: " << this->LegendSize << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}

@@ -1,0 +1,74 @@
+/**
+ * @class   vtkFiberOrientationMap
+ * @brief   direction + inclination → RGB fiber orientation map (FOM) and its colour legend
+ *
+ * Input: vtkImageData with point arrays `direction` and `inclination` (degrees; any numeric type;
+ * the sign of the inclination is ignored), e.g. from PLIAnalysis or FiberOrientationGroundTruth.
+ * Output port 0: the input with the point array `fom` (unsigned char, 3 components) added and set
+ * as active scalars; NaN pixels are black. Output port 1: the colour legend, a LegendSize ×
+ * LegendSize image of the upper hemisphere seen from +z (centre = fiber along z, rim = in-plane
+ * fibers, direction = angle around the centre) with the same `fom` array, white outside the disc,
+ * spanning [−1, 1]² (pli-analysis.md §4). Schemes: HSV-black (hue = 2·direction, value =
+ * 1 − |inclination|/90) and RGB (|x|, |y|, |z| of the fiber axis). A missing array is an error
+ * naming it.
+ */
+#ifndef vtkFiberOrientationMap_h
+#define vtkFiberOrientationMap_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+class FIBERPLIFILTERS_EXPORT vtkFiberOrientationMap : public vtkImageAlgorithm
+{
+public:
+  static vtkFiberOrientationMap* New();
+  vtkTypeMacro(vtkFiberOrientationMap, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ColorSchemes
+  {
+    HSV_BLACK = 0,
+    RGB = 1
+  };
+
+  ///@{
+  /**
+   * Colour scheme: 0 HSV-black, 1 RGB. Default is 0 (HSV-black).
+   */
+  vtkSetClampMacro(ColorScheme, int, 0, 1);
+  vtkGetMacro(ColorScheme, int);
+  ///@}
+
+  ///@{
+  /**
+   * Width and height of the legend image (output port 1) in pixels, 8 to 4096. Default is 256.
+   */
+  vtkSetClampMacro(LegendSize, int, 8, 4096);
+  vtkGetMacro(LegendSize, int);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads, 0 = all cores. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+protected:
+  vtkFiberOrientationMap();
+  ~vtkFiberOrientationMap() override = default;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberOrientationMap(const vtkFiberOrientationMap&) = delete;
+  void operator=(const vtkFiberOrientationMap&) = delete;
+
+  int ColorScheme = HSV_BLACK;
+  int LegendSize = 256;
+  int NumberOfThreads = 0;
+};
+
+#endif

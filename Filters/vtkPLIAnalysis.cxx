@@ -1,0 +1,262 @@
+#include "vtkPLIAnalysis.h"
+
+#include "Analysis/PliAnalysis.h"
+#include "FiberProgress.h"
+
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkMultiProcessController.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkPLIAnalysis);
+
+namespace
+{
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+/// Field data scalar, or `fallback` when the array is absent or empty.
+double FieldValue(vtkDataObject* data, const char* name, double fallback)
+{
+  vtkDataArray* a = data->GetFieldData() ? data->GetFieldData()->GetArray(name) : nullptr;
+  return a && a->GetNumberOfValues() > 0 ? a->GetComponent(0, 0) : fallback;
+}
+
+/// The values of a point array as contiguous doubles (no copy when it already is one).
+const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
+{
+  if (auto* d = vtkDoubleArray::SafeDownCast(a))
+  {
+    return d->GetPointer(0);
+  }
+  const vtkIdType n = a->GetNumberOfValues();
+  buffer.resize(static_cast<std::size_t>(n));
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents()));
+  }
+  return buffer.data();
+}
+
+/// MAX over all processes when a controller with more than one process exists, else identity.
+/// Every rank calls it exactly once per RequestData (see RequestData), so it cannot deadlock.
+double GlobalMax(double local)
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  if (!c || c->GetNumberOfProcesses() < 2)
+  {
+    return local;
+  }
+  double global = local;
+  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
+  return global;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+// Construct with InclinationMethod Auto, ReferenceRetardation 0 (automatic), NoiseGain −1 (field
+// data), all threads.
+vtkPLIAnalysis::vtkPLIAnalysis() = default;
+
+//------------------------------------------------------------------------------
+int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  output->Initialize();
+
+  // Exactly one AllReduce per call on every rank, whatever path this rank takes.
+  bool reduced = false;
+  auto finish = [&](int rc) {
+    if (!reduced)
+    {
+      GlobalMax(0.0);
+    }
+    return rc;
+  };
+
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return finish(1); // empty input or piece: empty output, no error
+  }
+  int inExt[6], ext[6];
+  input->GetExtent(inExt);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  for (int a = 0; a < 3; ++a)
+  {
+    ext[2 * a] = std::max(ext[2 * a], inExt[2 * a]);
+    ext[2 * a + 1] = std::min(ext[2 * a + 1], inExt[2 * a + 1]);
+  }
+  if (inExt[5] != inExt[4])
+  {
+    vtkErrorMacro(<< "PLIAnalysis: the input has " << inExt[5] - inExt[4] + 1
+                  << " slices along z; expected one slice (the PLISimulation image)");
+    return finish(0);
+  }
+  vtkDataArray* intensity = input->GetPointData()->GetArray("intensity");
+  if (!intensity)
+  {
+    vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
+    return finish(0);
+  }
+  const int n = intensity->GetNumberOfComponents();
+  std::vector<double> rho;
+  if (vtkDataArray* angles = input->GetFieldData()->GetArray("polarizer_angles"))
+  {
+    for (vtkIdType k = 0; k < angles->GetNumberOfValues(); ++k)
+    {
+      rho.push_back(angles->GetComponent(k / angles->GetNumberOfComponents(), static_cast<int>(k % angles->GetNumberOfComponents())) * kDeg);
+    }
+  }
+  else
+  {
+    for (int k = 0; k < n; ++k)
+    {
+      rho.push_back(k * 180.0 / n * kDeg);
+    }
+  }
+  if (rho.size() < 3)
+  {
+    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed");
+    return finish(0);
+  }
+  if (static_cast<std::size_t>(n) != rho.size())
+  {
+    vtkErrorMacro(<< "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
+                  << rho.size() << " angles; they must be equal");
+    return finish(0);
+  }
+
+  fiberpli::PliStack stack;
+  stack.nx = inExt[1] - inExt[0] + 1;
+  stack.ny = inExt[3] - inExt[2] + 1;
+  stack.rho = rho;
+  std::vector<double> buffers[1 + fiberpli::kTiltViews];
+  stack.intensity = AsDoubles(intensity, buffers[0]);
+  for (int v = 0; v < fiberpli::kTiltViews; ++v)
+  {
+    const std::string name = "intensity_tilt_" + std::to_string(v);
+    vtkDataArray* a = input->GetPointData()->GetArray(name.c_str());
+    if (a && a->GetNumberOfComponents() != n)
+    {
+      vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
+                    << " components, 'intensity' has " << n << "; they must be equal");
+      return finish(0);
+    }
+    stack.tilts[v] = a ? AsDoubles(a, buffers[1 + v]) : nullptr;
+  }
+  stack.tiltAngle = FieldValue(input, "tilt_angle", 0.0) * kDeg;
+  stack.convention = FieldValue(input, "tilt_convention", 0.0) == 1.0 ? fiberpli::TiltConvention::FastPLI
+                                                                       : fiberpli::TiltConvention::Physical;
+  stack.noiseGain = FieldValue(input, "noise_gain", -1.0);
+
+  fiberpli::PliAnalysisOptions options;
+  options.method = static_cast<fiberpli::InclinationMethod>(this->InclinationMethod);
+  options.referenceRetardation = this->ReferenceRetardation;
+  options.noiseGain = this->NoiseGain;
+  options.threads = this->NumberOfThreads;
+  options.globalMaxRetardation = [&reduced](double local) {
+    reduced = true;
+    return GlobalMax(local);
+  };
+  const fiberpli::PixelRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
+
+  this->SetProgressText("Analysing the polarizer stack");
+  fiberpli::PliAnalysisMaps maps;
+  const std::string err = fiberpli::analysePli(stack, options, range, maps, fiberpli::MakeProgress(this));
+  if (err == "cancelled")
+  {
+    return finish(1); // partial results are never passed on
+  }
+  if (!err.empty())
+  {
+    vtkErrorMacro(<< "PLIAnalysis: " << err);
+    return finish(0);
+  }
+
+  output->SetExtent(ext);
+  output->SetOrigin(input->GetOrigin());
+  output->SetSpacing(input->GetSpacing());
+  output->SetDirectionMatrix(input->GetDirectionMatrix());
+  const vtkIdType count = static_cast<vtkIdType>(range.count());
+  auto addMap = [&](const char* name, const std::vector<double>& map, double scale) {
+    if (map.empty())
+    {
+      return;
+    }
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->SetNumberOfValues(count);
+    vtkIdType k = 0;
+    for (std::int64_t j = range.j0; j < range.j1; ++j)
+    {
+      for (std::int64_t i = range.i0; i < range.i1; ++i)
+      {
+        a->SetValue(k++, map[static_cast<std::size_t>(i + stack.nx * j)] * scale);
+      }
+    }
+    output->GetPointData()->AddArray(a);
+  };
+  addMap("transmittance", maps.transmittance, 1.0);
+  addMap("direction", maps.direction, 1.0 / kDeg);
+  addMap("retardation", maps.retardation, 1.0);
+  addMap("inclination", maps.inclination, 1.0 / kDeg);
+  addMap("inclination_signed", maps.inclinationSigned, 1.0 / kDeg);
+  addMap("relative_thickness", maps.relativeThickness, 1.0);
+  addMap("fit_chi2", maps.chi2, 1.0);
+  output->GetPointData()->SetActiveScalars("direction");
+  // Directions just below 180° can round to exactly 180 in degrees: keep the [0, 180) contract.
+  auto* direction = vtkDoubleArray::SafeDownCast(output->GetPointData()->GetArray("direction"));
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    if (direction->GetValue(k) >= 180.0)
+    {
+      direction->SetValue(k, direction->GetValue(k) - 180.0);
+    }
+  }
+
+  vtkNew<vtkDoubleArray> ref;
+  ref->SetName("reference_retardation");
+  ref->InsertNextValue(maps.referenceRetardation);
+  output->GetFieldData()->AddArray(ref);
+  vtkNew<vtkIntArray> used;
+  used->SetName("inclination_method");
+  used->InsertNextValue(static_cast<int>(maps.method));
+  output->GetFieldData()->AddArray(used);
+  this->UpdateProgress(1.0);
+  return finish(1);
+}
+
+//------------------------------------------------------------------------------
+void vtkPLIAnalysis::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "InclinationMethod: " << this->InclinationMethod << "\n";
+  os << indent << "ReferenceRetardation: " << this->ReferenceRetardation << "\n";
+  os << indent << "NoiseGain: " << this->NoiseGain << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}
