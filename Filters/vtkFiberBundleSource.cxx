@@ -1,6 +1,7 @@
 #include "vtkFiberBundleSource.h"
 
 #include "FiberPolyData.h"
+#include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
 
 #include <vtkCellArray.h>
@@ -150,9 +151,13 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
     vtkWarningMacro(<< "FiberBundleSource: " << warning);
   }
 
-  this->UpdateProgress(0.0);
+  const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this);
+  progress(0.0);
   const fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma);
-  this->UpdateProgress(0.8);
+  if (!progress(0.8))
+  {
+    return 1; // aborted: no partial model is passed on
+  }
   fiberpli::FiberPolyData::FromModel(model, output);
 
   vtkNew<vtkDoubleArray> segmentLength;
