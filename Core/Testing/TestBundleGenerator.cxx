@@ -457,3 +457,50 @@ TEST(BundleGenerator, ShapeNamesRoundTrip)
   BundleShape unused;
   EXPECT_FALSE(parseBundleShape("Helix", unused));
 }
+
+TEST(BundleGenerator, ChiasmSidePathIsATangentArcAndNoUncrossedFiberFolds)
+{
+  // Path geometry: from −H·d0 to +H·d1, the arc of radius 20 centred at (−20/cos 45°, 0).
+  const double H = 30.0, w = M_PI / 2.0, rt = 20.0;
+  const std::vector<Vec3> path = chiasmSidePath(H, w, rt, false, 0.5);
+  const double S = H * std::sin(w / 2.0), C = H * std::cos(w / 2.0);
+  EXPECT_NEAR(distance(path.front(), Vec3{ -S, -C, 0.0 }), 0.0, 1e-9);
+  EXPECT_NEAR(distance(path.back(), Vec3{ -S, C, 0.0 }), 0.0, 1e-9);
+  const Vec3 centre{ -rt / std::cos(w / 2.0), 0.0, 0.0 };
+  double minFromCentre = 1e300;
+  for (std::size_t k = 0; k + 1 < path.size(); ++k)
+  {
+    EXPECT_LE(distance(path[k], path[k + 1]), 0.5 + 1e-9);
+    minFromCentre = std::min(minFromCentre, distance(path[k], centre));
+  }
+  EXPECT_NEAR(minFromCentre, rt, 1e-9); // the path never comes closer to the turn centre than rt
+  double tip = -1e300;
+  for (const Vec3& p : path)
+  {
+    tip = std::max(tip, p.x);
+  }
+  EXPECT_NEAR(tip, -rt / std::cos(w / 2.0) + rt, 0.01); // the arc's tip, on the x axis
+  const std::vector<Vec3> mirrored = chiasmSidePath(H, w, rt, true, 0.5);
+  EXPECT_EQ(mirrored.front().x, -path.front().x);
+  // Too short a nerve for the arc: the radius shrinks to H/tan(ω/2).
+  EXPECT_NEAR(chiasmTurnRadius(10.0, w, rt), 10.0, 1e-12);
+
+  // Default sizes: no uncrossed fiber bends tighter than BundleRadius (fastPLI's curve: 0.144·H =
+  // 4.3 µm, folding 32 of 44), and no folding warning.
+  BundleOptions o = quiet(BundleShape::Chiasm);
+  EXPECT_TRUE(bundleWarnings(o, nullptr).empty()) << bundleWarnings(o, nullptr);
+  const FiberModel m = generateBundle(o, nullptr);
+  int uncrossed = 0;
+  for (const Fiber& f : m.fibers)
+  {
+    if (f.bundle >= 2)
+    {
+      ++uncrossed;
+      EXPECT_GE(minimumCircumradius(f.points), o.bundleRadius) << f.id;
+    }
+  }
+  EXPECT_EQ(uncrossed, 44);
+  // A nerve too short for the arc still warns.
+  o.length = 10.0;
+  EXPECT_NE(bundleWarnings(o, nullptr).find("Chiasm side path radius of curvature"), std::string::npos);
+}

@@ -80,6 +80,10 @@ void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& stra
 }
 
 double yTurnRadius(const BundleOptions& o) { return std::max(2.0 * o.bundleRadius, 5.0 * o.fiberRadius); }
+// The uncrossed fibers are the lateral ones, on the inside of the side path's bend, up to
+// BundleRadius from its centre line: the same max(2R, 5r) as the Y keeps them >= R from the centre
+// of the turn.
+double chiasmTurnRadius(const BundleOptions& o) { return yTurnRadius(o); }
 } // namespace
 
 Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
@@ -171,7 +175,8 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
       }
       for (int side = 0; side < 2; ++side)
       {
-        const Path sidePath = makePath(chiasmSidePath(H, omega, side == 1), nullptr, o.segmentLength);
+        const Path sidePath = makePath(
+          chiasmSidePath(H, omega, chiasmTurnRadius(o), side == 1, 0.25 * o.segmentLength), nullptr, o.segmentLength);
         addBundle(model, sidePath, cs[side], uncrossed[side], 2 + side, o);
       }
       break;
@@ -194,7 +199,9 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   }
   else if (o.shape == BundleShape::Chiasm)
   {
-    t = resampleTrajectory(chiasmSidePath(0.5 * o.length, o.crossingAngle * kDegree, false), nullptr, o.segmentLength);
+    t = resampleTrajectory(
+      chiasmSidePath(0.5 * o.length, o.crossingAngle * kDegree, chiasmTurnRadius(o), false, 0.25 * o.segmentLength),
+      nullptr, o.segmentLength);
   }
   else
   {

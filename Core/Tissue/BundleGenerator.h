@@ -32,10 +32,12 @@ Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& fr
 ///   max(2R, 5r); trunk and branch Length/2 each.
 /// - Chiasm (§6.5): H = Length/2; bundles 0 left→right crossing, 1 right→left crossing, 2 left
 ///   uncrossed, 3 right uncrossed (the ⌈f·N⌉ fibers of each nerve with the largest entry offset
-///   along the lateral normal, ties by index); Ranvier on by default. Known limitation: the §6.5
-///   side path has a radius of curvature of 0.144·H at its tip, so with BundleRadius > 0.144·H
-///   (defaults: 4.3 µm < 10 µm) uncrossed fibers on the inside of the bend fold over (measured:
-///   32 of 44 with the defaults); bundleWarnings reports it. Length >= 2·BundleRadius/0.144 avoids it.
+///   along the lateral normal, ties by index); Ranvier on by default. The uncrossed fibers follow
+///   their nerve's axis, turn on a circular arc of radius max(2R, 5r) tangent to both nerve axes
+///   (chiasmSidePath) and leave along the other nerve's axis, so the innermost of them turn on a
+///   radius >= R and never fold over (fastPLI's five-point side curve had a tip radius of 0.144·H,
+///   below the default R, and folded 32 of 44 uncrossed fibers). Only when the arc must shrink to
+///   fit (H/tan(ω/2) < R, very short nerves or wide angles) does bundleWarnings report folding.
 /// All paths are resampled by arc length at SegmentLength (resampleTrajectory). Fiber ids are
 /// 0..N−1 in output order (bundle by bundle). Randomness: see makeCrossSection (cross-section index,
 /// seed index) — same options → bit-identical model. Returns an empty model when

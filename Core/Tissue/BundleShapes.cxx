@@ -55,13 +55,51 @@ Vec3 chiasmLateralNormal(double crossingAngle, bool right)
   return { (right ? 1.0 : -1.0) * std::cos(h), std::sin(h), 0.0 };
 }
 
-std::vector<Vec3> chiasmSidePath(double halfLength, double crossingAngle, bool right)
+double chiasmTurnRadius(double halfLength, double crossingAngle, double turnRadius)
+{
+  const double t = std::tan(0.5 * crossingAngle);
+  return t > 0.0 ? std::min(turnRadius, halfLength / t) : turnRadius;
+}
+
+std::vector<Vec3> chiasmSidePath(double halfLength, double crossingAngle, double turnRadius, bool right, double step)
 {
   const double mirror = right ? -1.0 : 1.0;
-  const double S = mirror * halfLength * std::sin(0.5 * crossingAngle);
-  const double C = halfLength * std::cos(0.5 * crossingAngle);
-  return { { -S, -C, 0.0 }, { -0.525 * S, -0.5 * C, 0.0 }, { -0.15 * S, 0.0, 0.0 },
-    { -0.525 * S, 0.5 * C, 0.0 }, { -S, C, 0.0 } };
+  const double h = 0.5 * crossingAngle;
+  const double s = std::sin(h);
+  const double c = std::cos(h);
+  const double rt = chiasmTurnRadius(halfLength, crossingAngle, turnRadius);
+  const double a = rt / c; // distance of the arc centre from the crossing point
+  const Vec3 d0{ s, c, 0.0 };
+  const Vec3 d1{ -s, c, 0.0 };
+  const double tangent = a * s; // distance of both tangent points from the crossing point
+  std::vector<Vec3> path;
+  const double straight = halfLength - tangent;
+  const int straightSteps = std::max(1, static_cast<int>(std::ceil(straight / step)));
+  if (straight > 1e-9 * halfLength)
+  {
+    for (int i = 0; i < straightSteps; ++i)
+    {
+      path.push_back(-(halfLength - straight * i / straightSteps) * d0);
+    }
+  }
+  const int arcSteps = std::max(2, static_cast<int>(std::ceil(rt * crossingAngle / step)));
+  for (int i = 0; i <= arcSteps; ++i)
+  {
+    const double phi = -h + crossingAngle * i / arcSteps;
+    path.push_back({ -a + rt * std::cos(phi), rt * std::sin(phi), 0.0 });
+  }
+  if (straight > 1e-9 * halfLength)
+  {
+    for (int i = 1; i <= straightSteps; ++i)
+    {
+      path.push_back((tangent + straight * i / straightSteps) * d1);
+    }
+  }
+  for (Vec3& p : path)
+  {
+    p.x *= mirror;
+  }
+  return path;
 }
 
 } // namespace fiberpli

@@ -25,9 +25,16 @@ Vec3 chiasmDirection(double crossingAngle, bool right);
 /// In-plane normal pointing away from the midline: n_L = (−cos(ω/2), sin(ω/2), 0), mirrored for
 /// the right nerve.
 Vec3 chiasmLateralNormal(double crossingAngle, bool right);
-/// The uncrossed (side) path of the left nerve, tissue-models.md §6.5: the five control points
-/// (−S, −C), (−0.525 S, −0.5 C), (−0.15 S, 0), (−0.525 S, 0.5 C), (−S, C), S = H sin(ω/2),
-/// C = H cos(ω/2) (fastPLI's optic_chiasm side bundle scaled); right nerve: x → −x.
-std::vector<Vec3> chiasmSidePath(double halfLength, double crossingAngle, bool right);
+/// The uncrossed (side) path of the left nerve, tissue-models.md §6.5 [ours, replaces fastPLI's
+/// five-point curve, whose tip has a radius of curvature of only 0.144·H, so that the inner fibers
+/// of any bundle wider than that folded over]: along the left nerve's axis from −H·d0, a circular
+/// arc of radius turnRadius tangent to both nerve axes (centre (−turnRadius/cos(ω/2), 0, 0), turning
+/// by ω), then along the right nerve's axis to +H·d1 = (−S, C). The arc is left where the nerve
+/// axes are turnRadius·tan(ω/2) from the crossing; turnRadius is reduced to H/tan(ω/2) if that
+/// point would lie beyond the nerve's end. Sampled densely (links <= step). Right nerve: x → −x.
+std::vector<Vec3> chiasmSidePath(double halfLength, double crossingAngle, double turnRadius, bool right, double step);
+
+/// The arc radius chiasmSidePath actually uses: min(turnRadius, H/tan(ω/2)).
+double chiasmTurnRadius(double halfLength, double crossingAngle, double turnRadius);
 
 } // namespace fiberpli

@@ -1,0 +1,16 @@
+"""Two bundles crossing at 90 degrees through the origin (FiberBundleSource Shape=Crossing), solved:
+the crossing region thickens.
+
+    pvbatch Examples/bundle_crossing.py <path to FiberPLI.so> <output folder>
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bundle_common import run  # noqa: E402
+
+run("crossing", ([25, -45, 60], [0, 0, 0], [0, 0, 1]),
+    Shape="Crossing", BundleRadius=10.0, Length=60.0, FiberRadius=0.8, RadiusSpread=0.0,
+    RadiusDistribution="LogNormal", FiberSpacing=2.0, NumberOfFibers=0, SegmentLength=2.0,
+    Displacement=0.2, CrossingAngle=90.0, UncrossedFraction=0.25, RanvierSpacing=0.0,
+    RanvierDepth=0.3, RanvierLength=1.0, Seed=42)

@@ -1,0 +1,16 @@
+"""A Y-shaped bundle: a trunk along +y splitting into two halves at 60 degrees
+(FiberBundleSource Shape=YShape), solved.
+
+    pvbatch Examples/bundle_yshape.py <path to FiberPLI.so> <output folder>
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bundle_common import run  # noqa: E402
+
+run("yshape", ([0, 0, 90], [0, 0, 0], [0, 1, 0]),
+    Shape="YShape", BundleRadius=10.0, Length=60.0, FiberRadius=0.8, RadiusSpread=0.0,
+    RadiusDistribution="LogNormal", FiberSpacing=2.0, NumberOfFibers=0, SegmentLength=2.0,
+    Displacement=0.2, CrossingAngle=60.0, UncrossedFraction=0.25, RanvierSpacing=0.0,
+    RanvierDepth=0.3, RanvierLength=1.0, Seed=42)

@@ -1,0 +1,195 @@
+#include "vtkFiberBundleSource.h"
+
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
+#include "Tissue/BundleGenerator.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <cstdint>
+#include <vector>
+
+vtkStandardNewMacro(vtkFiberBundleSource);
+
+//------------------------------------------------------------------------------
+// Construct a Cylinder of radius 10 µm and length 60 µm, fiber radius 0.8 µm (spread 0,
+// LogNormal) on a 2 µm triangular grid, segment length 2 µm, displacement 0.2 µm, crossing angle
+// 90°, uncrossed fraction 0.25, Ranvier spacing -1 (shape default) / depth 0.3 / length 1 µm,
+// seed 42. Input port 0 (the trajectory polyline) is optional.
+vtkFiberBundleSource::vtkFiberBundleSource()
+{
+  this->SetNumberOfInputPorts(1);
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberBundleSource::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+// The trajectory is small and needed whole: ask for all of it whatever piece is requested here.
+int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  if (inputVector[0]->GetNumberOfInformationObjects() > 0)
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+
+  // It has an input port, so it runs on every rank: only piece 0 makes fibers (architecture §7.9).
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  {
+    return 1;
+  }
+
+  fiberpli::BundleOptions options;
+  options.shape = static_cast<fiberpli::BundleShape>(this->Shape);
+  options.bundleRadius = this->BundleRadius;
+  options.length = this->Length;
+  options.fiberRadius = this->FiberRadius;
+  options.radiusSpread = this->RadiusSpread;
+  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
+  options.fiberSpacing = this->FiberSpacing;
+  options.numberOfFibers = this->NumberOfFibers;
+  options.segmentLength = this->SegmentLength;
+  options.displacement = this->Displacement;
+  options.crossingAngle = this->CrossingAngle;
+  options.uncrossedFraction = this->UncrossedFraction;
+  options.ranvierSpacing = this->RanvierSpacing;
+  options.ranvierDepth = this->RanvierDepth;
+  options.ranvierLength = this->RanvierLength;
+  options.seed = static_cast<std::uint64_t>(this->Seed);
+
+  std::vector<fiberpli::Vec3> trajectory;
+  std::vector<double> scale;
+  bool hasScale = false;
+  if (this->Shape == TRAJECTORY)
+  {
+    vtkPolyData* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+      ? vtkPolyData::GetData(inputVector[0])
+      : nullptr;
+    if (!input)
+    {
+      vtkErrorMacro(<< "FiberBundleSource: Shape is Trajectory but no polyline is connected to input port 0 "
+                       "(Trajectory); connect one or choose another Shape");
+      return 0;
+    }
+    if (fiberpli::FiberPolyData::IsEmpty(input))
+    {
+      return 1; // an empty trajectory makes an empty bundle, not an error
+    }
+    if (!input->GetLines() || input->GetLines()->GetNumberOfCells() == 0)
+    {
+      vtkErrorMacro(<< "FiberBundleSource: the Trajectory input has no line cell (polyline)");
+      return 0;
+    }
+    vtkDataArray* scaleArray = input->GetPointData()->GetArray("scale");
+    if (scaleArray && scaleArray->GetNumberOfComponents() != 1)
+    {
+      vtkErrorMacro(<< "FiberBundleSource: the Trajectory point array 'scale' has "
+                    << scaleArray->GetNumberOfComponents() << " components, must have 1");
+      return 0;
+    }
+    auto it = vtk::TakeSmartPointer(input->GetLines()->NewIterator());
+    it->GoToFirstCell();
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    it->GetCurrentCell(n, ids);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      input->GetPoint(ids[i], p);
+      trajectory.push_back({ p[0], p[1], p[2] });
+      if (scaleArray)
+      {
+        scale.push_back(scaleArray->GetTuple1(ids[i]));
+      }
+    }
+    hasScale = scaleArray != nullptr;
+  }
+  const std::vector<fiberpli::Vec3>* path = this->Shape == TRAJECTORY ? &trajectory : nullptr;
+  const std::vector<double>* sigma = hasScale ? &scale : nullptr;
+
+  const std::string invalid = fiberpli::validateBundleOptions(options, path, sigma);
+  if (!invalid.empty())
+  {
+    vtkErrorMacro(<< "FiberBundleSource: " << invalid);
+    return 0;
+  }
+  const std::string warning = fiberpli::bundleWarnings(options, path, sigma);
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< "FiberBundleSource: " << warning);
+  }
+
+  const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this);
+  progress(0.0);
+  const fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma);
+  if (!progress(0.8))
+  {
+    return 1; // aborted: no partial model is passed on
+  }
+  fiberpli::FiberPolyData::FromModel(model, output);
+
+  vtkNew<vtkDoubleArray> segmentLength;
+  segmentLength->SetName("segment_length");
+  segmentLength->InsertNextValue(this->SegmentLength);
+  output->GetFieldData()->AddArray(segmentLength);
+  vtkNew<vtkIntArray> seed;
+  seed->SetName("seed");
+  seed->InsertNextValue(this->Seed);
+  output->GetFieldData()->AddArray(seed);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberBundleSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Shape: " << this->Shape << "\n";
+  os << indent << "BundleRadius: " << this->BundleRadius << "\n";
+  os << indent << "Length: " << this->Length << "\n";
+  os << indent << "FiberRadius: " << this->FiberRadius << "\n";
+  os << indent << "RadiusSpread: " << this->RadiusSpread << "\n";
+  os << indent << "RadiusDistribution: " << this->RadiusDistribution << "\n";
+  os << indent << "FiberSpacing: " << this->FiberSpacing << "\n";
+  os << indent << "NumberOfFibers: " << this->NumberOfFibers << "\n";
+  os << indent << "SegmentLength: " << this->SegmentLength << "\n";
+  os << indent << "Displacement: " << this->Displacement << "\n";
+  os << indent << "CrossingAngle: " << this->CrossingAngle << "\n";
+  os << indent << "UncrossedFraction: " << this->UncrossedFraction << "\n";
+  os << indent << "RanvierSpacing: " << this->RanvierSpacing << "\n";
+  os << indent << "RanvierDepth: " << this->RanvierDepth << "\n";
+  os << indent << "RanvierLength: " << this->RanvierLength << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+}

@@ -1,0 +1,219 @@
+/**
+ * @class   vtkFiberBundleSource
+ * @brief   bundles of fibers along a trajectory: cylinder, input polyline, crossing, Y-shape, chiasm
+ *
+ * Output: fiber polydata (api.md): one polyline per fiber, point array `radius` (µm), cell arrays
+ * `fiber_id` (0..N-1) and `bundle_id`, field data `segment_length` and `seed`. The cross-section
+ * of a bundle of radius BundleRadius is filled with fibers on a triangular grid of spacing
+ * FiberSpacing (or NumberOfFibers random seeds) and carried along the trajectory by a
+ * rotation-minimising frame; every point is then displaced uniformly within ±Displacement per axis
+ * (tissue-models.md §2, §5, §6). Shapes and bundle ids:
+ * - Cylinder: along x from (-Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
+ * - Trajectory: along the first line cell of the optional input port 0 (`Trajectory`); an optional
+ *   point array `scale` (> 0) widens or narrows the bundle per point; bundle 0.
+ * - Crossing: two bundles of length Length through the origin, at CrossingAngle in the x-y plane;
+ *   bundles 0, 1.
+ * - YShape: trunk along +y to the fork at the origin, halves turning to ±CrossingAngle/2; bundles
+ *   0 (left), 1 (right).
+ * - Chiasm: two nerves crossing at CrossingAngle; UncrossedFraction of each nerve's lateral fibers
+ *   turn back to their own side on a circular arc; bundles 0, 1 crossing, 2, 3 uncrossed; nodes of
+ *   Ranvier on by default.
+ * Units µm and degrees. Invalid properties or a bad trajectory (fewer than 2 points, repeated
+ * consecutive points, NaN) give an error naming the property or the point and an empty output;
+ * a bend where inner fibers would fold over gives one warning. The output is made on piece 0 only
+ * (empty on other pieces of a distributed run). The same properties give the same fibers.
+ */
+#ifndef vtkFiberBundleSource_h
+#define vtkFiberBundleSource_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class FIBERPLIFILTERS_EXPORT vtkFiberBundleSource : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkFiberBundleSource* New();
+  vtkTypeMacro(vtkFiberBundleSource, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ShapeType
+  {
+    CYLINDER = 0,
+    TRAJECTORY = 1,
+    CROSSING = 2,
+    YSHAPE = 3,
+    CHIASM = 4
+  };
+  enum RadiusDistributionType
+  {
+    LOGNORMAL = 0,
+    UNIFORM = 1
+  };
+
+  ///@{
+  /**
+   * Model: 0 Cylinder, 1 Trajectory (the polyline on input port 0), 2 Crossing, 3 YShape,
+   * 4 Chiasm. Default is 0.
+   */
+  vtkSetClampMacro(Shape, int, 0, 4);
+  vtkGetMacro(Shape, int);
+  ///@}
+
+  ///@{
+  /**
+   * Radius of each bundle in µm, >= FiberRadius. Default is 10.
+   */
+  vtkSetClampMacro(BundleRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(BundleRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Length in µm: of the cylinder, of each crossing bundle or nerve (through the origin), or
+   * trunk + branch of the Y-shape; not used for Trajectory. Default is 60.
+   */
+  vtkSetClampMacro(Length, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Length, double);
+  ///@}
+
+  ///@{
+  /**
+   * Nominal fiber radius in µm, > 0. Default is 0.8.
+   */
+  vtkSetClampMacro(FiberRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(FiberRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Spread s of the fiber radii, >= 0 (0 = all radii equal; < 1 for Uniform). Default is 0.
+   */
+  vtkSetClampMacro(RadiusSpread, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RadiusSpread, double);
+  ///@}
+
+  ///@{
+  /**
+   * Radius distribution: 0 LogNormal (r·exp(s·z), median r), 1 Uniform (U[r(1-s), r(1+s)]).
+   * Default is 0.
+   */
+  vtkSetClampMacro(RadiusDistribution, int, 0, 1);
+  vtkGetMacro(RadiusDistribution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Spacing of the triangular seed grid in µm, > 0; used when NumberOfFibers is 0. Default is 2.
+   */
+  vtkSetClampMacro(FiberSpacing, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(FiberSpacing, double);
+  ///@}
+
+  ///@{
+  /**
+   * Fibers per bundle cross-section at random positions; 0 = triangular grid of FiberSpacing.
+   * Default is 0.
+   */
+  vtkSetClampMacro(NumberOfFibers, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfFibers, int);
+  ///@}
+
+  ///@{
+  /**
+   * Distance of consecutive fiber points along the trajectory in µm, > 0. Default is 2.
+   */
+  vtkSetClampMacro(SegmentLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SegmentLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Maximum random displacement of every point per axis in µm (uniform in ±D), >= 0.
+   * Default is 0.2.
+   */
+  vtkSetClampMacro(Displacement, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Displacement, double);
+  ///@}
+
+  ///@{
+  /**
+   * Angle in degrees: between the bundles (Crossing, up to 180), opening of the Y (YShape, below
+   * 180), between the nerves (Chiasm, below 180). Default is 90.
+   */
+  vtkSetClampMacro(CrossingAngle, double, 0.0, 180.0);
+  vtkGetMacro(CrossingAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Chiasm: fraction of each nerve's fibers (the most lateral ones) that stay on their side,
+   * 0 to 1. Default is 0.25.
+   */
+  vtkSetClampMacro(UncrossedFraction, double, 0.0, 1.0);
+  vtkGetMacro(UncrossedFraction, double);
+  ///@}
+
+  ///@{
+  /**
+   * Distance of the nodes of Ranvier along each fiber in µm; 0 = off, -1 = shape default
+   * (Chiasm 20 µm, other shapes off). Default is -1.
+   */
+  vtkSetClampMacro(RanvierSpacing, double, -1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RanvierSpacing, double);
+  ///@}
+
+  ///@{
+  /**
+   * Relative radius reduction at a node of Ranvier, 0 to 1 (exclusive). Default is 0.3.
+   */
+  vtkSetClampMacro(RanvierDepth, double, 0.0, 1.0);
+  vtkGetMacro(RanvierDepth, double);
+  ///@}
+
+  ///@{
+  /**
+   * Length of a node of Ranvier in µm, > 0, at most half the RanvierSpacing. Default is 1.
+   */
+  vtkSetClampMacro(RanvierLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RanvierLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random positions, radii, node phases and displacements; the same seed gives the
+   * same fibers. Default is 42.
+   */
+  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+protected:
+  vtkFiberBundleSource();
+  ~vtkFiberBundleSource() override = default;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkFiberBundleSource(const vtkFiberBundleSource&) = delete;
+  void operator=(const vtkFiberBundleSource&) = delete;
+
+  int Shape = 0;
+  double BundleRadius = 10.0;
+  double Length = 60.0;
+  double FiberRadius = 0.8;
+  double RadiusSpread = 0.0;
+  int RadiusDistribution = 0;
+  double FiberSpacing = 2.0;
+  int NumberOfFibers = 0;
+  double SegmentLength = 2.0;
+  double Displacement = 0.2;
+  double CrossingAngle = 90.0;
+  double UncrossedFraction = 0.25;
+  double RanvierSpacing = -1.0;
+  double RanvierDepth = 0.3;
+  double RanvierLength = 1.0;
+  int Seed = 42;
+};
+
+#endif
