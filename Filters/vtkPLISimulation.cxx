@@ -1,0 +1,304 @@
+#include "vtkPLISimulation.h"
+
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
+#include "PLI/PLIPipeline.h"
+
+#include <vtkAlgorithmOutput.h>
+#include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkPLISimulation);
+
+namespace
+{
+fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
+{
+  fiberpli::pli::PLIOptions o;
+  self->GetVolumeOfInterest(o.volumeOfInterest);
+  o.voxelSize = self->GetVoxelSize();
+  o.pixelSize = self->GetPixelSize();
+  o.wavelength = self->GetWavelength();
+  o.lightIntensity = self->GetLightIntensity();
+  o.numberOfRotations = self->GetNumberOfRotations();
+  o.tiltAngle = self->GetTiltAngle();
+  o.birefringence = self->GetBirefringence();
+  o.absorption = self->GetAbsorption();
+  o.seed = static_cast<std::uint64_t>(self->GetSeed());
+  o.layers = self->GetLayers() ? self->GetLayers() : "";
+  o.backgroundAbsorption = self->GetBackgroundAbsorption();
+  o.stepSize = self->GetStepSize();
+  o.interpolation = static_cast<fiberpli::pli::Interp>(self->GetInterpolation());
+  o.opticalSigma = self->GetOpticalSigma();
+  o.noiseGain = self->GetNoiseGain();
+  o.refractiveIndex = self->GetRefractiveIndex();
+  o.numberOfThreads = self->GetNumberOfThreads();
+  return o;
+}
+
+bool IsBoundsSentinel(const double* voi)
+{
+  return voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
+}
+
+void AddField(vtkFieldData* fd, const char* name, std::initializer_list<double> values)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  for (double v : values)
+  {
+    a->InsertNextValue(v);
+  }
+  fd->AddArray(a);
+}
+
+void AddIntField(vtkFieldData* fd, const char* name, int value)
+{
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkPLISimulation::vtkPLISimulation()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+}
+
+//------------------------------------------------------------------------------
+vtkPLISimulation::~vtkPLISimulation()
+{
+  this->SetLayers(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  this->PlanError.clear();
+  this->EmptyInput = false;
+  const int empty[6] = { 0, -1, 0, -1, 0, -1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+
+  const fiberpli::pli::PLIOptions options = MakeOptions(this);
+  fiberpli::FiberModel model;
+  if (IsBoundsSentinel(options.volumeOfInterest))
+  {
+    // The image size depends on the fibers' bounds, which only the input data knows: bring the
+    // input up to date now with the request RequestUpdateExtent makes anyway (piece 0 of 1), so the
+    // later data pass does not execute upstream again.
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetInputExecutive(0, 0));
+    if (inInfo && exec)
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+      exec->Update(this->GetInputConnection(0, 0)->GetIndex());
+    }
+    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+    if (fiberpli::FiberPolyData::IsEmpty(input))
+    {
+      this->EmptyInput = true;
+      return 1;
+    }
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
+    if (!in.ok())
+    {
+      this->PlanError = in.error;
+      return 1;
+    }
+    model = std::move(in.model);
+  }
+
+  fiberpli::pli::PLIPlan plan;
+  const fiberpli::pli::Status st = fiberpli::pli::planPLI(model, options, plan);
+  if (!st.ok())
+  {
+    this->PlanError = "PLISimulation: " + st.error;
+    return 1;
+  }
+  const int whole[6] = { 0, static_cast<int>(plan.pixels[0] - 1), 0, static_cast<int>(plan.pixels[1] - 1), 0, 0 };
+  const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), plan.imageOrigin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, options.numberOfRotations);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  // Every pixel may see every fiber (tilted rays, blur halo): each rank needs all of them.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+  if (!this->PlanError.empty())
+  {
+    vtkErrorMacro(<< this->PlanError);
+    return 0;
+  }
+  if (this->EmptyInput || fiberpli::FiberPolyData::IsEmpty(input))
+  {
+    return 1;
+  }
+  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
+  if (!in.ok())
+  {
+    vtkErrorMacro(<< in.error);
+    return 0;
+  }
+  if (!in.warning.empty())
+  {
+    vtkWarningMacro(<< in.warning);
+  }
+
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  if (ext[0] > ext[1] || ext[2] > ext[3])
+  {
+    return 1;
+  }
+  const fiberpli::pli::PLIOptions options = MakeOptions(this);
+  const fiberpli::pli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
+  fiberpli::pli::PLIImage image;
+  const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
+  bool inOptics = false;
+  this->SetProgressText("Voxelising and propagating light");
+  const fiberpli::pli::Status st = fiberpli::pli::runPLI(in.model, options, range, image,
+    [&](double f) {
+      if (f >= 0.95 && !inOptics)
+      {
+        inOptics = true;
+        this->SetProgressText("Optics: blur, binning, noise");
+      }
+      return vtkProgress(f);
+    });
+  if (!st.ok())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    return 0;
+  }
+  if (!st.warnings.empty())
+  {
+    std::string text = "PLISimulation:";
+    for (const std::string& w : st.warnings)
+    {
+      text += " " + w + ";";
+    }
+    vtkWarningMacro(<< text);
+  }
+  if (image.aborted)
+  {
+    return 1;
+  }
+
+  const fiberpli::pli::PLIPlan& plan = image.plan;
+  const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
+  ext[4] = ext[5] = 0;
+  output->SetExtent(ext);
+  output->SetSpacing(spacing);
+  output->SetOrigin(plan.imageOrigin);
+  const int nrho = options.numberOfRotations;
+  const vtkIdType n = static_cast<vtkIdType>(range.nx() * range.ny());
+  for (std::size_t v = 0; v < image.views.size(); ++v)
+  {
+    const std::string name = v == 0 ? "intensity" : "intensity_tilt_" + std::to_string(v - 1);
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name.c_str());
+    a->SetNumberOfComponents(nrho);
+    a->SetNumberOfTuples(n);
+    // Core stacks are x fastest then y, rotations innermost: the VTK point order exactly.
+    std::copy(image.views[v].data.begin(), image.views[v].data.end(), a->GetPointer(0));
+    output->GetPointData()->AddArray(a);
+  }
+  output->GetPointData()->SetActiveScalars("intensity");
+
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkDoubleArray> angles;
+  angles->SetName("polarizer_angles");
+  for (double rho : plan.rho)
+  {
+    angles->InsertNextValue(rho * 180.0 / M_PI);
+  }
+  fd->AddArray(angles);
+  AddField(fd, "tilt_angle", { plan.views.size() > 1 ? plan.tiltInTissue * 180.0 / M_PI : 0.0 });
+  AddField(fd, "tilt_directions", { 0.0, 90.0, 180.0, 270.0 });
+  AddField(fd, "section_thickness", { plan.thickness });
+  AddField(fd, "wavelength", { options.wavelength });
+  AddIntField(fd, "tilt_convention", static_cast<int>(options.tiltConvention));
+  AddField(fd, "noise_gain", { options.noiseGain });
+  AddIntField(fd, "empty_section", image.emptySection ? 1 : 0);
+  AddField(fd, "voxel_size", { options.voxelSize });
+  AddField(fd, "pixel_size", { options.pixelSize });
+  AddField(fd, "light_intensity", { options.lightIntensity });
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const double* v = this->VolumeOfInterest;
+  os << indent << "VolumeOfInterest: " << v[0] << " " << v[1] << " " << v[2] << " " << v[3] << " " << v[4] << " "
+     << v[5] << "\n";
+  os << indent << "VoxelSize: " << this->VoxelSize << "\n";
+  os << indent << "PixelSize: " << this->PixelSize << "\n";
+  os << indent << "Wavelength: " << this->Wavelength << "\n";
+  os << indent << "LightIntensity: " << this->LightIntensity << "\n";
+  os << indent << "NumberOfRotations: " << this->NumberOfRotations << "\n";
+  os << indent << "TiltAngle: " << this->TiltAngle << "\n";
+  os << indent << "Birefringence: " << this->Birefringence << "\n";
+  os << indent << "Absorption: " << this->Absorption << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Layers: " << (this->Layers ? this->Layers : "") << "\n";
+  os << indent << "BackgroundAbsorption: " << this->BackgroundAbsorption << "\n";
+  os << indent << "StepSize: " << this->StepSize << "\n";
+  os << indent << "Interpolation: " << this->Interpolation << "\n";
+  os << indent << "OpticalSigma: " << this->OpticalSigma << "\n";
+  os << indent << "NoiseGain: " << this->NoiseGain << "\n";
+  os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}

@@ -1,0 +1,236 @@
+/**
+ * @class   vtkPLISimulation
+ * @brief   3D-PLI simulation: the polarimeter's image stack of a tissue section voxelised from fibers
+ *
+ * Input: fiber polydata (api.md: polylines with the point array `radius`, optional cell array
+ * `bundle_id`). The fibers are voxelised into a section (layered capsules, pli-simulation.md §3),
+ * light is propagated through it with Müller matrices for every polarizer angle and view (§4), then
+ * blurred, binned to camera pixels and given camera noise (§5). All work is done by the Core
+ * (fiberpli::pli::runPLI).
+ *
+ * Output: vtkImageData with one slice (z extent 0..0), x and y in µm, spacing PixelSize. Point
+ * arrays (double, one component per polarizer angle ρ_k = k·180°/NumberOfRotations): `intensity`
+ * (untilted view) and, when TiltAngle > 0, `intensity_tilt_0..3` (tilt azimuths 0°, 90°, 180°,
+ * 270°). Field data: `polarizer_angles` (deg), `tilt_angle` (deg, in-tissue θ_t = asin(sin θ / n)),
+ * `tilt_directions` (deg, 0 90 180 270), `section_thickness` (µm, n_z·VoxelSize), `wavelength` (nm),
+ * `tilt_convention` (int, 0 = physical), `noise_gain`, `empty_section` (int), `voxel_size`,
+ * `pixel_size` (µm), `light_intensity`.
+ *
+ * The image plane can be split (CAN_PRODUCE_SUB_EXTENT): any UPDATE_EXTENT gives exactly the crop
+ * of the whole image, so MPI ranks compute their own pixels without communication; every rank asks
+ * its input for piece 0 of 1 (all fibers). When VolumeOfInterest is the "input bounds" sentinel,
+ * RequestInformation brings the input up to date (piece 0 of 1) to read its bounds, because the
+ * image size depends on them.
+ *
+ * Bad input (missing `radius`, NaN, radius <= 0) and bad properties (VoxelSize <= 0, a
+ * VolumeOfInterest with min > max on some axes only, sizes needing more than 16 GiB, bad Layers) are
+ * errors naming the array, fiber or property; nothing is allocated and the output is empty. An
+ * empty input gives an empty output. A section without fibers gives the background image and a
+ * warning.
+ */
+#ifndef vtkPLISimulation_h
+#define vtkPLISimulation_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // for PlanError
+
+class FIBERPLIFILTERS_EXPORT vtkPLISimulation : public vtkImageAlgorithm
+{
+public:
+  static vtkPLISimulation* New();
+  vtkTypeMacro(vtkPLISimulation, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Optic-axis interpolation along tilted rays (pli-simulation.md §4.5).
+  enum InterpolationType
+  {
+    NEAREST = 0,
+    LINEAR = 1,
+    SLERP = 2
+  };
+
+  ///@{
+  /**
+   * Section, µm: xmin xmax ymin ymax zmin zmax; the z range is the section thickness. min > max on
+   * every axis means the input's bounds (with radii). Default is (1, -1, 1, -1, 1, -1).
+   */
+  vtkSetVector6Macro(VolumeOfInterest, double);
+  vtkGetVector6Macro(VolumeOfInterest, double);
+  ///@}
+
+  ///@{
+  /**
+   * Tissue voxel size, µm, > 0. Default is 0.5.
+   */
+  vtkSetMacro(VoxelSize, double);
+  vtkGetMacro(VoxelSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Camera pixel size, µm, >= VoxelSize. Default is 2.
+   */
+  vtkSetMacro(PixelSize, double);
+  vtkGetMacro(PixelSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Wavelength of the light, nm, > 0. Default is 525.
+   */
+  vtkSetMacro(Wavelength, double);
+  vtkGetMacro(Wavelength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Intensity I0 of the unpolarised light source, >= 0. Default is 26000.
+   */
+  vtkSetMacro(LightIntensity, double);
+  vtkGetMacro(LightIntensity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of polarizer angles N, 3 to 3600; angles k·180°/N. Default is 18.
+   */
+  vtkSetMacro(NumberOfRotations, int);
+  vtkGetMacro(NumberOfRotations, int);
+  ///@}
+
+  ///@{
+  /**
+   * Tilt angle of the 4 tilted views, degrees in [0, 45); 0 = no tilted views. Default is 0.
+   */
+  vtkSetMacro(TiltAngle, double);
+  vtkGetMacro(TiltAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Birefringence Δn of the fibers (one parallel layer) when Layers is empty. Default is -0.001.
+   */
+  vtkSetMacro(Birefringence, double);
+  vtkGetMacro(Birefringence, double);
+  ///@}
+
+  ///@{
+  /**
+   * Absorption μ of the fibers when Layers is empty, 1/mm, >= 0. Default is 0.
+   */
+  vtkSetMacro(Absorption, double);
+  vtkGetMacro(Absorption, double);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the camera noise, 0 to 2147483647. Default is 0.
+   */
+  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /**
+   * Layered fiber model: groups separated by '|', optional "bundle_id:" prefix, ';'-separated
+   * tuples "scale dn mu model" with model p (parallel), r (radial) or b (isotropic), e.g.
+   * "0.666 0 5 b; 1 0.004 1 r". Overrides Birefringence and Absorption. Default is "" (none).
+   */
+  vtkSetStringMacro(Layers);
+  vtkGetStringMacro(Layers);
+  ///@}
+
+  ///@{
+  /**
+   * Absorption of the embedding medium, 1/mm, >= 0. Default is 0.
+   */
+  vtkSetMacro(BackgroundAbsorption, double);
+  vtkGetMacro(BackgroundAbsorption, double);
+  ///@}
+
+  ///@{
+  /**
+   * Ray step length, voxels, > 0. Default is 1.
+   */
+  vtkSetMacro(StepSize, double);
+  vtkGetMacro(StepSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * Optic-axis interpolation: 0 nearest, 1 linear, 2 spherical linear (Slerp). Default is 2.
+   */
+  vtkSetClampMacro(Interpolation, int, 0, 2);
+  vtkGetMacro(Interpolation, int);
+  ///@}
+
+  ///@{
+  /**
+   * Standard deviation of the Gaussian blur, output pixels, >= 0; 0 = no blur. Default is 0.71.
+   */
+  vtkSetMacro(OpticalSigma, double);
+  vtkGetMacro(OpticalSigma, double);
+  ///@}
+
+  ///@{
+  /**
+   * Camera gain g (variance g·I): 0 = no noise, 1 = Poisson, > 1 = negative binomial. Default is 3.
+   */
+  vtkSetMacro(NoiseGain, double);
+  vtkGetMacro(NoiseGain, double);
+  ///@}
+
+  ///@{
+  /**
+   * Refractive index of the tissue for the tilted beam, >= 1. Default is 1.
+   */
+  vtkSetMacro(RefractiveIndex, double);
+  vtkGetMacro(RefractiveIndex, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads, 0 = all cores. Default is 0.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+protected:
+  vtkPLISimulation();
+  ~vtkPLISimulation() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkPLISimulation(const vtkPLISimulation&) = delete;
+  void operator=(const vtkPLISimulation&) = delete;
+
+  double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
+  double VoxelSize = 0.5;
+  double PixelSize = 2.0;
+  double Wavelength = 525.0;
+  double LightIntensity = 26000.0;
+  int NumberOfRotations = 18;
+  double TiltAngle = 0.0;
+  double Birefringence = -0.001;
+  double Absorption = 0.0;
+  int Seed = 0;
+  char* Layers = nullptr;
+  double BackgroundAbsorption = 0.0;
+  double StepSize = 1.0;
+  int Interpolation = SLERP;
+  double OpticalSigma = 0.71;
+  double NoiseGain = 3.0;
+  double RefractiveIndex = 1.0;
+  int NumberOfThreads = 0;
+
+  std::string PlanError; ///< error found by RequestInformation, reported by RequestData
+  bool EmptyInput = false;
+};
+
+#endif
