@@ -2,17 +2,162 @@
 
 #include "IO/AtomicFile.h"
 #include "IO/DatFormat.h"
+#include "IO/MrtrixHeader.h"
 #include "IO/TckFormat.h"
 #include "IO/TrkFormat.h"
+#include "IO/TsfFormat.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <sys/stat.h>
 
 namespace fiberpli
 {
+
+namespace
+{
+
+FiberReadResult failed(const std::string& message)
+{
+  FiberReadResult r;
+  r.error = message;
+  return r;
+}
+
+/// Replaces the default radii of a .tck read (tck) with the values of its radius file (tsf) after
+/// checking that both describe the same streamlines (FiberFile.h, readFiberFile).
+FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampValue, const std::string& tckPath,
+  const TsfReadResult& tsf, const std::string& tsfPath)
+{
+  if (!tsf.ok())
+  {
+    return failed(tsf.error);
+  }
+  if (!tsf.timestamp.empty() && !tckTimestampValue.empty() && tsf.timestamp != tckTimestampValue)
+  {
+    return failed(tsfPath + ": timestamp '" + tsf.timestamp + "' differs from timestamp '" + tckTimestampValue +
+      "' of " + tckPath + " (the radii belong to other tracks; rewrite or remove the .tsf)");
+  }
+  const std::size_t streamlines = tck.model.fibers.size() + tck.droppedFibers;
+  if (tsf.values.size() != streamlines)
+  {
+    std::ostringstream msg;
+    msg << tsfPath << ": holds " << tsf.values.size() << " streamlines but " << tckPath << " holds " << streamlines;
+    return failed(msg.str());
+  }
+  // Streamlines readTck dropped (fewer than 2 points) have no fiber: they must be short here too.
+  std::vector<bool> kept(streamlines, false);
+  for (const Fiber& f : tck.model.fibers)
+  {
+    kept[static_cast<std::size_t>(f.id)] = true; // readTck: id = streamline position < streamlines
+  }
+  for (std::size_t s = 0; s < streamlines; ++s)
+  {
+    if (!kept[s] && tsf.values[s].size() >= 2)
+    {
+      std::ostringstream msg;
+      msg << "streamline " << s << " has " << tsf.values[s].size() << " values but fewer than 2 points in " << tckPath;
+      return failed(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
+    }
+  }
+  for (Fiber& f : tck.model.fibers)
+  {
+    const std::size_t s = static_cast<std::size_t>(f.id);
+    const std::vector<double>& values = tsf.values[s];
+    if (values.size() != f.points.size())
+    {
+      std::ostringstream msg;
+      msg << "streamline " << s << " has " << values.size() << " values but " << f.points.size() << " points in "
+          << tckPath;
+      return failed(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
+    }
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      if (!std::isfinite(values[i]) || values[i] <= 0.0)
+      {
+        std::ostringstream msg;
+        msg << "radius " << values[i] << " of streamline " << s << " point " << i << " must be finite and > 0";
+        return failed(mrtrixErrorAt(tsfPath, "byte", tsf.byteOffset(s, i), msg.str()));
+      }
+    }
+    f.radii = values;
+  }
+  return tck;
+}
+
+FiberReadResult readTckWithRadii(std::istream& in, const std::string& path, double defaultRadius)
+{
+  std::string timestamp;
+  FiberReadResult tck = readTck(in, path, defaultRadius, &timestamp);
+  if (!tck.ok())
+  {
+    return tck;
+  }
+  const std::string tsfPath = tckRadiusPath(path);
+  struct stat info;
+  if (::stat(tsfPath.c_str(), &info) != 0 && errno == ENOENT)
+  {
+    return tck; // no radius file: defaultRadius everywhere, as for any .tck
+  }
+  std::ifstream tsfIn(tsfPath, std::ios::binary);
+  if (!tsfIn)
+  {
+    return failed("cannot open " + tsfPath + " (radii of " + path + "): " + std::strerror(errno));
+  }
+  return applyRadii(std::move(tck), timestamp, path, readTsf(tsfIn, tsfPath), tsfPath);
+}
+
+std::string writeTckWithRadii(const std::string& path, const FiberModel& model)
+{
+  const std::string tsfPath = tckRadiusPath(path);
+  std::vector<std::vector<double>> radii;
+  if (validateModel(model).empty()) // else writeTck below reports the problem
+  {
+    radii.reserve(model.fibers.size());
+    for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)
+    {
+      const Fiber& f = model.fibers[fi];
+      for (std::size_t i = 0; i < f.radii.size(); ++i)
+      {
+        const float stored = static_cast<float>(f.radii[i]);
+        if (!std::isfinite(stored) || stored <= 0.0f)
+        {
+          std::ostringstream msg;
+          msg << tsfPath << ": cannot write .tsf: fiber " << fi << " (fiber_id " << f.id << ") point " << i
+              << " has radius " << f.radii[i] << ", which float32 stores as " << stored;
+          return msg.str();
+        }
+      }
+      radii.push_back(f.radii);
+    }
+  }
+  const std::string tckError = writeFileAtomically(path, [&](std::ostream& out) {
+    const std::string error = writeTck(out, model);
+    return error.empty() ? error : path + ": " + error;
+  });
+  if (!tckError.empty())
+  {
+    return tckError;
+  }
+  const std::string tsfError = writeFileAtomically(tsfPath, [&](std::ostream& out) {
+    const std::string error = writeTsf(out, radii, tckTimestamp(model));
+    return error.empty() ? error : tsfPath + ": " + error;
+  });
+  if (!tsfError.empty())
+  {
+    return path + " was written but its radius file was not: " + tsfError;
+  }
+  return {};
+}
+
+} // namespace
 
 FiberFileFormat fiberFileFormatFromPath(const std::string& path)
 {
@@ -37,6 +182,14 @@ FiberFileFormat fiberFileFormatFromPath(const std::string& path)
     return FiberFileFormat::Trk;
   }
   return FiberFileFormat::Unknown;
+}
+
+std::string tckRadiusPath(const std::string& tckPath)
+{
+  const std::size_t dot = tckPath.find_last_of('.');
+  const std::size_t slash = tckPath.find_last_of('/');
+  const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (hasExtension ? tckPath.substr(0, dot) : tckPath) + ".radius.tsf";
 }
 
 bool canReadFiberFile(const std::string& path)
@@ -66,21 +219,17 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Unknown)
   {
-    FiberReadResult r;
-    r.error = path + ": unknown fiber file extension (expected .dat, .tck or .trk)";
-    return r;
+    return failed(path + ": unknown fiber file extension (expected .dat, .tck or .trk)");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    FiberReadResult r;
-    r.error = "cannot open " + path + ": " + std::strerror(errno);
-    return r;
+    return failed("cannot open " + path + ": " + std::strerror(errno));
   }
   switch (format)
   {
     case FiberFileFormat::FastPliDat: return readFastPliDat(in, path);
-    case FiberFileFormat::Tck: return readTck(in, path, defaultRadius);
+    case FiberFileFormat::Tck: return readTckWithRadii(in, path, defaultRadius);
     case FiberFileFormat::Trk: return readTrk(in, path, defaultRadius);
     case FiberFileFormat::Unknown: break;
   }
@@ -90,21 +239,16 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
 std::string writeFiberFile(const std::string& path, const FiberModel& model)
 {
   const FiberFileFormat format = fiberFileFormatFromPath(path);
-  std::string (*writer)(std::ostream&, const FiberModel&) = nullptr;
-  if (format == FiberFileFormat::FastPliDat)
+  if (format == FiberFileFormat::Tck)
   {
-    writer = &writeFastPliDat;
+    return writeTckWithRadii(path, model);
   }
-  else if (format == FiberFileFormat::Tck)
-  {
-    writer = &writeTck;
-  }
-  else
+  if (format != FiberFileFormat::FastPliDat)
   {
     return path + ": cannot write this extension (FiberWriter writes .dat and .tck here)";
   }
   return writeFileAtomically(path, [&](std::ostream& out) {
-    const std::string error = writer(out, model);
+    const std::string error = writeFastPliDat(out, model);
     return error.empty() ? error : path + ": " + error;
   });
 }

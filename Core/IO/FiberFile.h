@@ -27,12 +27,26 @@ FiberFileFormat fiberFileFormatFromPath(const std::string& path);
 /// CanReadFile; other readers claim .dat too). False for unknown extensions or unreadable files.
 bool canReadFiberFile(const std::string& path);
 
+/// The track scalar file that holds the radii of the .tck at tckPath: the extension replaced by
+/// ".radius.tsf" ("dir/x.tck" -> "dir/x.radius.tsf"; TsfFormat.h).
+std::string tckRadiusPath(const std::string& tckPath);
+
 /// Reads .dat, .tck or .trk. defaultRadius (µm, > 0) is the radius of every point of formats
-/// without radii (.tck, .trk). Errors name the path; an unknown extension or unopenable file is an
-/// error too.
+/// without radii (.trk, and .tck without a radius file). Errors name the path; an unknown extension
+/// or unopenable file is an error too.
+/// .tck: when tckRadiusPath(path) exists, its values are the radii. It must match the .tck (else
+/// an error naming the .tsf): readable .tsf, the same number of streamlines, the same number of
+/// points in every streamline, equal `timestamp` values when both files have one, and every value
+/// finite and > 0 (the message gives the byte offset in the .tsf). When it does not exist, every
+/// point gets defaultRadius as before.
 FiberReadResult readFiberFile(const std::string& path, double defaultRadius);
 
 /// Writes .dat or .tck (by extension) atomically: on failure an existing file is unchanged.
+/// .tck also writes the radii to tckRadiusPath(path) (Float32LE .tsf, same timestamp as the .tck,
+/// see tckTimestamp), atomically too. Radii that float32 cannot hold (> 3.4e38, or rounding to 0)
+/// are refused before either file is touched; if the .tck is written but the .tsf write then fails
+/// (I/O error), the message says so, and the old .tsf, if any, no longer matches the .tck's
+/// timestamp, so reading reports the mismatch instead of using wrong radii.
 /// Returns "" on success, else a message naming the path.
 std::string writeFiberFile(const std::string& path, const FiberModel& model);
 

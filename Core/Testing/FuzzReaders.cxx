@@ -6,9 +6,11 @@
 #include "IO/DatFormat.h"
 #include "IO/TckFormat.h"
 #include "IO/TrkFormat.h"
+#include "IO/TsfFormat.h"
 #include "Util/Random.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -120,13 +122,39 @@ void check(const FiberReadResult& r, const char* reader, int sample, int i)
   }
 }
 
+/// readTsf's promises (TsfFormat.h): offsets for every streamline, only finite values, and on
+/// failure an error naming the file and no data.
+void checkTsf(const TsfReadResult& r, int sample, int i)
+{
+  bool good = r.values.size() == r.firstValueOffsets.size();
+  for (const std::vector<double>& s : r.values)
+  {
+    for (double v : s)
+    {
+      good = good && std::isfinite(v);
+    }
+  }
+  if (r.ok() && !good)
+  {
+    std::fprintf(stderr, "FAIL tsf sample %d mutation %d: read ok but offsets missing or a value not finite\n",
+      sample, i);
+    ++failures;
+  }
+  if (!r.ok() && (r.error.find("fuzz.in") == std::string::npos || !r.values.empty()))
+  {
+    std::fprintf(stderr, "FAIL tsf sample %d mutation %d: error without file name or with data: %s\n", sample, i,
+      r.error.c_str());
+    ++failures;
+  }
+}
+
 } // namespace
 
 int main()
 {
   const std::string dir = FIBERPLI_TEST_DATA_DIR;
   std::vector<std::string> samples = { slurp(dir + "/fastpli/fastpli.dat"), slurp(dir + "/tracks/sample.tck"),
-    slurp(dir + "/tracks/sample.trk") };
+    slurp(dir + "/tracks/sample.trk"), slurp(dir + "/tracks/sample.radius.tsf") };
   samples.push_back(slurp(dir + "/fastpli/cube.dat").substr(0, 4000)); // a few fibers of the cube
   for (const std::string& s : samples)
   {
@@ -136,7 +164,7 @@ int main()
       return 1;
     }
   }
-  const int mutationsPerSample = 8000; // x 3 readers: a few thousand runs per reader
+  const int mutationsPerSample = 8000; // x 4 readers: a few thousand runs per reader
   const double budgetSeconds = 20.0;
   const auto start = std::chrono::steady_clock::now();
   int runs = 0;
@@ -168,7 +196,13 @@ int main()
         check(r, "trk", sample, i);
         accepted += r.ok();
       }
-      runs += 3;
+      {
+        std::istringstream in(input);
+        const TsfReadResult r = readTsf(in, "fuzz.in");
+        checkTsf(r, sample, i);
+        accepted += r.ok();
+      }
+      runs += 4;
       if ((i & 63) == 0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > budgetSeconds)
       {
