@@ -5,8 +5,8 @@
  * Input: fiber polydata (api.md), validated like every filter's input. The format is chosen by
  * the extension of FileName. The file is written to a temporary file beside the target and
  * renamed over it, so a failed write leaves an existing file intact. .dat and .h5 keep points,
- * radii and the grouping into bundles (by bundle_id); .tck keeps points only (the format has no
- * radii). Errors name the file.
+ * radii and the grouping into bundles (by bundle_id); .tck keeps the points (float32) and writes the
+ * radii into the MRtrix track-scalar file `<name>.radius.tsf` beside it. Errors name the file.
  */
 #ifndef vtkFiberWriter_h
 #define vtkFiberWriter_h

@@ -76,7 +76,7 @@ void ExpectSameFibers(vtkPolyData* a, vtkPolyData* b, double tol, bool compareRa
     }
     if (compareRadii)
     {
-      EXPECT_EQ(a->GetPointData()->GetArray("radius")->GetTuple1(i), b->GetPointData()->GetArray("radius")->GetTuple1(i));
+      EXPECT_NEAR(a->GetPointData()->GetArray("radius")->GetTuple1(i), b->GetPointData()->GetArray("radius")->GetTuple1(i), tol);
     }
   }
   if (compareBundles)
@@ -114,7 +114,8 @@ TEST(FiberReaderWriter, DatAndH5KeepPointsRadiiAndBundles)
 
 TEST(FiberReaderWriter, EveryFormatPairKeepsWhatBothHold)
 {
-  // .dat/.h5 hold points, radii and bundles; .tck holds float32 points only.
+  // .dat/.h5 hold points, radii and bundles; .tck holds float32 points and, in .radius.tsf,
+  // float32 radii, but no bundles.
   auto original = Model();
   const char* formats[] = { ".dat", ".h5", ".tck" };
   for (const char* from : formats)
@@ -127,9 +128,9 @@ TEST(FiberReaderWriter, EveryFormatPairKeepsWhatBothHold)
       const std::string second = kTmp + "/pair_" + std::string(from + 1) + "_to" + to;
       ASSERT_TRUE(Write(a, second)) << from << " -> " << to;
       auto b = Read(second, nullptr, 0.5);
-      const bool radii = std::string(from) != ".tck" && std::string(to) != ".tck";
+      const bool bundles = std::string(from) != ".tck" && std::string(to) != ".tck";
       // The writers group fibers by bundle: compare the bundle-sorted original with the result.
-      ExpectSameFibers(a, b, std::string(to) == ".tck" ? 1e-6 : 0.0, radii, radii);
+      ExpectSameFibers(a, b, std::string(to) == ".tck" ? 1e-6 : 0.0, true, bundles);
       EXPECT_EQ(b->GetNumberOfLines(), 4) << from << " -> " << to;
     }
   }
@@ -218,4 +219,19 @@ TEST(FiberReaderWriter, AFailedWriteKeepsTheExistingFile)
   const std::string nowhere = kTmp + "/no/such/dir/x.dat";
   EXPECT_FALSE(Write(Model(), nowhere, catcher));
   EXPECT_NE(catcher->Errors.find(nowhere), std::string::npos) << catcher->Errors;
+}
+
+TEST(FiberReaderWriter, TckKeepsRadiiInItsTrackScalarFile)
+{
+  auto model = Model();
+  const std::string path = kTmp + "/radii.tck";
+  ASSERT_TRUE(Write(model, path));
+  std::ifstream tsf(kTmp + "/radii.radius.tsf");
+  ASSERT_TRUE(tsf.good()) << "no .radius.tsf written beside the .tck";
+  auto back = Read(path, nullptr, 9.0);
+  ASSERT_EQ(back->GetNumberOfPoints(), model->GetNumberOfPoints());
+  vtkDataArray* r = back->GetPointData()->GetArray("radius");
+  EXPECT_FLOAT_EQ(static_cast<float>(r->GetTuple1(0)), 0.5f);
+  EXPECT_FLOAT_EQ(static_cast<float>(r->GetTuple1(1)), 0.75f);
+  EXPECT_LT(r->GetRange()[1], 9.0); // no point fell back to DefaultRadius
 }

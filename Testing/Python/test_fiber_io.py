@@ -27,9 +27,10 @@ for ext in ("dat", "h5", "tck"):
     back = servermanager.Fetch(reader)
     check(back.GetNumberOfLines() == 12, ".%s: %d fibers read back" % (ext, back.GetNumberOfLines()))
     check(back.GetNumberOfPoints() == original.GetNumberOfPoints(), ".%s: points" % ext)
-    if ext != "tck":  # .tck has no radii and float32 coordinates
-        radius = back.GetPointData().GetArray("radius").GetRange()
-        check(radius == (0.8, 0.8), ".%s radii %s" % (ext, radius))
+    radius = back.GetPointData().GetArray("radius").GetRange()
+    # .tck keeps float32 radii in its .radius.tsf, the others exact doubles.
+    check(abs(radius[0] - 0.8) < 1e-6 and abs(radius[1] - 0.8) < 1e-6, ".%s radii %s" % (ext, radius))
+    if ext != "tck":  # .tck has no bundles
         bundles = back.GetCellData().GetArray("bundle_id").GetRange()
         check(bundles == (0.0, 1.0), ".%s bundles %s" % (ext, bundles))
     Delete(reader)
