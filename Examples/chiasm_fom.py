@@ -6,20 +6,23 @@ Usage: pvpython chiasm_fom.py <path to FiberPLI plugin> [output directory]"""
 import os
 import sys
 
+import paraview.simple
 from paraview.simple import *  # noqa: F401,F403
 
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
+paraview.simple._DisableFirstRenderCameraReset()  # keep the explicit camera of every image
 out_dir = sys.argv[2] if len(sys.argv) > 2 else "."
+os.makedirs(out_dir, exist_ok=True)
 
 chiasm = FiberBundleSource(Shape="Chiasm", BundleRadius=10.0, FiberRadius=0.8, RadiusSpread=0.0,
                            FiberSpacing=2.0, NumberOfFibers=0, SegmentLength=2.0, Displacement=0.2, Seed=42)
-solved = FiberCollisionSolver(Input=chiasm, SegmentLength=2.0, MinCurvatureRadius=10.0, MaxSteps=10000,
+solved = FiberCollisionSolver(Input=chiasm, SegmentLength=2.0, MinCurvatureRadius=0.0, MaxSteps=20000,
                               SeparationSpeed=0.025, NumberOfThreads=0)
 voi = [-40.0, 40.0, -40.0, 40.0, -5.0, 5.0]   # a 10 µm section through the crossing
 
 
 def fom_of(fibers):
-    sim = PLISimulation(Input=fibers, VolumeOfInterest=voi, VoxelSize=0.5, PixelSize=2.0, Wavelength=525.0,
+    sim = PLISimulation(Input=fibers, VolumeOfInterest=voi, VoxelSize=0.25, PixelSize=2.0, Wavelength=525.0,
                         LightIntensity=26000.0, NumberOfRotations=9, TiltAngle=0.0, Birefringence=-0.001,
                         Absorption=0.0, Seed=1)
     analysis = PLIAnalysis(Input=sim, InclinationMethod="Retardation", ReferenceRetardation=0.0)
@@ -45,6 +48,6 @@ def save(source, name):
 
 save(fom_of(chiasm), "chiasm_fom_before.png")
 save(fom_of(solved), "chiasm_fom_after.png")
-truth = FiberOrientationGroundTruth(Input=solved, VolumeOfInterest=voi, VoxelSize=0.5, PixelSize=2.0)
+truth = FiberOrientationGroundTruth(Input=solved, VolumeOfInterest=voi, VoxelSize=0.25, PixelSize=2.0)
 save(FiberOrientationMap(Input=truth, ColorScheme="HSV-black"), "chiasm_fom_truth.png")
 print("wrote chiasm_fom_before.png, chiasm_fom_after.png, chiasm_fom_truth.png to", out_dir)

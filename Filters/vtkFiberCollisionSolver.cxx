@@ -162,15 +162,10 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
       this->Cache.reset();
       return 1; // partial results are never passed on
     }
+    // One warning per kind; an unsolved model is among them, naming the collisions left.
     for (const std::string& w : cache->result.warnings)
     {
       vtkWarningMacro(<< "FiberCollisionSolver: " << w);
-    }
-    if (!cache->result.solved)
-    {
-      vtkWarningMacro(<< "FiberCollisionSolver: " << cache->result.collisions
-                      << " colliding capsule pairs remain after " << cache->result.steps
-                      << " steps (MaxSteps " << this->MaxSteps << ")");
     }
     cache->models.push_back(std::move(model));
     cache->sourceIndex.push_back(cache->result.sourceIndex);

@@ -162,7 +162,7 @@ TEST(FiberCollisionSolver, MaxStepsReachedStillGivesOutputAndWarns)
   EXPECT_EQ(Field(out, "solved"), 0.0);
   EXPECT_EQ(Field(out, "steps"), 2.0);
   EXPECT_GT(Field(out, "collisions"), 0.0);
-  EXPECT_NE(catcher->Warnings.find("colliding capsule pairs remain after 2 steps"), std::string::npos) << catcher->Warnings;
+  EXPECT_NE(catcher->Warnings.find("capsule pairs still overlap after 2 steps"), std::string::npos) << catcher->Warnings;
   EXPECT_EQ(out->GetNumberOfLines(), 60);
 }
 
