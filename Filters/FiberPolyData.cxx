@@ -52,11 +52,27 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
       " components, expected 1";
     return result;
   }
+  vtkPoints* points = input->GetPoints();
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  if (points == nullptr || radius->GetNumberOfTuples() != numPoints)
+  {
+    result.error = who + ": the point array 'radius' has " + std::to_string(radius->GetNumberOfTuples()) +
+      " values for " + std::to_string(numPoints) + " points";
+    return result;
+  }
   vtkDataArray* fiberIds = input->GetCellData()->GetArray("fiber_id");
   vtkDataArray* bundleIds = input->GetCellData()->GetArray("bundle_id");
+  for (vtkDataArray* ids : { fiberIds, bundleIds })
+  {
+    if (ids && ids->GetNumberOfTuples() != input->GetNumberOfCells())
+    {
+      result.error = who + ": the cell array '" + std::string(ids->GetName()) + "' has " +
+        std::to_string(ids->GetNumberOfTuples()) + " values for " + std::to_string(input->GetNumberOfCells()) + " cells";
+      return result;
+    }
+  }
   // Lines come after verts in the cell numbering of vtkPolyData.
   const vtkIdType firstLineCell = input->GetNumberOfVerts();
-  vtkPoints* points = input->GetPoints();
 
   std::size_t shortFibers = 0;
   result.model.fibers.reserve(static_cast<std::size_t>(numLines));
@@ -81,6 +97,15 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     f.radii.resize(static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
     {
+      if (ids[i] < 0 || ids[i] >= numPoints)
+      {
+        result.error = who + ": line cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
+          ", but the input has " + std::to_string(numPoints) + " points";
+        result.model.fibers.clear();
+        result.sourceCell.clear();
+        result.sourcePoints.clear();
+        return result;
+      }
       double p[3];
       points->GetPoint(ids[i], p);
       f.points[static_cast<std::size_t>(i)] = { p[0], p[1], p[2] };
@@ -134,7 +159,7 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
   for (int a = 0; a < inCells->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* src = inCells->GetAbstractArray(a);
-    if (src == nullptr || isContract(src->GetName()))
+    if (src == nullptr || isContract(src->GetName()) || src->GetNumberOfTuples() != input->GetNumberOfCells())
     {
       continue;
     }
@@ -154,7 +179,7 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
   for (int a = 0; a < inPoints->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* src = inPoints->GetAbstractArray(a);
-    if (src == nullptr || isContract(src->GetName()))
+    if (src == nullptr || isContract(src->GetName()) || src->GetNumberOfTuples() != input->GetNumberOfPoints())
     {
       continue;
     }

@@ -77,10 +77,10 @@ vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
 int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-  if (this->IterationsAsTime)
+  if (this->IterationsAsTime) // otherwise the input's own time steps pass through
   {
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
     std::vector<double> times;
     for (int step = 0; step < this->MaxSteps; step += this->TimeStepInterval)
     {
@@ -179,7 +179,8 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   {
     const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
     const auto k = static_cast<std::size_t>(std::max(0.0, std::floor(t / this->TimeStepInterval + 1e-9)));
-    if (k < shown)
+    // A snapshot strictly before the solver's last step; from there on, the final state.
+    if (k < shown && static_cast<int>(k) * this->TimeStepInterval < this->Cache->result.steps)
     {
       shown = k;
       shownStep = static_cast<int>(k) * this->TimeStepInterval;

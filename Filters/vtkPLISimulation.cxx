@@ -102,7 +102,6 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   this->PlanError.clear();
-  this->EmptyInput = false;
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
@@ -126,7 +125,6 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
     if (fiberpli::FiberPolyData::IsEmpty(input))
     {
-      this->EmptyInput = true;
       return 1;
     }
     fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
@@ -136,6 +134,12 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
       return 1;
     }
     model = std::move(in.model);
+    fiberpli::Vec3 lo, hi;
+    if (fiberpli::modelBounds(model, true, lo, hi))
+    {
+      const double resolved[6] = { lo.x, hi.x, lo.y, hi.y, lo.z, hi.z };
+      std::copy(resolved, resolved + 6, this->ResolvedVolume);
+    }
   }
 
   fiberpli::pli::PLIPlan plan;
@@ -179,7 +183,7 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
     vtkErrorMacro(<< this->PlanError);
     return 0;
   }
-  if (this->EmptyInput || fiberpli::FiberPolyData::IsEmpty(input))
+  if (fiberpli::FiberPolyData::IsEmpty(input))
   {
     return 1;
   }
@@ -200,7 +204,11 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   {
     return 1;
   }
-  const fiberpli::pli::PLIOptions options = MakeOptions(this);
+  fiberpli::pli::PLIOptions options = MakeOptions(this);
+  if (IsBoundsSentinel(options.volumeOfInterest))
+  {
+    std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
+  }
   const fiberpli::pli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);

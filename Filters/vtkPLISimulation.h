@@ -230,7 +230,9 @@ private:
   int NumberOfThreads = 0;
 
   std::string PlanError; ///< error found by RequestInformation, reported by RequestData
-  bool EmptyInput = false;
+  /// The input-bounds volume resolved by RequestInformation: RequestData uses the same one, so the
+  /// computed pixels always match WHOLE_EXTENT even if the fibers move later (e.g. a time change).
+  double ResolvedVolume[6] = { 1, -1, 1, -1, 1, -1 };
 };
 
 #endif

@@ -116,6 +116,8 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
   {
     return path + ": cannot open the HDF5 file";
   }
+  hsize_t fileSize = 0;
+  H5Fget_filesize(file.get(), &fileSize);
   std::vector<std::pair<long, std::string>> bundles;
   std::string bad;
   if (!numericMembers(file.get(), bundles, bad))
@@ -150,10 +152,13 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
       {
         return where + " does not have the shape (n, 4)";
       }
-      if (dims[0] > kMaxPointsPerFiber)
+      // A chunked dataset may declare far more than the file stores: check against the file size
+      // (uncompressed float64) before allocating, allowing for compression up to 64x.
+      if (dims[0] > kMaxPointsPerFiber || dims[0] * 4 * sizeof(double) > 64 * (fileSize + 1))
       {
         std::ostringstream msg;
-        msg << where << " declares " << dims[0] << " points, more than the limit " << kMaxPointsPerFiber;
+        msg << where << " declares " << dims[0] << " points, more than the file of " << fileSize
+            << " bytes can hold (limit " << kMaxPointsPerFiber << ")";
         return msg.str();
       }
       std::vector<double> values(static_cast<std::size_t>(dims[0] * 4));
@@ -189,6 +194,11 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
   std::map<int, std::vector<const Fiber*>> bundles;
   for (const Fiber& f : model.fibers)
   {
+    if (f.bundle < 0)
+    {
+      // Group names are bundle indices "0", "1", …: a negative id could not be read back.
+      return path + ": bundle_id " + std::to_string(f.bundle) + " is negative; .h5 bundles are numbered from 0";
+    }
     bundles[f.bundle].push_back(&f);
   }
   for (const auto& [bundle, fibers] : bundles)

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <new>
 
 vtkStandardNewMacro(vtkFiberReader);
 
@@ -70,22 +71,30 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
   this->UpdateProgress(0.0);
 
   fiberpli::FiberReadResult result;
-  if (HasH5Extension(path))
+  try // the readers check sizes before allocating; this is the last line against a crash
   {
-    result.error = fiberpli::FiberH5Format::Read(path, result.model);
-    if (result.ok())
+    if (HasH5Extension(path))
     {
-      // .h5 files hold all points; validate like the text formats do.
-      result.error = fiberpli::validateModel(result.model);
-      if (!result.ok())
+      result.error = fiberpli::FiberH5Format::Read(path, result.model);
+      if (result.ok())
       {
-        result.error = path + ": " + result.error;
+        // .h5 files hold all points; validate like the text formats do.
+        result.error = fiberpli::validateModel(result.model);
+        if (!result.ok())
+        {
+          result.error = path + ": " + result.error;
+        }
       }
     }
+    else
+    {
+      result = fiberpli::readFiberFile(path, this->DefaultRadius);
+    }
   }
-  else
+  catch (const std::bad_alloc&)
   {
-    result = fiberpli::readFiberFile(path, this->DefaultRadius);
+    result = fiberpli::FiberReadResult{};
+    result.error = path + ": not enough memory to read the file";
   }
   if (!result.ok())
   {

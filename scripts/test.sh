@@ -11,9 +11,10 @@ bash scripts/build.sh
 
 # One HDF5 in the process: our libraries must link ParaView's libhdf5_openmpi only (architecture.md §5).
 libs=$(find build/lib -name 'FiberPLI*.so*' -o -name 'libFiberPLI*.so*' | sort)
-if ldd $libs | grep -q 'libhdf5_serial'; then
+linked=$(ldd $libs)
+if grep -q 'libhdf5_serial' <<<"$linked"; then
   echo "FiberPLI links the serial HDF5 library beside ParaView's libhdf5_openmpi:" >&2
-  ldd $libs | grep hdf5 >&2
+  grep hdf5 <<<"$linked" >&2
   exit 1
 fi
 

@@ -135,3 +135,23 @@ TEST(FiberPolyData, EmptyInputIsAnEmptyModel)
   EXPECT_TRUE(c.ok());
   EXPECT_TRUE(c.model.empty());
 }
+
+TEST(FiberPolyData, ArraysOfTheWrongLengthAreAnError)
+{
+  auto shortRadius = MakeTwoFibers();
+  shortRadius->GetPointData()->GetArray("radius")->SetNumberOfTuples(3);
+  ExpectErrorThenRecovery(shortRadius, { "'radius' has 3 values for 7 points" });
+  auto shortIds = MakeTwoFibers();
+  shortIds->GetCellData()->GetArray("bundle_id")->SetNumberOfTuples(1);
+  ExpectErrorThenRecovery(shortIds, { "'bundle_id' has 1 values for 2 cells" });
+}
+
+TEST(FiberPolyData, LinesReferringToMissingPointsAreAnError)
+{
+  auto bad = MakeTwoFibers();
+  const vtkIdType ids[2] = { 0, 99 };
+  bad->GetLines()->InsertNextCell(2, ids);
+  bad->GetCellData()->GetArray("fiber_id")->InsertNextTuple1(102);
+  bad->GetCellData()->GetArray("bundle_id")->InsertNextTuple1(0);
+  ExpectErrorThenRecovery(bad, { "line cell 2 refers to point 99" });
+}

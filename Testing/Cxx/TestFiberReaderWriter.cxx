@@ -235,3 +235,13 @@ TEST(FiberReaderWriter, TckKeepsRadiiInItsTrackScalarFile)
   EXPECT_FLOAT_EQ(static_cast<float>(r->GetTuple1(1)), 0.75f);
   EXPECT_LT(r->GetRange()[1], 9.0); // no point fell back to DefaultRadius
 }
+
+TEST(FiberReaderWriter, H5RefusesNegativeBundleIds)
+{
+  auto model = Model();
+  model->GetCellData()->GetArray("bundle_id")->SetTuple1(0, -1);
+  vtkNew<ErrorCatcher> catcher;
+  EXPECT_FALSE(Write(model, kTmp + "/negative.h5", catcher));
+  EXPECT_NE(catcher->Errors.find("bundle_id -1 is negative"), std::string::npos) << catcher->Errors;
+  EXPECT_TRUE(Write(model, kTmp + "/negative.dat")); // .dat renumbers bundles: fine
+}
