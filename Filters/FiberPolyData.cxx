@@ -10,7 +10,12 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkAlgorithm.h>
+#include <vtkAlgorithmOutput.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
 #include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkSmartPointer.h>
 
 #include <algorithm>
@@ -19,6 +24,36 @@
 
 namespace fiberpli
 {
+
+void FiberPolyData::RequestAllFibers(vtkInformation* inputInfo)
+{
+  inputInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inputInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inputInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+}
+
+void FiberPolyData::UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inputInfo)
+{
+  // Update the connected output port (not always port 0 of the producer).
+  auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(algorithm->GetInputExecutive(0, 0));
+  if (inputInfo && exec && algorithm->GetNumberOfInputConnections(0) > 0)
+  {
+    RequestAllFibers(inputInfo);
+    exec->Update(algorithm->GetInputConnection(0, 0)->GetIndex());
+  }
+}
+
+void FiberPolyData::AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed)
+{
+  vtkNew<vtkDoubleArray> length;
+  length->SetName("segment_length");
+  length->InsertNextValue(segmentLength);
+  output->GetFieldData()->AddArray(length);
+  vtkNew<vtkIntArray> seedArray;
+  seedArray->SetName("seed");
+  seedArray->InsertNextValue(seed);
+  output->GetFieldData()->AddArray(seedArray);
+}
 
 bool FiberPolyData::IsEmpty(vtkPolyData* input)
 {

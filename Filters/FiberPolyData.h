@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+class vtkAlgorithm;
+class vtkInformation;
 class vtkPolyData;
 
 namespace fiberpli
@@ -53,6 +55,18 @@ public:
   /// `sourceIndex` means the points are unchanged. radius, fiber_id and bundle_id are not touched.
   static void PassArrays(vtkPolyData* input, const FiberConversion& conversion,
     const std::vector<std::vector<double>>& sourceIndex, vtkPolyData* output);
+
+  /// Asks the upstream for all fibers (piece 0 of 1, no ghosts) whatever piece is requested
+  /// downstream: filters that need every fiber on every rank call it in RequestUpdateExtent.
+  static void RequestAllFibers(vtkInformation* inputInfo);
+
+  /// Brings input port 0 of `algorithm` up to date with all fibers now (for RequestInformation of
+  /// filters whose output size depends on the fibers' bounds); the later data pass asks for the
+  /// same piece and does not execute upstream again.
+  static void UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inputInfo);
+
+  /// Field data of the fiber sources: `segment_length` (µm) and `seed`.
+  static void AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed);
 
   /// True when the polydata holds neither points nor cells (an empty piece, never an error).
   static bool IsEmpty(vtkPolyData* input);

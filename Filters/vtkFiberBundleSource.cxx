@@ -7,12 +7,8 @@
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkDataArray.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -48,10 +44,7 @@ int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 {
   if (inputVector[0]->GetNumberOfInformationObjects() > 0)
   {
-    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
   }
   return 1;
 }
@@ -160,14 +153,7 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
   }
   fiberpli::FiberPolyData::FromModel(model, output);
 
-  vtkNew<vtkDoubleArray> segmentLength;
-  segmentLength->SetName("segment_length");
-  segmentLength->InsertNextValue(this->SegmentLength);
-  output->GetFieldData()->AddArray(segmentLength);
-  vtkNew<vtkIntArray> seed;
-  seed->SetName("seed");
-  seed->InsertNextValue(this->Seed);
-  output->GetFieldData()->AddArray(seed);
+  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -3,11 +3,7 @@
 #include "FiberPolyData.h"
 #include "Tissue/CubeGenerator.h"
 
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
@@ -46,14 +42,7 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(model, output);
 
-  vtkNew<vtkDoubleArray> segmentLength;
-  segmentLength->SetName("segment_length");
-  segmentLength->InsertNextValue(this->SegmentLength);
-  output->GetFieldData()->AddArray(segmentLength);
-  vtkNew<vtkIntArray> seed;
-  seed->SetName("seed");
-  seed->InsertNextValue(this->Seed);
-  output->GetFieldData()->AddArray(seed);
+  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -91,16 +91,7 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   // brought up to date here; RequestUpdateExtent then asks for the same piece 0 of 1.
   if (this->VolumeOfInterest[0] > this->VolumeOfInterest[1] && this->GetNumberOfInputConnections(0) > 0)
   {
-    // Update the connected output port (not always port 0 of the producer) for piece 0 of 1.
-    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetInputExecutive(0, 0));
-    if (inInfo && exec)
-    {
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-      exec->Update(this->GetInputConnection(0, 0)->GetIndex());
-    }
+    fiberpli::FiberPolyData::UpdateAllFibers(this, inputVector[0]->GetInformationObject(0));
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
@@ -133,9 +124,7 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
 int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
   vtkInformationVector*)
 {
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 

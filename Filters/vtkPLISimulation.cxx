@@ -113,15 +113,7 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     // The image size depends on the fibers' bounds, which only the input data knows: bring the
     // input up to date now with the request RequestUpdateExtent makes anyway (piece 0 of 1), so the
     // later data pass does not execute upstream again.
-    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(this->GetInputExecutive(0, 0));
-    if (inInfo && exec)
-    {
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-      exec->Update(this->GetInputConnection(0, 0)->GetIndex());
-    }
+    fiberpli::FiberPolyData::UpdateAllFibers(this, inputVector[0]->GetInformationObject(0));
     vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
     if (fiberpli::FiberPolyData::IsEmpty(input))
     {
@@ -163,10 +155,7 @@ int vtkPLISimulation::RequestUpdateExtent(vtkInformation*, vtkInformationVector*
   vtkInformationVector*)
 {
   // Every pixel may see every fiber (tilted rays, blur halo): each rank needs all of them.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
