@@ -106,7 +106,14 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
     }
     fiberpli::TruthLattice lattice;
     std::int64_t nx = 0, ny = 0;
-    if (c.ok() && PlanGrid(c.model, this->VolumeOfInterest, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin).empty())
+    std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
+    fiberpli::Vec3 lo, hi;
+    if (sentinel && c.ok() && fiberpli::modelBounds(c.model, true, lo, hi))
+    {
+      const double bounds[6] = { lo.x, hi.x, lo.y, hi.y, lo.z, hi.z };
+      std::copy(bounds, bounds + 6, this->PlannedVolume);
+    }
+    if (c.ok() && PlanGrid(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin).empty())
     {
       extent[1] = static_cast<int>(nx - 1), extent[3] = static_cast<int>(ny - 1), extent[5] = 0;
     }
@@ -153,7 +160,7 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationV
   fiberpli::TruthLattice lattice;
   std::int64_t nx = 0, ny = 0;
   double origin[3];
-  std::string err = PlanGrid(c.model, this->VolumeOfInterest, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin);
+  std::string err = PlanGrid(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin);
   if (!err.empty())
   {
     vtkErrorMacro(<< "FiberOrientationGroundTruth: " << err);

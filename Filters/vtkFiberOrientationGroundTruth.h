@@ -76,6 +76,9 @@ private:
   double VoxelSize = 0.5;
   double PixelSize = 2.0;
   int NumberOfThreads = 0;
+  /// The volume RequestInformation planned the image for (the input bounds when VolumeOfInterest is
+  /// the sentinel): RequestData uses the same one, so its pixels always match WHOLE_EXTENT.
+  double PlannedVolume[6] = { 1, -1, 1, -1, 1, -1 };
 };
 
 #endif
