@@ -23,7 +23,7 @@ def header_of(cls):
 
 for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
     root = ET.parse(xml_path).getroot()
-    for proxy in root.iter():
+    for proxy in [p for group in root.iter("ProxyGroup") for p in group]:
         if proxy.get("class") is None:
             continue
         name = proxy.get("name")
@@ -34,9 +34,14 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
         label = proxy.get("label", name)
         if re.sub(r"[^A-Za-z0-9_]", "", label) != name:
             errors.append("%s: label %r does not sanitise to %s" % (xml_path, label, name))
-        header = header_of(proxy.get("class"))
+        # A parallel-serial writer wraps our writer class in its "Writer" subproxy.
+        cls = proxy.get("class")
+        for sub in proxy.iter("Proxy"):
+            if sub.get("name") == "Writer" and sub.get("class"):
+                cls = sub.get("class")
+        header = header_of(cls)
         if header is None:
-            errors.append("%s: no header for class %s" % (xml_path, proxy.get("class")))
+            errors.append("%s: no header for class %s" % (xml_path, cls))
             continue
         for prop in proxy:
             if prop.tag not in PROPERTY_TAGS or prop.get("information_only") == "1":
@@ -52,7 +57,7 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
             setter = command[3:] if command.startswith("Set") else command
             if not re.search(r"\b%s\(|vtkSet\w*Macro\(\s*%s\s*[,)]" % (re.escape(command), re.escape(setter)), header):
                 errors.append("%s: %s.%s command %s not found in %s.h" % (
-                    xml_path, name, pname, command, proxy.get("class")))
+                    xml_path, name, pname, command, cls))
 
 for e in errors:
     print("check_xml:", e)
