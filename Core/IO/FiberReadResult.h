@@ -5,7 +5,9 @@
 
 #include "Model/FiberModel.h"
 
+#include <cmath>
 #include <cstddef>
+#include <sstream>
 #include <string>
 
 namespace fiberpli
@@ -23,5 +25,25 @@ struct FiberReadResult
 
   bool ok() const { return error.empty(); }
 };
+
+/// A failed read: empty model, the given message.
+inline FiberReadResult readFailure(const std::string& message)
+{
+  FiberReadResult failed;
+  failed.error = message;
+  return failed;
+}
+
+/// "" when defaultRadius can stand for the radius of files without radii, else the message.
+inline std::string defaultRadiusError(const std::string& fileName, double defaultRadius)
+{
+  if (std::isfinite(defaultRadius) && defaultRadius > 0.0)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << fileName << ": DefaultRadius " << defaultRadius << " must be finite and > 0";
+  return msg.str();
+}
 
 } // namespace fiberpli

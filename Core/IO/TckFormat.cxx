@@ -43,16 +43,10 @@ void forEachTckValue(const FiberModel& model, Emit emit)
 FiberReadResult readTck(std::istream& in, const std::string& fileName, double defaultRadius, std::string* timestamp)
 {
   FiberReadResult result;
-  auto fail = [&](const std::string& message) {
-    FiberReadResult failed;
-    failed.error = message;
-    return failed;
-  };
-  if (!std::isfinite(defaultRadius) || defaultRadius <= 0.0)
+  const auto fail = readFailure;
+  if (const std::string bad = defaultRadiusError(fileName, defaultRadius); !bad.empty())
   {
-    std::ostringstream msg;
-    msg << fileName << ": DefaultRadius " << defaultRadius << " must be finite and > 0";
-    return fail(msg.str());
+    return fail(bad);
   }
   const MrtrixHeader header = readMrtrixHeader(in, fileName, "mrtrix tracks", "MRtrix tracks", 3);
   if (!header.error.empty())

@@ -43,16 +43,10 @@ bool axisCode(char c, int& axis, int& sign)
 FiberReadResult readTrk(std::istream& in, const std::string& fileName, double defaultRadius)
 {
   FiberReadResult result;
-  auto fail = [&](const std::string& message) {
-    FiberReadResult failed;
-    failed.error = message;
-    return failed;
-  };
-  if (!std::isfinite(defaultRadius) || defaultRadius <= 0.0)
+  const auto fail = readFailure;
+  if (const std::string bad = defaultRadiusError(fileName, defaultRadius); !bad.empty())
   {
-    std::ostringstream msg;
-    msg << fileName << ": DefaultRadius " << defaultRadius << " must be finite and > 0";
-    return fail(msg.str());
+    return fail(bad);
   }
   std::uint64_t fileSize = 0;
   if (!binary::remainingBytes(in, fileSize))
