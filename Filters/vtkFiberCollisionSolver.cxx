@@ -25,8 +25,7 @@ struct vtkFiberCollisionSolver::Snapshots
 {
   vtkMTimeType inputTime = 0;
   vtkMTimeType filterTime = 0;
-  std::vector<fiberpli::FiberModel> models;
-  std::vector<std::vector<std::vector<double>>> sourceIndex; // per snapshot: see CollisionSolverResult
+  std::vector<fiberpli::FiberModel> models; // snapshots, then the final state (result.sourceIndex)
   fiberpli::CollisionSolverResult result;
   fiberpli::FiberConversion input;
 };
@@ -51,20 +50,6 @@ void AddFieldValue(vtkPolyData* output, const char* name, double value, bool int
   }
 }
 
-/// Source positions of an unchanged model: point i of every fiber comes from input point i.
-std::vector<std::vector<double>> IdentityIndex(const fiberpli::FiberModel& model)
-{
-  std::vector<std::vector<double>> index(model.fibers.size());
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
-  {
-    index[f].resize(model.fibers[f].points.size());
-    for (std::size_t i = 0; i < index[f].size(); ++i)
-    {
-      index[f][i] = static_cast<double>(i);
-    }
-  }
-  return index;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -138,13 +123,11 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     if (this->IterationsAsTime)
     {
       cache->models.push_back(model);
-      cache->sourceIndex.push_back(IdentityIndex(model));
       const int interval = this->TimeStepInterval;
       observer = [&cache, interval](int step, const fiberpli::FiberModel& current) {
         if (step % interval == 0)
         {
           cache->models.push_back(current);
-          cache->sourceIndex.emplace_back(); // filled below from the final result when known
         }
       };
     }
@@ -168,7 +151,6 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
       vtkWarningMacro(<< "FiberCollisionSolver: " << w);
     }
     cache->models.push_back(std::move(model));
-    cache->sourceIndex.push_back(cache->result.sourceIndex);
     this->Cache = std::move(cache);
   }
 
@@ -189,22 +171,22 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   }
 
   const fiberpli::FiberModel& model = this->Cache->models[shown];
+  const fiberpli::CollisionSolverResult& r = this->Cache->result;
+  const bool final = shown + 1 == this->Cache->models.size();
   fiberpli::FiberPolyData::FromModel(model, output);
-  // Intermediate snapshots carry no source index: their point arrays are passed only when the
-  // point count per fiber is unchanged (no split or merge yet).
-  const auto& index = this->Cache->sourceIndex[shown];
+  // The final state knows where each point came from. Snapshots do not: their point arrays are
+  // passed (unchanged points) only while no fiber has been split or merged yet.
   bool sameCounts = true;
   for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
   {
     sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
   }
-  if (!index.empty() || sameCounts)
+  if (final || sameCounts)
   {
-    fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, index, output);
+    static const std::vector<std::vector<double>> unchanged;
+    fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
   }
 
-  const fiberpli::CollisionSolverResult& r = this->Cache->result;
-  const bool final = shown + 1 == this->Cache->models.size();
   const std::size_t collisions = final ? r.collisions : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads);
   AddFieldValue(output, "steps", shownStep, true);
   AddFieldValue(output, "collisions", static_cast<double>(collisions), true);
