@@ -1,5 +1,7 @@
 #include "FiberPolyData.h"
 
+#include "FiberFieldData.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
@@ -45,14 +47,8 @@ void FiberPolyData::UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inp
 
 void FiberPolyData::AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed)
 {
-  vtkNew<vtkDoubleArray> length;
-  length->SetName("segment_length");
-  length->InsertNextValue(segmentLength);
-  output->GetFieldData()->AddArray(length);
-  vtkNew<vtkIntArray> seedArray;
-  seedArray->SetName("seed");
-  seedArray->InsertNextValue(seed);
-  output->GetFieldData()->AddArray(seedArray);
+  AddFieldDoubles(output, "segment_length", { segmentLength });
+  AddFieldInt(output, "seed", seed);
 }
 
 bool FiberPolyData::IsEmpty(vtkPolyData* input)

@@ -1,5 +1,6 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Solver/CollisionSolver.h"
@@ -30,27 +31,6 @@ struct vtkFiberCollisionSolver::Snapshots
   fiberpli::FiberConversion input;
 };
 
-namespace
-{
-void AddFieldValue(vtkPolyData* output, const char* name, double value, bool integer)
-{
-  if (integer)
-  {
-    vtkNew<vtkIntArray> a;
-    a->SetName(name);
-    a->InsertNextValue(static_cast<int>(value));
-    output->GetFieldData()->AddArray(a);
-  }
-  else
-  {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->InsertNextValue(value);
-    output->GetFieldData()->AddArray(a);
-  }
-}
-
-} // namespace
 
 //------------------------------------------------------------------------------
 // Construct with SegmentLength 2, MinCurvatureRadius 0 (off), MaxSteps 10000, SeparationSpeed
@@ -188,15 +168,15 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   }
 
   const std::size_t collisions = final ? r.collisions : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads);
-  AddFieldValue(output, "steps", shownStep, true);
-  AddFieldValue(output, "collisions", static_cast<double>(collisions), true);
-  AddFieldValue(output, "solved", collisions == 0 ? 1 : 0, true);
+  fiberpli::AddFieldInt(output, "steps", shownStep);
+  fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
+  fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
   if (final) // only known for the solver's last state
   {
-    AddFieldValue(output, "max_overlap", r.maxOverlap, false);
-    AddFieldValue(output, "shape_ok", r.shapeOk ? 1 : 0, true);
+    fiberpli::AddFieldDoubles(output, "max_overlap", { r.maxOverlap });
+    fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
   }
-  AddFieldValue(output, "segment_length", r.segmentLength, false);
+  fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,6 +1,7 @@
 #include "vtkPLIAnalysis.h"
 
 #include "Analysis/PliAnalysis.h"
+#include "FiberFieldData.h"
 #include "FiberProgress.h"
 
 #include <vtkDataArray.h>
@@ -239,14 +240,8 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
     }
   }
 
-  vtkNew<vtkDoubleArray> ref;
-  ref->SetName("reference_retardation");
-  ref->InsertNextValue(maps.referenceRetardation);
-  output->GetFieldData()->AddArray(ref);
-  vtkNew<vtkIntArray> used;
-  used->SetName("inclination_method");
-  used->InsertNextValue(static_cast<int>(maps.method));
-  output->GetFieldData()->AddArray(used);
+  fiberpli::AddFieldDoubles(output, "reference_retardation", { maps.referenceRetardation });
+  fiberpli::AddFieldInt(output, "inclination_method", static_cast<int>(maps.method));
   this->UpdateProgress(1.0);
   return finish(1);
 }

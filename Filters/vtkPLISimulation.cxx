@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "PLI/PLIPipeline.h"
@@ -56,24 +57,6 @@ bool IsBoundsSentinel(const double* voi)
   return voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
 }
 
-void AddField(vtkFieldData* fd, const char* name, std::initializer_list<double> values)
-{
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(name);
-  for (double v : values)
-  {
-    a->InsertNextValue(v);
-  }
-  fd->AddArray(a);
-}
-
-void AddIntField(vtkFieldData* fd, const char* name, int value)
-{
-  vtkNew<vtkIntArray> a;
-  a->SetName(name);
-  a->InsertNextValue(value);
-  fd->AddArray(a);
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -252,24 +235,22 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   }
   output->GetPointData()->SetActiveScalars("intensity");
 
-  vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkDoubleArray> angles;
-  angles->SetName("polarizer_angles");
+  std::vector<double> angles;
   for (double rho : plan.rho)
   {
-    angles->InsertNextValue(rho * 180.0 / M_PI);
+    angles.push_back(rho * 180.0 / M_PI);
   }
-  fd->AddArray(angles);
-  AddField(fd, "tilt_angle", { plan.views.size() > 1 ? plan.tiltInTissue * 180.0 / M_PI : 0.0 });
-  AddField(fd, "tilt_directions", { 0.0, 90.0, 180.0, 270.0 });
-  AddField(fd, "section_thickness", { plan.thickness });
-  AddField(fd, "wavelength", { options.wavelength });
-  AddIntField(fd, "tilt_convention", static_cast<int>(options.tiltConvention));
-  AddField(fd, "noise_gain", { options.noiseGain });
-  AddIntField(fd, "empty_section", image.emptySection ? 1 : 0);
-  AddField(fd, "voxel_size", { options.voxelSize });
-  AddField(fd, "pixel_size", { options.pixelSize });
-  AddField(fd, "light_intensity", { options.lightIntensity });
+  fiberpli::AddFieldDoubles(output, "polarizer_angles", angles);
+  fiberpli::AddFieldDoubles(output, "tilt_angle", { plan.views.size() > 1 ? plan.tiltInTissue * 180.0 / M_PI : 0.0 });
+  fiberpli::AddFieldDoubles(output, "tilt_directions", { 0.0, 90.0, 180.0, 270.0 });
+  fiberpli::AddFieldDoubles(output, "section_thickness", { plan.thickness });
+  fiberpli::AddFieldDoubles(output, "wavelength", { options.wavelength });
+  fiberpli::AddFieldInt(output, "tilt_convention", static_cast<int>(options.tiltConvention));
+  fiberpli::AddFieldDoubles(output, "noise_gain", { options.noiseGain });
+  fiberpli::AddFieldInt(output, "empty_section", image.emptySection ? 1 : 0);
+  fiberpli::AddFieldDoubles(output, "voxel_size", { options.voxelSize });
+  fiberpli::AddFieldDoubles(output, "pixel_size", { options.pixelSize });
+  fiberpli::AddFieldDoubles(output, "light_intensity", { options.lightIntensity });
   this->UpdateProgress(1.0);
   return 1;
 }
