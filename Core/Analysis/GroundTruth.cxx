@@ -196,7 +196,17 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
   }
   maps.histogram.resize(npx * nHist, 0.0);
 
-  const std::vector<Link> links = collectLinks(model, options.radiusScale);
+  std::vector<Link> links = collectLinks(model, options.radiusScale);
+  // Sorted by the bottom of their box, a row stops scanning at the first link above it. Ownership
+  // does not depend on the scan order: it is the total order (d², then g) of §3.3.
+  std::sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.lo.y < b.lo.y; });
+  // Voxel columns of every pixel column, the same for every row.
+  std::vector<std::int64_t> spanX(static_cast<std::size_t>(2 * range.width()));
+  for (std::int64_t i = range.i0; i < range.i1; ++i)
+  {
+    voxelSpan(lat.n[0], scale, i, i + 1, spanX[static_cast<std::size_t>(2 * (i - range.i0))],
+      spanX[static_cast<std::size_t>(2 * (i - range.i0) + 1)]);
+  }
   const double S2 = options.radiusScale * options.radiusScale;
   const double h = lat.voxelSize;
   const int nThreads = resolveThreadCount(options.threads);
@@ -219,7 +229,11 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
       const double x0 = lat.origin.x + static_cast<double>(vx0) * h, x1 = lat.origin.x + static_cast<double>(vx1) * h;
       for (const Link& L : links)
       {
-        if (L.hi.y < y0 || L.lo.y > y1 || L.hi.x < x0 || L.lo.x > x1)
+        if (L.lo.y > y1)
+        {
+          break; // every later link starts above this row
+        }
+        if (L.hi.y < y0 || L.hi.x < x0 || L.lo.x > x1)
         {
           continue;
         }
@@ -257,8 +271,8 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
       TruthAccumulator acc(options.nPhi, options.nAlpha);
       for (std::int64_t i = range.i0; i < range.i1; ++i)
       {
-        std::int64_t ia, ib;
-        voxelSpan(lat.n[0], scale, i, i + 1, ia, ib);
+        const std::int64_t ia = spanX[static_cast<std::size_t>(2 * (i - range.i0))];
+        const std::int64_t ib = spanX[static_cast<std::size_t>(2 * (i - range.i0) + 1)];
         acc.reset();
         for (std::int64_t k = 0; k < nz; ++k)
         {

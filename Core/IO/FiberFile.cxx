@@ -24,13 +24,6 @@ namespace fiberpli
 namespace
 {
 
-FiberReadResult failed(const std::string& message)
-{
-  FiberReadResult r;
-  r.error = message;
-  return r;
-}
-
 /// Replaces the default radii of a .tck read (tck) with the values of its radius file (tsf) after
 /// checking that both describe the same streamlines (FiberFile.h, readFiberFile).
 FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampValue, const std::string& tckPath,
@@ -38,11 +31,11 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
 {
   if (!tsf.ok())
   {
-    return failed(tsf.error);
+    return readFailure(tsf.error);
   }
   if (!tsf.timestamp.empty() && !tckTimestampValue.empty() && tsf.timestamp != tckTimestampValue)
   {
-    return failed(tsfPath + ": timestamp '" + tsf.timestamp + "' differs from timestamp '" + tckTimestampValue +
+    return readFailure(tsfPath + ": timestamp '" + tsf.timestamp + "' differs from timestamp '" + tckTimestampValue +
       "' of " + tckPath + " (the radii belong to other tracks; rewrite or remove the .tsf)");
   }
   const std::size_t streamlines = tck.model.fibers.size() + tck.droppedFibers;
@@ -50,7 +43,7 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
   {
     std::ostringstream msg;
     msg << tsfPath << ": holds " << tsf.values.size() << " streamlines but " << tckPath << " holds " << streamlines;
-    return failed(msg.str());
+    return readFailure(msg.str());
   }
   // Streamlines readTck dropped (fewer than 2 points) have no fiber: they must be short here too.
   std::vector<bool> kept(streamlines, false);
@@ -64,7 +57,7 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
     {
       std::ostringstream msg;
       msg << "streamline " << s << " has " << tsf.values[s].size() << " values but fewer than 2 points in " << tckPath;
-      return failed(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
+      return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
     }
   }
   for (Fiber& f : tck.model.fibers)
@@ -76,7 +69,7 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
       std::ostringstream msg;
       msg << "streamline " << s << " has " << values.size() << " values but " << f.points.size() << " points in "
           << tckPath;
-      return failed(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
+      return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
     }
     for (std::size_t i = 0; i < values.size(); ++i)
     {
@@ -84,7 +77,7 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
       {
         std::ostringstream msg;
         msg << "radius " << values[i] << " of streamline " << s << " point " << i << " must be finite and > 0";
-        return failed(mrtrixErrorAt(tsfPath, "byte", tsf.byteOffset(s, i), msg.str()));
+        return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.byteOffset(s, i), msg.str()));
       }
     }
     f.radii = values;
@@ -109,7 +102,7 @@ FiberReadResult readTckWithRadii(std::istream& in, const std::string& path, doub
   std::ifstream tsfIn(tsfPath, std::ios::binary);
   if (!tsfIn)
   {
-    return failed("cannot open " + tsfPath + " (radii of " + path + "): " + std::strerror(errno));
+    return readFailure("cannot open " + tsfPath + " (radii of " + path + "): " + std::strerror(errno));
   }
   return applyRadii(std::move(tck), timestamp, path, readTsf(tsfIn, tsfPath), tsfPath);
 }
@@ -219,12 +212,12 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Unknown)
   {
-    return failed(path + ": unknown fiber file extension (expected .dat, .tck or .trk)");
+    return readFailure(path + ": unknown fiber file extension (expected .dat, .tck or .trk)");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    return failed("cannot open " + path + ": " + std::strerror(errno));
+    return readFailure("cannot open " + path + ": " + std::strerror(errno));
   }
   switch (format)
   {

@@ -57,35 +57,42 @@ std::string validateModel(const FiberModel& model, std::size_t* badFiber)
 {
   for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)
   {
-    if (badFiber != nullptr)
-    {
-      *badFiber = fi;
-    }
     const Fiber& f = model.fibers[fi];
-    std::ostringstream where;
-    where << "fiber " << fi << " (fiber_id " << f.id << ")";
+    // The problem with this fiber, if any; the message is only built on the error path.
+    std::ostringstream problem;
     if (f.points.size() < 2)
     {
-      return where.str() + " has fewer than 2 points";
+      problem << " has fewer than 2 points";
     }
-    if (f.radii.size() != f.points.size())
+    else if (f.radii.size() != f.points.size())
     {
-      return where.str() + " has a different number of radii and points";
+      problem << " has a different number of radii and points";
     }
-    for (std::size_t i = 0; i < f.points.size(); ++i)
+    else
     {
-      if (!isFinite(f.points[i]))
+      for (std::size_t i = 0; i < f.points.size(); ++i)
       {
-        std::ostringstream msg;
-        msg << where.str() << " point " << i << " has a non-finite coordinate";
-        return msg.str();
+        if (!isFinite(f.points[i]))
+        {
+          problem << " point " << i << " has a non-finite coordinate";
+          break;
+        }
+        if (!std::isfinite(f.radii[i]) || f.radii[i] <= 0.0)
+        {
+          problem << " point " << i << " has radius " << f.radii[i] << " (must be finite and > 0)";
+          break;
+        }
       }
-      if (!std::isfinite(f.radii[i]) || f.radii[i] <= 0.0)
+    }
+    if (problem.tellp() > 0)
+    {
+      if (badFiber != nullptr)
       {
-        std::ostringstream msg;
-        msg << where.str() << " point " << i << " has radius " << f.radii[i] << " (must be finite and > 0)";
-        return msg.str();
+        *badFiber = fi;
       }
+      std::ostringstream msg;
+      msg << "fiber " << fi << " (fiber_id " << f.id << ")" << problem.str();
+      return msg.str();
     }
   }
   return {};
