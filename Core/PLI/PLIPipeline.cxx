@@ -1,7 +1,9 @@
 #include "PLI/PLIPipeline.h"
 
+#include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
+#include "Util/MemoryBudget.h"
 #include "PLI/TissueSpec.h"
 
 #include <algorithm>
@@ -105,14 +107,14 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     m << "PixelSize is " << o.pixelSize << ", must be >= VoxelSize (" << o.voxelSize << ")";
   else if (!(o.wavelength > 0.0) || !std::isfinite(o.wavelength))
     m << "Wavelength is " << o.wavelength << ", must be > 0";
-  else if (!(o.lightIntensity >= 0.0) || !std::isfinite(o.lightIntensity))
-    m << "LightIntensity is " << o.lightIntensity << ", must be >= 0";
+  else if (!(o.lightIntensity >= 0.0 && o.lightIntensity <= kMaxLightIntensity))
+    m << "LightIntensity is " << o.lightIntensity << ", must be in [0, " << kMaxLightIntensity << "]";
   else if (!(o.stepSize > 0.0) || !std::isfinite(o.stepSize))
     m << "StepSize is " << o.stepSize << ", must be > 0";
   else if (!(o.opticalSigma >= 0.0) || !std::isfinite(o.opticalSigma))
     m << "OpticalSigma is " << o.opticalSigma << ", must be >= 0";
-  else if (!(o.noiseGain == 0.0 || o.noiseGain >= 1.0) || !std::isfinite(o.noiseGain))
-    m << "NoiseGain is " << o.noiseGain << ", must be 0 or >= 1";
+  else if (!(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain)))
+    m << "NoiseGain is " << o.noiseGain << ", must be 0 or in [1, " << kMaxNoiseGain << "]";
   else if (!(o.refractiveIndex >= 1.0) || !std::isfinite(o.refractiveIndex))
     m << "RefractiveIndex is " << o.refractiveIndex << ", must be >= 1";
   else if (o.numberOfThreads < 0)
@@ -201,6 +203,16 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   plan.imageOrigin[0] = voi[0] + 0.5 * o.pixelSize;
   plan.imageOrigin[1] = voi[2] + 0.5 * o.pixelSize;
   plan.imageOrigin[2] = voi[4] + 0.5 * plan.thickness;
+  // The kernel reaches 4σ: wider than the image it only averages the mirrored image with itself,
+  // at a cost (and weight vector) growing with σ without bound.
+  const double widestSide = static_cast<double>(std::max(plan.pixels[0], plan.pixels[1]));
+  if (4.0 * o.opticalSigma > widestSide)
+  {
+    m << "OpticalSigma is " << o.opticalSigma << " pixels: the blur kernel (4 sigma) is wider than the image of "
+      << plan.pixels[0] << " x " << plan.pixels[1] << " pixels; use at most " << widestSide / 4.0;
+    st.error = m.str();
+    return st;
+  }
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
 
@@ -211,15 +223,19 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   sp.interp = o.interpolation;
   const ColumnRange all{ 0, plan.lattice.n[0], 0, plan.lattice.n[1] };
   plan.estimatedBytes = estimateSimulationBytes(plan.lattice, sp, plan.views, all);
-  // Blur and binning buffers of one view at voxel resolution.
+  // Blur buffers of one view at voxel resolution (x pass, y pass), then the pixel stacks of every
+  // view twice: the Core image and the VTK arrays it is copied into.
   plan.estimatedBytes += 2.0 * static_cast<double>(all.nx()) * static_cast<double>(all.ny()) * plan.rho.size() * 8.0;
-  if (plan.estimatedBytes > kMaxSimulationBytes)
+  plan.estimatedBytes += 2.0 * static_cast<double>(plan.views.size()) * static_cast<double>(plan.pixels[0]) *
+    static_cast<double>(plan.pixels[1]) * plan.rho.size() * 8.0;
+  std::ostringstream what;
+  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
+       << " x " << plan.lattice.n[2] << " voxels, " << plan.rho.size() << " polarizer angles and " << plan.views.size()
+       << " views";
+  st.error = checkMemoryBudget(plan.estimatedBytes, what.str());
+  if (!st.ok())
   {
-    m << "VoxelSize " << o.voxelSize << " with VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
-      << " x " << plan.lattice.n[2] << " voxels, " << plan.rho.size() << " polarizer angles and " << plan.views.size()
-      << " views needs about "
-      << plan.estimatedBytes / (1024.0 * 1024.0 * 1024.0) << " GiB (> 16 GiB): increase VoxelSize or reduce the volume";
-    st.error = m.str();
+    st.error += ": increase VoxelSize or reduce the volume";
     return st;
   }
   double rmin = 0.0;
@@ -255,7 +271,7 @@ ColumnRange binnedVoxels(const PLIPlan& plan, const PLIOptions& o, const PixelRa
 
 ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
 {
-  return binnedVoxels(plan, o, px, static_cast<std::int64_t>(gaussianWeights(plan.sigmaVox).size() / 2));
+  return binnedVoxels(plan, o, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
 }
 
 Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
