@@ -3,6 +3,7 @@ section before and after FiberCollisionSolver, next to the ground-truth FOM. Wri
 chiasm_fom_before.png, chiasm_fom_after.png and chiasm_fom_truth.png into the output directory.
 
 Usage: pvpython chiasm_fom.py <path to FiberPLI plugin> [output directory]"""
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import os
 import sys
 
