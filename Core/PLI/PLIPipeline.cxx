@@ -19,7 +19,79 @@ namespace pli
 namespace
 {
 constexpr double kDeg = M_PI / 180.0;
+
+/// "" when every value of the list `name` is finite, inside [lo, hi) (or (lo, hi) when loOpen)
+/// and distinct, and the list has at least `minCount` values; else the message naming it.
+std::string checkAngleList(const char* name, const std::vector<double>& v, double lo, bool loOpen, double hi,
+  std::size_t minCount, std::size_t maxCount)
+{
+  std::ostringstream m;
+  if (v.size() < minCount || v.size() > maxCount)
+  {
+    m << name << " has " << v.size() << " values, needs " << minCount << " to " << maxCount;
+    return m.str();
+  }
+  for (std::size_t a = 0; a < v.size(); ++a)
+  {
+    if (!std::isfinite(v[a]) || (loOpen ? !(v[a] > lo) : !(v[a] >= lo)) || !(v[a] < hi))
+    {
+      m << name << "[" << a << "] is " << v[a] << " deg, must be in " << (loOpen ? "(" : "[") << lo << ", " << hi << ")";
+      return m.str();
+    }
+    for (std::size_t b = 0; b < a; ++b)
+      if (std::fabs(v[a] - v[b]) < 1e-9)
+      {
+        m << name << "[" << b << "] and [" << a << "] are both " << v[a] << " deg: the values must be distinct";
+        return m.str();
+      }
+  }
+  return {};
 }
+
+/// The polarimeter set-up of the options: polarizer angles and tilted views (degrees), or an error.
+std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, std::vector<double>& tiltDeg,
+  std::vector<double>& azDeg)
+{
+  std::ostringstream m;
+  rotDeg = o.rotationAngles;
+  if (rotDeg.empty())
+  {
+    if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
+    {
+      m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
+      return m.str();
+    }
+    for (int k = 0; k < o.numberOfRotations; ++k)
+      rotDeg.push_back(k * 180.0 / o.numberOfRotations);
+  }
+  std::string e = checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, 3600);
+  if (!e.empty())
+    return e;
+  tiltDeg = o.tiltAngles;
+  if (tiltDeg.empty())
+  {
+    if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
+    {
+      m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
+      return m.str();
+    }
+    if (o.tiltAngle > 0.0)
+      tiltDeg.push_back(o.tiltAngle);
+  }
+  else if (!(e = checkAngleList("TiltAngles", tiltDeg, 0.0, true, 45.0, 1, 64)).empty())
+    return e;
+  azDeg = o.tiltAzimuths.empty() ? std::vector<double>{ 0.0, 90.0, 180.0, 270.0 } : o.tiltAzimuths;
+  e = checkAngleList("TiltAzimuths", azDeg, 0.0, false, 360.0, 1, 360);
+  if (!e.empty())
+    return e;
+  if (tiltDeg.size() * azDeg.size() > 1024)
+  {
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than 1024 views";
+    return m.str();
+  }
+  return {};
+}
+} // namespace
 
 Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
@@ -37,10 +109,6 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     m << "Wavelength is " << o.wavelength << ", must be > 0";
   else if (!(o.lightIntensity >= 0.0 && o.lightIntensity <= kMaxLightIntensity))
     m << "LightIntensity is " << o.lightIntensity << ", must be in [0, " << kMaxLightIntensity << "]";
-  else if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
-    m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
-  else if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
-    m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
   else if (!(o.stepSize > 0.0) || !std::isfinite(o.stepSize))
     m << "StepSize is " << o.stepSize << ", must be > 0";
   else if (!(o.opticalSigma >= 0.0) || !std::isfinite(o.opticalSigma))
@@ -53,6 +121,9 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     m << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0";
   else if (o.tileSize < 1)
     m << "tile size is " << o.tileSize << ", must be >= 1";
+  std::vector<double> rotDeg, tiltDeg, azDeg;
+  if (m.str().empty())
+    m << polarimeterSetUp(o, rotDeg, tiltDeg, azDeg);
   if (!m.str().empty())
   {
     st.error = m.str();
@@ -103,13 +174,21 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   }
   plan.tissue.radius = o.radiusModel;
 
-  plan.tiltInTissue = std::asin(std::sin(o.tiltAngle * kDeg) / o.refractiveIndex);
   plan.views.push_back(View{ 0.0, 0.0 });
-  if (o.tiltAngle > 0.0)
-    for (int a = 0; a < 4; ++a)
-      plan.views.push_back(View{ plan.tiltInTissue, a * 90.0 * kDeg });
-  for (int k = 0; k < o.numberOfRotations; ++k)
-    plan.rho.push_back(k * M_PI / o.numberOfRotations);
+  for (double tilt : tiltDeg)
+  {
+    const double inTissue = std::asin(std::sin(tilt * kDeg) / o.refractiveIndex); // Snell
+    plan.tiltInTissue = std::max(plan.tiltInTissue, inTissue);
+    for (double az : azDeg)
+    {
+      plan.views.push_back(View{ inTissue, az * kDeg });
+      plan.tiltDeg.push_back(inTissue / kDeg);
+      plan.azimuthDeg.push_back(az);
+    }
+  }
+  plan.rhoDeg = rotDeg;
+  for (double r : rotDeg)
+    plan.rho.push_back(r * kDeg);
 
   const double scale = o.voxelSize / o.pixelSize;
   plan.pixels[0] = pixelCount(plan.lattice.n[0], scale);
@@ -151,7 +230,8 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     static_cast<double>(plan.pixels[1]) * plan.rho.size() * 8.0;
   std::ostringstream what;
   what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
-       << " x " << plan.lattice.n[2] << " voxels and NumberOfRotations " << o.numberOfRotations;
+       << " x " << plan.lattice.n[2] << " voxels, " << plan.rho.size() << " polarizer angles and " << plan.views.size()
+       << " views";
   st.error = checkMemoryBudget(plan.estimatedBytes, what.str());
   if (!st.ok())
   {
