@@ -72,10 +72,12 @@ const char* linkKind(H5L_type_t type)
   }
 }
 
-/// The members of a group whose names are bundle or fiber indices 0 .. INT_MAX, in numeric order.
+/// The members of a group whose names are `kind` ("bundle", "fiber") indices 0 .. INT_MAX (a
+/// bundle index becomes bundle_id, an int), in numeric order.
 /// Returns "" or the problem with member `bad`: a name that is no such index, or a link that is not
 /// a hard link (soft and external links could leave the file, loop or dangle; fastPLI writes none).
-std::string numericMembers(hid_t group, std::vector<std::pair<long, std::string>>& members, std::string& bad)
+std::string numericMembers(hid_t group, const char* kind, std::vector<std::pair<long, std::string>>& members,
+  std::string& bad)
 {
   H5G_info_t info;
   if (H5Gget_info(group, &info) < 0)
@@ -91,7 +93,7 @@ std::string numericMembers(hid_t group, std::vector<std::pair<long, std::string>
     if (length < 0 || length >= static_cast<ssize_t>(sizeof(name)))
     {
       bad = length < 0 ? "(unreadable name)" : std::string(name) + "...";
-      return "is not an index";
+      return std::string("is not a ") + kind + " index";
     }
     char* end = nullptr;
     errno = 0;
@@ -99,12 +101,12 @@ std::string numericMembers(hid_t group, std::vector<std::pair<long, std::string>
     if (name[0] == '\0' || *end != '\0' || value < 0 || errno != 0)
     {
       bad = name;
-      return "is not an index";
+      return std::string("is not a ") + kind + " index";
     }
     if (value > INT_MAX)
     {
       bad = name;
-      return "is larger than the largest bundle_id or fiber index, " + std::to_string(INT_MAX);
+      return std::string("is larger than the largest ") + kind + " index, " + std::to_string(INT_MAX);
     }
     H5L_info_t link{};
     if (H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
@@ -139,6 +141,55 @@ bool hardLinkExists(hid_t loc, const std::string& name)
   return true;
 }
 
+/// True when `group` holds fastPLI bundles: a group "0" with a dataset "0" of shape (n, 4).
+bool holdsBundles(hid_t group)
+{
+  if (!hardLinkExists(group, "0/0"))
+  {
+    return false;
+  }
+  Handle data(H5Dopen2(group, "0/0", H5P_DEFAULT), H5Dclose);
+  if (!data.ok())
+  {
+    return false;
+  }
+  Handle space(H5Dget_space(data.get()), H5Sclose);
+  hsize_t dims[2] = { 0, 0 };
+  return space.ok() && H5Sget_simple_extent_ndims(space.get()) == 2 &&
+    H5Sget_simple_extent_dims(space.get(), dims, nullptr) == 2 && dims[1] == 4;
+}
+
+/// Paths ("/" = root) of the groups holding bundles, as fastPLI's save(..., group_name=...) makes
+/// them. Follows hard links only, at most 8 levels deep and 10000 members per group, and does not
+/// look inside a group that holds bundles.
+void findBundleGroups(hid_t group, const std::string& path, int depth, std::vector<std::string>& found)
+{
+  if (holdsBundles(group))
+  {
+    found.push_back(path.empty() ? "/" : path);
+    return;
+  }
+  H5G_info_t info;
+  if (depth >= 8 || found.size() > 16 || H5Gget_info(group, &info) < 0)
+  {
+    return;
+  }
+  for (hsize_t i = 0; i < std::min<hsize_t>(info.nlinks, 10000); ++i)
+  {
+    char name[256] = { 0 };
+    H5L_info_t link{};
+    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
+      H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
+    {
+      continue;
+    }
+    Handle child(H5Gopen2(group, name, H5P_DEFAULT), H5Gclose); // fails quietly for datasets
+    if (child.ok())
+    {
+      findBundleGroups(child.get(), path + "/" + name, depth + 1, found);
+    }
+  }
+}
 /// One (n, 4) dataset found by the first pass of Read.
 struct FiberDataset
 {
@@ -156,22 +207,49 @@ bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
     return false;
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file.ok() || !hardLinkExists(file.get(), "0/0"))
+  std::vector<std::string> groups;
+  if (file.ok())
   {
-    return false;
+    findBundleGroups(file.get(), "", 0, groups);
   }
-  Handle data(H5Dopen2(file.get(), "0/0", H5P_DEFAULT), H5Dclose);
-  if (!data.ok())
-  {
-    return false;
-  }
-  Handle space(H5Dget_space(data.get()), H5Sclose);
-  hsize_t dims[2] = { 0, 0 };
-  return space.ok() && H5Sget_simple_extent_ndims(space.get()) == 2 &&
-    H5Sget_simple_extent_dims(space.get(), dims, nullptr) == 2 && dims[1] == 4;
+  return !groups.empty();
 }
 
-std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
+std::string FiberH5Format::BundleGroup(const std::string& path, const std::string& requested, std::string& group)
+{
+  QuietHdf5 quiet;
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.ok())
+  {
+    return path + ": cannot open the HDF5 file";
+  }
+  if (!requested.empty())
+  {
+    Handle g(H5Gopen2(file.get(), requested.c_str(), H5P_DEFAULT), H5Gclose);
+    if (!g.ok())
+    {
+      return path + ": Group '" + requested + "' is not a group of the file";
+    }
+    group = requested;
+    return {};
+  }
+  std::vector<std::string> groups;
+  findBundleGroups(file.get(), "", 0, groups);
+  if (groups.size() > 1)
+  {
+    std::string list;
+    for (const std::string& g : groups)
+    {
+      list += (list.empty() ? "" : ", ") + g;
+    }
+    return path + ": several groups hold fiber bundles (" + list + "); set Group to one of them";
+  }
+  // None found: read the root, whose own messages say what is wrong with it.
+  group = groups.empty() ? "/" : groups.front();
+  return {};
+}
+
+std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model)
 {
   QuietHdf5 quiet;
   model.fibers.clear();
@@ -186,12 +264,22 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
   }
   hsize_t fileSize = 0;
   H5Fget_filesize(file.get(), &fileSize);
+  std::string groupPath;
+  const std::string groupError = BundleGroup(path, requestedGroup, groupPath);
+  if (!groupError.empty())
+  {
+    return groupError;
+  }
+  Handle root(H5Gopen2(file.get(), groupPath.c_str(), H5P_DEFAULT), H5Gclose);
+  // Messages name datasets by their full path: "/fiber_bundles/0/3".
+  const std::string prefix = groupPath == "/" ? "" : (groupPath.front() == '/' ? groupPath : "/" + groupPath);
   std::vector<std::pair<long, std::string>> bundles;
-  std::string bad;
-  std::string problem = numericMembers(file.get(), bundles, bad);
+  std::string bad = "(unreadable group)";
+  std::string problem = root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
   if (!problem.empty())
   {
-    return path + ": root member '" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ...)";
+    return path + ": member '" + prefix + "/" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
+      (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
 
   // First pass: every dataset's declared size, so that the total (a dataset hard-linked many times
@@ -200,21 +288,21 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
   double totalPoints = 0.0;
   for (const auto& [bundleIndex, bundleName] : bundles)
   {
-    Handle group(H5Gopen2(file.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
+    Handle group(H5Gopen2(root.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
     if (!group.ok())
     {
-      return path + ": '/" + bundleName + "' is not a group";
+      return path + ": '" + prefix + "/" + bundleName + "' is not a group";
     }
     std::vector<std::pair<long, std::string>> fibers;
-    problem = numericMembers(group.get(), fibers, bad);
+    problem = numericMembers(group.get(), "fiber", fibers, bad);
     if (!problem.empty())
     {
-      return path + ": member '/" + bundleName + "/" + bad + "' " + problem;
+      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' " + problem;
     }
     for (const auto& fiber : fibers)
     {
       const std::string& fiberName = fiber.second;
-      const std::string where = path + ": dataset '/" + bundleName + "/" + fiberName + "'";
+      const std::string where = path + ": dataset '" + prefix + "/" + bundleName + "/" + fiberName + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
       {
@@ -262,9 +350,9 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
   std::int64_t nextId = 0;
   for (const FiberDataset& d : datasets)
   {
-    const std::string where = path + ": dataset '/" + d.bundleName + "/" + d.fiberName + "'";
+    const std::string where = path + ": dataset '" + prefix + "/" + d.bundleName + "/" + d.fiberName + "'";
     const std::string name = d.bundleName + "/" + d.fiberName;
-    Handle data(H5Dopen2(file.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    Handle data(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     values.resize(static_cast<std::size_t>(d.points * 4));
     if (!data.ok() ||
       (!values.empty() && H5Dread(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))

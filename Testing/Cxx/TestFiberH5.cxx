@@ -247,7 +247,7 @@ TEST(FiberH5, SoftAndExternalLinksAreRefused)
     H5Lcreate_external(other.c_str(), "/0", f.id, "0", H5P_DEFAULT, H5P_DEFAULT);
   }
   r = Read(rootExt);
-  EXPECT_NE(r.errors.find("root member '0' is an external link"), std::string::npos) << r.errors;
+  EXPECT_NE(r.errors.find("member '/0' is an external link"), std::string::npos) << r.errors;
 
   const std::string soft = kTmp + "/soft.h5";
   {
@@ -273,7 +273,7 @@ TEST(FiberH5, GroupNamesOutsideTheBundleIdRangeAreRefused)
   ReadResult r = Read(big);
   EXPECT_EQ(r.data->GetNumberOfPoints(), 0);
   EXPECT_NE(r.errors.find(big), std::string::npos) << r.errors;
-  EXPECT_NE(r.errors.find("'2147483648'"), std::string::npos) << r.errors;
+  EXPECT_NE(r.errors.find("'/2147483648' is larger than the largest bundle index"), std::string::npos) << r.errors;
   EXPECT_NE(r.errors.find("2147483647"), std::string::npos) << r.errors;
 
   const std::string largest = kTmp + "/largestgroup.h5";
