@@ -81,7 +81,8 @@ public:
 
   ///@{
   /**
-   * Tissue voxel size, µm, > 0. Default is 0.5.
+   * Tissue voxel size, µm, > 0. Default is 0.4 (half the default fiber radius 0.8, so that the
+   * default fibers are resolved).
    */
   vtkSetMacro(VoxelSize, double);
   vtkGetMacro(VoxelSize, double);
@@ -307,7 +308,7 @@ private:
   void operator=(const vtkPLISimulation&) = delete;
 
   double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
-  double VoxelSize = 0.5;
+  double VoxelSize = 0.4;
   double PixelSize = 2.0;
   double Wavelength = 525.0;
   double LightIntensity = 26000.0;
