@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
@@ -208,24 +209,45 @@ int vtkPLISimulation::RequestUpdateExtent(vtkInformation*, vtkInformationVector*
 int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
+  // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
+  std::string error;
+  this->SimulatePiece(inputVector, outputVector, error);
+  error = fiberpli::FiberCollective::AgreeOnError(outputVector->GetInformationObject(0), "PLISimulation", error);
+  if (!error.empty())
+  {
+    for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+    {
+      outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT())->Initialize();
+    }
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPLISimulation::SimulatePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector,
+  std::string& error)
+{
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
   if (!this->PlanError.empty())
   {
-    vtkErrorMacro(<< this->PlanError);
-    return 0;
+    error = this->PlanError;
+    return;
   }
   if (fiberpli::FiberPolyData::IsEmpty(input))
   {
-    return 1;
+    return;
   }
   fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
   if (!in.ok())
   {
-    vtkErrorMacro(<< in.error);
-    return 0;
+    error = in.error;
+    return;
   }
   if (!in.warning.empty())
   {
@@ -236,7 +258,7 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   if (ext[0] > ext[1] || ext[2] > ext[3])
   {
-    return 1;
+    return;
   }
   fiberpli::pli::PLIOptions options = MakeOptions(this);
   if (IsBoundsSentinel(options.volumeOfInterest))
@@ -259,8 +281,8 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
     });
   if (!st.ok())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
-    return 0;
+    error = "PLISimulation: " + st.error;
+    return;
   }
   if (!st.warnings.empty())
   {
@@ -273,7 +295,7 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   }
   if (image.aborted)
   {
-    return 1;
+    return;
   }
 
   const fiberpli::pli::PLIPlan& plan = image.plan;
@@ -310,7 +332,6 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   fiberpli::AddFieldDoubles(output, "pixel_size", { options.pixelSize });
   fiberpli::AddFieldDoubles(output, "light_intensity", { options.lightIntensity });
   this->UpdateProgress(1.0);
-  return 1;
 }
 
 //------------------------------------------------------------------------------

@@ -263,6 +263,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// This rank's part of RequestData; `error` is set when it fails.
+  void SimulatePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, std::string& error);
 
 private:
   vtkPLISimulation(const vtkPLISimulation&) = delete;

@@ -1,0 +1,46 @@
+/**
+ * @class   FiberCollective
+ * @brief   the MPI error state shared by the FiberPLI algorithms of one parallel update
+ *
+ * When an algorithm fails on one rank only, VTK does not execute what is downstream of it on that
+ * rank, while the other ranks go on: a later collective (PLIAnalysis's reduction, the gather of
+ * SaveData's parallel writer) then waits forever for the failed rank, or a writer writes only the
+ * pieces of the healthy ranks. So every FiberPLI algorithm ends RequestData with AgreeOnError:
+ * all ranks learn whether any rank failed, and then all fail together (empty output, an error on
+ * every rank naming the rank and its message) or all succeed.
+ *
+ * A request is treated as collective only when it is one piece of an update of every rank of the
+ * global controller (UPDATE_NUMBER_OF_PIECES equal to its number of processes, > 1): that is how
+ * ParaView updates in parallel, while a serial run, or one rank updating alone, never waits.
+ */
+#ifndef FiberCollective_h
+#define FiberCollective_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+
+#include <string>
+
+class vtkInformation;
+class vtkMultiProcessController;
+
+namespace fiberpli
+{
+
+class FIBERPLIFILTERS_EXPORT FiberCollective
+{
+public:
+  /// The global controller when `info` (an output, or for a writer the input, information) belongs
+  /// to a request that every rank executes; else nullptr.
+  static vtkMultiProcessController* ControllerFor(vtkInformation* info);
+
+  /// Collective over ControllerFor(info) (local only without it): every rank passes its own error
+  /// ("" = success) and gets "" when all ranks succeeded, else — the same decision on every rank —
+  /// its own error on a failing rank and "<who>: rank R failed, so no rank gives output: <error of
+  /// R>" (R = the lowest failing rank) on the others.
+  static std::string AgreeOnError(vtkInformation* info, const std::string& who, const std::string& localError);
+};
+
+} // namespace fiberpli
+
+#endif
+// VTK-HeaderTest-Exclude: FiberCollective.h
