@@ -1,5 +1,6 @@
 #include "Tissue/CubeGenerator.h"
 
+#include "Util/MemoryBudget.h"
 #include "Util/Random.h"
 
 #include <algorithm>
@@ -11,9 +12,6 @@ namespace fiberpli
 
 namespace
 {
-// Above this many points the request is certainly a mistake (several GB of fibers).
-constexpr double kMaxPoints = 2.0e8;
-
 int pointsPerFiber(const CubeOptions& o)
 {
   return std::max(2, static_cast<int>(std::lround(o.edgeLength / o.segmentLength)) + 1);
@@ -47,11 +45,18 @@ std::string validateCubeOptions(const CubeOptions& o)
   {
     msg << "Displacement is " << o.displacement << ", must be >= 0";
   }
-  else if (static_cast<double>(o.numberOfFibers) * (o.edgeLength / o.segmentLength + 1.0) > kMaxPoints)
+  else
   {
-    msg << "NumberOfFibers " << o.numberOfFibers << " with EdgeLength " << o.edgeLength
-        << " and SegmentLength " << o.segmentLength << " would need more than " << kMaxPoints
-        << " points";
+    const double fibers = static_cast<double>(o.numberOfFibers);
+    const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
+    std::ostringstream what;
+    what << "NumberOfFibers " << o.numberOfFibers << " with EdgeLength " << o.edgeLength
+         << " and SegmentLength " << o.segmentLength << " (" << points << " points)";
+    const std::string problem = checkMemoryBudget(fiberModelBytes(fibers, points), what.str());
+    if (!problem.empty())
+    {
+      msg << problem << "; it would need too many points";
+    }
   }
   return msg.str();
 }
