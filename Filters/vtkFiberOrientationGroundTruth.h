@@ -38,7 +38,7 @@ public:
 
   ///@{
   /**
-   * Edge of a tissue voxel in µm, 1e-3 to 1e6. Default is 0.5.
+   * Edge of a tissue voxel in µm, 1e-3 to 1e6. Default is 0.4 (as PLISimulation).
    */
   vtkSetClampMacro(VoxelSize, double, 1e-3, 1e6);
   vtkGetMacro(VoxelSize, double);
@@ -73,7 +73,7 @@ private:
   void operator=(const vtkFiberOrientationGroundTruth&) = delete;
 
   double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
-  double VoxelSize = 0.5;
+  double VoxelSize = 0.4;
   double PixelSize = 2.0;
   int NumberOfThreads = 0;
   /// The volume RequestInformation planned the image for (the input bounds when VolumeOfInterest is

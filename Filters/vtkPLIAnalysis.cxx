@@ -18,7 +18,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
-#include <array>
+#include <deque>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -35,6 +35,60 @@ double FieldValue(vtkDataObject* data, const char* name, double fallback)
 {
   vtkDataArray* a = data->GetFieldData() ? data->GetFieldData()->GetArray(name) : nullptr;
   return a && a->GetNumberOfValues() > 0 ? a->GetComponent(0, 0) : fallback;
+}
+
+/// All values of a field data array (empty when absent).
+std::vector<double> FieldValues(vtkDataObject* data, const char* name)
+{
+  std::vector<double> values;
+  vtkDataArray* a = data->GetFieldData() ? data->GetFieldData()->GetArray(name) : nullptr;
+  for (vtkIdType k = 0; a && k < a->GetNumberOfValues(); ++k)
+  {
+    values.push_back(a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
+  }
+  return values;
+}
+
+/// The tilted views of the input from its field data: `tilt_angles` and `tilt_directions` (one per
+/// intensity_tilt_v), or the older one-angle form (`tilt_angle`, azimuths 0°, 90°, 180°, 270°).
+/// Returns an error naming the field data array when the counts do not match the tilted stacks.
+std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<fiberpli::TiltView>& views)
+{
+  views.clear();
+  if (stacks == 0)
+  {
+    return {};
+  }
+  std::vector<double> angles = FieldValues(input, "tilt_angles");
+  std::vector<double> azimuths = FieldValues(input, "tilt_directions");
+  const bool hasAngles = input->GetFieldData() && input->GetFieldData()->GetArray("tilt_angles");
+  if (!hasAngles)
+  {
+    angles.assign(stacks, FieldValue(input, "tilt_angle", 0.0));
+  }
+  if (azimuths.empty() && stacks == 4)
+  {
+    azimuths = { 0.0, 90.0, 180.0, 270.0 };
+  }
+  std::ostringstream msg;
+  if (angles.size() != stacks)
+  {
+    msg << "field data 'tilt_angles' has " << angles.size() << " values for " << stacks << " tilted views (intensity_tilt_*)";
+  }
+  else if (azimuths.size() != stacks)
+  {
+    msg << "field data 'tilt_directions' has " << azimuths.size() << " values for " << stacks
+        << " tilted views (intensity_tilt_*)";
+  }
+  if (!msg.str().empty())
+  {
+    return msg.str();
+  }
+  for (std::size_t v = 0; v < stacks; ++v)
+  {
+    views.push_back(fiberpli::TiltView{ angles[v] * kDeg, azimuths[v] * kDeg });
+  }
+  return {};
 }
 
 /// The values of a point array as contiguous doubles (no copy when it already is one).
@@ -156,21 +210,31 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   stack.nx = inExt[1] - inExt[0] + 1;
   stack.ny = inExt[3] - inExt[2] + 1;
   stack.rho = rho;
-  std::vector<double> buffers[1 + fiberpli::kTiltViews];
+  std::deque<std::vector<double>> buffers(1); // a deque never moves its elements: pointers stay valid
   stack.intensity = AsDoubles(intensity, buffers[0]);
-  for (int v = 0; v < fiberpli::kTiltViews; ++v)
+  for (int v = 0;; ++v)
   {
     const std::string name = "intensity_tilt_" + std::to_string(v);
     vtkDataArray* a = input->GetPointData()->GetArray(name.c_str());
-    if (a && a->GetNumberOfComponents() != n)
+    if (!a)
+    {
+      break;
+    }
+    if (a->GetNumberOfComponents() != n)
     {
       vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
                     << " components, 'intensity' has " << n << "; they must be equal");
       return finish(0);
     }
-    stack.tilts[v] = a ? AsDoubles(a, buffers[1 + v]) : nullptr;
+    buffers.emplace_back();
+    stack.tilts.push_back(AsDoubles(a, buffers.back()));
   }
-  stack.tiltAngle = FieldValue(input, "tilt_angle", 0.0) * kDeg;
+  const std::string tiltError = ReadTiltViews(input, stack.tilts.size(), stack.tiltViews);
+  if (!tiltError.empty())
+  {
+    vtkErrorMacro(<< "PLIAnalysis: " << tiltError);
+    return finish(0);
+  }
   stack.convention = FieldValue(input, "tilt_convention", 0.0) == 1.0 ? fiberpli::TiltConvention::FastPLI
                                                                        : fiberpli::TiltConvention::Physical;
   stack.noiseGain = FieldValue(input, "noise_gain", -1.0);

@@ -3,10 +3,12 @@
  * @brief   3D-PLI analysis: polarizer stack → transmittance, direction, retardation, inclination
  *
  * Input: a one-slice vtkImageData as written by PLISimulation (pli-simulation.md §7): point array
- * `intensity` (N >= 3 components, one per polarizer angle), optionally `intensity_tilt_0..3`
- * (same N, tilt azimuths 0°, 90°, 180°, 270°); field data `polarizer_angles` (degrees; when
- * missing, N equidistant angles k·180°/N), `tilt_angle` (degrees, in-tissue), `tilt_convention`
- * (0 Physical, 1 FastPLI) and `noise_gain`. Output: the input geometry with the point arrays
+ * `intensity` (N >= 3 components, one per polarizer angle), optionally tilted views
+ * `intensity_tilt_0..M−1` (same N); field data `polarizer_angles` (degrees; when missing, N
+ * equidistant angles k·180°/N), `tilt_angles` and `tilt_directions` (degrees, in-tissue tilt and
+ * azimuth of every tilted view; older data: one `tilt_angle` and azimuths 0°, 90°, 180°, 270° for
+ * four views), `tilt_convention` (0 Physical, 1 FastPLI) and `noise_gain`. Any polarimeter set-up
+ * of PLISimulation is analysed without further settings. Output: the input geometry with the point arrays
  * (double) `transmittance` (2·a0, intensity units), `direction` (degrees in [0, 180), in-plane
  * fiber axis counter-clockwise from +x), `retardation` (|sin δ| in [0, 1]), `inclination`
  * (degrees in [0, 90]); with the tilt fit also `inclination_signed` (degrees in [−90, 90]),
@@ -36,15 +38,15 @@ public:
 
   enum InclinationMethods
   {
-    AUTO = 0,        ///< TILT when all four tilt stacks exist and tilt_angle > 0, else RETARDATION
+    AUTO = 0,        ///< TILT when at least 2 tilted views with tilt > 0 exist, else RETARDATION
     RETARDATION = 1, ///< unsigned inclination from the retardation (pli-analysis.md §3.1)
     TILT = 2         ///< signed inclination from the tilt fit (§3.2)
   };
 
   ///@{
   /**
-   * How the inclination is computed: 0 Auto (Tilt when the four `intensity_tilt_k` arrays exist
-   * and tilt_angle > 0, else Retardation), 1 Retardation, 2 Tilt. Default is 0 (Auto).
+   * How the inclination is computed: 0 Auto (Tilt when at least two `intensity_tilt_v` arrays
+   * with a tilt > 0 exist, else Retardation), 1 Retardation, 2 Tilt. Default is 0 (Auto).
    */
   vtkSetClampMacro(InclinationMethod, int, 0, 2);
   vtkGetMacro(InclinationMethod, int);

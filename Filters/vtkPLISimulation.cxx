@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 vtkStandardNewMacro(vtkPLISimulation);
@@ -37,7 +38,20 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
   o.wavelength = self->GetWavelength();
   o.lightIntensity = self->GetLightIntensity();
   o.numberOfRotations = self->GetNumberOfRotations();
+  for (int i = 0; i < self->GetNumberOfRotationAngles(); ++i)
+  {
+    o.rotationAngles.push_back(self->GetRotationAngle(i));
+  }
   o.tiltAngle = self->GetTiltAngle();
+  for (int i = 0; i < self->GetNumberOfTiltAngles(); ++i)
+  {
+    o.tiltAngles.push_back(self->GetTiltAngleValue(i));
+  }
+  for (int i = 0; i < self->GetNumberOfTiltAzimuths(); ++i)
+  {
+    o.tiltAzimuths.push_back(self->GetTiltAzimuth(i));
+  }
+  o.tiltConvention = static_cast<fiberpli::pli::TiltConvention>(self->GetTiltConvention());
   o.birefringence = self->GetBirefringence();
   o.absorption = self->GetAbsorption();
   o.seed = static_cast<std::uint64_t>(self->GetSeed());
@@ -57,6 +71,35 @@ bool IsBoundsSentinel(const double* voi)
   return voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
 }
 
+/// Resizes a list property; returns true when the size changed.
+bool ResizeList(std::vector<double>& list, int n)
+{
+  const std::size_t size = static_cast<std::size_t>(std::max(0, n));
+  if (list.size() == size)
+  {
+    return false;
+  }
+  list.resize(size, 0.0);
+  return true;
+}
+
+/// Sets one value of a list property (out-of-range indices are ignored); true when it changed.
+bool SetListValue(std::vector<double>& list, int i, double v)
+{
+  if (i < 0 || static_cast<std::size_t>(i) >= list.size() ||
+    std::memcmp(&list[static_cast<std::size_t>(i)], &v, sizeof(double)) == 0)
+  {
+    return false;
+  }
+  list[static_cast<std::size_t>(i)] = v;
+  return true;
+}
+
+double ListValue(const std::vector<double>& list, int i)
+{
+  return i >= 0 && static_cast<std::size_t>(i) < list.size() ? list[static_cast<std::size_t>(i)] : 0.0;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -71,6 +114,25 @@ vtkPLISimulation::~vtkPLISimulation()
 {
   this->SetLayers(nullptr);
 }
+
+//------------------------------------------------------------------------------
+// The list properties: ParaView sets the count first, then every value by index.
+#define FIBERPLI_LIST_ACCESSORS(SetCount, SetValue, GetValue, list)                                 \
+  void vtkPLISimulation::SetCount(int n)                                                          \
+  {                                                                                                \
+    if (ResizeList(this->list, n))                                                                 \
+      this->Modified();                                                                            \
+  }                                                                                                \
+  void vtkPLISimulation::SetValue(int i, double v)                                                \
+  {                                                                                                \
+    if (SetListValue(this->list, i, v))                                                            \
+      this->Modified();                                                                            \
+  }                                                                                                \
+  double vtkPLISimulation::GetValue(int i) const { return ListValue(this->list, i); }
+FIBERPLI_LIST_ACCESSORS(SetNumberOfRotationAngles, SetRotationAngle, GetRotationAngle, RotationAngles)
+FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleValue, TiltAngles)
+FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths)
+#undef FIBERPLI_LIST_ACCESSORS
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::FillInputPortInformation(int, vtkInformation* info)
@@ -129,7 +191,7 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), plan.imageOrigin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, options.numberOfRotations);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, static_cast<int>(plan.rho.size()));
   return 1;
 }
 
@@ -220,7 +282,7 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   output->SetExtent(ext);
   output->SetSpacing(spacing);
   output->SetOrigin(plan.imageOrigin);
-  const int nrho = options.numberOfRotations;
+  const int nrho = static_cast<int>(plan.rho.size());
   const vtkIdType n = static_cast<vtkIdType>(range.nx() * range.ny());
   for (std::size_t v = 0; v < image.views.size(); ++v)
   {
@@ -235,14 +297,10 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   }
   output->GetPointData()->SetActiveScalars("intensity");
 
-  std::vector<double> angles;
-  for (double rho : plan.rho)
-  {
-    angles.push_back(rho * 180.0 / M_PI);
-  }
-  fiberpli::AddFieldDoubles(output, "polarizer_angles", angles);
-  fiberpli::AddFieldDoubles(output, "tilt_angle", { plan.views.size() > 1 ? plan.tiltInTissue * 180.0 / M_PI : 0.0 });
-  fiberpli::AddFieldDoubles(output, "tilt_directions", { 0.0, 90.0, 180.0, 270.0 });
+  fiberpli::AddFieldDoubles(output, "polarizer_angles", plan.rhoDeg);
+  fiberpli::AddFieldDoubles(output, "tilt_angle", { plan.tiltInTissue * 180.0 / M_PI });
+  fiberpli::AddFieldDoubles(output, "tilt_angles", plan.tiltDeg);
+  fiberpli::AddFieldDoubles(output, "tilt_directions", plan.azimuthDeg);
   fiberpli::AddFieldDoubles(output, "section_thickness", { plan.thickness });
   fiberpli::AddFieldDoubles(output, "wavelength", { options.wavelength });
   fiberpli::AddFieldInt(output, "tilt_convention", static_cast<int>(options.tiltConvention));
@@ -267,7 +325,19 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Wavelength: " << this->Wavelength << "\n";
   os << indent << "LightIntensity: " << this->LightIntensity << "\n";
   os << indent << "NumberOfRotations: " << this->NumberOfRotations << "\n";
+  auto list = [&os, indent](const char* name, const std::vector<double>& values) {
+    os << indent << name << ":";
+    for (double v : values)
+    {
+      os << " " << v;
+    }
+    os << "\n";
+  };
+  list("RotationAngles", this->RotationAngles);
   os << indent << "TiltAngle: " << this->TiltAngle << "\n";
+  list("TiltAngles", this->TiltAngles);
+  list("TiltAzimuths", this->TiltAzimuths);
+  os << indent << "TiltConvention: " << this->TiltConvention << "\n";
   os << indent << "Birefringence: " << this->Birefringence << "\n";
   os << indent << "Absorption: " << this->Absorption << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

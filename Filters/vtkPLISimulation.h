@@ -9,10 +9,12 @@
  * (fiberpli::pli::runPLI).
  *
  * Output: vtkImageData with one slice (z extent 0..0), x and y in µm, spacing PixelSize. Point
- * arrays (double, one component per polarizer angle ρ_k = k·180°/NumberOfRotations): `intensity`
- * (untilted view) and, when TiltAngle > 0, `intensity_tilt_0..3` (tilt azimuths 0°, 90°, 180°,
- * 270°). Field data: `polarizer_angles` (deg), `tilt_angle` (deg, in-tissue θ_t = asin(sin θ / n)),
- * `tilt_directions` (deg, 0 90 180 270), `section_thickness` (µm, n_z·VoxelSize), `wavelength` (nm),
+ * arrays (double, one component per polarizer angle: RotationAngles, or k·180°/NumberOfRotations):
+ * `intensity` (untilted view) and one `intensity_tilt_<v>` per tilted view (every tilt angle ×
+ * every tilt azimuth, angle-major; by default the azimuths 0°, 90°, 180°, 270°). Field data:
+ * `polarizer_angles` (deg), `tilt_angle` (deg, largest in-tissue θ_t = asin(sin θ / n), 0 =
+ * untilted), `tilt_angles` and `tilt_directions` (deg, in-tissue θ_t and azimuth of every tilted
+ * view), `section_thickness` (µm, n_z·VoxelSize), `wavelength` (nm),
  * `tilt_convention` (int, 0 = physical), `noise_gain`, `empty_section` (int), `voxel_size`,
  * `pixel_size` (µm), `light_intensity`.
  *
@@ -35,6 +37,7 @@
 #include "vtkImageAlgorithm.h"
 
 #include <string> // for PlanError
+#include <vector> // for the angle lists
 
 class FIBERPLIFILTERS_EXPORT vtkPLISimulation : public vtkImageAlgorithm
 {
@@ -62,7 +65,8 @@ public:
 
   ///@{
   /**
-   * Tissue voxel size, µm, > 0. Default is 0.5.
+   * Tissue voxel size, µm, > 0. Default is 0.4 (half the default fiber radius 0.8, so that the
+   * default fibers are resolved).
    */
   vtkSetMacro(VoxelSize, double);
   vtkGetMacro(VoxelSize, double);
@@ -94,7 +98,8 @@ public:
 
   ///@{
   /**
-   * Number of polarizer angles N, 3 to 3600; angles k·180°/N. Default is 18.
+   * Number of polarizer angles N, 3 to 3600; angles k·180°/N. Used when RotationAngles is empty.
+   * Default is 18.
    */
   vtkSetMacro(NumberOfRotations, int);
   vtkGetMacro(NumberOfRotations, int);
@@ -102,10 +107,63 @@ public:
 
   ///@{
   /**
-   * Tilt angle of the 4 tilted views, degrees in [0, 45); 0 = no tilted views. Default is 0.
+   * Polarizer angles, degrees, each in [0, 180), distinct, at least 3, in the order of the
+   * components of the output arrays. Empty (the default) = NumberOfRotations equidistant angles.
+   */
+  void SetNumberOfRotationAngles(int n);
+  void SetRotationAngle(int i, double degrees);
+  int GetNumberOfRotationAngles() const { return static_cast<int>(this->RotationAngles.size()); }
+  double GetRotationAngle(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * Tilt angle of the tilted views, degrees in [0, 45); 0 = no tilted views. Used when TiltAngles
+   * is empty (the one-angle shorthand). Default is 0.
    */
   vtkSetMacro(TiltAngle, double);
   vtkGetMacro(TiltAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Tilt angles of the specimen stage, degrees, each in (0, 45), distinct. Every tilt angle is
+   * combined with every tilt azimuth: one tilted view per pair, angle-major. Empty (the default)
+   * = TiltAngle alone.
+   */
+  void SetNumberOfTiltAngles(int n);
+  void SetTiltAngleValue(int i, double degrees);
+  int GetNumberOfTiltAngles() const { return static_cast<int>(this->TiltAngles.size()); }
+  double GetTiltAngleValue(int i) const;
+  ///@}
+
+  ///@{
+  /**
+   * Tilt azimuths, degrees, each in [0, 360), distinct: the direction (counter-clockwise from +x
+   * seen from +z) towards which the beam leans in the tissue. Empty (the default) = 0, 90, 180,
+   * 270.
+   */
+  void SetNumberOfTiltAzimuths(int n);
+  void SetTiltAzimuth(int i, double degrees);
+  int GetNumberOfTiltAzimuths() const { return static_cast<int>(this->TiltAzimuths.size()); }
+  double GetTiltAzimuth(int i) const;
+  ///@}
+
+  /// How the tilted beam sees the optic axis (docs/pli-simulation.md): 0 = physical (the beam
+  /// frame of the tilted stage), 1 = fastPLI's (the transposed rotation, for comparisons).
+  enum TiltConventionType
+  {
+    PHYSICAL = 0,
+    FASTPLI = 1
+  };
+
+  ///@{
+  /**
+   * Tilt convention, PHYSICAL (default) or FASTPLI; written to the field data tilt_convention,
+   * which PLIAnalysis follows.
+   */
+  vtkSetClampMacro(TiltConvention, int, PHYSICAL, FASTPLI);
+  vtkGetMacro(TiltConvention, int);
   ///@}
 
   ///@{
@@ -211,12 +269,16 @@ private:
   void operator=(const vtkPLISimulation&) = delete;
 
   double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
-  double VoxelSize = 0.5;
+  double VoxelSize = 0.4;
   double PixelSize = 2.0;
   double Wavelength = 525.0;
   double LightIntensity = 26000.0;
   int NumberOfRotations = 18;
+  std::vector<double> RotationAngles;
   double TiltAngle = 0.0;
+  std::vector<double> TiltAngles;
+  std::vector<double> TiltAzimuths;
+  int TiltConvention = PHYSICAL;
   double Birefringence = -0.001;
   double Absorption = 0.0;
   int Seed = 0;

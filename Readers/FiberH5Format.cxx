@@ -78,21 +78,15 @@ bool numericMembers(hid_t group, std::vector<std::pair<long, std::string>>& memb
   std::sort(members.begin(), members.end());
   return true;
 }
-} // namespace
 
-bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
+/// True when `group` holds fastPLI bundles: a group "0" with a dataset "0" of shape (n, 4).
+bool holdsBundles(hid_t group)
 {
-  QuietHdf5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
+  if (H5Lexists(group, "0", H5P_DEFAULT) <= 0 || H5Lexists(group, "0/0", H5P_DEFAULT) <= 0)
   {
     return false;
   }
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file.ok() || H5Lexists(file.get(), "0", H5P_DEFAULT) <= 0 || H5Lexists(file.get(), "0/0", H5P_DEFAULT) <= 0)
-  {
-    return false;
-  }
-  Handle data(H5Dopen2(file.get(), "0/0", H5P_DEFAULT), H5Dclose);
+  Handle data(H5Dopen2(group, "0/0", H5P_DEFAULT), H5Dclose);
   if (!data.ok())
   {
     return false;
@@ -103,7 +97,90 @@ bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
     H5Sget_simple_extent_dims(space.get(), dims, nullptr) == 2 && dims[1] == 4;
 }
 
-std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
+/// Paths ("/" = root) of the groups holding bundles, as fastPLI's save(..., group_name=...) makes
+/// them. Follows hard links only, at most 8 levels deep and 10000 members per group, and does not
+/// look inside a group that holds bundles.
+void findBundleGroups(hid_t group, const std::string& path, int depth, std::vector<std::string>& found)
+{
+  if (holdsBundles(group))
+  {
+    found.push_back(path.empty() ? "/" : path);
+    return;
+  }
+  H5G_info_t info;
+  if (depth >= 8 || found.size() > 16 || H5Gget_info(group, &info) < 0)
+  {
+    return;
+  }
+  for (hsize_t i = 0; i < std::min<hsize_t>(info.nlinks, 10000); ++i)
+  {
+    char name[256] = { 0 };
+    H5L_info_t link;
+    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
+      H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
+    {
+      continue;
+    }
+    Handle child(H5Gopen2(group, name, H5P_DEFAULT), H5Gclose); // fails quietly for datasets
+    if (child.ok())
+    {
+      findBundleGroups(child.get(), path + "/" + name, depth + 1, found);
+    }
+  }
+}
+} // namespace
+
+bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
+{
+  QuietHdf5 quiet;
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+  {
+    return false;
+  }
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  std::vector<std::string> groups;
+  if (file.ok())
+  {
+    findBundleGroups(file.get(), "", 0, groups);
+  }
+  return !groups.empty();
+}
+
+std::string FiberH5Format::BundleGroup(const std::string& path, const std::string& requested, std::string& group)
+{
+  QuietHdf5 quiet;
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.ok())
+  {
+    return path + ": cannot open the HDF5 file";
+  }
+  if (!requested.empty())
+  {
+    Handle g(H5Gopen2(file.get(), requested.c_str(), H5P_DEFAULT), H5Gclose);
+    if (!g.ok())
+    {
+      return path + ": Group '" + requested + "' is not a group of the file";
+    }
+    group = requested;
+    return {};
+  }
+  std::vector<std::string> groups;
+  findBundleGroups(file.get(), "", 0, groups);
+  if (groups.size() > 1)
+  {
+    std::string list;
+    for (const std::string& g : groups)
+    {
+      list += (list.empty() ? "" : ", ") + g;
+    }
+    return path + ": several groups hold fiber bundles (" + list + "); set Group to one of them";
+  }
+  // None found: read the root, whose own messages say what is wrong with it.
+  group = groups.empty() ? "/" : groups.front();
+  return {};
+}
+
+std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model)
 {
   QuietHdf5 quiet;
   model.fibers.clear();
@@ -118,28 +195,38 @@ std::string FiberH5Format::Read(const std::string& path, FiberModel& model)
   }
   hsize_t fileSize = 0;
   H5Fget_filesize(file.get(), &fileSize);
+  std::string groupPath;
+  const std::string groupError = BundleGroup(path, requestedGroup, groupPath);
+  if (!groupError.empty())
+  {
+    return groupError;
+  }
+  Handle root(H5Gopen2(file.get(), groupPath.c_str(), H5P_DEFAULT), H5Gclose);
+  // Messages name datasets by their full path: "/fiber_bundles/0/3".
+  const std::string prefix = groupPath == "/" ? "" : (groupPath.front() == '/' ? groupPath : "/" + groupPath);
   std::vector<std::pair<long, std::string>> bundles;
   std::string bad;
-  if (!numericMembers(file.get(), bundles, bad))
+  if (!root.ok() || !numericMembers(root.get(), bundles, bad))
   {
-    return path + ": root member '" + bad + "' is not a bundle index (expected groups \"0\", \"1\", ...)";
+    return path + ": member '" + prefix + "/" + bad + "' is not a bundle index (expected groups \"0\", \"1\", ... " +
+      (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
   std::int64_t nextId = 0;
   for (const auto& [bundleIndex, bundleName] : bundles)
   {
-    Handle group(H5Gopen2(file.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
+    Handle group(H5Gopen2(root.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
     if (!group.ok())
     {
-      return path + ": '/" + bundleName + "' is not a group";
+      return path + ": '" + prefix + "/" + bundleName + "' is not a group";
     }
     std::vector<std::pair<long, std::string>> fibers;
     if (!numericMembers(group.get(), fibers, bad))
     {
-      return path + ": member '/" + bundleName + "/" + bad + "' is not a fiber index";
+      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' is not a fiber index";
     }
     for (const auto& [fiberIndex, fiberName] : fibers)
     {
-      const std::string where = path + ": dataset '/" + bundleName + "/" + fiberName + "'";
+      const std::string where = path + ": dataset '" + prefix + "/" + bundleName + "/" + fiberName + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
       {

@@ -2,7 +2,8 @@
  * @class   FiberH5Format
  * @brief   fastPLI HDF5 fiber bundles (.h5) through VTK's HDF5 library
  *
- * Layout (api.md, fastPLI `io.fiber_bundles`): the root holds one group per bundle named "0",
+ * Layout (api.md, fastPLI `io.fiber_bundles`): the root — or the group given to fastPLI's
+ * `save(..., group_name=...)` — holds one group per bundle named "0",
  * "1", …; each group holds one float64 dataset of shape (n, 4) — x, y, z, r per point — per fiber,
  * named "0", "1", …. Names are ordered numerically (HDF5 lists "10" before "2"). The bundle index
  * becomes bundle_id; fibers get consecutive fiber ids in bundle/fiber order. This lives in the
@@ -21,12 +22,19 @@ namespace fiberpli
 class FiberH5Format
 {
 public:
-  /// True when `path` is an HDF5 file whose root holds a group "0" with a dataset "0" of shape (n, 4).
+  /// True when `path` is an HDF5 file in which the root or some group (hard links, 8 levels deep)
+  /// holds bundles: a group "0" with a dataset "0" of shape (n, 4).
   static bool LooksLikeFiberH5(const std::string& path);
 
-  /// Reads `path` into `model`; returns an empty string or an error naming the file and the
-  /// group/dataset. Sizes are checked before any allocation.
-  static std::string Read(const std::string& path, FiberModel& model);
+  /// The group to read: `requested` when it names a group of the file; with `requested` empty, the
+  /// one group holding bundles (root included), or the root when none does. Several such groups
+  /// are an error listing them.
+  static std::string BundleGroup(const std::string& path, const std::string& requested, std::string& group);
+
+  /// Reads the bundles of `group` ("" = found by BundleGroup) of `path` into `model`; returns an
+  /// empty string or an error naming the file and the group/dataset. Sizes are checked before any
+  /// allocation.
+  static std::string Read(const std::string& path, const std::string& group, FiberModel& model);
 
   /// Writes `model` to `path` (created or truncated; the caller handles temp file + rename).
   /// Fibers are grouped by bundle_id in increasing order. Returns an empty string or an error.

@@ -39,6 +39,7 @@ vtkFiberReader::vtkFiberReader()
 vtkFiberReader::~vtkFiberReader()
 {
   this->SetFileName(nullptr);
+  this->SetGroup(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -75,7 +76,7 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
   {
     if (HasH5Extension(path))
     {
-      result.error = fiberpli::FiberH5Format::Read(path, result.model);
+      result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model);
       if (result.ok())
       {
         // .h5 files hold all points; validate like the text formats do.
@@ -117,5 +118,6 @@ void vtkFiberReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "Group: " << (this->Group ? this->Group : "(automatic)") << "\n";
   os << indent << "DefaultRadius: " << this->DefaultRadius << "\n";
 }

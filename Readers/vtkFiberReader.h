@@ -41,6 +41,16 @@ public:
   vtkGetMacro(DefaultRadius, double);
   ///@}
 
+  ///@{
+  /**
+   * .h5 only: the HDF5 group holding the bundles (fastPLI's `save(..., group_name=...)`), e.g.
+   * "fiber_bundles" or "/model/fibers". Empty (the default) means found automatically: the root
+   * or the one group holding bundles; several such groups are an error listing them.
+   */
+  vtkSetStringMacro(Group);
+  vtkGetStringMacro(Group);
+  ///@}
+
   /**
    * 1 when the file has one of our extensions and its content is of that format, else 0.
    */
@@ -56,6 +66,7 @@ private:
   void operator=(const vtkFiberReader&) = delete;
 
   char* FileName = nullptr;
+  char* Group = nullptr;
   double DefaultRadius = 1.0;
 };
 

@@ -12,10 +12,10 @@ namespace fiberpli
 std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress)
 {
-  bool haveTilts = stack.tiltAngle > 0.0;
-  for (const double* t : stack.tilts)
+  bool haveTilts = stack.tilts.size() >= 2 && stack.tilts.size() == stack.tiltViews.size();
+  for (std::size_t t = 0; haveTilts && t < stack.tilts.size(); ++t)
   {
-    haveTilts = haveTilts && t != nullptr;
+    haveTilts = stack.tilts[t] != nullptr && stack.tiltViews[t].theta > 0.0;
   }
   InclinationMethod method = options.method;
   if (method == InclinationMethod::Auto)
@@ -26,17 +26,27 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
   {
     std::ostringstream msg;
     msg << "InclinationMethod is Tilt but the input has ";
-    if (!(stack.tiltAngle > 0.0))
+    if (stack.tilts.size() != stack.tiltViews.size())
     {
-      msg << "tilt_angle " << stack.tiltAngle * 180.0 / M_PI << " deg (needs > 0)";
+      msg << stack.tilts.size() << " tilted stacks (intensity_tilt_*) for " << stack.tiltViews.size()
+          << " tilted views (tilt_angles / tilt_directions)";
+    }
+    else if (stack.tilts.size() < 2)
+    {
+      msg << stack.tilts.size() << " tilted views (intensity_tilt_*), the tilt fit needs at least 2";
     }
     else
     {
-      for (int t = 0; t < kTiltViews; ++t)
+      for (std::size_t t = 0; t < stack.tilts.size(); ++t)
       {
         if (!stack.tilts[t])
         {
           msg << "no intensity_tilt_" << t;
+          break;
+        }
+        if (!(stack.tiltViews[t].theta > 0.0))
+        {
+          msg << "tilt_angles[" << t << "] = " << stack.tiltViews[t].theta * 180.0 / M_PI << " deg (needs > 0)";
           break;
         }
       }
@@ -88,7 +98,7 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
   }
 
   TiltFitOptions to;
-  to.tiltAngle = stack.tiltAngle;
+  to.views = stack.tiltViews;
   to.convention = stack.convention;
   to.gain = options.noiseGain >= 0.0 ? options.noiseGain : (stack.noiseGain >= 0.0 ? stack.noiseGain : 3.0);
   TiltMaps tm;

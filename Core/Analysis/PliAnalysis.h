@@ -8,7 +8,6 @@
 #include "Analysis/TiltFit.h"
 #include "Util/Progress.h"
 
-#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -20,7 +19,7 @@ namespace fiberpli
 /// api.md/pli-analysis.md §1 InclinationMethod.
 enum class InclinationMethod
 {
-  Auto = 0,        ///< Tilt when all four tilt stacks exist and tiltAngle > 0, else Retardation
+  Auto = 0,        ///< Tilt when at least 2 tilted views exist, else Retardation
   Retardation = 1, ///< §3.1, unsigned
   Tilt = 2         ///< §3.2, signed, with relative thickness and χ²
 };
@@ -29,10 +28,10 @@ enum class InclinationMethod
 struct PliStack
 {
   const double* intensity = nullptr;            ///< nx·ny pixels × rho.size(), pixel-major, x fastest
-  std::array<const double*, kTiltViews> tilts{}; ///< intensity_tilt_0..3 or null
+  std::vector<const double*> tilts;              ///< intensity_tilt_0..M−1 (null = missing)
+  std::vector<TiltView> tiltViews;               ///< set-up of the tilted stacks, same order
   std::int64_t nx = 0, ny = 0;
   std::vector<double> rho;                       ///< polarizer angles, radians
-  double tiltAngle = 0.0;                        ///< in-tissue θ_t, radians; 0 = no tilts
   TiltConvention convention = TiltConvention::Physical;
   double noiseGain = -1.0;                       ///< field data noise_gain; < 0 = absent
 };
@@ -60,7 +59,7 @@ struct PliAnalysisMaps
 
 /// Runs §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
 /// direction (consistent with inclinationSigned) and a pixel whose fit has invalid data is NaN
-/// in every output. Errors name the fix: missing tilt stacks or tilt_angle for Tilt, too few or
+/// in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few or
 /// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range.
 std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress = {});

@@ -1,6 +1,7 @@
 #include "Analysis/TiltFit.h"
 
 #include "Analysis/Axis.h"
+#include "Util/Angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,6 @@ namespace fiberpli
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kViews = 1 + kTiltViews;
 
 // sinc(x) = sin x / x and its derivative, with series where the closed forms cancel.
 void sinc(double x, double& f, double& df)
@@ -81,7 +81,7 @@ bool solve3(double a[3][3], double b[3], double x[3])
 
 struct TiltFit::Data
 {
-  std::vector<double> y; // kViews·N normalised intensities
+  std::vector<double> y; // views·N normalised intensities
   std::vector<double> w; // weights 1/σ
 };
 
@@ -98,12 +98,29 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
   {
     return err;
   }
-  const double tau = options.tiltAngle;
-  if (!std::isfinite(tau) || tau <= 0.0 || tau >= M_PI / 2)
+  if (options.views.size() < 2)
   {
     std::ostringstream msg;
-    msg << "tilt_angle is " << tau * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
+    msg << "the tilt fit needs at least 2 tilted views, the input has " << options.views.size();
     return msg.str();
+  }
+  for (std::size_t v = 0; v < options.views.size(); ++v)
+  {
+    const TiltView& t = options.views[v];
+    std::ostringstream msg;
+    if (!std::isfinite(t.theta) || t.theta <= 0.0 || t.theta >= M_PI / 2)
+      msg << "tilt_angles[" << v << "] is " << t.theta * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
+    else if (!std::isfinite(t.azimuth))
+      msg << "tilt_directions[" << v << "] is " << t.azimuth * 180.0 / M_PI << " deg, must be finite";
+    for (std::size_t u = 0; u < v && msg.str().empty(); ++u)
+    {
+      const double dphi = std::remainder(t.azimuth - options.views[u].azimuth, 2.0 * M_PI);
+      if (t.theta == options.views[u].theta && std::fabs(dphi) < 1e-12)
+        msg << "tilted views " << u << " and " << v << " are the same (tilt " << t.theta * 180.0 / M_PI
+            << " deg, azimuth " << t.azimuth * 180.0 / M_PI << " deg)";
+    }
+    if (!msg.str().empty())
+      return msg.str();
   }
   if (options.maxIterations < 1)
   {
@@ -120,39 +137,29 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
     s_[k] = std::sin(2.0 * rho[k]);
     c_[k] = std::cos(2.0 * rho[k]);
   }
-  // View 0 is the identity; views 1..4 use R(τ, ψ) of pli-simulation.md §4.3.
-  for (int j = 0; j < kViews; ++j)
+  // View 0 is the identity; the tilted views use R(τ, ψ) of pli-simulation.md §4.3.
+  frames_.assign(1 + options.views.size(), Frame{ { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, M_PI / 2.0 });
+  for (std::size_t j = 1; j < frames_.size(); ++j)
   {
-    for (int r = 0; r < 3; ++r)
-    {
-      for (int q = 0; q < 3; ++q)
-      {
-        m_[j][r][q] = r == q ? 1.0 : 0.0;
-      }
-    }
-    kappa_[j] = M_PI / 2.0;
-  }
-  const double c = std::cos(tau), s = std::sin(tau);
-  for (int j = 1; j < kViews; ++j)
-  {
-    // Azimuths 0°, 90°, 180°, 270°: exact quarter turns keep cos, sin at 0/±1 without rounding noise.
-    const double cp = j == 1 ? 1.0 : (j == 3 ? -1.0 : 0.0);
-    const double sp = j == 2 ? 1.0 : (j == 4 ? -1.0 : 0.0);
+    const TiltView& t = options.views[j - 1];
+    const double c = std::cos(t.theta), s = std::sin(t.theta);
+    double cp, sp;
+    cosSinQuarterExact(t.azimuth, cp, sp);
     const double R[3][3] = { { c * cp * cp + sp * sp, (c - 1) * sp * cp, s * cp },
       { (c - 1) * sp * cp, c * sp * sp + cp * cp, s * sp }, { -s * cp, -s * sp, c } };
     for (int r = 0; r < 3; ++r)
     {
       for (int q = 0; q < 3; ++q)
       {
-        m_[j][r][q] = options.convention == TiltConvention::Physical ? R[q][r] : R[r][q];
+        frames_[j].m[r][q] = options.convention == TiltConvention::Physical ? R[q][r] : R[r][q];
       }
     }
-    kappa_[j] = M_PI / (2.0 * c); // path d/cos τ: t_j = t/cos τ
+    frames_[j].kappa = M_PI / (2.0 * c); // path d/cos τ: t_j = t/cos τ
   }
   return {};
 }
 
-// χ² at p = (φ, α, t); fills r (kViews·N weighted residuals) and, if J is set, dr/dp.
+// χ² at p = (φ, α, t); fills r (views·N weighted residuals) and, if J is set, dr/dp.
 double TiltFit::residuals(const Data& d, const double p[3], double* r, double (*J)[3]) const
 {
   const std::size_t n = s_.size();
@@ -163,21 +170,21 @@ double TiltFit::residuals(const Data& d, const double p[3], double* r, double (*
   const double at = std::abs(p[2]);
   const double sgn = p[2] < 0.0 ? -1.0 : 1.0;
   double chi2 = 0.0;
-  for (int j = 0; j < kViews; ++j)
+  for (std::size_t j = 0; j < frames_.size(); ++j)
   {
-    const auto& m = m_[j];
+    const auto& m = frames_[j].m;
     const double vx = m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2];
     const double vy = m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2];
     const double q = vx * vx + vy * vy; // cos²α_j
     const double P = vx * vx - vy * vy; // q·cos 2φ_j
     const double Q = 2.0 * vx * vy;     // q·sin 2φ_j
     // m_jk = sin(κ|t|q)·(s_k P − c_k Q)/q = κ|t|·sinc(κ|t|q)·g_k: finite for a vertical axis.
-    const double a = kappa_[j] * at;
+    const double a = frames_[j].kappa * at;
     double sc, dsc;
     sinc(a * q, sc, dsc);
     const double f = a * sc;        // sin(aq)/q
     const double fq = a * a * dsc;  // d f / d q
-    const double ft = kappa_[j] * std::cos(a * q) * sgn; // d(sin(aq)/q)/dt · q / q
+    const double ft = frames_[j].kappa * std::cos(a * q) * sgn; // d(sin(aq)/q)/dt · q / q
     double dxf = 0, dyf = 0, dxa = 0, dya = 0;
     if (J)
     {
@@ -207,16 +214,21 @@ double TiltFit::residuals(const Data& d, const double p[3], double* r, double (*
   return chi2;
 }
 
-TiltFitResult TiltFit::pixel(const std::array<const double*, 1 + kTiltViews>& views) const
+TiltFitResult TiltFit::pixel(const std::vector<const double*>& views) const
 {
   TiltFitResult res{ kNaN, kNaN, kNaN, kNaN, kNaN, 0 };
   const std::size_t n = s_.size();
+  const std::size_t nv = frames_.size();
+  if (views.size() != nv)
+  {
+    return res;
+  }
   const double dn = static_cast<double>(n);
   Data d;
-  d.y.resize(kViews * n);
-  d.w.resize(kViews * n);
+  d.y.resize(nv * n);
+  d.w.resize(nv * n);
   double phi0 = 0.0;
-  for (int j = 0; j < kViews; ++j)
+  for (std::size_t j = 0; j < nv; ++j)
   {
     const double* I = views[j];
     const Harmonic h = epa_.harmonic(I);
@@ -242,8 +254,8 @@ TiltFitResult TiltFit::pixel(const std::array<const double*, 1 + kTiltViews>& vi
     }
   }
 
-  std::vector<double> r(kViews * n), rTry(kViews * n);
-  std::vector<double> Jstore(3 * kViews * n);
+  std::vector<double> r(nv * n), rTry(nv * n);
+  std::vector<double> Jstore(3 * nv * n);
   auto* J = reinterpret_cast<double(*)[3]>(Jstore.data());
 
   // Start grid of fastPLI's ROFL: interior of linspace(−90°, 90°, 8) × interior of linspace(0, 0.9, 8).
@@ -272,7 +284,7 @@ TiltFitResult TiltFit::pixel(const std::array<const double*, 1 + kTiltViews>& vi
   {
     ++iter;
     double A[3][3] = {}, g[3] = {};
-    for (std::size_t i = 0; i < kViews * n; ++i)
+    for (std::size_t i = 0; i < nv * n; ++i)
     {
       for (int a = 0; a < 3; ++a)
       {
@@ -336,7 +348,12 @@ TiltFitResult TiltFit::pixel(const std::array<const double*, 1 + kTiltViews>& vi
   return res;
 }
 
-std::string computeTiltFit(const double* flat, const std::array<const double*, kTiltViews>& tilts,
+std::vector<TiltView> fourTiltViews(double theta)
+{
+  return { { theta, 0.0 }, { theta, M_PI / 2 }, { theta, M_PI }, { theta, 3 * M_PI / 2 } };
+}
+
+std::string computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
   const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
 {
@@ -357,7 +374,13 @@ std::string computeTiltFit(const double* flat, const std::array<const double*, k
     {
       return "intensity stack is null";
     }
-    for (int t = 0; t < kTiltViews; ++t)
+    if (tilts.size() != options.views.size())
+    {
+      std::ostringstream msg;
+      msg << tilts.size() << " tilted stacks for " << options.views.size() << " tilted views";
+      return msg.str();
+    }
+    for (std::size_t t = 0; t < tilts.size(); ++t)
     {
       if (!tilts[t])
       {
@@ -375,8 +398,10 @@ std::string computeTiltFit(const double* flat, const std::array<const double*, k
   const std::size_t n = rho.size();
   const bool done = forEachPixel(nx, range, threads, progress, [&](std::int64_t p) {
     const std::size_t off = static_cast<std::size_t>(p) * n;
-    const TiltFitResult f =
-      fit.pixel({ flat + off, tilts[0] + off, tilts[1] + off, tilts[2] + off, tilts[3] + off });
+    std::vector<const double*> views{ flat + off };
+    for (const double* t : tilts)
+      views.push_back(t + off);
+    const TiltFitResult f = fit.pixel(views);
     maps.direction[p] = f.direction;
     maps.inclination[p] = f.inclination;
     maps.inclinationSigned[p] = f.inclinationSigned;

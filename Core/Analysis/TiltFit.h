@@ -9,7 +9,6 @@
 #include "Analysis/PixelRange.h"
 #include "Util/Progress.h"
 
-#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,9 +24,20 @@ enum class TiltConvention
   FastPLI = 1   ///< v_b = R·v (fastPLI's simulator and ROFL)
 };
 
+/// One tilted view: in-tissue tilt θ_t (field data tilt_angles) and tilt azimuth φ_t (field data
+/// tilt_directions, the direction the beam leans to, counter-clockwise from +x), radians.
+struct TiltView
+{
+  double theta = 0.0;
+  double azimuth = 0.0;
+};
+
+/// The classic polarimeter: one tilt θ_t at the azimuths 0°, 90°, 180°, 270°.
+std::vector<TiltView> fourTiltViews(double theta);
+
 struct TiltFitOptions
 {
-  double tiltAngle = 0.0; ///< in-tissue tilt θ_t (field data tilt_angle), radians, in (0, π/2)
+  std::vector<TiltView> views; ///< the tilted views, in the order of their stacks
   TiltConvention convention = TiltConvention::Physical;
   double gain = 3.0;      ///< camera gain g of the weights; g <= 0 (noise-free data) means 1
   int maxIterations = 100;
@@ -44,20 +54,17 @@ struct TiltFitResult
   int iterations;            ///< Levenberg–Marquardt iterations used
 };
 
-/// Tilt azimuths of views 1..4 (pli-simulation.md §4.3): 0°, 90°, 180°, 270°.
-constexpr int kTiltViews = 4;
-
 /// Per-image set-up (angles, rotations, EPA weights) and the per-pixel fit.
 class TiltFit
 {
 public:
-  /// Errors: fewer than 4 polarizer angles (§3.2), angles EPA refuses, tiltAngle not in (0, 90°),
-  /// maxIterations < 1.
+  /// Errors: fewer than 4 polarizer angles (§3.2), angles EPA refuses, fewer than 2 tilted views,
+  /// a tilt not in (0, 90°), a non-finite azimuth, two equal views, maxIterations < 1.
   std::string init(const std::vector<double>& rho, const TiltFitOptions& options);
 
-  /// views[0] = untilted, views[1..4] = tilt azimuths 0°, 90°, 180°, 270°; each points to the
+  /// views[0] = untilted, views[1..M] = the tilted views of the options; each points to the
   /// N = rho.size() intensities of this pixel.
-  TiltFitResult pixel(const std::array<const double*, 1 + kTiltViews>& views) const;
+  TiltFitResult pixel(const std::vector<const double*>& views) const;
 
 private:
   struct Data; // normalised data and weights of one pixel
@@ -65,8 +72,12 @@ private:
 
   EpaFit epa_;
   std::vector<double> s_, c_;   // sin 2ρ_k, cos 2ρ_k
-  double m_[1 + kTiltViews][3][3] = {}; // tissue → beam frame per view
-  double kappa_[1 + kTiltViews] = {};  // (π/2)·(path / d)
+  struct Frame
+  {
+    double m[3][3];  // tissue → beam frame
+    double kappa;    // (π/2)·(path / d)
+  };
+  std::vector<Frame> frames_; // untilted view first
   double gain_ = 1.0;
   int maxIterations_ = 100;
 };
@@ -81,11 +92,11 @@ struct TiltMaps
   std::vector<double> chi2;
 };
 
-/// Tilt fit of the pixels in range. flat and tilts[0..3] are stacks of nx·ny pixels with
-/// rho.size() intensities each (pixel-major, x fastest), tilts in azimuth order 0°, 90°, 180°,
-/// 270°. OpenMP over pixels with `threads` (0 = all); bit-identical for any thread count.
+/// Tilt fit of the pixels in range. flat and tilts[v] are stacks of nx·ny pixels with
+/// rho.size() intensities each (pixel-major, x fastest), tilts in the order of options.views.
+/// OpenMP over pixels with `threads` (0 = all); bit-identical for any thread count.
 /// Returns "" on success, an error message, or "cancelled" when progress asked to stop.
-std::string computeTiltFit(const double* flat, const std::array<const double*, kTiltViews>& tilts,
+std::string computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
   const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress = {});
 

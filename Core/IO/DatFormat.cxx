@@ -3,6 +3,7 @@
 #include "IO/LineReader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -294,6 +295,31 @@ std::string writeFastPliDat(std::ostream& out, const FiberModel& model)
   return {};
 }
 
+namespace
+{
+/// Tecplot ASCII files open with records such as TITLE = "...", VARIABLES = ..., ZONE ...
+bool startsWithTecplotKeyword(std::string_view line)
+{
+  static const char* const keywords[] = { "TITLE", "VARIABLES", "ZONE", "TEXT", "GEOMETRY", "FILETYPE",
+    "DATASETAUXDATA", "VARAUXDATA" };
+  std::size_t end = 0;
+  while (end < line.size() && std::isalpha(static_cast<unsigned char>(line[end])))
+  {
+    ++end;
+  }
+  for (const char* keyword : keywords)
+  {
+    const std::string_view k(keyword);
+    if (end == k.size() && std::equal(k.begin(), k.end(), line.begin(),
+          [](char a, char b) { return a == std::toupper(static_cast<unsigned char>(b)); }))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
 bool looksLikeFastPliDat(std::istream& in)
 {
   const std::streampos start = in.tellg();
@@ -308,9 +334,11 @@ bool looksLikeFastPliDat(std::istream& in)
   in.seekg(start);
 
   const bool complete = head.size() < 64 * 1024; // else the last line may be cut off
-  int goodLines = 0;
+  // A broken fastPLI file (one bad line) must still reach our reader, which names the line;
+  // only a majority of point lines and no Tecplot keyword make the file ours.
+  int goodLines = 0, badLines = 0;
   std::size_t pos = 0;
-  while (pos < head.size() && goodLines < 5)
+  while (pos < head.size() && goodLines + badLines < 20)
   {
     std::size_t nl = head.find('\n', pos);
     if (nl == std::string::npos)
@@ -327,20 +355,23 @@ bool looksLikeFastPliDat(std::istream& in)
     {
       continue;
     }
-    if (s.find('\0') != std::string_view::npos)
+    if (s.find('\0') != std::string_view::npos || startsWithTecplotKeyword(s))
     {
-      return false; // binary data
+      return false; // binary data, or a Tecplot header
     }
     double v[4];
     int count = 0;
     std::string_view bad;
-    if (parsePointLine(s, v, count, bad) != PointParse::Ok)
+    if (parsePointLine(s, v, count, bad) == PointParse::Ok)
     {
-      return false;
+      ++goodLines;
     }
-    ++goodLines;
+    else
+    {
+      ++badLines;
+    }
   }
-  return goodLines > 0;
+  return goodLines > 3 * badLines;
 }
 
 } // namespace fiberpli

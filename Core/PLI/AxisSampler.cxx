@@ -19,30 +19,39 @@ struct Ax
 inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Pairwise combination of §4.5; axes are orientations, so b is flipped onto a's hemisphere.
+// A neighbour of weight zero never enters, whether the other one is missing or not: on a
+// voxel-centre plane (t == 0) the pair is a alone. Only then does a missing neighbour hand its
+// weight to the other one. Both formulas are symmetric, mix(a, b, t) = mix(b, a, 1 − t), so a
+// mirrored or rotated model gives the mirrored or rotated axis.
 inline Ax mix(const Ax& a, Ax b, double t, Interp interp)
 {
+  if (t == 0.0)
+    return a;
+  if (t == 1.0)
+    return b;
   if (!a.ok)
     return b;
   if (!b.ok)
-    return a;
-  if (t == 0.0) // exact limit of both formulas; keeps voxel-centre samples equal to NN
     return a;
   if (dot3(a.v, b.v) < 0.0)
     for (double& x : b.v)
       x = -x;
   Ax r;
   r.ok = true;
-  if (interp == Interp::Lerp)
+  double c = 1.0, w = 0.0;
+  if (interp == Interp::Slerp)
+  {
+    const double na = std::sqrt(dot3(a.v, a.v)), nb = std::sqrt(dot3(b.v, b.v));
+    c = std::clamp(dot3(a.v, b.v) / (na * nb), -1.0, 1.0);
+    w = std::acos(c);
+  }
+  // Lerp, and Slerp's limit for (nearly) parallel axes, where its weights lose precision.
+  if (w < 1e-6)
   {
     for (int d = 0; d < 3; ++d)
       r.v[d] = (1.0 - t) * a.v[d] + t * b.v[d];
     return r;
   }
-  const double na = std::sqrt(dot3(a.v, a.v)), nb = std::sqrt(dot3(b.v, b.v));
-  const double c = std::clamp(dot3(a.v, b.v) / (na * nb), -1.0, 1.0);
-  const double w = std::acos(c);
-  if (w < 1e-6)
-    return a;
   // sin(acos c) = sqrt(1 − c²): one transcendental call fewer per pair.
   const double s = std::sqrt(1.0 - c * c), wa = std::sin((1.0 - t) * w) / s, wb = std::sin(t * w) / s;
   for (int d = 0; d < 3; ++d)

@@ -12,16 +12,26 @@ namespace fiberpli
 namespace pli
 {
 
+std::int64_t gaussianRadius(double sigma)
+{
+  if (!(sigma > 0.0))
+    return 0;
+  const double r = std::floor(4.0 * sigma + 0.5);
+  return r < static_cast<double>(kMaxGaussianRadius) ? static_cast<std::int64_t>(r) : -1;
+}
+
 std::vector<double> gaussianWeights(double sigma)
 {
   if (!(sigma > 0.0))
     return { 1.0 };
-  const int R = static_cast<int>(4.0 * sigma + 0.5);
+  const std::int64_t R = gaussianRadius(sigma);
+  if (R < 0)
+    return {};
   std::vector<double> w(static_cast<std::size_t>(2 * R + 1));
   double sum = 0.0;
-  for (int m = -R; m <= R; ++m)
+  for (std::int64_t m = -R; m <= R; ++m)
   {
-    w[static_cast<std::size_t>(m + R)] = std::exp(-static_cast<double>(m) * m / (2.0 * sigma * sigma));
+    w[static_cast<std::size_t>(m + R)] = std::exp(-static_cast<double>(m) * static_cast<double>(m) / (2.0 * sigma * sigma));
     sum += w[static_cast<std::size_t>(m + R)];
   }
   for (double& x : w)
@@ -41,19 +51,31 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n)
 Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sigma, const ColumnRange& range, Stack& out)
 {
   Status st;
+  const std::int64_t R = gaussianRadius(sigma);
+  if (R < 0 || R > 2 * std::max(nGX, nGY))
+  {
+    std::ostringstream m;
+    m << "blur: sigma " << sigma << " voxels gives a kernel wider than twice the " << nGX << " x " << nGY
+      << " voxel image";
+    st.error = m.str();
+    return st;
+  }
   const std::vector<double> w = gaussianWeights(sigma);
-  const std::int64_t R = static_cast<std::int64_t>(w.size() / 2);
   const int nr = in.nrho;
-  // The kernel reads mirror(i + m); check that the piece holds all of them.
+  // The kernel reads mirror(a + m) for a in [a0, a1), |m| <= R: the mirror image of the contiguous
+  // range [a0 − R, a1 − 1 + R], itself contiguous, all of [0, n) once it spans a period 2n.
   auto covered = [&](std::int64_t a0, std::int64_t a1, std::int64_t n, std::int64_t have0, std::int64_t have1) {
-    for (std::int64_t a = a0; a < a1; ++a)
-      for (std::int64_t m = -R; m <= R; ++m)
-      {
-        const std::int64_t s = mirrorIndex(a + m, n);
-        if (s < have0 || s >= have1)
-          return false;
-      }
-    return true;
+    if (a1 <= a0)
+      return true;
+    std::int64_t lo = n, hi = -1;
+    const std::int64_t first = a0 - R, last = std::min(a1 - 1 + R, a0 - R + 2 * n - 1);
+    for (std::int64_t v = first; v <= last; ++v)
+    {
+      const std::int64_t s = mirrorIndex(v, n);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+    return lo >= have0 && hi < have1;
   };
   if (!covered(range.i0, range.i1, nGX, in.x0, in.x0 + in.nx) || !covered(range.j0, range.j1, nGY, in.y0, in.y0 + in.ny))
   {

@@ -14,7 +14,13 @@ namespace fiberpli
 namespace pli
 {
 
-/// Normalised weights w_m, m = −R..R, R = int(4σ + 0.5) (§5.1). σ <= 0 → {1}.
+/// Kernel radii from here on are refused (a weight vector of gigabytes, or an int overflow).
+constexpr std::int64_t kMaxGaussianRadius = std::int64_t{ 1 } << 30;
+
+/// Kernel radius R = int(4σ + 0.5) (§5.1); 0 for σ <= 0, −1 when not finite or >= kMaxGaussianRadius.
+std::int64_t gaussianRadius(double sigmaVox);
+
+/// Normalised weights w_m, m = −R..R, R = gaussianRadius(σ) (§5.1). σ <= 0 → {1}; empty when R < 0.
 std::vector<double> gaussianWeights(double sigmaVox);
 
 /// Half-sample mirror of index i into [0, n), repeated for long kernels (§5.1).
@@ -22,6 +28,7 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n);
 
 /// Blurs `in` (a piece of the global nGlobalX × nGlobalY voxel image) with σ in voxels; out covers
 /// `range`. `in` must hold every column the kernel reads (range ± R, mirrored at the global edge).
+/// Error when R exceeds twice the larger image side (planPLI refuses such an OpticalSigma first).
 Status blurStack(const Stack& in, std::int64_t nGlobalX, std::int64_t nGlobalY, double sigmaVox,
   const ColumnRange& range, Stack& out);
 

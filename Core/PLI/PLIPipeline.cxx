@@ -1,7 +1,9 @@
 #include "PLI/PLIPipeline.h"
 
+#include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
+#include "Util/MemoryBudget.h"
 #include "PLI/TissueSpec.h"
 
 #include <algorithm>
@@ -17,7 +19,79 @@ namespace pli
 namespace
 {
 constexpr double kDeg = M_PI / 180.0;
+
+/// "" when every value of the list `name` is finite, inside [lo, hi) (or (lo, hi) when loOpen)
+/// and distinct, and the list has at least `minCount` values; else the message naming it.
+std::string checkAngleList(const char* name, const std::vector<double>& v, double lo, bool loOpen, double hi,
+  std::size_t minCount, std::size_t maxCount)
+{
+  std::ostringstream m;
+  if (v.size() < minCount || v.size() > maxCount)
+  {
+    m << name << " has " << v.size() << " values, needs " << minCount << " to " << maxCount;
+    return m.str();
+  }
+  for (std::size_t a = 0; a < v.size(); ++a)
+  {
+    if (!std::isfinite(v[a]) || (loOpen ? !(v[a] > lo) : !(v[a] >= lo)) || !(v[a] < hi))
+    {
+      m << name << "[" << a << "] is " << v[a] << " deg, must be in " << (loOpen ? "(" : "[") << lo << ", " << hi << ")";
+      return m.str();
+    }
+    for (std::size_t b = 0; b < a; ++b)
+      if (std::fabs(v[a] - v[b]) < 1e-9)
+      {
+        m << name << "[" << b << "] and [" << a << "] are both " << v[a] << " deg: the values must be distinct";
+        return m.str();
+      }
+  }
+  return {};
 }
+
+/// The polarimeter set-up of the options: polarizer angles and tilted views (degrees), or an error.
+std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, std::vector<double>& tiltDeg,
+  std::vector<double>& azDeg)
+{
+  std::ostringstream m;
+  rotDeg = o.rotationAngles;
+  if (rotDeg.empty())
+  {
+    if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
+    {
+      m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
+      return m.str();
+    }
+    for (int k = 0; k < o.numberOfRotations; ++k)
+      rotDeg.push_back(k * 180.0 / o.numberOfRotations);
+  }
+  std::string e = checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, 3600);
+  if (!e.empty())
+    return e;
+  tiltDeg = o.tiltAngles;
+  if (tiltDeg.empty())
+  {
+    if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
+    {
+      m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
+      return m.str();
+    }
+    if (o.tiltAngle > 0.0)
+      tiltDeg.push_back(o.tiltAngle);
+  }
+  else if (!(e = checkAngleList("TiltAngles", tiltDeg, 0.0, true, 45.0, 1, 64)).empty())
+    return e;
+  azDeg = o.tiltAzimuths.empty() ? std::vector<double>{ 0.0, 90.0, 180.0, 270.0 } : o.tiltAzimuths;
+  e = checkAngleList("TiltAzimuths", azDeg, 0.0, false, 360.0, 1, 360);
+  if (!e.empty())
+    return e;
+  if (tiltDeg.size() * azDeg.size() > 1024)
+  {
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than 1024 views";
+    return m.str();
+  }
+  return {};
+}
+} // namespace
 
 Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
@@ -33,24 +107,23 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     m << "PixelSize is " << o.pixelSize << ", must be >= VoxelSize (" << o.voxelSize << ")";
   else if (!(o.wavelength > 0.0) || !std::isfinite(o.wavelength))
     m << "Wavelength is " << o.wavelength << ", must be > 0";
-  else if (!(o.lightIntensity >= 0.0) || !std::isfinite(o.lightIntensity))
-    m << "LightIntensity is " << o.lightIntensity << ", must be >= 0";
-  else if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
-    m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
-  else if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
-    m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
+  else if (!(o.lightIntensity >= 0.0 && o.lightIntensity <= kMaxLightIntensity))
+    m << "LightIntensity is " << o.lightIntensity << ", must be in [0, " << kMaxLightIntensity << "]";
   else if (!(o.stepSize > 0.0) || !std::isfinite(o.stepSize))
     m << "StepSize is " << o.stepSize << ", must be > 0";
   else if (!(o.opticalSigma >= 0.0) || !std::isfinite(o.opticalSigma))
     m << "OpticalSigma is " << o.opticalSigma << ", must be >= 0";
-  else if (!(o.noiseGain == 0.0 || o.noiseGain >= 1.0) || !std::isfinite(o.noiseGain))
-    m << "NoiseGain is " << o.noiseGain << ", must be 0 or >= 1";
+  else if (!(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain)))
+    m << "NoiseGain is " << o.noiseGain << ", must be 0 or in [1, " << kMaxNoiseGain << "]";
   else if (!(o.refractiveIndex >= 1.0) || !std::isfinite(o.refractiveIndex))
     m << "RefractiveIndex is " << o.refractiveIndex << ", must be >= 1";
   else if (o.numberOfThreads < 0)
     m << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0";
   else if (o.tileSize < 1)
     m << "tile size is " << o.tileSize << ", must be >= 1";
+  std::vector<double> rotDeg, tiltDeg, azDeg;
+  if (m.str().empty())
+    m << polarimeterSetUp(o, rotDeg, tiltDeg, azDeg);
   if (!m.str().empty())
   {
     st.error = m.str();
@@ -101,13 +174,21 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   }
   plan.tissue.radius = o.radiusModel;
 
-  plan.tiltInTissue = std::asin(std::sin(o.tiltAngle * kDeg) / o.refractiveIndex);
   plan.views.push_back(View{ 0.0, 0.0 });
-  if (o.tiltAngle > 0.0)
-    for (int a = 0; a < 4; ++a)
-      plan.views.push_back(View{ plan.tiltInTissue, a * 90.0 * kDeg });
-  for (int k = 0; k < o.numberOfRotations; ++k)
-    plan.rho.push_back(k * M_PI / o.numberOfRotations);
+  for (double tilt : tiltDeg)
+  {
+    const double inTissue = std::asin(std::sin(tilt * kDeg) / o.refractiveIndex); // Snell
+    plan.tiltInTissue = std::max(plan.tiltInTissue, inTissue);
+    for (double az : azDeg)
+    {
+      plan.views.push_back(View{ inTissue, az * kDeg });
+      plan.tiltDeg.push_back(inTissue / kDeg);
+      plan.azimuthDeg.push_back(az);
+    }
+  }
+  plan.rhoDeg = rotDeg;
+  for (double r : rotDeg)
+    plan.rho.push_back(r * kDeg);
 
   const double scale = o.voxelSize / o.pixelSize;
   plan.pixels[0] = pixelCount(plan.lattice.n[0], scale);
@@ -122,6 +203,16 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   plan.imageOrigin[0] = voi[0] + 0.5 * o.pixelSize;
   plan.imageOrigin[1] = voi[2] + 0.5 * o.pixelSize;
   plan.imageOrigin[2] = voi[4] + 0.5 * plan.thickness;
+  // The kernel reaches 4σ: wider than the image it only averages the mirrored image with itself,
+  // at a cost (and weight vector) growing with σ without bound.
+  const double widestSide = static_cast<double>(std::max(plan.pixels[0], plan.pixels[1]));
+  if (4.0 * o.opticalSigma > widestSide)
+  {
+    m << "OpticalSigma is " << o.opticalSigma << " pixels: the blur kernel (4 sigma) is wider than the image of "
+      << plan.pixels[0] << " x " << plan.pixels[1] << " pixels; use at most " << widestSide / 4.0;
+    st.error = m.str();
+    return st;
+  }
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
 
@@ -132,14 +223,19 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   sp.interp = o.interpolation;
   const ColumnRange all{ 0, plan.lattice.n[0], 0, plan.lattice.n[1] };
   plan.estimatedBytes = estimateSimulationBytes(plan.lattice, sp, plan.views, all);
-  // Blur and binning buffers of one view at voxel resolution.
+  // Blur buffers of one view at voxel resolution (x pass, y pass), then the pixel stacks of every
+  // view twice: the Core image and the VTK arrays it is copied into.
   plan.estimatedBytes += 2.0 * static_cast<double>(all.nx()) * static_cast<double>(all.ny()) * plan.rho.size() * 8.0;
-  if (plan.estimatedBytes > kMaxSimulationBytes)
+  plan.estimatedBytes += 2.0 * static_cast<double>(plan.views.size()) * static_cast<double>(plan.pixels[0]) *
+    static_cast<double>(plan.pixels[1]) * plan.rho.size() * 8.0;
+  std::ostringstream what;
+  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
+       << " x " << plan.lattice.n[2] << " voxels, " << plan.rho.size() << " polarizer angles and " << plan.views.size()
+       << " views";
+  st.error = checkMemoryBudget(plan.estimatedBytes, what.str());
+  if (!st.ok())
   {
-    m << "VoxelSize " << o.voxelSize << " with VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
-      << " x " << plan.lattice.n[2] << " voxels and NumberOfRotations " << o.numberOfRotations << " needs about "
-      << plan.estimatedBytes / (1024.0 * 1024.0 * 1024.0) << " GiB (> 16 GiB): increase VoxelSize or reduce the volume";
-    st.error = m.str();
+    st.error += ": increase VoxelSize or reduce the volume";
     return st;
   }
   double rmin = 0.0;
@@ -175,7 +271,7 @@ ColumnRange binnedVoxels(const PLIPlan& plan, const PLIOptions& o, const PixelRa
 
 ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
 {
-  return binnedVoxels(plan, o, px, static_cast<std::int64_t>(gaussianWeights(plan.sigmaVox).size() / 2));
+  return binnedVoxels(plan, o, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
 }
 
 Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)

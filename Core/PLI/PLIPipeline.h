@@ -25,8 +25,11 @@ struct PLIOptions
   double pixelSize = 2.0;        ///< µm, >= voxelSize
   double wavelength = 525.0;     ///< nm
   double lightIntensity = 26000.0;
-  int numberOfRotations = 18;    ///< >= 3; ρ_k = k·180°/N
-  double tiltAngle = 0.0;        ///< deg, [0, 45); 0 = no tilted views
+  int numberOfRotations = 18;    ///< >= 3; ρ_k = k·180°/N (when rotationAngles is empty)
+  std::vector<double> rotationAngles; ///< deg, each in [0, 180), distinct, >= 3; empty = numberOfRotations
+  double tiltAngle = 0.0;        ///< deg, [0, 45); 0 = no tilted views (when tiltAngles is empty)
+  std::vector<double> tiltAngles;   ///< deg, each in (0, 45), distinct; empty = {tiltAngle} if > 0
+  std::vector<double> tiltAzimuths; ///< deg, each in [0, 360), distinct; empty = 0, 90, 180, 270
   double birefringence = -0.001;
   double absorption = 0.0;       ///< 1/mm
   std::uint64_t seed = 0;
@@ -51,12 +54,14 @@ struct PLIPlan
 {
   Lattice lattice;
   TissueSpec tissue;
-  std::vector<View> views;          ///< untilted, then azimuth 0°, 90°, 180°, 270°
+  std::vector<View> views;          ///< untilted, then every tilt angle × every azimuth (angle-major)
+  std::vector<double> tiltDeg, azimuthDeg; ///< per tilted view: in-tissue θ_t and φ_t, degrees
   std::vector<double> rho;          ///< radians
+  std::vector<double> rhoDeg;       ///< the same in degrees, exactly as given (field data)
   std::int64_t pixels[2] = { 0, 0 }; ///< whole image n_px × n_py
   double imageOrigin[3] = { 0, 0, 0 };
   double thickness = 0.0;           ///< n_z·VoxelSize, µm
-  double tiltInTissue = 0.0;        ///< θ_t, radians
+  double tiltInTissue = 0.0;        ///< largest θ_t, radians (0 = untilted only)
   double sigmaVox = 0.0;            ///< blur σ in voxels
   std::size_t bytesPerVoxel = 0;    ///< tile buffer bytes per voxel (§3.4)
   double estimatedBytes = 0.0;      ///< whole-image run

@@ -1,6 +1,7 @@
 #include "PLI/RayMarcher.h"
 
 #include "PLI/AxisSampler.h"
+#include "Util/Angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +39,9 @@ RayMarcher::RayMarcher(const Lattice& lattice, const SimParams& params, const Vi
   : lat_(lattice), par_(params), props_(props)
 {
   const double th = view.theta, ph = view.phi;
-  const double c = std::cos(th), s = std::sin(th), cp = std::cos(ph), sp = std::sin(ph);
+  const double c = std::cos(th), s = std::sin(th);
+  double cp, sp;
+  cosSinQuarterExact(ph, cp, sp); // the 90°/180°/270° views stay on the voxel-centre planes
   tilted_ = th != 0.0;
   L_[0] = s * cp;
   L_[1] = s * sp;

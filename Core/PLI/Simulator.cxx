@@ -2,6 +2,7 @@
 
 #include "PLI/RayMarcher.h"
 #include "PLI/Voxeliser.h"
+#include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
@@ -93,14 +94,12 @@ std::string validateSimulation(const Lattice& lat, const SimParams& par, const s
       return m.str();
     }
   }
-  const double bytes = estimateSimulationBytes(lat, par, views, cols);
-  if (bytes > kMaxSimulationBytes)
-  {
-    m << "VoxelSize " << lat.voxel << " with VolumeOfInterest (" << lat.n[0] << " x " << lat.n[1] << " x "
-      << lat.n[2] << " voxels) needs about " << bytes / (1024.0 * 1024.0 * 1024.0)
-      << " GiB, more than the limit of 16 GiB: increase VoxelSize or reduce the volume";
-    return m.str();
-  }
+  std::ostringstream what;
+  what << "VoxelSize " << lat.voxel << " with VolumeOfInterest (" << lat.n[0] << " x " << lat.n[1] << " x " << lat.n[2]
+       << " voxels)";
+  const std::string tooBig = checkMemoryBudget(estimateSimulationBytes(lat, par, views, cols), what.str());
+  if (!tooBig.empty())
+    return tooBig + ": increase VoxelSize or reduce the volume";
   // Steps per ray: StepSize far below the voxel size would take forever.
   if (static_cast<double>(lat.n[2]) / par.step > 1e7)
     m << "StepSize " << par.step << " gives more than 1e7 steps per ray";

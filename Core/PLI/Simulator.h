@@ -17,8 +17,6 @@ namespace pli
 
 /// Bytes per voxel of the tile buffer (§3.4: owner key, then axis + label, in place).
 constexpr std::size_t kTileBytesPerVoxel = 16;
-/// Requests above this estimate are refused before anything is allocated.
-constexpr double kMaxSimulationBytes = 16.0 * 1024.0 * 1024.0 * 1024.0;
 
 struct SimResult
 {
@@ -40,7 +38,8 @@ std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, In
 double estimateSimulationBytes(const Lattice& lattice, const SimParams& params,
   const std::vector<View>& views, const ColumnRange& cols);
 
-/// Empty string when lattice/params/views/cols can be simulated, else a message naming the option.
+/// Empty string when lattice/params/views/cols can be simulated, else a message naming the option
+/// (also when estimateSimulationBytes exceeds the memory budget, Util/MemoryBudget.h).
 std::string validateSimulation(const Lattice& lattice, const SimParams& params,
   const std::vector<View>& views, const ColumnRange& cols);
 

@@ -1,5 +1,7 @@
 #include "PLI/TissueSpec.h"
 
+#include "PLI/OptionLimits.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -107,6 +109,14 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
         std::to_string(l.muPerMm) + ")";
       return st;
     }
+    if (!(std::fabs(l.dn) <= kMaxBirefringence))
+    {
+      std::ostringstream m;
+      m << "Layers: dn " << l.dn << " in " << where << " must be in [-" << kMaxBirefringence << ", "
+        << kMaxBirefringence << "]";
+      st.error = m.str();
+      return st;
+    }
     if (l.model == AxisModel::Background && l.dn != 0.0)
     {
       st.error = "Layers: layer 'b' in " + where + " has dn " + std::to_string(l.dn) + ", must be 0";
@@ -163,9 +173,12 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
       st.error = "Absorption is " + std::to_string(defaultMu) + ", must be >= 0";
       return st;
     }
-    if (!std::isfinite(defaultDn))
+    if (!(std::fabs(defaultDn) <= kMaxBirefringence))
     {
-      st.error = "Birefringence is not finite";
+      std::ostringstream m;
+      m << "Birefringence is " << defaultDn << ", must be in [-" << kMaxBirefringence << ", " << kMaxBirefringence
+        << "]";
+      st.error = m.str();
       return st;
     }
   }

@@ -252,4 +252,16 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_FALSE(sniff("\n\n# only comments\n"));
   EXPECT_FALSE(sniff(std::string("1 2 3 0.5\0\0\0", 12)));
   EXPECT_FALSE(sniff("mrtrix tracks\ndatatype: Float32LE\n"));
+  // One bad line among fastPLI points (issue 13): still ours, so the user sees our line number.
+  std::string points;
+  for (int i = 0; i < 30; ++i)
+  {
+    points += std::to_string(i) + " 0 0 0.5\n";
+  }
+  EXPECT_TRUE(sniff("1 2 abc 0.5\n" + points));
+  EXPECT_TRUE(sniff(points.substr(0, 24) + "1 2 3\n" + points));
+  // A Tecplot header stays Tecplot's even when its zone holds 4 numbers per line.
+  EXPECT_FALSE(sniff("TITLE = \"x\"\nVARIABLES = \"X\" \"Y\" \"Z\" \"R\"\nZONE I=30\n" + points));
+  EXPECT_FALSE(sniff("zone t=\"a\"\n" + points));
+  EXPECT_FALSE(sniff("a b c d\nx y z w\n1 2 3 0.5\n")); // mostly not points
 }

@@ -1,6 +1,8 @@
 // MemoryBudget: the budget follows the machine and FIBERPLI_MEMORY_LIMIT, and refuses NaN.
 #include "Util/MemoryBudget.h"
 
+#include "MemoryLimitGuard.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -10,43 +12,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace
-{
-
-struct EnvGuard
-{
-  explicit EnvGuard(const char* value)
-  {
-    if (const char* old = std::getenv("FIBERPLI_MEMORY_LIMIT"))
-    {
-      saved = old;
-      had = true;
-    }
-    if (value)
-    {
-      setenv("FIBERPLI_MEMORY_LIMIT", value, 1);
-    }
-    else
-    {
-      unsetenv("FIBERPLI_MEMORY_LIMIT");
-    }
-  }
-  ~EnvGuard()
-  {
-    if (had)
-    {
-      setenv("FIBERPLI_MEMORY_LIMIT", saved.c_str(), 1);
-    }
-    else
-    {
-      unsetenv("FIBERPLI_MEMORY_LIMIT");
-    }
-  }
-  std::string saved;
-  bool had = false;
-};
-
-} // namespace
+using EnvGuard = fiberpli::testing::MemoryLimitGuard;
 
 TEST(MemoryBudget, HalfOfUsableMemoryAtMostPhysical)
 {

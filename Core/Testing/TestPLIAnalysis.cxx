@@ -390,7 +390,7 @@ std::vector<double> columnView(const Column& c, int j, double tau, bool physical
 struct Views
 {
   std::vector<double> v[5];
-  std::array<const double*, 5> ptr() const { return { v[0].data(), v[1].data(), v[2].data(), v[3].data(), v[4].data() }; }
+  std::vector<const double*> ptr() const { return { v[0].data(), v[1].data(), v[2].data(), v[3].data(), v[4].data() }; }
 };
 
 Views columnViews(const Column& c, double tau, bool physical, const std::vector<double>& rho)
@@ -412,7 +412,7 @@ TiltFit makeFit(const std::vector<double>& rho, double tauDeg, TiltConvention co
 {
   TiltFit fit;
   TiltFitOptions o;
-  o.tiltAngle = tauDeg * kDeg;
+  o.views = fourTiltViews(tauDeg * kDeg);
   o.convention = conv;
   o.gain = gain;
   EXPECT_EQ(fit.init(rho, o), "");
@@ -554,9 +554,9 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
 {
   TiltFit fit;
   TiltFitOptions o;
-  o.tiltAngle = 5.5 * kDeg;
+  o.views = fourTiltViews(5.5 * kDeg);
   EXPECT_NE(fit.init(equidistant(3), o), ""); // needs N >= 4
-  o.tiltAngle = 0.0;
+  o.views = fourTiltViews(0.0);
   const std::string err = fit.init(equidistant(6), o);
   EXPECT_NE(err.find("tilt_angle"), std::string::npos) << err;
 
@@ -576,9 +576,9 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
   {
     stacks[3][5 * 8 + k] = 0.0;
   }
-  o.tiltAngle = 6 * kDeg;
+  o.views = fourTiltViews(6 * kDeg);
   o.gain = 0.0; // noise-free → 1
-  const std::array<const double*, 4> tilts{ stacks[1].data(), stacks[2].data(), stacks[3].data(), stacks[4].data() };
+  const std::vector<const double*> tilts{ stacks[1].data(), stacks[2].data(), stacks[3].data(), stacks[4].data() };
   TiltMaps one, two;
   ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 1, one), "");
   ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 2, two), "");
@@ -596,7 +596,7 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
     }
     EXPECT_LE(axisError(one.direction[p], one.inclinationSigned[p], 7.0 * p * kDeg, (-70.0 + 6.0 * p) * kDeg), 1e-6) << p;
   }
-  const std::array<const double*, 4> missing{ stacks[1].data(), nullptr, stacks[3].data(), stacks[4].data() };
+  const std::vector<const double*> missing{ stacks[1].data(), nullptr, stacks[3].data(), stacks[4].data() };
   const std::string e2 = computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two);
   EXPECT_NE(e2.find("intensity_tilt_1"), std::string::npos) << e2;
 }
@@ -622,7 +622,7 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   s.nx = nx;
   s.ny = ny;
   s.rho = rho;
-  s.tiltAngle = 5.5 * kDeg;
+  s.tiltViews = fourTiltViews(5.5 * kDeg);
   s.noiseGain = 0.0; // noise-free simulation → weights with g = 1
 
   PliAnalysisOptions o;
@@ -676,7 +676,7 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   const std::string err = analysePli(flat, a, wholeImage(nx, ny), m);
   EXPECT_NE(err.find("intensity_tilt_2"), std::string::npos) << err;
   flat.tilts = s.tilts;
-  flat.tiltAngle = 0.0;
+  flat.tiltViews = fourTiltViews(0.0);
   EXPECT_NE(analysePli(flat, a, wholeImage(nx, ny), m).find("tilt_angle"), std::string::npos);
   flat.rho = anglesDeg({ 0, 90 });
   EXPECT_NE(analysePli(flat, PliAnalysisOptions{}, wholeImage(nx, ny), m), "");

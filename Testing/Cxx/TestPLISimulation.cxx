@@ -143,7 +143,10 @@ TEST(PLISimulation, UniformSlabGivesTheClosedForm)
   EXPECT_DOUBLE_EQ(Field(out, "noise_gain"), 0.0);
   EXPECT_EQ(Field(out, "tilt_convention"), 0.0);
   EXPECT_EQ(Field(out, "empty_section"), 0.0);
-  EXPECT_EQ(Field(out, "tilt_directions", 3), 270.0);
+  // Untilted only: no tilted view, so the per-view lists are empty.
+  ASSERT_NE(out->GetFieldData()->GetArray("tilt_directions"), nullptr);
+  EXPECT_EQ(out->GetFieldData()->GetArray("tilt_directions")->GetNumberOfTuples(), 0);
+  EXPECT_EQ(out->GetFieldData()->GetArray("tilt_angles")->GetNumberOfTuples(), 0);
 }
 
 TEST(PLISimulation, TiltedSlabMatchesS6TableAndAbsorption)
@@ -175,6 +178,11 @@ TEST(PLISimulation, TiltedSlabMatchesS6TableAndAbsorption)
     }
   }
   EXPECT_NEAR(Field(out, "tilt_angle"), 5.5, 1e-12);
+  for (int v = 0; v < 4; ++v)
+  {
+    EXPECT_NEAR(Field(out, "tilt_angles", v), 5.5, 1e-12);
+    EXPECT_EQ(Field(out, "tilt_directions", v), 90.0 * v);
+  }
 
   // μ = 5/mm: transmittance 2·mean = I0/2·exp(−μ·path), path 60 µm (untilted) or 60/cos 5.5°.
   sim->SetLayers("1 -0.001 5 p");

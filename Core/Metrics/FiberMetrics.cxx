@@ -1,0 +1,130 @@
+#include "Metrics/FiberMetrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace fiberpli
+{
+namespace
+{
+
+const double NaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string boxText(const Vec3& lo, const Vec3& hi)
+{
+  std::ostringstream s;
+  s << lo.x << " " << hi.x << " " << lo.y << " " << hi.y << " " << lo.z << " " << hi.z;
+  return s.str();
+}
+
+/// The region of the volume fraction, or an error naming the offending value.
+std::string chooseRegion(const FiberModel& model, const MetricsOptions& options, Vec3& lo, Vec3& hi)
+{
+  if (options.cell.enabled)
+  {
+    lo = options.cell.lo;
+    hi = options.cell.hi;
+    for (int i = 0; i < 3; ++i)
+    {
+      if (!(hi[i] > lo[i]) || !std::isfinite(hi[i] - lo[i]))
+      {
+        return "periodic_cell " + boxText(lo, hi) + " must have min < max on every axis";
+      }
+    }
+    return "";
+  }
+  const bool fromBounds = options.boxLo.x > options.boxHi.x || options.boxLo.y > options.boxHi.y ||
+    options.boxLo.z > options.boxHi.z;
+  if (fromBounds)
+  {
+    modelBounds(model, false, lo, hi);
+  }
+  else
+  {
+    lo = options.boxLo;
+    hi = options.boxHi;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i]) || !(hi[i] > lo[i]))
+    {
+      return std::string(fromBounds ? "the fibers' bounds " : "Box ") + boxText(lo, hi) +
+        " enclose no volume (min < max needed on every axis" +
+        (fromBounds ? "; set Box explicitly for flat models)" : ")");
+    }
+  }
+  return "";
+}
+
+} // namespace
+
+MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions& options,
+  const ProgressFn& progress)
+{
+  MetricsResult result;
+  result.volume.fraction = NaN;
+  result.volume.errorBound = NaN;
+  result.pairs.collisions = -1;
+  result.pairs.minGap = NaN;
+  if (!(options.voxelSize >= 0.0) || !std::isfinite(options.voxelSize))
+  {
+    std::ostringstream s;
+    s << "VoxelSize " << options.voxelSize << " must be >= 0 (0 = automatic)";
+    result.error = s.str();
+    return result;
+  }
+  result.fibers = model.fibers.size();
+  result.points = model.numberOfPoints();
+  result.links = model.numberOfLinks();
+  const CapsuleSet set = makeCapsules(model, options.cell);
+  result.shape = fiberShape(model, set);
+  if (model.empty())
+  {
+    return result;
+  }
+
+  const double volumeShare = options.volumeFraction ? (options.pairs ? 0.7 : 1.0) : 0.0;
+  if (options.volumeFraction)
+  {
+    result.error = chooseRegion(model, options, result.regionLo, result.regionHi);
+    if (!result.error.empty())
+    {
+      return result;
+    }
+    double h = options.voxelSize;
+    if (h == 0.0)
+    {
+      h = result.shape.radius.min / 8.0;
+      const Vec3 e = result.regionHi - result.regionLo;
+      h = std::max(h, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
+    }
+    const double voxels = voxelCount(result.regionLo, result.regionHi, h);
+    if (voxels > options.voxelLimit)
+    {
+      std::ostringstream s;
+      s << "VoxelSize " << h << " gives " << voxels << " voxels in " << boxText(result.regionLo, result.regionHi)
+        << ", more than " << options.voxelLimit << "; use a larger VoxelSize or a smaller Box";
+      result.error = s.str();
+      return result;
+    }
+    result.volume = volumeFraction(set, result.regionLo, result.regionHi, h, options.cell,
+      options.numberOfThreads, [&](double f) { return reportProgress(progress, volumeShare * f); });
+    if (!result.volume.error.empty() || result.volume.aborted)
+    {
+      result.error = result.volume.error;
+      result.aborted = result.volume.aborted;
+      return result;
+    }
+  }
+  if (options.pairs)
+  {
+    result.pairs = compareCapsulePairs(set, options.cell, options.numberOfThreads,
+      [&](double f) { return reportProgress(progress, volumeShare + (1.0 - volumeShare) * f); });
+    result.aborted = result.pairs.aborted;
+  }
+  return result;
+}
+
+} // namespace fiberpli

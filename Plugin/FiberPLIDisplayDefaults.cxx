@@ -1,0 +1,155 @@
+#include "FiberPLIDisplayDefaults.h"
+
+#include "vtkCommand.h"
+#include "vtkDataObject.h"
+#include "vtkNew.h"
+#include "vtkPVArrayInformation.h"
+#include "vtkPVDataInformation.h"
+#include "vtkPVDataSetAttributesInformation.h"
+#include "vtkSMPVRepresentationProxy.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMProxyManager.h"
+#include "vtkSMSourceProxy.h"
+#include "vtkSMTransferFunctionProxy.h"
+
+#include <cmath>
+#include <string>
+
+namespace
+{
+// Categorical colours (ColorBrewer Set1 then Dark2), repeated for more bundles.
+const double kBundleColors[][3] = { { 0.894, 0.102, 0.110 }, { 0.216, 0.494, 0.722 },
+  { 0.302, 0.686, 0.290 }, { 0.596, 0.306, 0.639 }, { 1.000, 0.498, 0.000 },
+  { 0.651, 0.337, 0.157 }, { 0.969, 0.506, 0.749 }, { 0.600, 0.600, 0.600 },
+  { 0.106, 0.620, 0.467 }, { 0.851, 0.373, 0.008 }, { 0.459, 0.439, 0.702 },
+  { 0.902, 0.671, 0.008 } };
+const int kNumberOfBundleColors = sizeof(kBundleColors) / sizeof(kBundleColors[0]);
+// Up to this many distinct bundle ids get one annotated colour each; more stay continuous.
+const int kMaxCategories = 64;
+
+vtkPVArrayInformation* pointArray(vtkPVDataInformation* info, const char* name)
+{
+  return info->GetPointDataInformation()->GetArrayInformation(name);
+}
+
+vtkPVArrayInformation* cellArray(vtkPVDataInformation* info, const char* name)
+{
+  return info->GetCellDataInformation()->GetArrayInformation(name);
+}
+
+void showTrueColour(vtkSMProxy* repr)
+{
+  vtkSMPVRepresentationProxy::SetScalarColoring(repr, "fom", vtkDataObject::POINT);
+  vtkSMPropertyHelper(repr, "MapScalars").Set(0);
+  repr->UpdateVTKObjects();
+}
+
+void showIntensityComponent(vtkSMProxy* repr)
+{
+  vtkSMPVRepresentationProxy::SetScalarColoring(repr, "intensity", vtkDataObject::POINT, 0);
+  vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy();
+  if (lut)
+  {
+    vtkSMTransferFunctionProxy::ApplyPreset(lut, "Grayscale", false);
+    vtkSMPVRepresentationProxy::RescaleTransferFunctionToDataRange(repr, false, false);
+  }
+  repr->UpdateVTKObjects();
+}
+
+void showBundlesAsCategories(vtkSMProxy* repr, vtkPVArrayInformation* bundles)
+{
+  vtkSMPVRepresentationProxy::SetScalarColoring(repr, "bundle_id", vtkDataObject::CELL);
+  vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy();
+  const double* range = bundles->GetComponentRange(0);
+  if (!lut || !std::isfinite(range[0]) || !std::isfinite(range[1]) ||
+    range[1] - range[0] >= kMaxCategories)
+  {
+    return; // no table, or too many bundles for one colour each: keep the continuous map
+  }
+  const int first = static_cast<int>(range[0]);
+  const int count = static_cast<int>(range[1]) - first + 1;
+  vtkSMPropertyHelper annotations(lut, "Annotations");
+  vtkSMPropertyHelper colors(lut, "IndexedColors");
+  annotations.SetNumberOfElements(2 * count);
+  colors.SetNumberOfElements(3 * count);
+  for (int k = 0; k < count; ++k)
+  {
+    const std::string value = std::to_string(first + k);
+    annotations.Set(2 * k, value.c_str());
+    annotations.Set(2 * k + 1, ("bundle " + value).c_str());
+    for (int c = 0; c < 3; ++c)
+    {
+      colors.Set(3 * k + c, kBundleColors[(first + k) % kNumberOfBundleColors][c]);
+    }
+  }
+  vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
+  lut->UpdateVTKObjects();
+}
+
+// Sets the starting colouring of a new representation from what its input carries.
+void applyDefaults(vtkSMProxy* repr)
+{
+  if (!vtkSMPVRepresentationProxy::SafeDownCast(repr) || !repr->GetProperty("MapScalars") ||
+    !repr->GetProperty("Input"))
+  {
+    return; // not a data display with colouring (e.g. a spreadsheet row or a scalar bar)
+  }
+  vtkSMPropertyHelper input(repr, "Input", true);
+  auto* producer = vtkSMSourceProxy::SafeDownCast(input.GetAsProxy());
+  if (!producer)
+  {
+    return;
+  }
+  vtkPVDataInformation* info = producer->GetDataInformation(input.GetOutputPort());
+  if (!info)
+  {
+    return;
+  }
+  vtkPVArrayInformation* fom = pointArray(info, "fom");
+  if (fom && fom->GetDataType() == VTK_UNSIGNED_CHAR && fom->GetNumberOfComponents() == 3)
+  {
+    showTrueColour(repr);
+    return;
+  }
+  vtkPVArrayInformation* intensity = pointArray(info, "intensity");
+  if (intensity && intensity->GetNumberOfComponents() > 1)
+  {
+    showIntensityComponent(repr);
+    return;
+  }
+  vtkPVArrayInformation* bundles = cellArray(info, "bundle_id");
+  if (bundles && cellArray(info, "fiber_id") && bundles->GetNumberOfComponents() == 1)
+  {
+    showBundlesAsCategories(repr, bundles);
+  }
+}
+
+// Every session proxy manager forwards its registrations to the proxy-manager singleton; a new
+// display is registered in "representations" once its input and first colouring are set up.
+class RepresentationObserver : public vtkCommand
+{
+public:
+  static RepresentationObserver* New() { return new RepresentationObserver; }
+  void Execute(vtkObject*, unsigned long, void* callData) override
+  {
+    auto* info = static_cast<vtkSMProxyManager::RegisteredProxyInformation*>(callData);
+    if (info && info->Type == vtkSMProxyManager::RegisteredProxyInformation::PROXY && info->Proxy &&
+      info->GroupName && std::string(info->GroupName) == "representations")
+    {
+      applyDefaults(info->Proxy);
+    }
+  }
+};
+}
+
+void fiberpli_display_defaults_init()
+{
+  static bool installed = false;
+  if (installed || !vtkSMProxyManager::IsInitialized())
+  {
+    return; // server processes have no proxy manager; a second load changes nothing
+  }
+  installed = true;
+  vtkNew<RepresentationObserver> observer;
+  vtkSMProxyManager::GetProxyManager()->AddObserver(vtkCommand::RegisterEvent, observer);
+}
