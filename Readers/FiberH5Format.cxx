@@ -1,9 +1,14 @@
 #include "FiberH5Format.h"
 
+#include "IO/AtomicFile.h"
+#include "Util/MemoryBudget.h"
+
 #include "vtk_hdf5.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -16,6 +21,14 @@ namespace
 {
 // Far beyond any real fiber (and 3.2 GB of float64): a larger declared size is a broken file.
 constexpr hsize_t kMaxPointsPerFiber = 100000000;
+// Compression HDF5 files reach on fiber coordinates is far below this: declared float64 data
+// beyond 64 times the file size is a broken or malicious file (hard links included).
+constexpr double kMaxExpansion = 64.0;
+// Memory per point once read: FiberModel (point 24 B, radius 8 B) and the vtkPolyData built from
+// it (point 24 B, radius 8 B, connectivity 8 B), alive together in vtkFiberReader.
+constexpr double kBytesPerPointRead = 72.0;
+// Per fiber: Fiber object and its vectors, a polyline cell with its offsets and cell data.
+constexpr double kBytesPerFiberRead = 160.0;
 
 /// Silences HDF5's own error printing while an object lives (HDF5 errors become our messages).
 class QuietHdf5
@@ -47,23 +60,40 @@ private:
   herr_t (*close_)(hid_t);
 };
 
-/// Member names of a group that are non-negative integers, in numeric order; false if another
-/// name is present.
-bool numericMembers(hid_t group, std::vector<std::pair<long, std::string>>& members, std::string& bad)
+/// "a soft link", "an external link", …: what a link of this type is, for error messages.
+const char* linkKind(H5L_type_t type)
+{
+  switch (type)
+  {
+    case H5L_TYPE_HARD: return "a hard link";
+    case H5L_TYPE_SOFT: return "a soft link";
+    case H5L_TYPE_EXTERNAL: return "an external link";
+    default: return "a user-defined link";
+  }
+}
+
+/// The members of a group whose names are `kind` ("bundle", "fiber") indices 0 .. INT_MAX (a
+/// bundle index becomes bundle_id, an int), in numeric order.
+/// Returns "" or the problem with member `bad`: a name that is no such index, or a link that is not
+/// a hard link (soft and external links could leave the file, loop or dangle; fastPLI writes none).
+std::string numericMembers(hid_t group, const char* kind, std::vector<std::pair<long, std::string>>& members,
+  std::string& bad)
 {
   H5G_info_t info;
   if (H5Gget_info(group, &info) < 0)
   {
     bad = "(unreadable group)";
-    return false;
+    return "cannot be listed";
   }
   for (hsize_t i = 0; i < info.nlinks; ++i)
   {
     char name[256] = { 0 };
-    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0)
+    const ssize_t length =
+      H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT);
+    if (length < 0 || length >= static_cast<ssize_t>(sizeof(name)))
     {
-      bad = "(unreadable name)";
-      return false;
+      bad = length < 0 ? "(unreadable name)" : std::string(name) + "...";
+      return std::string("is not a ") + kind + " index";
     }
     char* end = nullptr;
     errno = 0;
@@ -71,18 +101,50 @@ bool numericMembers(hid_t group, std::vector<std::pair<long, std::string>>& memb
     if (name[0] == '\0' || *end != '\0' || value < 0 || errno != 0)
     {
       bad = name;
-      return false;
+      return std::string("is not a ") + kind + " index";
+    }
+    if (value > INT_MAX)
+    {
+      bad = name;
+      return std::string("is larger than the largest ") + kind + " index, " + std::to_string(INT_MAX);
+    }
+    H5L_info_t link{};
+    if (H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
+    {
+      bad = name;
+      return std::string("is ") + (link.type != H5L_TYPE_HARD ? linkKind(link.type) : "an unreadable link") +
+        "; only groups and datasets stored in this file are read";
     }
     members.emplace_back(value, name);
   }
   std::sort(members.begin(), members.end());
+  return {};
+}
+
+/// True when `name` (a path below `loc`) exists and every link on the way is a hard link.
+bool hardLinkExists(hid_t loc, const std::string& name)
+{
+  std::string prefix;
+  std::size_t start = 0;
+  while (start <= name.size())
+  {
+    const std::size_t slash = std::min(name.find('/', start), name.size());
+    prefix = name.substr(0, slash);
+    H5L_info_t link{};
+    if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0 || H5Lget_info(loc, prefix.c_str(), &link, H5P_DEFAULT) < 0 ||
+      link.type != H5L_TYPE_HARD)
+    {
+      return false;
+    }
+    start = slash + 1;
+  }
   return true;
 }
 
 /// True when `group` holds fastPLI bundles: a group "0" with a dataset "0" of shape (n, 4).
 bool holdsBundles(hid_t group)
 {
-  if (H5Lexists(group, "0", H5P_DEFAULT) <= 0 || H5Lexists(group, "0/0", H5P_DEFAULT) <= 0)
+  if (!hardLinkExists(group, "0/0"))
   {
     return false;
   }
@@ -115,7 +177,7 @@ void findBundleGroups(hid_t group, const std::string& path, int depth, std::vect
   for (hsize_t i = 0; i < std::min<hsize_t>(info.nlinks, 10000); ++i)
   {
     char name[256] = { 0 };
-    H5L_info_t link;
+    H5L_info_t link{};
     if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
       H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
     {
@@ -128,6 +190,13 @@ void findBundleGroups(hid_t group, const std::string& path, int depth, std::vect
     }
   }
 }
+/// One (n, 4) dataset found by the first pass of Read.
+struct FiberDataset
+{
+  long bundle;
+  std::string bundleName, fiberName;
+  hsize_t points;
+};
 } // namespace
 
 bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
@@ -205,13 +274,18 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   // Messages name datasets by their full path: "/fiber_bundles/0/3".
   const std::string prefix = groupPath == "/" ? "" : (groupPath.front() == '/' ? groupPath : "/" + groupPath);
   std::vector<std::pair<long, std::string>> bundles;
-  std::string bad;
-  if (!root.ok() || !numericMembers(root.get(), bundles, bad))
+  std::string bad = "(unreadable group)";
+  std::string problem = root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
+  if (!problem.empty())
   {
-    return path + ": member '" + prefix + "/" + bad + "' is not a bundle index (expected groups \"0\", \"1\", ... " +
+    return path + ": member '" + prefix + "/" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
       (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
-  std::int64_t nextId = 0;
+
+  // First pass: every dataset's declared size, so that the total (a dataset hard-linked many times
+  // counts every time) is checked against the file and the memory budget before any allocation.
+  std::vector<FiberDataset> datasets;
+  double totalPoints = 0.0;
   for (const auto& [bundleIndex, bundleName] : bundles)
   {
     Handle group(H5Gopen2(root.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
@@ -220,12 +294,14 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
       return path + ": '" + prefix + "/" + bundleName + "' is not a group";
     }
     std::vector<std::pair<long, std::string>> fibers;
-    if (!numericMembers(group.get(), fibers, bad))
+    problem = numericMembers(group.get(), "fiber", fibers, bad);
+    if (!problem.empty())
     {
-      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' is not a fiber index";
+      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' " + problem;
     }
-    for (const auto& [fiberIndex, fiberName] : fibers)
+    for (const auto& fiber : fibers)
     {
+      const std::string& fiberName = fiber.second;
       const std::string where = path + ": dataset '" + prefix + "/" + bundleName + "/" + fiberName + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
@@ -239,46 +315,70 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
       {
         return where + " does not have the shape (n, 4)";
       }
-      // A chunked dataset may declare far more than the file stores: check against the file size
-      // (uncompressed float64) before allocating, allowing for compression up to 64x.
-      if (dims[0] > kMaxPointsPerFiber || dims[0] * 4 * sizeof(double) > 64 * (fileSize + 1))
+      // A chunked dataset may declare far more than the file stores.
+      if (dims[0] > kMaxPointsPerFiber ||
+        static_cast<double>(dims[0]) * 4 * sizeof(double) > kMaxExpansion * static_cast<double>(fileSize + 1))
       {
         std::ostringstream msg;
         msg << where << " declares " << dims[0] << " points, more than the file of " << fileSize
             << " bytes can hold (limit " << kMaxPointsPerFiber << ")";
         return msg.str();
       }
-      std::vector<double> values(static_cast<std::size_t>(dims[0] * 4));
-      if (!values.empty() &&
-        H5Dread(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-      {
-        return where + " cannot be read as floating-point numbers";
-      }
-      Fiber f;
-      f.id = nextId++;
-      f.bundle = static_cast<int>(bundleIndex);
-      f.points.resize(static_cast<std::size_t>(dims[0]));
-      f.radii.resize(static_cast<std::size_t>(dims[0]));
-      for (std::size_t i = 0; i < f.points.size(); ++i)
-      {
-        f.points[i] = { values[4 * i], values[4 * i + 1], values[4 * i + 2] };
-        f.radii[i] = values[4 * i + 3];
-      }
-      model.fibers.push_back(std::move(f));
+      totalPoints += static_cast<double>(dims[0]);
+      datasets.push_back(FiberDataset{ bundleIndex, bundleName, fiberName, dims[0] });
     }
+  }
+  if (totalPoints * 4 * sizeof(double) > kMaxExpansion * static_cast<double>(fileSize + 1))
+  {
+    std::ostringstream msg;
+    msg << path << ": its " << datasets.size() << " fiber datasets declare " << totalPoints
+        << " points in total, more than the file of " << fileSize
+        << " bytes can hold (a dataset hard-linked several times counts every time)";
+    return msg.str();
+  }
+  std::ostringstream what;
+  what << path << ": reading " << totalPoints << " points in " << datasets.size() << " fibers";
+  problem = checkMemoryBudget(
+    totalPoints * kBytesPerPointRead + static_cast<double>(datasets.size()) * kBytesPerFiberRead, what.str());
+  if (!problem.empty())
+  {
+    return problem;
+  }
+
+  model.fibers.reserve(datasets.size());
+  std::vector<double> values;
+  std::int64_t nextId = 0;
+  for (const FiberDataset& d : datasets)
+  {
+    const std::string where = path + ": dataset '" + prefix + "/" + d.bundleName + "/" + d.fiberName + "'";
+    const std::string name = d.bundleName + "/" + d.fiberName;
+    Handle data(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    values.resize(static_cast<std::size_t>(d.points * 4));
+    if (!data.ok() ||
+      (!values.empty() && H5Dread(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))
+    {
+      model.fibers.clear();
+      return where + " cannot be read as floating-point numbers";
+    }
+    Fiber f;
+    f.id = nextId++;
+    f.bundle = static_cast<int>(d.bundle); // <= INT_MAX, checked by numericMembers
+    f.points.resize(static_cast<std::size_t>(d.points));
+    f.radii.resize(static_cast<std::size_t>(d.points));
+    for (std::size_t i = 0; i < f.points.size(); ++i)
+    {
+      f.points[i] = { values[4 * i], values[4 * i + 1], values[4 * i + 2] };
+      f.radii[i] = values[4 * i + 3];
+    }
+    model.fibers.push_back(std::move(f));
   }
   return {};
 }
 
 std::string FiberH5Format::Write(const std::string& path, const FiberModel& model)
 {
-  QuietHdf5 quiet;
-  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (!file.ok())
-  {
-    return path + ": cannot create the HDF5 file";
-  }
   std::map<int, std::vector<const Fiber*>> bundles;
+  double points = 0.0;
   for (const Fiber& f : model.fibers)
   {
     if (f.bundle < 0)
@@ -287,41 +387,100 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
       return path + ": bundle_id " + std::to_string(f.bundle) + " is negative; .h5 bundles are numbered from 0";
     }
     bundles[f.bundle].push_back(&f);
+    points += static_cast<double>(f.points.size());
   }
-  for (const auto& [bundle, fibers] : bundles)
+  // The file image (32 B per point plus HDF5's headers) is built in memory, next to one fiber's
+  // buffer, then written by writeFileAtomically like .dat and .tck.
+  const std::string tooBig = checkMemoryBudget(
+    2.0 * (32.0 * points + 1024.0 * static_cast<double>(model.fibers.size())) + (1 << 20), path + ": the .h5 file image");
+  if (!tooBig.empty())
   {
-    const std::string groupName = std::to_string(bundle);
-    Handle group(H5Gcreate2(file.get(), groupName.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-    if (!group.ok())
-    {
-      return path + ": cannot create group '/" + groupName + "'";
-    }
-    for (std::size_t j = 0; j < fibers.size(); ++j)
-    {
-      const Fiber& f = *fibers[j];
-      std::vector<double> values(4 * f.points.size());
-      for (std::size_t i = 0; i < f.points.size(); ++i)
-      {
-        values[4 * i] = f.points[i].x;
-        values[4 * i + 1] = f.points[i].y;
-        values[4 * i + 2] = f.points[i].z;
-        values[4 * i + 3] = f.radii[i];
-      }
-      const hsize_t dims[2] = { f.points.size(), 4 };
-      Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
-      const std::string name = std::to_string(j);
-      Handle data(H5Dcreate2(group.get(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-      if (!data.ok() || H5Dwrite(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-      {
-        return path + ": cannot write dataset '/" + groupName + "/" + name + "'";
-      }
-    }
+    return tooBig;
   }
-  if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0)
+
+  std::vector<char> image;
   {
-    return path + ": cannot flush the HDF5 file";
+    QuietHdf5 quiet;
+    // The core driver without a backing store never touches the disk, so a full disk can only fail
+    // our own checked write below, and HDF5 holds no half-written file afterwards; CLOSE_STRONG
+    // makes H5Fclose release every object still open after an error.
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    if (!fapl.ok() || H5Pset_fapl_core(fapl.get(), 1 << 20, 0) < 0 ||
+      H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG) < 0)
+    {
+      return path + ": cannot set up HDF5's in-memory file";
+    }
+    // The name only identifies the in-memory file inside HDF5; it must be unique while open.
+    static std::atomic<unsigned> serial{ 0 };
+    const std::string memoryName = path + ".in-memory-" + std::to_string(serial.fetch_add(1));
+    const hid_t fileId = H5Fcreate(memoryName.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get());
+    if (fileId < 0)
+    {
+      return path + ": cannot create the HDF5 file in memory";
+    }
+    std::string error;
+    for (auto it = bundles.begin(); it != bundles.end() && error.empty(); ++it)
+    {
+      const std::string groupName = std::to_string(it->first);
+      Handle group(H5Gcreate2(fileId, groupName.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+      if (!group.ok())
+      {
+        error = path + ": cannot create group '/" + groupName + "'";
+        break;
+      }
+      const std::vector<const Fiber*>& fibers = it->second;
+      for (std::size_t j = 0; j < fibers.size(); ++j)
+      {
+        const Fiber& f = *fibers[j];
+        std::vector<double> values(4 * f.points.size());
+        for (std::size_t i = 0; i < f.points.size(); ++i)
+        {
+          values[4 * i] = f.points[i].x;
+          values[4 * i + 1] = f.points[i].y;
+          values[4 * i + 2] = f.points[i].z;
+          values[4 * i + 3] = f.radii[i];
+        }
+        const hsize_t dims[2] = { f.points.size(), 4 };
+        Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
+        const std::string name = std::to_string(j);
+        Handle data(H5Dcreate2(group.get(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+        if (!data.ok() || H5Dwrite(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+        {
+          error = path + ": cannot write dataset '/" + groupName + "/" + name + "'";
+          break;
+        }
+      }
+    }
+    if (error.empty() && H5Fflush(fileId, H5F_SCOPE_GLOBAL) < 0)
+    {
+      error = path + ": cannot flush the HDF5 file";
+    }
+    const ssize_t size = error.empty() ? H5Fget_file_image(fileId, nullptr, 0) : -1;
+    if (error.empty() && size <= 0)
+    {
+      error = path + ": cannot get the HDF5 file image";
+    }
+    if (error.empty())
+    {
+      image.resize(static_cast<std::size_t>(size));
+      if (H5Fget_file_image(fileId, image.data(), image.size()) != size)
+      {
+        error = path + ": cannot get the HDF5 file image";
+      }
+    }
+    if (H5Fclose(fileId) < 0 && error.empty())
+    {
+      error = path + ": cannot close the HDF5 file";
+    }
+    if (!error.empty())
+    {
+      return error;
+    }
   }
-  return {};
+  return writeFileAtomically(path, [&image](std::ostream& out) {
+    out.write(image.data(), static_cast<std::streamsize>(image.size()));
+    return std::string();
+  });
 }
 
 } // namespace fiberpli

@@ -32,12 +32,16 @@ public:
   static std::string BundleGroup(const std::string& path, const std::string& requested, std::string& group);
 
   /// Reads the bundles of `group` ("" = found by BundleGroup) of `path` into `model`; returns an
-  /// empty string or an error naming the file and the group/dataset. Sizes are checked before any
-  /// allocation.
+  /// empty string or an error naming the file and the group/dataset. Below the group only hard
+  /// links are followed (soft and external links are errors), bundle group names must be
+  /// 0 .. INT_MAX, and the total of the declared points (a dataset hard-linked n times counts n
+  /// times) is checked against the file size and the memory budget before any allocation.
   static std::string Read(const std::string& path, const std::string& group, FiberModel& model);
 
-  /// Writes `model` to `path` (created or truncated; the caller handles temp file + rename).
-  /// Fibers are grouped by bundle_id in increasing order. Returns an empty string or an error.
+  /// Writes `model` to `path` the way every FiberPLI writer does (IO/AtomicFile.h): the HDF5 file
+  /// is built in memory and written to an exclusive temporary file that replaces the target only
+  /// when complete; the target's permission bits are kept. Fibers are grouped by bundle_id in
+  /// increasing order. Returns an empty string or an error naming the file.
   static std::string Write(const std::string& path, const FiberModel& model);
 };
 

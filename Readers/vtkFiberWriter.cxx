@@ -11,29 +11,9 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
-#include <unistd.h>
 
 vtkStandardNewMacro(vtkFiberWriter);
 
-namespace
-{
-/// HDF5 writes by path, so the temp-file-and-rename of Core's AtomicFile is done here.
-std::string WriteH5Atomically(const std::string& path, const fiberpli::FiberModel& model)
-{
-  const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-  std::string error = fiberpli::FiberH5Format::Write(temp, model);
-  if (error.empty() && std::rename(temp.c_str(), path.c_str()) != 0)
-  {
-    error = path + ": cannot replace the file with the written temporary file " + temp;
-  }
-  if (!error.empty())
-  {
-    std::remove(temp.c_str());
-  }
-  return error;
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 vtkFiberWriter::~vtkFiberWriter()
@@ -73,7 +53,7 @@ void vtkFiberWriter::WriteData()
 
   std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  const std::string error = ext == ".h5" ? WriteH5Atomically(path, in.model) : fiberpli::writeFiberFile(path, in.model);
+  const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model) : fiberpli::writeFiberFile(path, in.model);
   if (!error.empty())
   {
     vtkErrorMacro(<< "FiberWriter: " << error);

@@ -2,7 +2,11 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <random>
 #include <exception>
 #include <streambuf>
 #include <vector>
@@ -89,6 +93,31 @@ std::string directoryOf(const std::string& path)
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
+/// 16 hex digits from the system's entropy source, mixed with pid, time and a counter so that a
+/// failing std::random_device still gives distinct names.
+std::string randomSuffix()
+{
+  static std::atomic<std::uint64_t> counter{ 0 };
+  std::uint64_t x = static_cast<std::uint64_t>(::getpid()) << 40;
+  x ^= static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  x ^= counter.fetch_add(0x9e3779b97f4a7c15ULL);
+  try
+  {
+    std::random_device rd;
+    x ^= (static_cast<std::uint64_t>(rd()) << 32) ^ rd();
+  }
+  catch (const std::exception&)
+  {
+  }
+  // splitmix64 finaliser: neighbouring inputs give unrelated names.
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(x));
+  return text;
+}
+
 } // namespace
 
 std::string writeFileAtomically(const std::string& path,
@@ -105,12 +134,19 @@ std::string writeFileAtomically(const std::string& path,
     return "cannot write " + path + ": it is a directory";
   }
 
-  // pid + counter: unique across processes and across threads of this process, O_EXCL guards
-  // against a stale file of the same name.
-  static std::atomic<unsigned> counter{ 0 };
-  const std::string tmp =
-    path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  // A random name, created with O_EXCL | O_NOFOLLOW: a file or symlink planted at a predictable
+  // name could otherwise be followed (and its target overwritten); on a clash, draw again.
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 64 && fd < 0; ++attempt)
+  {
+    tmp = path + ".tmp-" + randomSuffix();
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST)
+    {
+      break;
+    }
+  }
   if (fd < 0)
   {
     return systemError("cannot create temporary file for", path, errno);

@@ -1,8 +1,9 @@
 /// AtomicFile: replace a file so that a failed write never destroys what was there (api.md
 /// "Readers and writers": writers write to a temporary file beside the target and rename it).
-/// Steps: create "<target>.tmp-<pid>-<n>" beside the target (same directory, hence same file
-/// system, so rename(2) is atomic), let the caller write into it, flush, fsync, rename over the
-/// target, fsync the directory. On any failure the temporary file is removed and an existing
+/// Steps: create "<target>.tmp-<16 random hex digits>" beside the target (same directory, hence
+/// same file system, so rename(2) is atomic) with O_EXCL | O_NOFOLLOW, so nothing planted there is
+/// followed or overwritten; let the caller write into it, flush, fsync, close (checked), rename
+/// over the target, fsync the directory. On any failure the temporary file is removed and an existing
 /// target is left untouched. POSIX only (the plugin targets Linux).
 #pragma once
 

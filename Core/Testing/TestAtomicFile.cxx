@@ -183,3 +183,35 @@ TEST(AtomicFile, FailedRenameRemovesTheTemporaryFile)
   EXPECT_EQ(dir.entries().size(), 1u) << "temporary file left behind";
   ::unlink((target + "/inside").c_str());
 }
+
+TEST(AtomicFile, TemporaryNameIsUnpredictable)
+{
+  // <target>.tmp-<pid>-<n> could be guessed and a symlink planted there; the name is now random
+  // and differs from one write to the next.
+  TempDir dir;
+  const std::string target = dir.path + "/out.dat";
+  std::vector<std::string> temporaries;
+  for (int k = 0; k < 2; ++k)
+  {
+    ASSERT_EQ(writeFileAtomically(target, [&](std::ostream& out) {
+      for (const std::string& name : dir.entries())
+      {
+        if (name.rfind("out.dat.tmp-", 0) == 0)
+        {
+          temporaries.push_back(name);
+        }
+      }
+      out << "x";
+      return std::string();
+    }), "");
+  }
+  ASSERT_EQ(temporaries.size(), 2u);
+  EXPECT_NE(temporaries[0], temporaries[1]);
+  for (const std::string& name : temporaries)
+  {
+    const std::string suffix = name.substr(std::string("out.dat.tmp-").size());
+    EXPECT_EQ(suffix.size(), 16u) << name;
+    EXPECT_EQ(suffix.find_first_not_of("0123456789abcdef"), std::string::npos) << name;
+  }
+  EXPECT_EQ(dir.entries().size(), 1u);
+}

@@ -40,7 +40,8 @@ class ErrorCatcher:
         def on_warning(obj, event, message=None):
             self.warnings.append(str(message))
 
-        algorithm = proxy.GetClientSideObject()
+        # A proxy, or a VTK algorithm itself (e.g. the inner writer of a parallel writer).
+        algorithm = proxy.GetClientSideObject() if hasattr(proxy, "GetClientSideObject") else proxy
         for obj in (algorithm, algorithm.GetExecutive()):
             obj.AddObserver("ErrorEvent", on_error)
             obj.AddObserver("WarningEvent", on_warning)
