@@ -134,6 +134,31 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
     output->Initialize();
     return 0;
   }
+  if (this->Mask != MASK_NONE)
+  {
+    const char* name = this->Mask == MASK_RETARDATION ? "retardation" : "transmittance";
+    vtkDataArray* values = input->GetPointData()->GetArray(name);
+    if (!values)
+    {
+      vtkErrorMacro(<< "FiberOrientationMap: Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
+                    << " needs the point array '" << name << "' (PLIAnalysis makes it)");
+      output->Initialize();
+      return 0;
+    }
+    const std::vector<double> v = ToDoubles(values);
+    vtkNew<vtkUnsignedCharArray> mask;
+    mask->SetName("mask");
+    mask->SetNumberOfTuples(static_cast<vtkIdType>(d.size()));
+    err = fiberpli::fomApplyMask(v.data(), v.size(), static_cast<fiberpli::FomMask>(this->Mask), this->MaskThreshold,
+      fom->GetPointer(0), mask->GetPointer(0));
+    if (!err.empty())
+    {
+      vtkErrorMacro(<< "FiberOrientationMap: MaskThreshold " << this->MaskThreshold << ": " << err);
+      output->Initialize();
+      return 0;
+    }
+    output->GetPointData()->AddArray(mask);
+  }
   output->GetPointData()->AddArray(fom);
   output->GetPointData()->SetActiveScalars("fom");
   this->UpdateProgress(1.0);
@@ -148,5 +173,7 @@ void vtkFiberOrientationMap::PrintSelf(ostream& os, vtkIndent indent)
                                                                                        : fiberpli::FomScheme::HsvBlack)
      << "\n";
   os << indent << "LegendSize: " << this->LegendSize << "\n";
+  os << indent << "Mask: " << this->Mask << "\n";
+  os << indent << "MaskThreshold: " << this->MaskThreshold << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -9,7 +9,9 @@
  * LegendSize image of the upper hemisphere seen from +z (centre = fiber along z, rim = in-plane
  * fibers, direction = angle around the centre) with the same `fom` array, white outside the disc,
  * spanning [−1, 1]² (pli-analysis.md §4). Schemes: HSV-black (hue = 2·direction, value =
- * 1 − |inclination|/90) and RGB (|x|, |y|, |z| of the fiber axis). A missing array is an error
+ * 1 − |inclination|/90) and RGB (|x|, |y|, |z| of the fiber axis). With a Mask, background
+ * pixels — retardation below MaskThreshold, or transmittance above it — are black and the point
+ * array `mask` (unsigned char, 1 = shown, 0 = background) is added. A missing array is an error
  * naming it.
  */
 #ifndef vtkFiberOrientationMap_h
@@ -37,6 +39,31 @@ public:
    */
   vtkSetClampMacro(ColorScheme, int, 0, 1);
   vtkGetMacro(ColorScheme, int);
+  ///@}
+
+  enum Masks
+  {
+    MASK_NONE = 0,
+    MASK_RETARDATION = 1,
+    MASK_TRANSMITTANCE = 2
+  };
+
+  ///@{
+  /**
+   * Background mask: 0 none, 1 by retardation (pixels with retardation < MaskThreshold are black),
+   * 2 by transmittance (pixels with transmittance > MaskThreshold are black). Default is 0.
+   */
+  vtkSetClampMacro(Mask, int, 0, 2);
+  vtkGetMacro(Mask, int);
+  ///@}
+
+  ///@{
+  /**
+   * Threshold of the mask, in the units of the masked array (retardation |sin δ| in [0, 1];
+   * transmittance in the image's intensity units). Default is 0.05.
+   */
+  vtkSetMacro(MaskThreshold, double);
+  vtkGetMacro(MaskThreshold, double);
   ///@}
 
   ///@{
@@ -68,6 +95,8 @@ private:
 
   int ColorScheme = HSV_BLACK;
   int LegendSize = 256;
+  int Mask = MASK_NONE;
+  double MaskThreshold = 0.05;
   int NumberOfThreads = 0;
 };
 

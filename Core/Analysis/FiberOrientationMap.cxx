@@ -102,6 +102,40 @@ std::string fomMap(const double* directionDeg, const double* inclinationDeg, std
   return {};
 }
 
+std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold, std::uint8_t* rgb,
+  std::uint8_t* tissue)
+{
+  if (mask != FomMask::None && n > 0 && (!values || !rgb))
+  {
+    return "fomApplyMask: mask image or FOM is null";
+  }
+  if (mask != FomMask::None && !std::isfinite(threshold))
+  {
+    return "fomApplyMask: the threshold is not a finite number";
+  }
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    bool keep = true;
+    if (mask == FomMask::Retardation)
+    {
+      keep = values[p] >= threshold; // false for NaN too
+    }
+    else if (mask == FomMask::Transmittance)
+    {
+      keep = values[p] <= threshold;
+    }
+    if (!keep)
+    {
+      rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = 0;
+    }
+    if (tissue)
+    {
+      tissue[p] = keep ? 1 : 0;
+    }
+  }
+  return {};
+}
+
 std::string fomLegend(int size, FomScheme scheme, std::vector<std::uint8_t>& rgb, Rgb8 background)
 {
   if (size < 1 || size > 16384)

@@ -42,6 +42,22 @@ Rgb8 fomColor(double directionDeg, double inclinationDeg, FomScheme scheme);
 std::string fomMap(const double* directionDeg, const double* inclinationDeg, std::size_t n, FomScheme scheme,
   int threads, std::uint8_t* rgb);
 
+/// Which pixels a FOM shows as background (black): none, those with retardation below a
+/// threshold (no birefringent tissue), or those with transmittance above it (light passed unhindered).
+enum class FomMask
+{
+  None = 0,
+  Retardation = 1,
+  Transmittance = 2
+};
+
+/// Blackens the background pixels of an n-pixel FOM (rgb: 3·n bytes) and writes tissue[p] = 1 for
+/// kept pixels, 0 for background (tissue may be null). `values` is the retardation or
+/// transmittance image the mask is about (ignored for None); a NaN value is background. Error for
+/// a null `values` with a mask or a non-finite threshold.
+std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold, std::uint8_t* rgb,
+  std::uint8_t* tissue);
+
 /// Legend (§4): a size × size image (x fastest, row 0 at the bottom = y −1, as vtkImageData) of the
 /// upper hemisphere seen from +z. Pixel centre (x, y) in [−1, 1]² inside the unit disc gets
 /// d = atan2(y, x) folded into [0°, 180°) and i = asin(√(1 − x² − y²)); pixels outside the disc

@@ -161,3 +161,31 @@ TEST(FOM, LegendIsTheHemisphereSeenFromAbove)
   EXPECT_EQ(at(rgb, n - 1, 0, 2), 9);
   EXPECT_NE(fomLegend(0, FomScheme::Rgb, rgb), "");
 }
+
+TEST(FOM, MaskBlackensBackgroundByRetardationOrTransmittance)
+{
+  const double retardation[4] = { 0.0, 0.049, 0.05, std::nan("") };
+  const double transmittance[4] = { 13000, 12000.5, 9000, 12000 };
+  for (FomMask mask : { FomMask::None, FomMask::Retardation, FomMask::Transmittance })
+  {
+    std::vector<std::uint8_t> rgb(12, 200), tissue(4, 7);
+    const double* values = mask == FomMask::Transmittance ? transmittance : retardation;
+    const double threshold = mask == FomMask::Transmittance ? 12000.0 : 0.05;
+    ASSERT_TRUE(fomApplyMask(values, 4, mask, threshold, rgb.data(), tissue.data()).empty());
+    // None keeps all; retardation keeps >= 0.05 (NaN is background); transmittance keeps <= 12000.
+    const std::vector<int> keep = mask == FomMask::None ? std::vector<int>{ 1, 1, 1, 1 }
+      : mask == FomMask::Retardation                    ? std::vector<int>{ 0, 0, 1, 0 }
+                                                        : std::vector<int>{ 0, 0, 1, 1 };
+    for (int p = 0; p < 4; ++p)
+    {
+      EXPECT_EQ(tissue[p], keep[p]) << int(mask) << " pixel " << p;
+      for (int c = 0; c < 3; ++c)
+      {
+        EXPECT_EQ(rgb[3 * p + c], keep[p] ? 200 : 0);
+      }
+    }
+  }
+  std::vector<std::uint8_t> rgb(3);
+  EXPECT_FALSE(fomApplyMask(nullptr, 1, FomMask::Retardation, 0.1, rgb.data(), nullptr).empty());
+  EXPECT_FALSE(fomApplyMask(retardation, 1, FomMask::Retardation, std::nan(""), rgb.data(), nullptr).empty());
+}
