@@ -4,12 +4,14 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "PLI/PLIPipeline.h"
+#include "PLI/TissueExport.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -106,7 +108,7 @@ double ListValue(const std::vector<double>& list, int i)
 vtkPLISimulation::vtkPLISimulation()
 {
   this->SetNumberOfInputPorts(1);
-  this->SetNumberOfOutputPorts(1);
+  this->SetNumberOfOutputPorts(2); // 0: the image stack, 1: the voxelised tissue (ExportTissue)
 }
 
 //------------------------------------------------------------------------------
@@ -146,10 +148,15 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
   vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* tissueInfo = outputVector->GetInformationObject(1);
   this->PlanError.clear();
+  this->TissueError.clear();
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
-  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  for (vtkInformation* info : { outInfo, tissueInfo })
+  {
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), empty, 6);
+    info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  }
 
   const fiberpli::pli::PLIOptions options = MakeOptions(this);
   fiberpli::FiberModel model;
@@ -192,6 +199,31 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), plan.imageOrigin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, static_cast<int>(plan.rho.size()));
+
+  // The tissue port: voxel centres of TissueVolume on the simulation lattice (global indices). A
+  // bad or oversized box shows as an empty extent here and as an error when the port is updated.
+  fiberpli::pli::VoxelBox box;
+  if (this->ExportTissue)
+  {
+    this->TissueError = fiberpli::pli::tissueBox(plan, this->TissueVolume, box).error;
+    if (this->TissueError.empty())
+    {
+      this->TissueError = fiberpli::pli::checkTissueBudget(plan, box);
+    }
+  }
+  if (this->ExportTissue && this->TissueError.empty())
+  {
+    const int tissueWhole[6] = { static_cast<int>(box.lo[0]), static_cast<int>(box.hi[0] - 1),
+      static_cast<int>(box.lo[1]), static_cast<int>(box.hi[1] - 1), static_cast<int>(box.lo[2]),
+      static_cast<int>(box.hi[2] - 1) };
+    const double voxel = plan.lattice.voxel;
+    const double tissueSpacing[3] = { voxel, voxel, voxel };
+    const double tissueOrigin[3] = { plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
+      plan.lattice.origin[2] + 0.5 * voxel };
+    tissueInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), tissueWhole, 6);
+    tissueInfo->Set(vtkDataObject::SPACING(), tissueSpacing, 3);
+    tissueInfo->Set(vtkDataObject::ORIGIN(), tissueOrigin, 3);
+  }
   return 1;
 }
 
@@ -205,13 +237,45 @@ int vtkPLISimulation::RequestUpdateExtent(vtkInformation*, vtkInformationVector*
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  // A request on one port leaves the other port's data as it is (and not up to date), so showing
+  // the tissue never re-runs the simulation and vice versa.
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_NOT_GENERATED()) &&
+    request->Has(vtkExecutive::FROM_OUTPUT_PORT()))
+  {
+    const int port = request->Get(vtkExecutive::FROM_OUTPUT_PORT());
+    for (int p = 0; p < this->GetNumberOfOutputPorts(); ++p)
+    {
+      if (port >= 0 && p != port)
+      {
+        outputVector->GetInformationObject(p)->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+      }
+    }
+    return 1;
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
+  const bool wantImage = port != 1;
+  const bool wantTissue = port != 0;
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
-  output->Initialize();
+  vtkImageData* image = vtkImageData::GetData(outputVector, 0);
+  vtkImageData* tissue = vtkImageData::GetData(outputVector, 1);
+  if (wantImage)
+  {
+    image->Initialize();
+  }
+  if (wantTissue)
+  {
+    tissue->Initialize();
+  }
   if (!this->PlanError.empty())
   {
     vtkErrorMacro(<< this->PlanError);
@@ -231,24 +295,39 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
   {
     vtkWarningMacro(<< in.warning);
   }
+  fiberpli::pli::PLIOptions options = MakeOptions(this);
+  if (IsBoundsSentinel(options.volumeOfInterest))
+  {
+    std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
+  }
+  int ok = 1;
+  if (wantImage)
+  {
+    ok = this->SimulateImage(in.model, options, outputVector->GetInformationObject(0), image);
+  }
+  if (wantTissue && this->ExportTissue && ok)
+  {
+    ok = this->VoxeliseTissue(in.model, options, outputVector->GetInformationObject(1), tissue);
+  }
+  return ok;
+}
 
+//------------------------------------------------------------------------------
+int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
+  vtkInformation* outInfo, vtkImageData* output)
+{
   int ext[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
   if (ext[0] > ext[1] || ext[2] > ext[3])
   {
     return 1;
   }
-  fiberpli::pli::PLIOptions options = MakeOptions(this);
-  if (IsBoundsSentinel(options.volumeOfInterest))
-  {
-    std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
-  }
   const fiberpli::pli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;
   this->SetProgressText("Voxelising and propagating light");
-  const fiberpli::pli::Status st = fiberpli::pli::runPLI(in.model, options, range, image,
+  const fiberpli::pli::Status st = fiberpli::pli::runPLI(model, options, range, image,
     [&](double f) {
       if (f >= 0.95 && !inOptics)
       {
@@ -314,6 +393,76 @@ int vtkPLISimulation::RequestData(vtkInformation*, vtkInformationVector** inputV
 }
 
 //------------------------------------------------------------------------------
+int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
+  vtkInformation* outInfo, vtkImageData* output)
+{
+  if (!this->TissueError.empty())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << this->TissueError);
+    return 0;
+  }
+  fiberpli::pli::PLIPlan plan;
+  fiberpli::pli::Status st = fiberpli::pli::planPLI(model, options, plan);
+  fiberpli::pli::VoxelBox box;
+  if (st.ok())
+  {
+    st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
+  }
+  if (!st.ok())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    return 0;
+  }
+  // This piece: the update extent (global voxel indices) inside the box.
+  int ext[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  fiberpli::pli::VoxelBox piece;
+  for (int a = 0; a < 3; ++a)
+  {
+    piece.lo[a] = std::max<std::int64_t>(box.lo[a], ext[2 * a]);
+    piece.hi[a] = std::min<std::int64_t>(box.hi[a], static_cast<std::int64_t>(ext[2 * a + 1]) + 1);
+    if (piece.hi[a] <= piece.lo[a])
+    {
+      return 1; // an empty piece
+    }
+  }
+  this->SetProgressText("Voxelising the tissue");
+  fiberpli::pli::TissueVolume tv;
+  st = fiberpli::pli::exportTissue(model, plan, options, piece, tv);
+  if (!st.ok())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    return 0;
+  }
+  const double voxel = plan.lattice.voxel;
+  output->SetExtent(static_cast<int>(piece.lo[0]), static_cast<int>(piece.hi[0] - 1), static_cast<int>(piece.lo[1]),
+    static_cast<int>(piece.hi[1] - 1), static_cast<int>(piece.lo[2]), static_cast<int>(piece.hi[2] - 1));
+  output->SetSpacing(voxel, voxel, voxel);
+  output->SetOrigin(plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
+    plan.lattice.origin[2] + 0.5 * voxel);
+  const vtkIdType n = static_cast<vtkIdType>(tv.label.size());
+  vtkNew<vtkIntArray> label;
+  label->SetName("label");
+  label->SetNumberOfValues(n);
+  std::copy(tv.label.begin(), tv.label.end(), label->GetPointer(0));
+  vtkNew<vtkFloatArray> axis;
+  axis->SetName("optic_axis");
+  axis->SetNumberOfComponents(3);
+  axis->SetNumberOfTuples(n);
+  std::copy(tv.axis.begin(), tv.axis.end(), axis->GetPointer(0));
+  output->GetPointData()->AddArray(label);
+  output->GetPointData()->AddArray(axis);
+  output->GetPointData()->SetActiveScalars("label");
+  // What a label means: 1 + b·L + l for layer l of the b-th bundle id; 0 = embedding medium.
+  std::vector<double> bundles(plan.tissue.bundleIds.begin(), plan.tissue.bundleIds.end());
+  fiberpli::AddFieldDoubles(output, "label_bundle_ids", bundles);
+  fiberpli::AddFieldInt(output, "layers_per_bundle", plan.tissue.maxLayers());
+  fiberpli::AddFieldDoubles(output, "voxel_size", { voxel });
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -338,6 +487,10 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   list("TiltAngles", this->TiltAngles);
   list("TiltAzimuths", this->TiltAzimuths);
   os << indent << "TiltConvention: " << this->TiltConvention << "\n";
+  os << indent << "ExportTissue: " << this->ExportTissue << "\n";
+  const double* t = this->TissueVolume;
+  os << indent << "TissueVolume: " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << " " << t[4] << " " << t[5]
+     << "\n";
   os << indent << "Birefringence: " << this->Birefringence << "\n";
   os << indent << "Absorption: " << this->Absorption << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -18,6 +18,12 @@
  * `tilt_convention` (int, 0 = physical), `noise_gain`, `empty_section` (int), `voxel_size`,
  * `pixel_size` (µm), `light_intensity`.
  *
+ * Output port 1 ("Tissue"), filled when ExportTissue is on: the voxelised tissue of TissueVolume as
+ * vtkImageData on the voxel lattice (point = voxel centre, extent = global voxel indices), with
+ * `label` and `optic_axis`, computed by the same Core column code as the rays read
+ * (fiberpli::pli::exportTissue). A request on one port leaves the other port's data alone, so
+ * looking at the tissue never re-runs the simulation.
+ *
  * The image plane can be split (CAN_PRODUCE_SUB_EXTENT): any UPDATE_EXTENT gives exactly the crop
  * of the whole image, so MPI ranks compute their own pixels without communication; every rank asks
  * its input for piece 0 of 1 (all fibers). When VolumeOfInterest is the "input bounds" sentinel,
@@ -38,6 +44,16 @@
 
 #include <string> // for PlanError
 #include <vector> // for the angle lists
+
+class vtkImageData;
+namespace fiberpli
+{
+struct FiberModel;
+namespace pli
+{
+struct PLIOptions;
+}
+}
 
 class FIBERPLIFILTERS_EXPORT vtkPLISimulation : public vtkImageAlgorithm
 {
@@ -168,6 +184,28 @@ public:
 
   ///@{
   /**
+   * Fill output port 1 ("Tissue") with the voxelised tissue of TissueVolume: point arrays `label`
+   * (int; 0 = embedding medium, 1 + b·L + l = layer l of the b-th bundle id in the field data
+   * `label_bundle_ids`, L = `layers_per_bundle`) and `optic_axis` (3 floats, unit or 0 where there
+   * is no axis), computed by the simulation's own voxeliser. Refused above the memory budget.
+   * Default is 0 (port 1 empty).
+   */
+  vtkSetClampMacro(ExportTissue, int, 0, 1);
+  vtkGetMacro(ExportTissue, int);
+  vtkBooleanMacro(ExportTissue, int);
+  ///@}
+
+  ///@{
+  /**
+   * Sub-volume of the tissue port, µm: xmin xmax ymin ymax zmin zmax; the voxels whose centres lie
+   * inside. min > max on every axis = the whole VolumeOfInterest. Default is (1, -1, 1, -1, 1, -1).
+   */
+  vtkSetVector6Macro(TissueVolume, double);
+  vtkGetVector6Macro(TissueVolume, double);
+  ///@}
+
+  ///@{
+  /**
    * Birefringence Δn of the fibers (one parallel layer) when Layers is empty. Default is -0.001.
    */
   vtkSetMacro(Birefringence, double);
@@ -263,6 +301,7 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  vtkTypeBool ProcessRequest(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   vtkPLISimulation(const vtkPLISimulation&) = delete;
@@ -291,7 +330,17 @@ private:
   double RefractiveIndex = 1.0;
   int NumberOfThreads = 0;
 
+  int ExportTissue = 0;
+  double TissueVolume[6] = { 1, -1, 1, -1, 1, -1 };
+
+  /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.
+  int SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
+    vtkInformation* outInfo, vtkImageData* output);
+  int VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
+    vtkInformation* outInfo, vtkImageData* output);
+
   std::string PlanError; ///< error found by RequestInformation, reported by RequestData
+  std::string TissueError; ///< the same for the tissue port (bad or oversized TissueVolume)
   /// The input-bounds volume resolved by RequestInformation: RequestData uses the same one, so the
   /// computed pixels always match WHOLE_EXTENT even if the fibers move later (e.g. a time change).
   double ResolvedVolume[6] = { 1, -1, 1, -1, 1, -1 };

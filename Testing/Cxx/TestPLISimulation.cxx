@@ -1,13 +1,18 @@
 // PLISimulation through VTK: closed-form intensities of a uniform slab (pli-simulation.md §4.2,
 // S-6), extents and field data, sub-extent = crop, thread and seed reproducibility, bad input.
 #include "ErrorCatcher.h"
+#include "FiberPolyData.h"
 #include "FiberTestData.h"
+#include "PLI/TissueExport.h"
 #include "vtkPLISimulation.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
 #include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <gtest/gtest.h>
 
@@ -427,4 +432,112 @@ TEST(PLISimulation, EmptySectionAndEmptyInput)
   sim->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(sim->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// Output port 1: the tissue of TissueVolume is the Core's export of the same box (the Core test
+// compares that with a brute-force voxelisation), a sub-extent is its crop, and updating one
+// port leaves the other port's data alone (no re-run of the simulation).
+TEST(PLISimulation, TissuePortIsTheCoreVoxelisationAndLeavesTheImageAlone)
+{
+  auto fibers = SmallModel();
+  auto configure = [&](vtkPLISimulation* s) {
+    s->SetInputData(fibers);
+    s->SetVolumeOfInterest(-10, 10, -8, 8, -5, 5);
+    s->SetVoxelSize(0.5);
+    s->SetPixelSize(1.0);
+    s->SetNumberOfRotations(6);
+    s->SetLayers("0.6 -0.004 5 p; 1 0.004 1 r");
+    s->SetExportTissue(1);
+    s->SetTissueVolume(-4, 6, -8, 0, -2, 2);
+    s->SetNumberOfThreads(1);
+  };
+  vtkNew<vtkPLISimulation> sim;
+  configure(sim);
+  sim->Update(0);
+  vtkImageData* image = sim->GetOutput(0);
+  vtkImageData* tissue = sim->GetOutput(1);
+  ASSERT_NE(image->GetPointData()->GetArray("intensity"), nullptr);
+  EXPECT_EQ(tissue->GetNumberOfPoints(), 0); // not asked for yet
+  const vtkMTimeType imageTime = image->GetMTime();
+
+  sim->Update(1);
+  EXPECT_EQ(image->GetMTime(), imageTime);
+  EXPECT_NE(image->GetPointData()->GetArray("intensity"), nullptr);
+  int ext[6];
+  tissue->GetExtent(ext);
+  // Voxel centres −9.75 + 0.5·i in [−4, 6]: i = 12 … 31; y: −7.75 + 0.5·j in [−8, 0]: 0 … 15;
+  // z: −4.75 + 0.5·k in [−2, 2]: 6 … 13.
+  const int expected[6] = { 12, 31, 0, 15, 6, 13 };
+  for (int a = 0; a < 6; ++a)
+    EXPECT_EQ(ext[a], expected[a]);
+  EXPECT_DOUBLE_EQ(tissue->GetOrigin()[0], -9.75);
+  EXPECT_DOUBLE_EQ(tissue->GetSpacing()[2], 0.5);
+  vtkDataArray* label = tissue->GetPointData()->GetArray("label");
+  vtkDataArray* axis = tissue->GetPointData()->GetArray("optic_axis");
+  ASSERT_NE(label, nullptr);
+  ASSERT_NE(axis, nullptr);
+  EXPECT_EQ(axis->GetNumberOfComponents(), 3);
+  EXPECT_EQ(Field(tissue, "layers_per_bundle"), 2.0);
+
+  // The same box through the Core.
+  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(fibers, "test");
+  ASSERT_TRUE(in.ok());
+  fiberpli::pli::PLIOptions o;
+  const double voi[6] = { -10, 10, -8, 8, -5, 5 };
+  std::copy(voi, voi + 6, o.volumeOfInterest);
+  o.voxelSize = 0.5;
+  o.pixelSize = 1.0;
+  o.layers = "0.6 -0.004 5 p; 1 0.004 1 r";
+  fiberpli::pli::PLIPlan plan;
+  ASSERT_TRUE(fiberpli::pli::planPLI(in.model, o, plan).ok());
+  const double box[6] = { -4, 6, -8, 0, -2, 2 };
+  fiberpli::pli::VoxelBox vb;
+  ASSERT_TRUE(fiberpli::pli::tissueBox(plan, box, vb).ok());
+  fiberpli::pli::TissueVolume tv;
+  ASSERT_TRUE(fiberpli::pli::exportTissue(in.model, plan, o, vb, tv).ok());
+  ASSERT_EQ(label->GetNumberOfTuples(), static_cast<vtkIdType>(tv.label.size()));
+  std::size_t differ = 0, labelled = 0;
+  for (vtkIdType p = 0; p < label->GetNumberOfTuples(); ++p)
+  {
+    differ += label->GetComponent(p, 0) != tv.label[static_cast<std::size_t>(p)];
+    labelled += tv.label[static_cast<std::size_t>(p)] > 0;
+    for (int c = 0; c < 3; ++c)
+      differ += axis->GetComponent(p, c) != tv.axis[3 * static_cast<std::size_t>(p) + c];
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_GT(labelled, 100u);
+
+  sim->Update(0); // nothing changed: no re-run
+  EXPECT_EQ(image->GetMTime(), imageTime);
+
+  // A sub-extent of the tissue port is the crop of the whole box.
+  vtkNew<vtkPLISimulation> part;
+  configure(part);
+  int sub[6] = { 15, 20, 3, 9, 7, 12 };
+  vtkNew<vtkInformationVector> requests; // one information object per output port
+  vtkNew<vtkInformation> none, request;
+  request->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), sub, 6);
+  requests->SetInformationObject(0, none);
+  requests->SetInformationObject(1, request);
+  part->Update(1, requests);
+  vtkImageData* piece = part->GetOutput(1);
+  int pext[6];
+  piece->GetExtent(pext);
+  for (int a = 0; a < 6; ++a)
+    EXPECT_EQ(pext[a], sub[a]);
+  std::size_t cropDiffer = 0;
+  for (int k = sub[4]; k <= sub[5]; ++k)
+    for (int j = sub[2]; j <= sub[3]; ++j)
+      for (int i = sub[0]; i <= sub[1]; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        cropDiffer += piece->GetPointData()->GetArray("label")->GetComponent(piece->ComputePointId(ijk), 0) !=
+          label->GetComponent(tissue->ComputePointId(ijk), 0);
+      }
+  EXPECT_EQ(cropDiffer, 0u);
+
+  // Without ExportTissue the port stays empty.
+  sim->SetExportTissue(0);
+  sim->Update(1);
+  EXPECT_EQ(sim->GetOutput(1)->GetNumberOfPoints(), 0);
 }
