@@ -5,6 +5,9 @@
 #ifndef FiberFieldData_h
 #define FiberFieldData_h
 
+#include "Geometry/PeriodicCell.h"
+
+#include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -35,6 +38,32 @@ inline void AddFieldInt(vtkDataObject* data, const char* name, int value)
   a->SetName(name);
   a->InsertNextValue(value);
   data->GetFieldData()->AddArray(a);
+}
+
+/// Adds the field `periodic_cell` (xmin xmax ymin ymax zmin zmax) of a periodic substrate.
+inline void AddPeriodicCell(vtkDataObject* data, const PeriodicCell& cell)
+{
+  AddFieldDoubles(data, "periodic_cell", { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
+}
+
+/// Reads the field `periodic_cell`: false and an empty error when absent; false and a message
+/// naming the field when it has the wrong size or bad values; true with the cell otherwise.
+inline bool ReadPeriodicCell(vtkDataObject* data, PeriodicCell& cell, std::string& error)
+{
+  error.clear();
+  vtkDataArray* a = data && data->GetFieldData() ? data->GetFieldData()->GetArray("periodic_cell") : nullptr;
+  if (!a)
+  {
+    return false;
+  }
+  const vtkIdType n = a->GetNumberOfTuples() * a->GetNumberOfComponents();
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    values[static_cast<std::size_t>(i)] = a->GetComponent(i / a->GetNumberOfComponents(), static_cast<int>(i % a->GetNumberOfComponents()));
+  }
+  error = periodicCellFromBounds(values.data(), values.size(), cell);
+  return error.empty();
 }
 
 } // namespace fiberpli

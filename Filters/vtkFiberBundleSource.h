@@ -47,7 +47,9 @@ public:
   enum RadiusDistributionType
   {
     LOGNORMAL = 0,
-    UNIFORM = 1
+    UNIFORM = 1,
+    GAMMA = 2,
+    CONSTANT = 3
   };
 
   ///@{
@@ -94,10 +96,11 @@ public:
 
   ///@{
   /**
-   * Radius distribution: 0 LogNormal (r·exp(s·z), median r), 1 Uniform (U[r(1-s), r(1+s)]).
-   * Default is 0.
+   * Radius distribution: 0 LogNormal (r·exp(s·z), median r), 1 Uniform (U[r(1-s), r(1+s)]),
+   * 2 Gamma (mean r, coefficient of variation s: shape 1/s², scale r·s², truncated to
+   * [r/4, 4r]), 3 Constant (every radius FiberRadius). Default is 0.
    */
-  vtkSetClampMacro(RadiusDistribution, int, 0, 1);
+  vtkSetClampMacro(RadiusDistribution, int, 0, 3);
   vtkGetMacro(RadiusDistribution, int);
   ///@}
 

@@ -91,6 +91,14 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     }
 
     fiberpli::CollisionSolverOptions options;
+    std::string cellError;
+    if (!fiberpli::ReadPeriodicCell(input, options.periodicCell, cellError) && !cellError.empty())
+    {
+      vtkErrorMacro(<< "FiberCollisionSolver: input field data " << cellError);
+      this->Cache.reset();
+      return 0;
+    }
+    options.initialRadiusScale = this->InitialRadiusScale;
     options.segmentLength = this->SegmentLength;
     options.minCurvatureRadius = this->MinCurvatureRadius;
     options.maxSteps = this->MaxSteps;
@@ -167,7 +175,11 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
   }
 
-  const std::size_t collisions = final ? r.collisions : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads);
+  fiberpli::PeriodicCell cell;
+  std::string cellError;
+  const bool periodic = fiberpli::ReadPeriodicCell(input, cell, cellError);
+  const std::size_t collisions = final ? r.collisions
+                                       : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
   fiberpli::AddFieldInt(output, "steps", shownStep);
   fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
   fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
@@ -177,6 +189,17 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
   }
   fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
+  if (periodic)
+  {
+    fiberpli::AddPeriodicCell(output, cell);
+  }
+  // Of the periodic cell, else of the model's bounding box.
+  fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell) });
+  if (final)
+  {
+    fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
+    fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -191,6 +214,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SeparationSpeed: " << this->SeparationSpeed << "\n";
   os << indent << "MinimumGap: " << this->MinimumGap << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
 }

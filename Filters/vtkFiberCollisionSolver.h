@@ -10,8 +10,13 @@
  * fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
  * (floating-point arrays interpolated, integer arrays copied from the point before). Field data:
  * `steps`, `collisions` (pairs still overlapping), `solved` (1/0), `max_overlap` (µm),
- * `shape_ok`, `segment_length`. If MaxSteps is reached the output still comes, with a warning
- * naming the collisions left. The result is identical for any NumberOfThreads.
+ * `shape_ok`, `segment_length`, `min_gap` (smallest surface gap in µm, at most the median radius),
+ * `radius_scale` (size reached by radius growth, 1 = full). If MaxSteps is reached the output
+ * still comes, with a warning naming the collisions left.
+ * Periodic input (field data `periodic_cell`, e.g. from FiberCubeSource with Periodic on):
+ * distances by the minimum-image convention, fibers closed through the cell stay closed, and the
+ * output carries `periodic_cell`. `volume_fraction`: fiber volume Σ π ρ² · link length over the
+ * periodic cell's volume, or without a cell over the model's bounding box. The result is identical for any NumberOfThreads.
  * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …,
  * MaxSteps) so that ParaView's animation shows the fibers separating; the solve runs once and is
  * cached.
@@ -85,6 +90,16 @@ public:
 
   ///@{
   /**
+   * Radius growth: capsules start at this fraction of their radii and grow to full size while
+   * solving (dense targets); 1 = off, 0 = automatic (on in a periodic cell). The output always
+   * has the input radii. Default is 0.
+   */
+  vtkSetClampMacro(InitialRadiusScale, double, 0.0, 1.0);
+  vtkGetMacro(InitialRadiusScale, double);
+  ///@}
+
+  ///@{
+  /**
    * Expose the solver's steps as time steps (0, TimeStepInterval, …, MaxSteps). Default is off.
    */
   vtkSetMacro(IterationsAsTime, bool);
@@ -116,6 +131,7 @@ private:
   double SeparationSpeed = 0.025;
   double MinimumGap = 0.0;
   int NumberOfThreads = 0;
+  double InitialRadiusScale = 0.0;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
 

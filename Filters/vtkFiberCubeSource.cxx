@@ -1,5 +1,6 @@
 #include "vtkFiberCubeSource.h"
 
+#include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -30,6 +31,10 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   options.segmentLength = this->SegmentLength;
   options.displacement = this->Displacement;
   options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.radiusSpread = this->RadiusSpread;
+  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
+  options.periodic = this->Periodic;
+  options.volumeFraction = this->VolumeFraction;
   const std::string invalid = fiberpli::validateCubeOptions(options);
   if (!invalid.empty())
   {
@@ -43,6 +48,10 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   fiberpli::FiberPolyData::FromModel(model, output);
 
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  if (this->Periodic)
+  {
+    fiberpli::AddPeriodicCell(output, fiberpli::cubeCell(options));
+  }
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -57,5 +66,9 @@ void vtkFiberCubeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FiberRadius: " << this->FiberRadius << "\n";
   os << indent << "SegmentLength: " << this->SegmentLength << "\n";
   os << indent << "Displacement: " << this->Displacement << "\n";
+  os << indent << "RadiusSpread: " << this->RadiusSpread << "\n";
+  os << indent << "RadiusDistribution: " << this->RadiusDistribution << "\n";
+  os << indent << "Periodic: " << this->Periodic << "\n";
+  os << indent << "VolumeFraction: " << this->VolumeFraction << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

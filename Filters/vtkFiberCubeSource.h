@@ -6,8 +6,11 @@
  * `fiber_id` and `bundle_id` (= population: 0 along x, 1 along y, 2 along z), field data
  * `segment_length` and `seed`. Fibers are placed uniformly at random in a cube of edge
  * EdgeLength centred at the origin; points are SegmentLength apart and each is displaced uniformly
- * within ±Displacement per axis (tissue-models.md §6.1). Identical properties give identical
- * output. Invalid properties give an error naming the property and an empty output. In a
+ * within ±Displacement per axis (tissue-models.md §6.1). With Periodic on, the cube is a periodic
+ * cell: every fiber spans exactly one period along its axis and is closed through the faces (its
+ * last point is its first point shifted by EdgeLength; points unwrapped), and the cell goes to
+ * field data `periodic_cell` (xmin xmax ymin ymax zmin zmax) for the solver and the writers.
+ * Identical properties give identical output. Invalid properties give an error naming the property and an empty output. In a
  * distributed run the fibers are produced on piece 0 only.
  */
 #ifndef vtkFiberCubeSource_h
@@ -50,7 +53,7 @@ public:
 
   ///@{
   /**
-   * Constant fiber radius in µm, > 0. Default is 0.8.
+   * Fiber radius in µm, > 0 (median or mean with a RadiusSpread). Default is 0.8.
    */
   vtkSetClampMacro(FiberRadius, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(FiberRadius, double);
@@ -71,6 +74,42 @@ public:
    */
   vtkSetClampMacro(Displacement, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Displacement, double);
+  ///@}
+
+  ///@{
+  /**
+   * Spread s of the fiber radii, >= 0 (0 = all radii FiberRadius). Default is 0.
+   */
+  vtkSetClampMacro(RadiusSpread, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(RadiusSpread, double);
+  ///@}
+
+  ///@{
+  /**
+   * Radius distribution: 0 LogNormal, 1 Uniform, 2 Gamma, 3 Constant (as in
+   * FiberBundleSource). Default is 3 (Constant: every radius FiberRadius).
+   */
+  vtkSetClampMacro(RadiusDistribution, int, 0, 3);
+  vtkGetMacro(RadiusDistribution, int);
+  ///@}
+
+  ///@{
+  /**
+   * The cube is a periodic cell (fibers closed through its faces, field data periodic_cell).
+   * Default is off.
+   */
+  vtkSetMacro(Periodic, bool);
+  vtkGetMacro(Periodic, bool);
+  vtkBooleanMacro(Periodic, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Target fiber volume fraction in (0, 1): the fiber count is chosen so that Σ π r² · EdgeLength
+   * is this fraction of the cube. 0 = use NumberOfFibers. Default is 0.
+   */
+  vtkSetMacro(VolumeFraction, double);
+  vtkGetMacro(VolumeFraction, double);
   ///@}
 
   ///@{
@@ -96,6 +135,10 @@ private:
   double FiberRadius = 0.8;
   double SegmentLength = 2.0;
   double Displacement = 0.5;
+  double RadiusSpread = 0.0;
+  int RadiusDistribution = 3;
+  bool Periodic = false;
+  double VolumeFraction = 0.0;
   int Seed = 42;
 };
 

@@ -23,7 +23,12 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b)
     return true;
   }
   // Arc length instead of fastPLI's |Δk|·mean length: a fold-back (u ≈ −v) is still detected.
-  return second.arc0 - first.arc1 < 2.0 * (a.rho + b.rho);
+  double gap = second.arc0 - first.arc1;
+  if (a.closedLength > 0.0)
+  {
+    gap = std::min(gap, a.closedLength - second.arc1 + first.arc0); // the way through the closure
+  }
+  return gap < 2.0 * (a.rho + b.rho);
 }
 
 namespace

@@ -24,6 +24,9 @@ struct CapsuleLink
   std::uint32_t k = 0;     ///< link index inside the fiber
   double arc0 = 0.0;       ///< arc length from the fiber's first point to p0 (S[k])
   double arc1 = 0.0;       ///< arc length to p1 (S[k+1]); arc1 − arc0 = |p1 − p0|, the detector relies on it
+  /// > 0: the fiber is closed through a periodic cell and this is its total arc length (its first
+  /// and last links are neighbours, arc lengths wrap); 0 = open fiber.
+  double closedLength = 0.0;
 };
 
 /// A colliding pair, a < b (global link ids), with the closest points of §2 evaluated as
@@ -39,7 +42,8 @@ struct CapsulePair
 };
 
 /// Same-fiber rule of collision-solver.md §3.1 [ours]: true when the pair is never tested
-/// (other fiber: false; adjacent links; arc length strictly between them < 2·(ρa + ρb)).
+/// (other fiber: false; adjacent links; arc length strictly between them < 2·(ρa + ρb); on a
+/// closed fiber the shorter way round counts, so its first and last links are adjacent).
 bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
 
 /// Upper bound of the colliding pairs among `links` in any state the solver can separate:

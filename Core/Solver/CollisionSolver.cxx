@@ -1,6 +1,7 @@
 #include "Solver/CollisionSolver.h"
 
 #include "Index/CollisionGrid.h"
+#include "Index/PeriodicPairs.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -17,8 +18,10 @@ namespace
 {
 // Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
 // Offsets first (serial prefix sums), then the fibers in parallel: each writes its own range.
+// closed (optional): fibers closed through a periodic cell; scale: capsule radii × scale (growth).
 void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
-  std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset)
+  std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset,
+  const std::vector<char>* closed = nullptr, double scale = 1.0)
 {
   const std::size_t nf = model.fibers.size();
   std::vector<std::size_t> linkOffset(nf + 1, 0);
@@ -61,12 +64,19 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
       CapsuleLink& l = links[linkOffset[f] + k];
       l.p0 = fib.points[k];
       l.p1 = fib.points[k + 1];
-      l.rho = fib.linkRadius(k);
+      l.rho = scale == 1.0 ? fib.linkRadius(k) : scale * fib.linkRadius(k);
       l.fiber = static_cast<std::uint32_t>(f);
       l.k = static_cast<std::uint32_t>(k);
       l.arc0 = arc;
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
+    }
+    if (closed && (*closed)[f])
+    {
+      for (std::size_t k = 0; k < count; ++k)
+      {
+        links[linkOffset[f] + k].closedLength = arc;
+      }
     }
   }
 }
@@ -238,6 +248,48 @@ public:
   std::vector<PairPush> push_;
   std::vector<Vec3> force_;
   CollisionGrid grid_;
+  // Periodic cell [ours]: fibers closed through it, their closure vector, the image-aware detector.
+  std::vector<char> closed_;
+  std::vector<Vec3> closure_;
+  PeriodicPairs periodic_;
+  std::string detectError_;
+  double scale_ = 1.0; // capsule radii relative to the fibers' radii (radius growth)
+  double straighten_ = 0.0; // pull towards the neighbours' midpoint while growing (untangling)
+
+  // [ours] While the capsules are small, every point is also pulled towards the midpoint of its
+  // neighbours: fibers straighten before they are thick enough to block each other, so the
+  // random braid of the tortuous input does not lock them into a loose packing.
+  void straighten(const Fiber& fib, Vec3* force, const Vec3* closure) const
+  {
+    const std::size_t n = fib.size();
+    const double k = straighten_;
+    Vec3 first;
+    if (closure)
+    {
+      first = k * (0.5 * ((fib.points[n - 2] - *closure) + fib.points[1]) - fib.points[0]);
+    }
+    for (std::size_t i = 1; i + 1 < n; ++i)
+    {
+      force[i] += k * (0.5 * (fib.points[i - 1] + fib.points[i + 1]) - fib.points[i]);
+    }
+    if (closure)
+    {
+      force[0] += first;
+      force[n - 1] += first;
+    }
+  }
+
+  bool periodic() const { return o_.periodicCell.enabled(); }
+
+  // The last point of a closed fiber is its first point shifted by the closure, exactly.
+  void close(std::size_t f)
+  {
+    if (periodic() && closed_[f])
+    {
+      Fiber& fib = model_.fibers[f];
+      fib.points.back() = fib.points.front() + closure_[f];
+    }
+  }
 
   // Length then curvature per fiber; parallel over fibers, each fiber sequential (§5).
   bool shapeControl()
@@ -253,8 +305,11 @@ public:
         continue;
       }
       FiberPointState& st = state_[static_cast<std::size_t>(f)];
-      bool c = controlSegmentLength(fib, st, segmentLength_);
-      c = controlCurvature(fib, o_.minCurvatureRadius, vMax_, o_.endPoints) || c;
+      const bool closed = periodic() && closed_[static_cast<std::size_t>(f)];
+      const Vec3* closure = closed ? &closure_[static_cast<std::size_t>(f)] : nullptr;
+      bool c = controlSegmentLength(fib, st, segmentLength_, closed ? 3 : 2);
+      c = controlCurvature(fib, o_.minCurvatureRadius, vMax_, o_.endPoints, closure) || c;
+      close(static_cast<std::size_t>(f));
       changed |= c ? 1 : 0;
     }
     return changed != 0;
@@ -272,7 +327,8 @@ public:
       {
         continue;
       }
-      if (!curvatureOk(fib, o_.minCurvatureRadius))
+      const bool closed = periodic() && closed_[f];
+      if (!curvatureOk(fib, o_.minCurvatureRadius, closed ? &closure_[f] : nullptr))
       {
         return false;
       }
@@ -288,10 +344,11 @@ public:
     return true;
   }
 
-  // False when the pairs exceed the limit (packingPairBound or the memory budget); error_ says why.
+  // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
+  // than their limit (packingPairBound or the memory budget); detectError_ says why.
   bool detect()
   {
-    buildLinks(model_, &active_, threads_, links_, &pointOffset_);
+    buildLinks(model_, &active_, threads_, links_, &pointOffset_, periodic() ? &closed_ : nullptr, scale_);
     return findBoundedPairs();
   }
 
@@ -301,7 +358,21 @@ public:
     const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
     const double affordable = std::max(0.0, budget) / bytesPerPair();
     const double limit = std::min(bound, affordable);
-    if (grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, static_cast<std::size_t>(limit)))
+    const auto maxPairs = static_cast<std::size_t>(limit);
+    bool overflow = false;
+    if (periodic())
+    {
+      detectError_ = periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow);
+      if (!detectError_.empty())
+      {
+        return false;
+      }
+    }
+    else
+    {
+      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs);
+    }
+    if (!overflow)
     {
       return true;
     }
@@ -321,11 +392,28 @@ public:
       msg << ": " << checkMemoryBudget(affordable * bytesPerPair() + 1.0, "storing them")
           << "; lower the density or MinimumGap";
     }
-    error_ = msg.str();
+    detectError_ = msg.str();
     return false;
   }
 
-  std::string error_;
+  // Point index (into force_) of the outer neighbour of a link's first (before) or second (after)
+  // point, or SIZE_MAX at an open end; through the closure on a closed fiber.
+  std::size_t outerBefore(const CapsuleLink& l) const
+  {
+    const std::size_t base = pointOffset_[l.fiber];
+    if (l.k > 0)
+      return base + l.k - 1;
+    const std::size_t n = model_.fibers[l.fiber].size();
+    return periodic() && closed_[l.fiber] ? base + n - 2 : SIZE_MAX;
+  }
+  std::size_t outerAfter(const CapsuleLink& l) const
+  {
+    const std::size_t base = pointOffset_[l.fiber];
+    const std::size_t n = model_.fibers[l.fiber].size();
+    if (l.k + 2 < n)
+      return base + l.k + 2;
+    return periodic() && closed_[l.fiber] ? base + 1 : SIZE_MAX;
+  }
 
   double maxOverlap() const
   {
@@ -378,14 +466,16 @@ public:
       {
         // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
         // create the curvature violations that shape control then undoes step after step.
-        if (la.k > 0)
-          force_[ia - 1] += spread * push_[pi].a0;
-        if (la.k + 2 < model_.fibers[la.fiber].size())
-          force_[ia + 2] += spread * push_[pi].a1;
-        if (lb.k > 0)
-          force_[ib - 1] += spread * push_[pi].b0;
-        if (lb.k + 2 < model_.fibers[lb.fiber].size())
-          force_[ib + 2] += spread * push_[pi].b1;
+        const std::size_t a0 = outerBefore(la), a1 = outerAfter(la);
+        const std::size_t b0 = outerBefore(lb), b1 = outerAfter(lb);
+        if (a0 != SIZE_MAX)
+          force_[a0] += spread * push_[pi].a0;
+        if (a1 != SIZE_MAX)
+          force_[a1] += spread * push_[pi].a1;
+        if (b0 != SIZE_MAX)
+          force_[b0] += spread * push_[pi].b0;
+        if (b1 != SIZE_MAX)
+          force_[b1] += spread * push_[pi].b1;
       }
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
@@ -402,7 +492,18 @@ public:
         continue;
       }
       std::vector<Vec3>& vel = state_[static_cast<std::size_t>(f)].velocity;
-      const Vec3* force = force_.data() + pointOffset_[static_cast<std::size_t>(f)];
+      Vec3* force = force_.data() + pointOffset_[static_cast<std::size_t>(f)];
+      const bool closed = periodic() && closed_[static_cast<std::size_t>(f)];
+      if (closed)
+      {
+        // First and last point are one point: both get the sum of their pushes.
+        force[0] += force[n - 1];
+        force[n - 1] = force[0];
+      }
+      if (straighten_ > 0.0)
+      {
+        straighten(fib, force, closed ? &closure_[static_cast<std::size_t>(f)] : nullptr);
+      }
       for (std::size_t i = 0; i < n; ++i)
       {
         Vec3 v = drag == 0.0 ? force[i] : drag * vel[i] + force[i];
@@ -413,13 +514,18 @@ public:
         }
         vel[i] = v;
       }
-      // End-point rule after the cap, on the end links before this move (§4.2).
-      vel[0] = constrainEndMove(fib, 0, vel[0], rule);
-      vel[n - 1] = constrainEndMove(fib, n - 1, vel[n - 1], rule);
+      // End-point rule after the cap, on the end links before this move (§4.2); a closed fiber
+      // has no ends.
+      if (!closed)
+      {
+        vel[0] = constrainEndMove(fib, 0, vel[0], rule);
+        vel[n - 1] = constrainEndMove(fib, n - 1, vel[n - 1], rule);
+      }
       for (std::size_t i = 0; i < n; ++i)
       {
         fib.points[i] += vel[i];
       }
+      close(static_cast<std::size_t>(f));
     }
   }
 };
@@ -476,6 +582,57 @@ void prepareFibers(Solver& s, std::vector<std::string>& warnings)
     warnings.push_back(std::to_string(tooShort) +
       " fibers with fewer than 2 distinct points are not solved (copied through)");
   }
+}
+
+// [ours] Periodic cell: which fibers are closed through it (snapped to the exact lattice vector).
+void prepareClosures(Solver& s)
+{
+  const std::size_t nf = s.model_.fibers.size();
+  s.closed_.assign(nf, 0);
+  s.closure_.assign(nf, Vec3{});
+  if (!s.periodic())
+  {
+    return;
+  }
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    const Fiber& fib = s.model_.fibers[f];
+    s.closed_[f] = s.active_[f] && fib.size() >= 3 && isClosedFiber(fib, s.o_.periodicCell, s.closure_[f]);
+    s.close(f);
+  }
+}
+
+// [ours] Radius growth: the capsule size to start from (collision-solver option doc).
+double initialScale(const CollisionSolverOptions& o)
+{
+  if (o.initialRadiusScale > 0.0)
+  {
+    return o.initialRadiusScale;
+  }
+  return 1.0; // growth measured slower than plain pushing so far (bench/README.md)
+}
+
+// Smallest surface gap over pairs closer than probe (µm); probe when no pair is that close.
+double smallestGap(Solver& s, double probe)
+{
+  std::vector<CapsulePair> near;
+  if (s.periodic())
+  {
+    if (!s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty())
+    {
+      return probe;
+    }
+  }
+  else
+  {
+    s.grid_.findPairs(s.links_, probe, s.threads_, near);
+  }
+  double gap = probe;
+  for (const CapsulePair& p : near)
+  {
+    gap = std::min(gap, p.distance - s.links_[p.a].rho - s.links_[p.b].rho);
+  }
+  return gap;
 }
 
 // L̄ (§5.1): 0 = automatic, 2 × median radius (the fastPLI author's choice); < 0 = off.
@@ -648,6 +805,14 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "StallSteps is " << o.stallSteps << ", must be >= 0 (0 = off)";
   }
+  else if (!std::isfinite(o.initialRadiusScale) || o.initialRadiusScale < 0.0 || o.initialRadiusScale > 1.0)
+  {
+    msg << "InitialRadiusScale is " << o.initialRadiusScale << ", must be in [0, 1] (0 = automatic, 1 = off)";
+  }
+  else if (!isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
+  {
+    msg << "the periodic cell has a non-finite bound";
+  }
   return msg.str();
 }
 
@@ -675,23 +840,33 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   {
     result.error = checkStacksAndGap(model, o);
   }
-  if (result.error.empty())
+  if (result.error.empty() && !s.periodic())
   {
-    // Stacks of identical fibers or absurd gaps are refused on the input as it came, before the
-    // model changes (the limit is checked again at every step).
+    // Stacks of nearly identical fibers are refused on the input as it came, before the model
+    // changes (the limit is checked again at every step; periodic runs restore the input).
     buildLinks(model, nullptr, threads, s.links_, nullptr);
     if (!s.findBoundedPairs())
     {
-      result.error = s.error_;
+      result.error = s.detectError_;
     }
   }
   if (!result.error.empty())
   {
     return result;
   }
+  // A periodic cell too small for the links is only known once they are built: keep the input.
+  const FiberModel input = s.periodic() ? model : FiberModel{};
   prepareFibers(s, result.warnings);
+  prepareClosures(s);
   configure(s, result.warnings);
   result.segmentLength = s.segmentLength_;
+  s.scale_ = initialScale(o);
+  // Growth per step while the deepest overlap is below 5 % of the median radius (at this size).
+  const double growth = 0.002;
+  const double growthTolerance = 0.05 * medianRadius(model);
+  const double straightenRate = 0.25;
+  int sinceGrowth = 0;    // move steps since the last growth event
+  constexpr int kGrowthStall = 2000;
 
   bool changed = false;
   bool first = true;
@@ -702,10 +877,33 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     changed = s.shapeControl();
     if (!s.detect())
     {
-      result.error = s.error_ + " (at step " + std::to_string(result.steps) + ")";
+      if (s.periodic())
+      {
+        model = input;
+        result = CollisionSolverResult{};
+        result.error = s.detectError_;
+      }
+      else // the pair limit, met in the middle of a run: the model is in this step's state
+      {
+        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
+      }
       return result;
     }
     const std::size_t count = s.pairs_.size();
+    const bool growing = s.scale_ < 1.0; // count is at the size before any growth below
+    s.straighten_ = s.scale_ < 1.0 ? straightenRate : 0.0;
+    if (growing && s.maxOverlap() <= growthTolerance * s.scale_)
+    {
+      // [ours] Overlaps shallow at this size: grow for the next step.
+      s.scale_ = std::min(1.0, s.scale_ + growth);
+      sinceGrowth = 0;
+      sinceImprovement = 0;
+      first = true;
+    }
+    if (s.scale_ < 1.0 && sinceGrowth >= kGrowthStall)
+    {
+      break;
+    }
     if (first || count < result.bestCollisions)
     {
       result.bestCollisions = count;
@@ -717,7 +915,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     {
       ++sinceImprovement;
     }
-    if (count == 0 && !changed)
+    if (count == 0 && !changed && !growing)
     {
       break;
     }
@@ -738,6 +936,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     }
     s.separate();
     ++result.steps;
+    ++sinceGrowth;
     if (observer)
     {
       observer(result.steps, model);
@@ -749,17 +948,48 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
       result.aborted = true;
       if (!s.detect()) // collisions must describe the geometry that is returned
       {
-        result.error = s.error_ + " (at step " + std::to_string(result.steps) + ")";
+        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
         return result;
       }
       changed = !s.shapeWithinLimits();
       break;
     }
   }
+  result.radiusScale = s.scale_;
+  if (s.scale_ < 1.0)
+  {
+    // The output has the input radii: count what is left at full size.
+    const double reached = s.periodic() ? cellVolumeFraction(model, o.periodicCell) * s.scale_ * s.scale_ : -1.0;
+    s.scale_ = 1.0;
+    if (!s.detect())
+    {
+      result.error = s.detectError_ + " (at full radius after step " + std::to_string(result.steps) + ")";
+      return result;
+    }
+    if (!result.aborted)
+    {
+      std::ostringstream w;
+      w << "radius growth stalled at " << 100.0 * result.radiusScale << " % of the radii";
+      if (reached >= 0.0)
+      {
+        w << " (volume fraction " << reached << " of the requested "
+          << cellVolumeFraction(model, o.periodicCell) << ")";
+      }
+      w << " after " << result.steps << " steps; " << s.pairs_.size()
+        << " pairs overlap at full size: the target is too dense for these fibers";
+      result.warnings.push_back(w.str());
+    }
+  }
   result.collisions = s.pairs_.size();
   result.solved = result.collisions == 0;
   result.shapeOk = !changed;
   result.maxOverlap = s.maxOverlap();
+  if (s.periodic())
+  {
+    result.volumeFraction = cellVolumeFraction(model, o.periodicCell);
+  }
+  result.minGapProbe = medianRadius(model);
+  result.minGap = smallestGap(s, result.minGapProbe);
   if (!result.solved && !result.aborted)
   {
     std::ostringstream w;
@@ -777,19 +1007,75 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   return result;
 }
 
-std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads)
+std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads,
+  const PeriodicCell& cell)
 {
   std::vector<CapsuleLink> links;
-  buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
   std::vector<CapsulePair> pairs;
-  CollisionGrid grid;
+  if (cell.enabled())
+  {
+    std::vector<char> closed(model.fibers.size(), 0);
+    for (std::size_t f = 0; f < model.fibers.size(); ++f)
+    {
+      Vec3 t;
+      closed[f] = model.fibers[f].size() >= 3 && isClosedFiber(model.fibers[f], cell, t);
+    }
+    buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr, &closed);
+  }
+  else
+  {
+    buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
+  }
   const double limit = std::min(packingPairBound(links, minimumGap),
     std::max(0.0, memoryBudgetBytes()) / CollisionGrid::bytesPerPair());
-  if (!grid.findPairs(links, minimumGap, numberOfThreads, pairs, static_cast<std::size_t>(limit)))
+  const auto maxPairs = static_cast<std::size_t>(limit);
+  bool overflow = false;
+  if (cell.enabled())
   {
-    return static_cast<std::size_t>(limit) + 1;
+    PeriodicPairs finder;
+    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow);
   }
-  return pairs.size();
+  else
+  {
+    CollisionGrid grid;
+    overflow = !grid.findPairs(links, minimumGap, numberOfThreads, pairs, maxPairs);
+  }
+  return overflow ? maxPairs + 1 : pairs.size();
+}
+
+bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
+{
+  if (!cell.enabled() || fiber.size() < 2)
+  {
+    return false;
+  }
+  const Vec3 e = cell.edge();
+  const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
+  return cell.isLatticeVector(fiber.points.back() - fiber.points.front(), tol, closure);
+}
+
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)
+{
+  double volume = 0.0;
+  for (const Fiber& f : model.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      const double rho = f.linkRadius(k);
+      volume += M_PI * rho * rho * distance(f.points[k], f.points[k + 1]);
+    }
+  }
+  if (cell.enabled())
+  {
+    return volume / cell.volume();
+  }
+  Vec3 lo, hi;
+  if (!modelBounds(model, true, lo, hi))
+  {
+    return 0.0;
+  }
+  const Vec3 e = hi - lo;
+  return e.x * e.y * e.z > 0.0 ? volume / (e.x * e.y * e.z) : 0.0;
 }
 
 } // namespace fiberpli

@@ -3,6 +3,7 @@
 /// Deterministic: the output is bit-identical for any thread count (§4.4).
 #pragma once
 
+#include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 #include "Solver/ShapeControl.h"
 #include "Util/Progress.h"
@@ -52,6 +53,15 @@ struct CollisionSolverOptions
   EndPointRule endPoints = EndPointRule::Perpendicular;
   /// Stop early when the best collision count has not improved for this many steps; 0 = off.
   int stallSteps = 0;
+  /// [ours] Periodic cell (off by default): capsule distances by the minimum-image convention;
+  /// a fiber whose last point is its first point shifted by a lattice vector is closed (first and
+  /// last point are one point, its first and last links are neighbours, closure kept exactly).
+  PeriodicCell periodicCell;
+  /// [ours] Radius growth (Lubachevsky–Stillinger style): capsules start at this fraction of their
+  /// radii and grow each time the overlaps at the current size are resolved, until full size.
+  /// While growing, points are also pulled towards their neighbours' midpoint (untangling).
+  /// 1 = off; 0 = automatic (off). The output always has the input radii. Default 0.
+  double initialRadiusScale = 0.0;
 };
 
 /// Outcome of solveCollisions (field data of §9).
@@ -70,6 +80,12 @@ struct CollisionSolverResult
   /// point index (3.5 = midpoint of input points 3 and 4), for interpolating other point arrays
   /// (floats: linear; integers: take floor). Points are moved, so this is the origin, not the place.
   std::vector<std::vector<double>> sourceIndex;
+  double radiusScale = 1.0;   ///< capsule size reached by radius growth (1 = full size)
+  /// Fiber volume Σ π ρ² · link length over the periodic cell's volume (-1 without a cell).
+  double volumeFraction = -1.0;
+  /// Smallest surface gap δ − ρa − ρb over all pairs of capsules, at most minGapProbe (µm).
+  double minGap = 0.0;
+  double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   std::vector<std::string> warnings; ///< recoverable oddities, one message each, with counts
   /// Non-empty: nothing was done and the model is unchanged; or, only when the colliding pairs
   /// outgrew their limit in the middle of a run (the message says at which step), the model is in
@@ -96,7 +112,16 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
 /// solver's pair limit it stops counting and returns a number larger than that limit.
-std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0);
+std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
+  const PeriodicCell& periodicCell = PeriodicCell{});
+
+/// True when the fiber is closed through the cell: last point − first point is a non-zero lattice
+/// vector (within 1e-5 × the largest edge per axis); closure receives it exactly.
+bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure);
+
+/// Σ π ρ_k² · |link k| over all links (ρ = capsule radius) divided by the cell volume, or without
+/// a cell by the volume of the model's bounding box (points grown by their radii); 0 if empty.
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell);
 
 /// Empty when the options are usable, else a message naming the option and its value.
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& options);

@@ -82,7 +82,7 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
   return d - dot(d, t) * t;
 }
 
-bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength)
+bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength, std::size_t minPoints)
 {
   if (!(segmentLength > 0.0))
   {
@@ -102,7 +102,7 @@ bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength)
       changed = true;
       continue; // re-check link i, now half as long
     }
-    if (len < lMin && n > 2)
+    if (len < lMin && n > minPoints)
     {
       if (i == 0)
       {
@@ -130,7 +130,7 @@ bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength)
   return changed;
 }
 
-bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule)
+bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule, const Vec3* closure)
 {
   const std::size_t n = f.points.size();
   if (!(minRadius > 0.0) || n < 3)
@@ -139,28 +139,43 @@ bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule
   }
   std::vector<Vec3> delta(n);
   bool violated = false;
-  for (std::size_t i = 1; i + 1 < n; ++i)
-  {
-    const Vec3& pm = f.points[i - 1];
+  // Vertex i with neighbours pm, pp; its neighbours' moves go to points im and ip.
+  auto bend = [&](const Vec3& pm, std::size_t i, const Vec3& pp, std::size_t im, std::size_t ip) {
     const Vec3& pi = f.points[i];
-    const Vec3& pp = f.points[i + 1];
     if (classifyVertex(pm, pi, pp, minRadius) != Bend::Violated)
     {
-      continue;
+      return;
     }
     violated = true;
     const Vec3 d = normalized((pm - pi) + (pp - pi)); // towards the inside of the bend
     delta[i] += (0.2 * step) * d;
-    delta[i - 1] -= (0.05 * step) * d;
-    delta[i + 1] -= (0.05 * step) * d;
+    delta[im] -= (0.05 * step) * d;
+    delta[ip] -= (0.05 * step) * d;
+  };
+  if (closure)
+  {
+    bend(f.points[n - 2] - *closure, 0, f.points[1], n - 2, 1);
+  }
+  for (std::size_t i = 1; i + 1 < n; ++i)
+  {
+    bend(f.points[i - 1], i, f.points[i + 1], i - 1, i + 1);
   }
   if (!violated)
   {
     return false;
   }
-  // End-point rule on the geometry before the move (the end link of this moment).
-  delta[0] = constrainEndMove(f, 0, delta[0], rule);
-  delta[n - 1] = constrainEndMove(f, n - 1, delta[n - 1], rule);
+  if (closure)
+  {
+    // First and last point are one point of the closed fiber.
+    delta[0] += delta[n - 1];
+    delta[n - 1] = delta[0];
+  }
+  else
+  {
+    // End-point rule on the geometry before the move (the end link of this moment).
+    delta[0] = constrainEndMove(f, 0, delta[0], rule);
+    delta[n - 1] = constrainEndMove(f, n - 1, delta[n - 1], rule);
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
     f.points[i] += delta[i];
@@ -168,13 +183,19 @@ bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule
   return true;
 }
 
-bool curvatureOk(const Fiber& f, double minRadius)
+bool curvatureOk(const Fiber& f, double minRadius, const Vec3* closure)
 {
-  if (!(minRadius > 0.0))
+  const std::size_t n = f.points.size();
+  if (!(minRadius > 0.0) || n < 3)
   {
     return true;
   }
-  for (std::size_t i = 1; i + 1 < f.points.size(); ++i)
+  if (closure &&
+    classifyVertex(f.points[n - 2] - *closure, f.points[0], f.points[1], minRadius) == Bend::Violated)
+  {
+    return false;
+  }
+  for (std::size_t i = 1; i + 1 < n; ++i)
   {
     if (classifyVertex(f.points[i - 1], f.points[i], f.points[i + 1], minRadius) == Bend::Violated)
     {

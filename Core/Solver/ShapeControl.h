@@ -33,19 +33,25 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
 
 /// Split / merge of collision-solver.md §5.1 with l_min = 2/3·L̄, l_max = 4/3·L̄ (segmentLength =
 /// L̄ > 0). A split inserts the mean position, radius, velocity and source index; a merge deletes
-/// one point (never an end point, the one with the weaker radius feature). A 2-point fiber is never
-/// shortened. state arrays must have f.size() entries. Returns true when a point was inserted or
-/// removed.
-bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength);
+/// one point (never an end point, the one with the weaker radius feature). A fiber of minPoints
+/// points is never shortened (2; a fiber closed through a periodic cell needs 3). state arrays must
+/// have f.size() entries. Returns true when a point was inserted or removed.
+bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength,
+  std::size_t minPoints = 2);
 
 /// Curvature rule of collision-solver.md §5.2 (division-free): a vertex whose circumradius is
 /// below minRadius or whose angle is below 60° moves by +0.2·step towards the inside of the bend,
 /// its neighbours by −0.05·step; all moves of the fiber are summed in vertex order, then applied
 /// (end points obey rule). minRadius <= 0 disables it. Returns true when a vertex violated.
-bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule);
+/// closure (non-null): the fiber is closed through a periodic cell, its last point is the first
+/// shifted by *closure; the first/last point is then a vertex like any other (its neighbours are
+/// p_{n−2} − closure and p_1), has no end-point rule, and both copies move alike.
+bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule,
+  const Vec3* closure = nullptr);
 
-/// True when every interior vertex has circumradius >= minRadius and angle >= 60° (same tests as
-/// controlCurvature; degenerate vertices with a zero-length link are skipped).
-bool curvatureOk(const Fiber& f, double minRadius);
+/// True when every interior vertex (and with closure the first/last one) has circumradius >=
+/// minRadius and angle >= 60° (same tests as controlCurvature; degenerate vertices with a
+/// zero-length link are skipped).
+bool curvatureOk(const Fiber& f, double minRadius, const Vec3* closure = nullptr);
 
 } // namespace fiberpli

@@ -177,3 +177,33 @@ TEST(RadiusDistribution, ZeroSpreadIsConstantAndRadiiAreClampedToTheBundle)
   RandomStream d(1, 0, 0);
   EXPECT_EQ(drawFiberRadius(d, 5.0, 0.0, RadiusDistribution::LogNormal, 2.0), 2.0);
 }
+
+TEST(RadiusDistribution, GammaHasTheShapeAndScaleOfMedusa)
+{
+  // α = 4, β = 0.25 µm is mean r = αβ = 1, spread s = 1/√α = 0.5. Truncated to [r/4, 4r]: the
+  // closed forms of the incomplete gamma function give the truncated mean 1.0153 and standard
+  // deviation 0.4909 (P(0.25 <= X <= 4) = 0.98092; P(X < 0.25) = 1 − e⁻¹·(1 + 1 + ½ + ⅙)).
+  const int n = 200000;
+  double sum = 0.0, sum2 = 0.0, lo = 1e9, hi = 0.0;
+  int below = 0;
+  for (int j = 0; j < n; ++j)
+  {
+    RandomStream rng(5, 1, static_cast<std::uint64_t>(j));
+    const double x = drawFiberRadius(rng, 1.0, 0.5, RadiusDistribution::Gamma, 100.0);
+    sum += x;
+    sum2 += x * x;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+    below += x < 0.5 ? 1 : 0;
+  }
+  const double mean = sum / n;
+  const double sd = std::sqrt(sum2 / n - mean * mean);
+  EXPECT_NEAR(mean, 1.0153, 0.0045);
+  EXPECT_NEAR(sd, 0.4909, 0.006);
+  EXPECT_GE(lo, 0.25);
+  EXPECT_LE(hi, 4.0);
+  // P(0.25 <= X < 0.5) / 0.98092: Gamma(4, 1) between 1 and 2 = e⁻¹·8/3 − e⁻²·19/3 = 0.12389.
+  EXPECT_NEAR(double(below) / n, 0.12389 / 0.98092, 0.003);
+  RandomStream z(1, 0, 0);
+  EXPECT_EQ(drawFiberRadius(z, 0.8, 0.0, RadiusDistribution::Gamma, 10.0), 0.8);
+}

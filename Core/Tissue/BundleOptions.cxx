@@ -57,11 +57,6 @@ bool parseBundleShape(const std::string& text, BundleShape& shape)
   return false;
 }
 
-const char* radiusDistributionName(RadiusDistribution kind)
-{
-  return kind == RadiusDistribution::Uniform ? "Uniform" : "LogNormal";
-}
-
 double effectiveRanvierSpacing(const BundleOptions& o)
 {
   if (o.ranvierSpacing >= 0.0)
@@ -90,13 +85,9 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   {
     msg << "Length is " << o.length << ", must be > 0";
   }
-  else if (!std::isfinite(o.radiusSpread) || o.radiusSpread < 0.0)
+  else if (!validateRadiusDistribution(o.radiusDistribution, o.radiusSpread).empty())
   {
-    msg << "RadiusSpread is " << o.radiusSpread << ", must be >= 0";
-  }
-  else if (o.radiusDistribution == RadiusDistribution::Uniform && o.radiusSpread >= 1.0)
-  {
-    msg << "RadiusSpread is " << o.radiusSpread << ", must be < 1 for RadiusDistribution Uniform";
+    msg << validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
   }
   else if (o.numberOfFibers < 0)
   {

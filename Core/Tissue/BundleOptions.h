@@ -26,8 +26,6 @@ enum class BundleShape
 const char* bundleShapeName(BundleShape shape);
 /// Parses an api.md shape string (exact spelling); false if unknown.
 bool parseBundleShape(const std::string& text, BundleShape& shape);
-/// The api string of a radius distribution ("LogNormal", "Uniform").
-const char* radiusDistributionName(RadiusDistribution kind);
 
 /// FiberBundleSource properties, tissue-models.md §8, units µm and degrees.
 struct BundleOptions

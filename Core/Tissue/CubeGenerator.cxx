@@ -12,15 +12,78 @@ namespace fiberpli
 
 namespace
 {
+// A closed fiber needs 3 points: with 2, its only link would be its own neighbour.
 int pointsPerFiber(const CubeOptions& o)
 {
-  return std::max(2, static_cast<int>(std::lround(o.edgeLength / o.segmentLength)) + 1);
+  const int minimum = o.periodic ? 3 : 2;
+  return std::max(minimum, static_cast<int>(std::lround(o.edgeLength / o.segmentLength)) + 1);
+}
+
+// Upper bound of the fiber count (validation and the volume-fraction loop): the target volume
+// over the volume of a fiber of the smallest radius a distribution can give.
+double fiberCountEstimate(const CubeOptions& o)
+{
+  if (!(o.volumeFraction > 0.0))
+  {
+    return o.numberOfFibers;
+  }
+  const double rMin = o.fiberRadius * minimumRadiusFactor(o.radiusDistribution, o.radiusSpread);
+  return o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * rMin * rMin) + 1.0;
+}
+
+// Fiber j of population k (stream (seed, k, j)): straight along axis k, displaced; closed through
+// the faces when periodic (the last point is the first shifted by one period, not drawn).
+Fiber makeFiber(const CubeOptions& o, int k, int j)
+{
+  const int n = pointsPerFiber(o);
+  const double half = 0.5 * o.edgeLength;
+  const int axis = k;
+  const int other1 = (axis + 1) % 3;
+  const int other2 = (axis + 2) % 3;
+  RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  Fiber f;
+  f.bundle = k;
+  const double t1 = rng.uniform(-half, half);
+  const double t2 = rng.uniform(-half, half);
+  f.points.resize(static_cast<std::size_t>(n));
+  const int drawn = o.periodic ? n - 1 : n;
+  for (int i = 0; i < drawn; ++i)
+  {
+    Vec3 p;
+    p[axis] = -half + o.edgeLength * static_cast<double>(i) / static_cast<double>(n - 1);
+    p[other1] = t1;
+    p[other2] = t2;
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] += rng.uniform(-o.displacement, o.displacement);
+    }
+    f.points[static_cast<std::size_t>(i)] = p;
+  }
+  if (o.periodic)
+  {
+    Vec3 last = f.points[0];
+    last[axis] += o.edgeLength;
+    f.points[static_cast<std::size_t>(n - 1)] = last;
+  }
+  // Drawn last so that cubes of constant radius keep their draws (and their bytes).
+  const double r = o.radiusSpread > 0.0
+    ? drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength)
+    : o.fiberRadius;
+  f.radii.assign(static_cast<std::size_t>(n), r);
+  return f;
 }
 } // namespace
+
+PeriodicCell cubeCell(const CubeOptions& o)
+{
+  const double half = 0.5 * o.edgeLength;
+  return PeriodicCell{ { -half, -half, -half }, { half, half, half } };
+}
 
 std::string validateCubeOptions(const CubeOptions& o)
 {
   std::ostringstream msg;
+  const std::string radius = validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
   if (o.populations < 1 || o.populations > 3)
   {
     msg << "Populations is " << o.populations << ", must be 1, 2 or 3";
@@ -33,9 +96,19 @@ std::string validateCubeOptions(const CubeOptions& o)
   {
     msg << "FiberRadius is " << o.fiberRadius << ", must be > 0";
   }
+  else if (!radius.empty())
+  {
+    msg << radius;
+  }
   else if (!std::isfinite(o.edgeLength) || o.edgeLength <= 2.0 * o.fiberRadius)
   {
     msg << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius";
+  }
+  else if (o.periodic && o.edgeLength < 4.0 * o.fiberRadius)
+  {
+    // A fiber would touch its own images across the cell.
+    msg << "EdgeLength is " << o.edgeLength << ", must be >= two fiber diameters (4 * FiberRadius = "
+        << 4.0 * o.fiberRadius << ") for a periodic cell";
   }
   else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
   {
@@ -45,12 +118,16 @@ std::string validateCubeOptions(const CubeOptions& o)
   {
     msg << "Displacement is " << o.displacement << ", must be >= 0";
   }
+  else if (!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0)
+  {
+    msg << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
+  }
   else
   {
-    const double fibers = static_cast<double>(o.numberOfFibers);
+    const double fibers = fiberCountEstimate(o);
     const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
     std::ostringstream what;
-    what << "NumberOfFibers " << o.numberOfFibers << " with EdgeLength " << o.edgeLength
+    what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
          << " and SegmentLength " << o.segmentLength << " (" << points << " points)";
     const std::string problem = checkMemoryBudget(fiberModelBytes(fibers, points), what.str());
     if (!problem.empty())
@@ -68,39 +145,45 @@ int cubePopulationSize(const CubeOptions& o, int k)
 
 FiberModel generateCube(const CubeOptions& o)
 {
-  FiberModel model;
-  model.fibers.reserve(static_cast<std::size_t>(o.numberOfFibers));
-  const int n = pointsPerFiber(o);
-  const double half = 0.5 * o.edgeLength;
-  std::int64_t nextId = 0;
-  for (int k = 0; k < o.populations; ++k)
+  std::vector<std::vector<Fiber>> byPopulation(static_cast<std::size_t>(o.populations));
+  if (o.volumeFraction > 0.0)
   {
-    const int axis = k;
-    const int other1 = (axis + 1) % 3;
-    const int other2 = (axis + 2) % 3;
-    const int count = cubePopulationSize(o, k);
-    for (int j = 0; j < count; ++j)
+    // Fibers in turn over the populations while adding one brings the volume closer to the
+    // target (each fiber's straight length is one period L).
+    const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength;
+    const double bound = fiberCountEstimate(o);
+    double volume = 0.0;
+    for (int i = 0; i < bound; ++i)
     {
-      RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-      Fiber f;
-      f.id = nextId++;
-      f.bundle = k;
-      const double t1 = rng.uniform(-half, half);
-      const double t2 = rng.uniform(-half, half);
-      f.points.resize(static_cast<std::size_t>(n));
-      f.radii.assign(static_cast<std::size_t>(n), o.fiberRadius);
-      for (int i = 0; i < n; ++i)
+      const int k = i % o.populations;
+      Fiber f = makeFiber(o, k, i / o.populations);
+      const double v = M_PI * f.radii[0] * f.radii[0] * o.edgeLength;
+      if (volume + 0.5 * v > target)
       {
-        Vec3 p;
-        p[axis] = -half + o.edgeLength * static_cast<double>(i) / static_cast<double>(n - 1);
-        p[other1] = t1;
-        p[other2] = t2;
-        for (int a = 0; a < 3; ++a)
-        {
-          p[a] += rng.uniform(-o.displacement, o.displacement);
-        }
-        f.points[static_cast<std::size_t>(i)] = p;
+        break;
       }
+      volume += v;
+      byPopulation[static_cast<std::size_t>(k)].push_back(std::move(f));
+    }
+  }
+  else
+  {
+    for (int k = 0; k < o.populations; ++k)
+    {
+      const int count = cubePopulationSize(o, k);
+      for (int j = 0; j < count; ++j)
+      {
+        byPopulation[static_cast<std::size_t>(k)].push_back(makeFiber(o, k, j));
+      }
+    }
+  }
+  FiberModel model;
+  std::int64_t nextId = 0;
+  for (auto& population : byPopulation)
+  {
+    for (Fiber& f : population)
+    {
+      f.id = nextId++;
       model.fibers.push_back(std::move(f));
     }
   }

@@ -2,9 +2,13 @@
 /// mutually perpendicular populations (x; x+y; x+y+z) placed uniformly at random in a cube of edge
 /// L centred at the origin, n = max(2, round(L/l) + 1) points per fiber, every point displaced by
 /// U[-D, D] per axis, constant radius. bundle = population index (0, 1, 2).
+/// Periodic: the cube is a periodic cell; every fiber spans exactly one period along its axis and
+/// closes through the faces (last point = first point + L along the axis, points unwrapped).
 #pragma once
 
+#include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
+#include "Tissue/RadiusDistribution.h"
 
 #include <cstdint>
 #include <string>
@@ -21,16 +25,30 @@ struct CubeOptions
   double segmentLength = 2.0;      ///< µm, point spacing before displacement
   double displacement = 0.5;       ///< µm, D of U[-D, D]³
   std::uint64_t seed = 42;
+  /// The cube is a periodic cell: fibers are closed through its faces (see above).
+  bool periodic = false;
+  /// > 0: the fiber count is chosen so that Σ π r² · L (L = one period, the straight length of
+  /// every fiber) is this fraction of the cube volume; 0 = use numberOfFibers. Must be < 1.
+  double volumeFraction = 0.0;
+  /// Radius spread s >= 0 (0 = constant FiberRadius) and its distribution (RadiusDistribution.h).
+  double radiusSpread = 0.0;
+  RadiusDistribution radiusDistribution = RadiusDistribution::Constant;
 };
+
+/// The cell of a periodic cube: [-L/2, L/2]³.
+PeriodicCell cubeCell(const CubeOptions& options);
 
 /// Empty string when the options are usable, else a message naming the option and its value.
 std::string validateCubeOptions(const CubeOptions& options);
 
-/// Number of fibers of population k (0-based) when options.numberOfFibers are split.
+/// Number of fibers of population k (0-based) when options.numberOfFibers are split (with
+/// volumeFraction > 0 the counts come from the radii drawn, see generateCube).
 int cubePopulationSize(const CubeOptions& options, int k);
 
 /// Generates the cube. Fiber ids are 0..N-1 in population order. The draws of fiber j of population
-/// k come from the stream (seed, k, j): transverse position (2), then displacements point by point.
+/// k come from the stream (seed, k, j): transverse position (2), displacements point by point, then
+/// (only with radiusSpread > 0) the radius. With volumeFraction > 0, fibers j = 0, 1, … are added to the
+/// populations in turn (0, 1, 2, 0, …) while the fiber volume stays closest to the target.
 /// Precondition: validateCubeOptions(options) is empty.
 FiberModel generateCube(const CubeOptions& options);
 

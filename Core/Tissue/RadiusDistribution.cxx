@@ -5,13 +5,105 @@
 namespace fiberpli
 {
 
+namespace
+{
+// Marsaglia & Tsang (2000) for shape a >= 1, scale 1; for a < 1 the boost Gamma(a + 1)·U^(1/a).
+double drawGamma(RandomStream& rng, double a)
+{
+  const double boost = a < 1.0 ? std::pow(rng.uniform(), 1.0 / a) : 1.0;
+  const double d = (a < 1.0 ? a + 1.0 : a) - 1.0 / 3.0;
+  const double c = 1.0 / std::sqrt(9.0 * d);
+  while (true)
+  {
+    const double z = rng.normal();
+    const double v = 1.0 + c * z;
+    if (v <= 0.0)
+    {
+      continue;
+    }
+    const double v3 = v * v * v;
+    const double u = 1.0 - rng.uniform(); // (0, 1]
+    if (std::log(u) < 0.5 * z * z + d - d * v3 + d * std::log(v3))
+    {
+      return d * v3 * boost;
+    }
+  }
+}
+} // namespace
+
+const char* radiusDistributionName(RadiusDistribution kind)
+{
+  switch (kind)
+  {
+    case RadiusDistribution::Uniform:
+      return "Uniform";
+    case RadiusDistribution::Gamma:
+      return "Gamma";
+    case RadiusDistribution::Constant:
+      return "Constant";
+    default:
+      return "LogNormal";
+  }
+}
+
+std::string validateRadiusDistribution(RadiusDistribution kind, double spread)
+{
+  if (!std::isfinite(spread) || spread < 0.0)
+  {
+    return "RadiusSpread is " + std::to_string(spread) + ", must be >= 0";
+  }
+  if (kind == RadiusDistribution::Uniform && spread >= 1.0)
+  {
+    return "RadiusSpread is " + std::to_string(spread) + ", must be < 1 for RadiusDistribution Uniform";
+  }
+  if (kind == RadiusDistribution::Gamma && spread > 2.0)
+  {
+    return "RadiusSpread is " + std::to_string(spread) +
+      ", must be <= 2 for RadiusDistribution Gamma (shape 1/s^2 >= 0.25)";
+  }
+  return {};
+}
+
+double minimumRadiusFactor(RadiusDistribution kind, double spread)
+{
+  if (!(spread > 0.0) || kind == RadiusDistribution::Constant)
+  {
+    return 1.0;
+  }
+  switch (kind)
+  {
+    case RadiusDistribution::Uniform:
+      return 1.0 - spread;
+    case RadiusDistribution::Gamma:
+      return 0.25;
+    default:
+      return std::exp(-3.0 * spread);
+  }
+}
+
 double drawFiberRadius(RandomStream& rng, double radius, double spread, RadiusDistribution kind,
   double maxRadius)
 {
   double r = radius;
-  if (kind == RadiusDistribution::Uniform)
+  if (kind == RadiusDistribution::Constant)
+  {
+    // no draws
+  }
+  else if (kind == RadiusDistribution::Uniform)
   {
     r = rng.uniform(radius * (1.0 - spread), radius * (1.0 + spread));
+  }
+  else if (kind == RadiusDistribution::Gamma)
+  {
+    if (spread > 0.0)
+    {
+      const double shape = 1.0 / (spread * spread);
+      const double scale = radius * spread * spread;
+      do
+      {
+        r = scale * drawGamma(rng, shape);
+      } while (r < 0.25 * radius || r > 4.0 * radius);
+    }
   }
   else
   {

@@ -1,0 +1,93 @@
+/// PeriodicCell: an axis-aligned box that tiles space (a periodic substrate). Points are stored
+/// unwrapped (a fiber stays one continuous polyline); distances use the minimum-image convention,
+/// i.e. the shortest of all lattice translates of a separation.
+#pragma once
+
+#include "Geometry/Vec3.h"
+
+#include <cmath>
+#include <string>
+
+namespace fiberpli
+{
+
+struct PeriodicCell
+{
+  Vec3 lo; ///< min corner (µm)
+  Vec3 hi; ///< max corner; the cell is off while hi <= lo on any axis (the default)
+
+  bool enabled() const { return hi.x > lo.x && hi.y > lo.y && hi.z > lo.z; }
+  Vec3 edge() const { return hi - lo; }
+  double volume() const
+  {
+    const Vec3 e = edge();
+    return e.x * e.y * e.z;
+  }
+
+  /// The lattice vector t (integer multiples of the edges) that brings p + t into [lo, hi).
+  Vec3 wrapShift(const Vec3& p) const
+  {
+    const Vec3 e = edge();
+    Vec3 t;
+    for (int d = 0; d < 3; ++d)
+    {
+      t[d] = -e[d] * std::floor((p[d] - lo[d]) / e[d]);
+    }
+    return t;
+  }
+
+  /// The lattice vector t that makes d + t the shortest image of the separation d.
+  Vec3 imageShift(const Vec3& d) const
+  {
+    const Vec3 e = edge();
+    Vec3 t;
+    for (int a = 0; a < 3; ++a)
+    {
+      t[a] = -e[a] * std::nearbyint(d[a] / e[a]);
+    }
+    return t;
+  }
+
+  /// True when v is a non-zero lattice vector within tol (µm) per axis; n receives it exactly
+  /// (integer multiples of the edges).
+  bool isLatticeVector(const Vec3& v, double tol, Vec3& n) const
+  {
+    const Vec3 e = edge();
+    bool nonZero = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double k = std::nearbyint(v[a] / e[a]);
+      if (!(std::fabs(v[a] - k * e[a]) <= tol))
+      {
+        return false;
+      }
+      n[a] = k * e[a];
+      nonZero = nonZero || k != 0.0;
+    }
+    return nonZero;
+  }
+};
+
+/// The cell from the six values of the `periodic_cell` field (xmin xmax ymin ymax zmin zmax).
+/// Empty message when usable, else why not (count, non-finite, max <= min).
+inline std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicCell& cell)
+{
+  if (count != 6)
+  {
+    return "periodic_cell has " + std::to_string(count) +
+      " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!std::isfinite(b[2 * a]) || !std::isfinite(b[2 * a + 1]) || !(b[2 * a + 1] > b[2 * a]))
+    {
+      return "periodic_cell axis " + std::to_string(a) + " is [" + std::to_string(b[2 * a]) + ", " +
+        std::to_string(b[2 * a + 1]) + "], must be finite with max > min";
+    }
+    cell.lo[a] = b[2 * a];
+    cell.hi[a] = b[2 * a + 1];
+  }
+  return {};
+}
+
+} // namespace fiberpli

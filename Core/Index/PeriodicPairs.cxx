@@ -1,0 +1,145 @@
+#include "Index/PeriodicPairs.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace fiberpli
+{
+
+namespace
+{
+CapsuleLink shifted(const CapsuleLink& l, const Vec3& t)
+{
+  CapsuleLink s = l;
+  s.p0 += t;
+  s.p1 += t;
+  return s;
+}
+
+double boxEdge(const CapsuleLink& l, double gap)
+{
+  const Vec3 d = l.p1 - l.p0;
+  return std::max(std::fabs(d.x), std::max(std::fabs(d.y), std::fabs(d.z))) + 2.0 * l.rho + gap;
+}
+} // namespace
+
+std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
+  double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow)
+{
+  pairs.clear();
+  if (overflow)
+  {
+    *overflow = false;
+  }
+  const std::size_t n = links.size();
+  if (n == 0)
+  {
+    return {};
+  }
+  // Reach w: two boxes that overlap have centres closer than w on every axis.
+  double w = 0.0;
+  for (const CapsuleLink& l : links)
+  {
+    w = std::max(w, boxEdge(l, minimumGap));
+  }
+  const Vec3 e = cell.edge();
+  const double eMin = std::min(e.x, std::min(e.y, e.z));
+  if (!(2.0 * w < eMin))
+  {
+    std::ostringstream msg;
+    msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << w
+        << " um (segment extent + 2 x radius): use a larger cell or a shorter SegmentLength";
+    return msg.str();
+  }
+  images_.resize(n);
+  source_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const CapsuleLink& l = links[i];
+    images_[i] = shifted(l, cell.wrapShift(0.5 * (l.p0 + l.p1)));
+  }
+  // Ghosts: every combination of the faces a wrapped link is within w of (at most one face per
+  // axis since the cell exceeds 2w), the zero shift excluded.
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3 c = 0.5 * (images_[i].p0 + images_[i].p1);
+    double options[3][2];
+    int count[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      options[d][0] = 0.0;
+      count[d] = 1;
+      if (c[d] - cell.lo[d] < w)
+      {
+        options[d][count[d]++] = e[d];
+      }
+      else if (cell.hi[d] - c[d] < w)
+      {
+        options[d][count[d]++] = -e[d];
+      }
+    }
+    for (int ix = 0; ix < count[0]; ++ix)
+    {
+      for (int iy = 0; iy < count[1]; ++iy)
+      {
+        for (int iz = 0; iz < count[2]; ++iz)
+        {
+          if (ix == 0 && iy == 0 && iz == 0)
+          {
+            continue;
+          }
+          const Vec3 t{ options[0][ix], options[1][iy], options[2][iz] };
+          images_.push_back(shifted(images_[i], t));
+          source_.push_back(static_cast<std::uint32_t>(i));
+        }
+      }
+    }
+  }
+  // The raw pairs include images of the physical ones (ghosts exist only near faces): allow twice
+  // the limit there, then check the physical count.
+  const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
+  if (!grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit))
+  {
+    if (overflow)
+    {
+      *overflow = true;
+    }
+    return {};
+  }
+  // raw_ pairs have a < b; real ids are < n, ghosts >= n. A pair of two ghosts is an image of a
+  // pair found elsewhere; (real a, ghost of b) and (real b, ghost of a) are the same pair: keep the
+  // one whose real link has the smaller id, evaluated with it first (as a real pair would be).
+  pairs.reserve(raw_.size());
+  for (const CapsulePair& p : raw_)
+  {
+    if (p.b < n)
+    {
+      pairs.push_back(p);
+    }
+    else if (p.a < n)
+    {
+      const std::uint32_t b = source_[p.b - n];
+      if (p.a < b)
+      {
+        CapsulePair q = p;
+        q.b = b;
+        pairs.push_back(q);
+      }
+    }
+  }
+  if (pairs.size() > maxPairs)
+  {
+    pairs.clear();
+    if (overflow)
+    {
+      *overflow = true;
+    }
+    return {};
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  return {};
+}
+
+} // namespace fiberpli

@@ -1,0 +1,36 @@
+/// PeriodicPairs: collision detection in a periodic cell by the minimum-image convention. Every link
+/// is wrapped into the cell (by the lattice vector that brings its centre inside), links near a
+/// face get ghost copies shifted by one period, and the ordinary CollisionGrid runs on the union;
+/// each physical pair is then kept exactly once, as (smaller real id, larger real id). The pair's
+/// closest points and push direction are those of the nearest images, so the solver needs no other
+/// change. The cell must exceed twice the largest link reach (box edge) on every axis, so that at
+/// most one image of a link can touch another link.
+#pragma once
+
+#include "Geometry/PeriodicCell.h"
+#include "Index/CollisionGrid.h"
+
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+class PeriodicPairs
+{
+public:
+  /// Same contract as CollisionGrid::findPairs (pairs sorted by (a, b), identical for any thread
+  /// count) with distances by minimum image. Returns an error (pairs empty) when the cell is too
+  /// small for the links. More than maxPairs pairs: *overflow (if given) is set, pairs empty.
+  std::string findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
+    double minimumGap, int threads, std::vector<CapsulePair>& pairs,
+    std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr);
+
+private:
+  CollisionGrid grid_;
+  std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts
+  std::vector<std::uint32_t> source_; // real id of every ghost
+  std::vector<CapsulePair> raw_;
+};
+
+} // namespace fiberpli

@@ -1,0 +1,341 @@
+// Periodic cells: the periodic cube generator, minimum-image detection and the solver in a cell.
+// The references here (overlap count over all 27 images, volume fraction by Monte Carlo over
+// the cell) share no code with the solver: distances come from BruteForceOverlap.h.
+#include "BruteForceOverlap.h"
+#include "Solver/CollisionSolver.h"
+#include "Tissue/CubeGenerator.h"
+#include "Util/Random.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fiberpli;
+
+namespace
+{
+CubeOptions periodicCube(int populations, double edge, double phi, std::uint64_t seed = 3)
+{
+  CubeOptions o;
+  o.populations = populations;
+  o.edgeLength = edge;
+  o.periodic = true;
+  o.volumeFraction = phi;
+  o.fiberRadius = 0.8;
+  o.segmentLength = 2.0;
+  o.displacement = 0.3;
+  o.seed = seed;
+  return o;
+}
+
+// Reference pair list by minimum image over all 27 lattice translates, with the same-fiber rule
+// written out for closed fibers (the shorter arc way round; adjacent through the closure).
+std::size_t refPeriodicCount(const FiberModel& m, double L)
+{
+  const std::vector<fiberpli_test::RefLink> l = fiberpli_test::refLinks(m);
+  std::vector<double> total(m.fibers.size(), 0.0);
+  std::vector<std::size_t> links(m.fibers.size(), 0);
+  for (const auto& x : l)
+  {
+    total[x.fiber] = x.arc1;
+    links[x.fiber] = x.k + 1;
+  }
+  std::size_t count = 0;
+  for (std::size_t a = 0; a < l.size(); ++a)
+  {
+    for (std::size_t b = a + 1; b < l.size(); ++b)
+    {
+      if (l[a].fiber == l[b].fiber)
+      {
+        const std::size_t dk = l[b].k - l[a].k;
+        if (dk <= 1 || dk + 1 == links[l[a].fiber])
+          continue;
+        const double inside = l[b].arc0 - l[a].arc1;
+        const double around = total[l[a].fiber] - l[b].arc1 + l[a].arc0;
+        if (std::min(inside, around) < 2.0 * (l[a].rho + l[b].rho))
+          continue;
+      }
+      double best = HUGE_VAL;
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j)
+          for (int k = -1; k <= 1; ++k)
+          {
+            // Both links wrapped near the origin first, then every image of b.
+            const Vec3 ca = 0.5 * (l[a].p0 + l[a].p1);
+            const Vec3 cb = 0.5 * (l[b].p0 + l[b].p1);
+            Vec3 t;
+            for (int d = 0; d < 3; ++d)
+              t[d] = -L * std::round((cb[d] - ca[d]) / L);
+            t += Vec3{ i * L, j * L, k * L };
+            best = std::min(best, fiberpli_test::refSegmentDistance(l[a].p0, l[a].p1, l[b].p0 + t, l[b].p1 + t));
+          }
+      if (best < l[a].rho + l[b].rho)
+        ++count;
+    }
+  }
+  return count;
+}
+
+// Fraction of [-L/2, L/2]³ inside any capsule image, by uniform samples (no cell list: small cells).
+double monteCarloFraction(const FiberModel& m, double L, int samples)
+{
+  RandomStream rng(99);
+  int hits = 0;
+  for (int s = 0; s < samples; ++s)
+  {
+    const Vec3 p{ rng.uniform(-L / 2, L / 2), rng.uniform(-L / 2, L / 2), rng.uniform(-L / 2, L / 2) };
+    bool inside = false;
+    for (const Fiber& f : m.fibers)
+    {
+      for (std::size_t k = 0; k + 1 < f.size() && !inside; ++k)
+      {
+        const Vec3 c = 0.5 * (f.points[k] + f.points[k + 1]);
+        Vec3 t; // the image of the link nearest to p
+        for (int d = 0; d < 3; ++d)
+          t[d] = -L * std::round((c[d] - p[d]) / L);
+        const double r = std::max(f.radii[k], f.radii[k + 1]);
+        inside = fiberpli_test::refPointSegment(p, f.points[k] + t, f.points[k + 1] + t) < r;
+      }
+      if (inside)
+        break;
+    }
+    hits += inside ? 1 : 0;
+  }
+  return double(hits) / samples;
+}
+
+void expectClosed(const FiberModel& m, double L)
+{
+  for (const Fiber& f : m.fibers)
+  {
+    Vec3 shift;
+    shift[f.bundle] = L;
+    ASSERT_EQ(f.points.back(), f.points.front() + shift) << "fiber " << f.id;
+  }
+}
+} // namespace
+
+TEST(PeriodicCube, FibersSpanOnePeriodAndAreClosed)
+{
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    const CubeOptions o = periodicCube(pops, 16.0, 0.4);
+    ASSERT_EQ(validateCubeOptions(o), "");
+    const FiberModel m = generateCube(o);
+    ASSERT_FALSE(m.fibers.empty());
+    expectClosed(m, o.edgeLength);
+    for (const Fiber& f : m.fibers)
+    {
+      ASSERT_EQ(f.size(), 9u); // round(16 / 2) + 1
+      // Undisplaced axis coordinates run from -L/2 in steps of L/8; displacement bounds the rest.
+      for (std::size_t i = 0; i + 1 < f.size(); ++i)
+        EXPECT_NEAR(f.points[i][f.bundle], -8.0 + 2.0 * double(i), o.displacement + 1e-12);
+      for (double r : f.radii)
+        EXPECT_EQ(r, 0.8);
+    }
+  }
+}
+
+TEST(PeriodicCube, FiberCountMatchesTheVolumeFraction)
+{
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    const CubeOptions o = periodicCube(pops, 20.0, 0.6);
+    const FiberModel m = generateCube(o);
+    // Σ π r² L = φ L³ → N = φ L² / (π r²), within half a fiber by construction.
+    const double expected = 0.6 * 400.0 / (M_PI * 0.64);
+    EXPECT_LE(std::fabs(double(m.fibers.size()) - expected), 0.5 + 1e-9);
+    int count[3] = { 0, 0, 0 };
+    for (const Fiber& f : m.fibers)
+      ++count[f.bundle];
+    for (int k = 1; k < pops; ++k)
+      EXPECT_LE(std::abs(count[k] - count[0]), 1); // populations filled in turn
+  }
+}
+
+TEST(PeriodicCube, SeedsAreUniformOverTheCrossSection)
+{
+  CubeOptions o = periodicCube(1, 20.0, 0.0);
+  o.numberOfFibers = 4000;
+  o.displacement = 0.0;
+  const FiberModel m = generateCube(o);
+  // Quadrant counts of the (y, z) seeds: each 1000 ± 4σ (σ = √(4000·¼·¾) ≈ 27).
+  int quadrant[4] = { 0, 0, 0, 0 };
+  for (const Fiber& f : m.fibers)
+  {
+    ASSERT_GE(f.points[0].y, -10.0);
+    ASSERT_LT(f.points[0].y, 10.0);
+    ++quadrant[(f.points[0].y > 0 ? 1 : 0) + (f.points[0].z > 0 ? 2 : 0)];
+  }
+  for (int q : quadrant)
+    EXPECT_NEAR(q, 1000, 110);
+}
+
+TEST(PeriodicCube, BadInputIsRejectedNamingTheProperty)
+{
+  CubeOptions o = periodicCube(1, 20.0, 0.5);
+  o.volumeFraction = -0.1;
+  EXPECT_NE(validateCubeOptions(o).find("VolumeFraction"), std::string::npos);
+  o.volumeFraction = 1.0;
+  EXPECT_NE(validateCubeOptions(o).find("VolumeFraction"), std::string::npos);
+  o.volumeFraction = std::nan("");
+  EXPECT_NE(validateCubeOptions(o).find("VolumeFraction"), std::string::npos);
+  o.volumeFraction = 0.5;
+  o.edgeLength = 3.1; // < two fiber diameters (3.2)
+  EXPECT_NE(validateCubeOptions(o).find("EdgeLength"), std::string::npos);
+  o.periodic = false; // an open cube only needs one diameter
+  EXPECT_EQ(validateCubeOptions(o), "");
+  o.periodic = true;
+  o.edgeLength = 20.0;
+  o.radiusSpread = 0.5;
+  o.radiusDistribution = RadiusDistribution::Uniform;
+  EXPECT_EQ(validateCubeOptions(o), "");
+  o.radiusSpread = 1.0;
+  EXPECT_NE(validateCubeOptions(o).find("RadiusSpread"), std::string::npos);
+}
+
+TEST(PeriodicCube, OpenCubeDrawsAreUnchanged)
+{
+  // Periodic off, constant radius: the draws of tissue-models.md §6.1 (position, then the
+  // displacements), so existing cubes keep their bytes.
+  CubeOptions o;
+  o.numberOfFibers = 3;
+  o.edgeLength = 10.0;
+  const FiberModel m = generateCube(o);
+  RandomStream rng(o.seed, 0, 1);
+  const double t1 = rng.uniform(-5.0, 5.0);
+  const double t2 = rng.uniform(-5.0, 5.0);
+  const double dx = rng.uniform(-0.5, 0.5);
+  const double dy = rng.uniform(-0.5, 0.5);
+  EXPECT_EQ(m.fibers[1].points[0].x, -5.0 + dx);
+  EXPECT_EQ(m.fibers[1].points[0].y, t1 + dy);
+  EXPECT_EQ(m.fibers[1].size(), 6u);
+  (void)t2;
+}
+
+TEST(PeriodicDetection, MatchesTheBruteForceOverAllImages)
+{
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    // Unsolved: many overlaps, also across the faces.
+    const CubeOptions o = periodicCube(pops, 14.0, 0.5, 10 + pops);
+    const FiberModel m = generateCube(o);
+    const std::size_t expected = refPeriodicCount(m, o.edgeLength);
+    EXPECT_GT(expected, 20u);
+    for (int threads : { 1, 2 })
+      EXPECT_EQ(countCollisions(m, 0.0, threads, cubeCell(o)), expected) << pops << " populations";
+  }
+}
+
+TEST(PeriodicDetection, LatticeTranslatesGiveTheSamePairs)
+{
+  const CubeOptions o = periodicCube(2, 14.0, 0.5, 5);
+  const FiberModel m = generateCube(o);
+  const std::size_t before = countCollisions(m, 0.0, 1, cubeCell(o));
+  ASSERT_GT(before, 0u);
+  for (const Vec3 t : { Vec3{ 14, 0, 0 }, Vec3{ 0, -14, 28 }, Vec3{ 14, 14, -14 } })
+  {
+    FiberModel moved = m;
+    for (std::size_t f = 0; f < moved.fibers.size(); f += 3) // every third fiber
+      for (Vec3& p : moved.fibers[f].points)
+        p += t;
+    EXPECT_EQ(countCollisions(moved, 0.0, 1, cubeCell(o)), before);
+    // Without the cell the moved fibers would be far away.
+    EXPECT_LT(countCollisions(moved, 0.0, 1), before);
+  }
+}
+
+TEST(PeriodicSolver, SmallCellsSolveToZeroOverlapsKeepingClosureRadiiAndFraction)
+{
+  const double targets[3] = { 0.6, 0.45, 0.35 };
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    const CubeOptions c = periodicCube(pops, 14.0, targets[pops - 1], 20 + pops);
+    FiberModel m = generateCube(c);
+    CollisionSolverOptions o;
+    o.periodicCell = cubeCell(c);
+    o.maxSteps = 6000;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    ASSERT_EQ(r.error, "");
+    EXPECT_TRUE(r.solved) << pops << " populations: " << r.collisions << " left";
+    EXPECT_EQ(refPeriodicCount(m, c.edgeLength), 0u);
+    expectClosed(m, c.edgeLength);
+    for (const Fiber& f : m.fibers)
+      for (double x : f.radii)
+        EXPECT_EQ(x, 0.8);
+    // Closed fibers are at least one period long: the fraction never falls below the target.
+    EXPECT_GE(r.volumeFraction, targets[pops - 1]);
+    const double mc = monteCarloFraction(m, c.edgeLength, 20000);
+    EXPECT_NEAR(mc, r.volumeFraction, 4.0 * std::sqrt(mc * (1 - mc) / 20000) + 0.005);
+    EXPECT_GE(r.minGap, 0.0);
+  }
+}
+
+TEST(PeriodicSolver, BitIdenticalForAnyThreadCount)
+{
+  const CubeOptions c = periodicCube(2, 14.0, 0.45, 8);
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.maxSteps = 60;
+  o.minCurvatureRadius = 4.0;
+  FiberModel reference = generateCube(c);
+  o.numberOfThreads = 1;
+  const CollisionSolverResult r1 = solveCollisions(reference, o);
+  for (int t : { 2, 3 })
+  {
+    FiberModel m = generateCube(c);
+    o.numberOfThreads = t;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    EXPECT_EQ(r.steps, r1.steps);
+    EXPECT_EQ(r.collisions, r1.collisions);
+    ASSERT_EQ(m.fibers.size(), reference.fibers.size());
+    for (std::size_t f = 0; f < m.fibers.size(); ++f)
+      EXPECT_TRUE(m.fibers[f].points == reference.fibers[f].points) << t << " threads, fiber " << f;
+  }
+}
+
+TEST(PeriodicSolver, InfeasibleTargetStopsBoundedWithAWarning)
+{
+  // 95 % of one population is above the hexagonal limit of straight fibers (90.7 %).
+  const CubeOptions c = periodicCube(1, 10.0, 0.95, 4);
+  FiberModel m = generateCube(c);
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.maxSteps = 50;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  ASSERT_EQ(r.error, "");
+  EXPECT_FALSE(r.solved);
+  EXPECT_EQ(r.steps, 50);
+  EXPECT_GT(r.collisions, 0u);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("still overlap"), std::string::npos) << r.warnings.back();
+  expectClosed(m, c.edgeLength);
+}
+
+TEST(PeriodicSolver, CellTooSmallForTheLinksIsAnErrorAndLeavesTheModel)
+{
+  CubeOptions c = periodicCube(1, 6.0, 0.3, 4);
+  FiberModel m = generateCube(c);
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.segmentLength = 3.0; // links up to 4 µm + 2 radii: more than half the 6 µm cell
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("periodic cell"), std::string::npos) << r.error;
+  ASSERT_EQ(m.fibers.size(), in.fibers.size());
+  for (std::size_t f = 0; f < m.fibers.size(); ++f)
+    EXPECT_TRUE(m.fibers[f].points == in.fibers[f].points);
+}
+
+TEST(PeriodicCell, BoundsFieldIsValidated)
+{
+  PeriodicCell cell;
+  const double good[6] = { -1, 1, -2, 2, -3, 3 };
+  EXPECT_EQ(periodicCellFromBounds(good, 6, cell), "");
+  EXPECT_EQ(cell.edge().z, 6.0);
+  EXPECT_NE(periodicCellFromBounds(good, 5, cell).find("6"), std::string::npos);
+  const double flat[6] = { -1, 1, 2, 2, -3, 3 };
+  EXPECT_NE(periodicCellFromBounds(flat, 6, cell), "");
+  const double nan[6] = { -1, 1, -2, std::nan(""), -3, 3 };
+  EXPECT_NE(periodicCellFromBounds(nan, 6, cell), "");
+}
