@@ -17,8 +17,10 @@
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 
+#include <cstdint>
 #include <initializer_list>
 #include <string>
 
@@ -138,6 +140,9 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
   options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
   options.voxelSize = this->VoxelSize;
+  options.monteCarlo = this->VolumeFractionMethod == MONTE_CARLO;
+  options.samples = this->Samples;
+  options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.volumeFraction = this->ComputeVolumeFraction;
   options.pairs = this->ComputeCollisions;
   options.numberOfThreads = this->NumberOfThreads;
@@ -187,6 +192,10 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   AddCount(summary, "bundles", static_cast<long long>(s.bundles.size()));
   AddValue(summary, "volume_fraction", { m.volume.fraction });
   AddValue(summary, "volume_fraction_error", { m.volume.errorBound });
+  vtkNew<vtkStringArray> method;
+  method->SetName("volume_fraction_method");
+  method->InsertNextValue(options.monteCarlo ? "MonteCarlo" : "Voxels");
+  summary->AddColumn(method);
   AddValue(summary, "voxel_size", { m.volume.voxel.x, m.volume.voxel.y, m.volume.voxel.z });
   AddValue(summary, "box", { m.regionLo.x, m.regionHi.x, m.regionLo.y, m.regionHi.y, m.regionLo.z, m.regionHi.z });
   AddCount(summary, "periodic", options.cell.enabled ? 1 : 0);
@@ -243,6 +252,9 @@ void vtkFiberMetrics::PrintSelf(ostream& os, vtkIndent indent)
      << " " << this->Box[4] << " " << this->Box[5] << "\n";
   os << indent << "UsePeriodicCell: " << this->UsePeriodicCell << "\n";
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
+  os << indent << "VolumeFractionMethod: " << (this->VolumeFractionMethod == MONTE_CARLO ? "MonteCarlo" : "Voxels") << "\n";
+  os << indent << "Samples: " << this->Samples << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ComputeVolumeFraction: " << this->ComputeVolumeFraction << "\n";
   os << indent << "ComputeCollisions: " << this->ComputeCollisions << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";

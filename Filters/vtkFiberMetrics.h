@@ -15,7 +15,7 @@
  * the default, means the bounds of the fiber points), or — when the input carries the
  * `periodic_cell` field data and UsePeriodicCell is on — of the whole periodic cell, counting every
  * periodic image. It is a voxel-centre count on a grid of `VoxelSize` with a rigorous error bound
- * (volume_fraction_error). Colliding pairs and the smallest surface gap compare every capsule pair
+ * (volume_fraction_error), or a Monte Carlo estimate with its standard error. Colliding pairs and the smallest surface gap compare every capsule pair
  * except chain neighbours of one fiber (the solver's contract), by minimum image in a periodic cell.
  *
  * Under MPI every rank measures all fibers; the outputs are filled on piece 0 only (so tables are
@@ -63,6 +63,26 @@ public:
   vtkGetMacro(VoxelSize, double);
   ///@}
 
+  enum VolumeFractionMethods
+  {
+    VOXELS = 0,
+    MONTE_CARLO = 1
+  };
+
+  ///@{
+  /**
+   * How the volume fraction is measured: 0 Voxels (deterministic count, volume_fraction_error is
+   * a rigorous bound), 1 MonteCarlo (Samples random points from Seed, volume_fraction_error is the
+   * standard error). Default is 0.
+   */
+  vtkSetClampMacro(VolumeFractionMethod, int, 0, 1);
+  vtkGetMacro(VolumeFractionMethod, int);
+  vtkSetClampMacro(Samples, int, 1, VTK_INT_MAX);
+  vtkGetMacro(Samples, int);
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
   ///@{
   /**
    * Compute the volume fraction / the colliding pairs and smallest gap. Both default on.
@@ -97,6 +117,9 @@ private:
   double Box[6] = { 1, -1, 1, -1, 1, -1 };
   bool UsePeriodicCell = true;
   double VoxelSize = 0.0;
+  int VolumeFractionMethod = VOXELS;
+  int Samples = 1000000;
+  int Seed = 0;
   bool ComputeVolumeFraction = true;
   bool ComputeCollisions = true;
   int NumberOfThreads = 0;

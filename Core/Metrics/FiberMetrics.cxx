@@ -58,6 +58,17 @@ std::string chooseRegion(const FiberModel& model, const MetricsOptions& options,
   return "";
 }
 
+/// VoxelSize, or the automatic one: an eighth of the smallest radius, coarsened to the voxel limit.
+double voxelEdge(const MetricsOptions& options, const MetricsResult& result)
+{
+  if (options.voxelSize > 0.0)
+  {
+    return options.voxelSize;
+  }
+  const Vec3 e = result.regionHi - result.regionLo;
+  return std::max(result.shape.radius.min / 8.0, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
+}
+
 } // namespace
 
 MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions& options,
@@ -93,24 +104,27 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
     {
       return result;
     }
-    double h = options.voxelSize;
-    if (h == 0.0)
+    const ProgressFn volumeProgress = [&](double f) { return reportProgress(progress, volumeShare * f); };
+    if (options.monteCarlo)
     {
-      h = result.shape.radius.min / 8.0;
-      const Vec3 e = result.regionHi - result.regionLo;
-      h = std::max(h, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
+      result.volume = monteCarloVolumeFraction(set, result.regionLo, result.regionHi, options.samples, options.seed,
+        options.cell, options.numberOfThreads, volumeProgress);
     }
-    const double voxels = voxelCount(result.regionLo, result.regionHi, h);
-    if (voxels > options.voxelLimit)
+    else
     {
-      std::ostringstream s;
-      s << "VoxelSize " << h << " gives " << voxels << " voxels in " << boxText(result.regionLo, result.regionHi)
-        << ", more than " << options.voxelLimit << "; use a larger VoxelSize or a smaller Box";
-      result.error = s.str();
-      return result;
+      const double h = voxelEdge(options, result);
+      const double voxels = voxelCount(result.regionLo, result.regionHi, h);
+      if (voxels > options.voxelLimit)
+      {
+        std::ostringstream s;
+        s << "VoxelSize " << h << " gives " << voxels << " voxels in " << boxText(result.regionLo, result.regionHi)
+          << ", more than " << options.voxelLimit << "; use a larger VoxelSize or a smaller Box";
+        result.error = s.str();
+        return result;
+      }
+      result.volume = volumeFraction(set, result.regionLo, result.regionHi, h, options.cell, options.numberOfThreads,
+        volumeProgress);
     }
-    result.volume = volumeFraction(set, result.regionLo, result.regionHi, h, options.cell,
-      options.numberOfThreads, [&](double f) { return reportProgress(progress, volumeShare * f); });
     if (!result.volume.error.empty() || result.volume.aborted)
     {
       result.error = result.volume.error;

@@ -10,6 +10,7 @@
 #include "Model/FiberModel.h"
 #include "Util/Progress.h"
 
+#include <cstdint>
 #include <string>
 
 namespace fiberpli
@@ -26,6 +27,11 @@ struct MetricsOptions
   double voxelSize = 0.0;
   double automaticVoxelLimit = 2e8;
   double voxelLimit = 2e10;      ///< more voxels is an error (it would run for hours)
+  /// Monte Carlo instead of voxels: `samples` random points from `seed`; the error is then the
+  /// standard error instead of a bound.
+  bool monteCarlo = false;
+  std::int64_t samples = 1000000;
+  std::uint64_t seed = 0;
   bool volumeFraction = true;
   bool pairs = true;
   int numberOfThreads = 0;       ///< 0 = all cores

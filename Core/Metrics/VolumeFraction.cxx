@@ -1,6 +1,7 @@
 #include "Metrics/VolumeFraction.h"
 
 #include "Util/MemoryBudget.h"
+#include "Util/Random.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
@@ -24,7 +25,153 @@ struct LayerEntry
   Vec3 shift;
 };
 
+/// Capsules (with the lattice shift of each periodic image) listed per cell of a uniform grid over
+/// the region, for point queries.
+class CapsuleCells
+{
+public:
+  CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi, const PeriodicCell& cell)
+    : set_(set), lo_(lo), periodic_(cell.enabled)
+  {
+    const Vec3 size = hi - lo;
+    double reach = 0.0;
+    for (const Capsule& c : set.capsules)
+    {
+      reach = std::max(reach, distance(c.a, c.b) + 2.0 * c.r);
+    }
+    // Cells about one capsule wide, but never more than 4 per capsule or 2^24 in all.
+    const double volume = size.x * size.y * size.z;
+    const double cap = std::min(4.0 * static_cast<double>(set.capsules.size()) + 1.0, 16777216.0);
+    const double edge = std::max(reach, std::cbrt(volume / cap));
+    for (int i = 0; i < 3; ++i)
+    {
+      n_[i] = std::max<std::int64_t>(1, static_cast<std::int64_t>(size[i] / edge));
+      edge_[i] = size[i] / static_cast<double>(n_[i]);
+    }
+    std::vector<std::vector<LayerEntry>> lists(static_cast<std::size_t>(n_[0] * n_[1] * n_[2]));
+    for (std::size_t c = 0; c < set.capsules.size(); ++c)
+    {
+      const Capsule& cap = set.capsules[c];
+      std::int64_t range[3][2];
+      bool outside = false;
+      for (int i = 0; i < 3; ++i)
+      {
+        range[i][0] = static_cast<std::int64_t>(std::floor((std::min(cap.a[i], cap.b[i]) - cap.r - lo[i]) / edge_[i]));
+        range[i][1] = static_cast<std::int64_t>(std::floor((std::max(cap.a[i], cap.b[i]) + cap.r - lo[i]) / edge_[i]));
+        if (!periodic_)
+        {
+          range[i][0] = std::max<std::int64_t>(range[i][0], 0);
+          range[i][1] = std::min<std::int64_t>(range[i][1], n_[i] - 1);
+          outside = outside || range[i][0] > range[i][1];
+        }
+      }
+      if (outside)
+      {
+        continue;
+      }
+      for (std::int64_t k = range[2][0]; k <= range[2][1]; ++k)
+      {
+        for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
+        {
+          for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
+          {
+            const std::int64_t idx[3] = { i, j, k };
+            Vec3 shift;
+            std::int64_t w[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              w[a] = periodic_ ? wrap(idx[a], n_[a]) : idx[a];
+              // The capsule image that covers stored cell w: shifted by −(whole periods).
+              shift[a] = -static_cast<double>((idx[a] - w[a]) / n_[a]) * size[a];
+            }
+            lists[static_cast<std::size_t>((w[2] * n_[1] + w[1]) * n_[0] + w[0])].push_back({ c, shift });
+          }
+        }
+      }
+    }
+    start_.assign(lists.size() + 1, 0);
+    for (std::size_t k = 0; k < lists.size(); ++k)
+    {
+      start_[k + 1] = start_[k] + lists[k].size();
+    }
+    entries_.reserve(start_.back());
+    for (const auto& l : lists)
+    {
+      entries_.insert(entries_.end(), l.begin(), l.end());
+    }
+  }
+
+  bool inside(const Vec3& p) const
+  {
+    std::int64_t idx[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      idx[i] = std::clamp<std::int64_t>(static_cast<std::int64_t>((p[i] - lo_[i]) / edge_[i]), 0, n_[i] - 1);
+    }
+    const auto cellIndex = static_cast<std::size_t>((idx[2] * n_[1] + idx[1]) * n_[0] + idx[0]);
+    for (std::size_t e = start_[cellIndex]; e < start_[cellIndex + 1]; ++e)
+    {
+      const Capsule& c = set_.capsules[entries_[e].capsule];
+      if (pointSegmentDistance(p, c.a + entries_[e].shift, c.b + entries_[e].shift) <= c.r)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
+private:
+  const CapsuleSet& set_;
+  Vec3 lo_;
+  bool periodic_;
+  std::int64_t n_[3] = { 1, 1, 1 };
+  Vec3 edge_;
+  std::vector<std::size_t> start_;
+  std::vector<LayerEntry> entries_;
+};
+
 } // namespace
+
+VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
+  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress)
+{
+  VolumeFractionResult result;
+  if (samples < 1)
+  {
+    result.error = "Samples " + std::to_string(samples) + " must be >= 1";
+    return result;
+  }
+  const CapsuleCells cells(set, lo, hi, cell);
+  const std::int64_t chunk = 65536;
+  const std::int64_t chunks = (samples + chunk - 1) / chunk;
+  const int threads = resolveThreadCount(numberOfThreads);
+  std::int64_t hits = 0;
+  const std::int64_t block = 8 * threads;
+  for (std::int64_t begin = 0; begin < chunks; begin += block)
+  {
+    const std::int64_t end = std::min(chunks, begin + block);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : hits)
+    for (std::int64_t c = begin; c < end; ++c)
+    {
+      RandomStream rng(seed, static_cast<std::uint64_t>(c));
+      const std::int64_t count = std::min(chunk, samples - c * chunk);
+      for (std::int64_t k = 0; k < count; ++k)
+      {
+        const Vec3 p{ rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z) };
+        hits += cells.inside(p) ? 1 : 0;
+      }
+    }
+    if (!reportProgress(progress, static_cast<double>(end) / static_cast<double>(chunks)))
+    {
+      result.aborted = true;
+      return result;
+    }
+  }
+  const double n = static_cast<double>(samples);
+  result.fraction = static_cast<double>(hits) / n;
+  result.errorBound = std::sqrt(result.fraction * (1.0 - result.fraction) / n);
+  return result;
+}
 
 double voxelCount(const Vec3& lo, const Vec3& hi, double h)
 {

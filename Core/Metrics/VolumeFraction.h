@@ -5,6 +5,7 @@
 #include "Metrics/Capsules.h"
 #include "Util/Progress.h"
 
+#include <cstdint>
 #include <string>
 
 namespace fiberpli
@@ -27,6 +28,13 @@ struct VolumeFractionResult
 /// With cell.enabled, [lo, hi] is the cell and voxels wrap around it, so every image counts.
 VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
   double voxelSize, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);
+
+/// Monte Carlo alternative: `samples` uniform points of [lo, hi] (drawn in chunks of 65536 from
+/// RandomStream(seed, chunk), so the result is the same for any thread count); fraction = share
+/// inside a capsule (every periodic image with cell.enabled), errorBound = its standard error
+/// √(φ(1 − φ)/samples); voxel stays zero.
+VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
+  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);
 
 /// Voxels of edge h in the box [lo, hi] (each axis rounded up to whole voxels), as a double.
 double voxelCount(const Vec3& lo, const Vec3& hi, double h);

@@ -373,3 +373,33 @@ TEST(FiberMetrics, EmptyModelAndAbort)
   const MetricsResult aborted = computeFiberMetrics(lattice(-8, 8, 1), box(5, 0.05), [](double) { return false; });
   EXPECT_TRUE(aborted.aborted);
 }
+
+TEST(FiberMetrics, MonteCarloAgreesWithinItsStandardError)
+{
+  // The lattice through the box (exact φ known) and the wrapped periodic fiber; the same numbers
+  // for 1 and 2 threads (chunked seeds).
+  const double r = 1.0, exact = 9 * M_PI * r * r * 10 / 1000;
+  MetricsOptions o = box(5, 0.0);
+  o.monteCarlo = true;
+  o.samples = 400000;
+  o.seed = 11;
+  o.pairs = false;
+  o.numberOfThreads = 1;
+  const MetricsResult one = computeFiberMetrics(lattice(-8, 8, r), o, nullptr);
+  ASSERT_TRUE(one.error.empty()) << one.error;
+  EXPECT_NEAR(one.volume.errorBound, std::sqrt(exact * (1 - exact) / 400000), 2e-5);
+  EXPECT_LE(std::abs(one.volume.fraction - exact), 4 * one.volume.errorBound);
+  o.numberOfThreads = 2;
+  EXPECT_EQ(computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
+  o.seed = 12;
+  EXPECT_NE(computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
+
+  FiberModel m;
+  m.fibers.push_back(straight({ 5, 4.5, 0 }, { 15, 4.5, 0 }, 10, r, 0)); // one period away, wrapping in y
+  o.cell = cube(5);
+  const MetricsResult periodic = computeFiberMetrics(m, o, nullptr);
+  EXPECT_LE(std::abs(periodic.volume.fraction - M_PI * 10 / 1000), 4 * periodic.volume.errorBound);
+
+  o.samples = 0;
+  EXPECT_NE(computeFiberMetrics(m, o, nullptr).error.find("Samples 0"), std::string::npos);
+}

@@ -47,7 +47,8 @@ def summary(metrics):
     metrics.UpdatePipeline()
     table = servermanager.Fetch(metrics, idx=1)  # output port 1: the one-row Summary table
     check(table.GetNumberOfRows() == 1, "Summary has %d rows" % table.GetNumberOfRows())
-    return {table.GetColumnName(c): table.GetColumn(c).GetTuple(0) for c in range(table.GetNumberOfColumns())}
+    columns = [table.GetColumn(c) for c in range(table.GetNumberOfColumns())]
+    return {c.GetName(): c.GetTuple(0) if hasattr(c, "GetTuple") else c.GetValue(0) for c in columns}
 
 
 # 3 x 3 fibers along x crossing the whole box [-5, 5]^3: phi = 9 pi r^2 10 / 10^3 exactly.
@@ -66,6 +67,12 @@ fibers = servermanager.Fetch(metrics)
 check(abs(fibers.GetFieldData().GetArray("volume_fraction").GetValue(0) - s["volume_fraction"][0]) == 0,
       "field data differs from the table")
 check(abs(fibers.GetCellData().GetArray("fiber_length").GetValue(0) - 16) < 1e-12, "fiber_length")
+check(s["volume_fraction_method"] == "Voxels", "method %s" % s["volume_fraction_method"])
+mc = summary(FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5], VolumeFractionMethod="MonteCarlo",
+                          Samples=200000, Seed=3, ComputeCollisions=0))
+print("lattice, Monte Carlo:", mc["volume_fraction"], "+-", mc["volume_fraction_error"])
+check(mc["volume_fraction_method"] == "MonteCarlo" and abs(mc["volume_fraction"][0] - exact) <= 4 * mc["volume_fraction_error"][0]
+      and abs(mc["volume_fraction_error"][0] - math.sqrt(exact * (1 - exact) / 200000)) < 1e-4, "Monte Carlo %s" % mc)
 bundles = servermanager.Fetch(metrics, idx=2)
 check(bundles.GetNumberOfRows() == 1 and bundles.GetColumnByName("fibers").GetValue(0) == 9, "Bundles table")
 
