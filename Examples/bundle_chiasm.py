@@ -4,6 +4,7 @@ fibers (the lateral ones) turning back to its own side, nodes of Ranvier every 2
 
     pvbatch Examples/bundle_chiasm.py <path to FiberPLI.so> <output folder>
 """
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import os
 import sys
 

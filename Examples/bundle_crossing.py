@@ -3,6 +3,7 @@ the crossing region thickens.
 
     pvbatch Examples/bundle_crossing.py <path to FiberPLI.so> <output folder>
 """
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import os
 import sys
 

@@ -2,6 +2,7 @@
 
     pvbatch Examples/bundle_cylinder.py <path to FiberPLI.so> <output folder>
 """
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import os
 import sys
 

@@ -5,6 +5,7 @@ chiasm_fom_after.png, chiasm_fom_truth.png and chiasm_fom_change.png into the ou
 prints what they show.
 
 Usage: pvpython chiasm_fom.py <path to FiberPLI plugin> [output directory]   (about 2 minutes)"""
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import os
 import sys
 

@@ -11,6 +11,7 @@ as in the paper (65 / 52 / 45 % there; the
 reference toolbox reaches 73 / 59 / 55 % with this construction). Fewer fibers keep the density:
 edge √3·30·√(N/1000), central cube edge/√3.
 """
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
 import argparse
 import math
 import os
