@@ -4,6 +4,7 @@
 #include "Util/Threads.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace fiberpli
@@ -89,14 +90,56 @@ inline void testPair(const std::vector<CapsuleLink>& links, std::uint32_t i, std
 }
 } // namespace
 
-void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
-  int threads, std::vector<CapsulePair>& pairs)
+double packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap)
+{
+  double rhoMin = HUGE_VAL;
+  double rhoMax = 0.0;
+  double length = 0.0;
+  for (const CapsuleLink& l : links)
+  {
+    rhoMin = std::min(rhoMin, l.rho);
+    rhoMax = std::max(rhoMax, l.rho);
+    length += l.arc1 - l.arc0;
+  }
+  if (links.empty() || !(rhoMin > 0.0) || !(length > 0.0))
+  {
+    return 0.0;
+  }
+  const double b = rhoMin + 0.5 * minimumGap;
+  const double shortLink = (2.0 / 3.0) * length / static_cast<double>(links.size());
+  double sum = 0.0;
+  for (const CapsuleLink& l : links)
+  {
+    const double c = l.rho + rhoMax + minimumGap + b;
+    const double len = l.arc1 - l.arc0;
+    // passes: V(capsule of radius c and length len) / V(ball b) = (0.75·c²·len + c³) / b³
+    const double passes = (0.75 * c * c * len + c * c * c) / (b * b * b);
+    const double linksPerPass = (len + 2.0 * c) / shortLink + 2.0;
+    sum += passes * linksPerPass;
+  }
+  return 0.5 * sum;
+}
+
+double CollisionGrid::bytesPerLink()
+{
+  // boxes_, edges_, sortKeys_, order_, prevOrder_ and the six float bound arrays.
+  return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
+    2 * sizeof(std::uint32_t) + 6 * sizeof(float));
+}
+
+double CollisionGrid::bytesPerPair()
+{
+  return static_cast<double>(2 * sizeof(CapsulePair)); // per-thread lists, then the merged one
+}
+
+bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
+  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs)
 {
   pairs.clear();
   const std::size_t n = links.size();
   if (n < 2)
   {
-    return;
+    return true;
   }
   const int nThreads = resolveThreadCount(threads);
   const double halfGap = 0.5 * minimumGap;
@@ -308,6 +351,12 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     v.clear();
   }
 
+  // Pairs found so far by all threads, published in chunks; once above maxPairs every thread
+  // stops. Each pair is found once, so "stopped" means exactly "more than maxPairs pairs exist".
+  std::atomic<std::size_t> found{ 0 };
+  std::atomic<bool> overflow{ false };
+  constexpr std::size_t kPublishChunk = 4096;
+
   // 13 forward neighbours: every unordered pair of neighbouring cells is visited once.
   static const int kForward[13][3] = { { 1, 0, 0 }, { -1, 1, 0 }, { 0, 1, 0 }, { 1, 1, 0 },
     { -1, -1, 1 }, { 0, -1, 1 }, { 1, -1, 1 }, { -1, 0, 1 }, { 0, 0, 1 }, { 1, 0, 1 },
@@ -322,6 +371,20 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 #endif
     std::vector<std::uint32_t> cand;
     std::vector<std::uint8_t> mask;
+    std::size_t published = out.size();
+    // Adds this thread's new pairs to the shared count; true when the limit is exceeded.
+    auto publish = [&](bool force) {
+      if (force || out.size() - published >= kPublishChunk)
+      {
+        const std::size_t total = found.fetch_add(out.size() - published) + (out.size() - published);
+        published = out.size();
+        if (total > maxPairs)
+        {
+          overflow.store(true, std::memory_order_relaxed);
+        }
+      }
+      return overflow.load(std::memory_order_relaxed);
+    };
     const float* lx = lo_[0].data();
     const float* ly = lo_[1].data();
     const float* lz = lo_[2].data();
@@ -365,18 +428,26 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
       for (std::size_t i = 0; i < nc; ++i)
       {
         testPair(links, order_[r], order_[cp[i]], minimumGap, out);
+        if ((i & 1023) == 1023 && publish(false))
+        {
+          return;
+        }
       }
     };
 #pragma omp for schedule(dynamic, 8)
     for (std::int64_t ci = 0; ci < nCells; ++ci)
     {
+      if (publish(false))
+      {
+        continue; // an omp for cannot break: skip the remaining cells
+      }
       const std::uint64_t cell = cellKeys_[static_cast<std::size_t>(ci)];
       const std::int64_t cx = static_cast<std::int64_t>(cell) % nx;
       const std::int64_t cy = (static_cast<std::int64_t>(cell) / nx) % ny;
       const std::int64_t cz = static_cast<std::int64_t>(cell) / (nx * ny);
       const std::uint32_t begin = cellStart_[static_cast<std::size_t>(ci)];
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
-      for (std::uint32_t r = begin; r < end; ++r)
+      for (std::uint32_t r = begin; r < end && !publish(false); ++r)
       {
         scan(r, r + 1, end, cand);
       }
@@ -399,7 +470,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
         const std::size_t cj = static_cast<std::size_t>(it - cellKeys_.begin());
         const std::uint32_t b2 = cellStart_[cj];
         const std::uint32_t e2 = cellStart_[cj + 1];
-        for (std::uint32_t r = begin; r < end; ++r)
+        for (std::uint32_t r = begin; r < end && !publish(false); ++r)
         {
           scan(r, b2, e2, cand);
         }
@@ -410,6 +481,10 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t oi = 0; oi < nOver; ++oi)
     {
+      if (publish(false))
+      {
+        continue;
+      }
       const std::uint32_t o = oversize_[static_cast<std::size_t>(oi)];
       const Box& bo = boxes_[o];
       for (std::size_t r = 0; r < nRegular; ++r)
@@ -429,6 +504,15 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
         }
       }
     }
+    publish(true);
+  }
+  if (overflow.load())
+  {
+    for (auto& v : perThread_)
+    {
+      std::vector<CapsulePair>().swap(v); // give the memory back: the caller reports the failure
+    }
+    return false;
   }
 
   // Each pair is found exactly once, so the sorted list is independent of the schedule: every
@@ -455,6 +539,7 @@ void CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     pairs.insert(pairs.end(), v.begin(), v.end());
     std::inplace_merge(pairs.begin(), pairs.begin() + static_cast<long>(mid), pairs.end(), less);
   }
+  return true;
 }
 
 } // namespace fiberpli

@@ -1,10 +1,12 @@
 /// CollisionGrid: broad + narrow phase collision detection of capsule links on a uniform grid
-/// (collision-solver.md §3). Memory is linear in the number of links; the pair list is sorted by
-/// (a, b) and therefore identical for any thread count or schedule.
+/// (collision-solver.md §3). Memory is linear in the number of links plus the pairs found, and the
+/// caller bounds the pairs (maxPairs); the pair list is sorted by (a, b) and therefore identical for
+/// any thread count or schedule.
 #pragma once
 
 #include "Geometry/Vec3.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -44,14 +46,33 @@ struct CapsulePair
 /// closed fiber the shorter way round counts, so its first and last links are adjacent).
 bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
 
+/// Upper bound of the colliding pairs among `links` in any state the solver can separate:
+/// Σ_a n_a / 2 with n_a = passes_a × linksPerPass_a. A partner fiber that passes link a (radius
+/// ρ_a, length ℓ_a) has its axis within R_a = ρ_a + ρ_max + g of a's axis; when fibers keep a gap
+/// g, balls of radius b = ρ_min + g/2 around one closest point per pass are disjoint and lie in
+/// the capsule of radius R_a + b around a, so passes_a <= V(that capsule) / V(ball b). A pass
+/// meets at most (ℓ_a + 2(R_a + b)) / ℓ_short + 2 links, ℓ_short = 2/3 of the mean link length
+/// (what split/merge keeps links above). The starting states the solver gets are denser than any
+/// packing, and the bound leaves room for that: random straight fibers at 4× the paper's density
+/// use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000 copies of a 10-point fiber
+/// 9×. (A gap much wider than the radii is no packing argument's business: the solver refuses it.)
+double packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap);
+
 /// Uniform grid (§3.3). Reuse one object across solver steps: its buffers are kept.
 class CollisionGrid
 {
 public:
   /// All pairs with δ < ρa + ρb + minimumGap (strict), skip rules of §3.1 applied, sorted by
-  /// (a, b). threads: 0 = all cores. Links must have finite coordinates.
-  void findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
-    std::vector<CapsulePair>& pairs);
+  /// (a, b). threads: 0 = all cores. Links must have finite coordinates. Stops as soon as more
+  /// than maxPairs pairs are found: returns false and leaves `pairs` empty (whether it stops
+  /// does not depend on the thread count: it is "the true count exceeds maxPairs").
+  bool findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
+    std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1));
+
+  /// Bytes the grid keeps per link (its buffers), for memory estimates.
+  static double bytesPerLink();
+  /// Bytes one found pair takes while findPairs runs and in its result.
+  static double bytesPerPair();
 
 private:
   struct Box

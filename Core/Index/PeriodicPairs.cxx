@@ -24,9 +24,13 @@ double boxEdge(const CapsuleLink& l, double gap)
 } // namespace
 
 std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
-  double minimumGap, int threads, std::vector<CapsulePair>& pairs)
+  double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow)
 {
   pairs.clear();
+  if (overflow)
+  {
+    *overflow = false;
+  }
   const std::size_t n = links.size();
   if (n == 0)
   {
@@ -91,7 +95,17 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
       }
     }
   }
-  grid_.findPairs(images_, minimumGap, threads, raw_);
+  // The raw pairs include images of the physical ones (ghosts exist only near faces): allow twice
+  // the limit there, then check the physical count.
+  const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
+  if (!grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit))
+  {
+    if (overflow)
+    {
+      *overflow = true;
+    }
+    return {};
+  }
   // raw_ pairs have a < b; real ids are < n, ghosts >= n. A pair of two ghosts is an image of a
   // pair found elsewhere; (real a, ghost of b) and (real b, ghost of a) are the same pair: keep the
   // one whose real link has the smaller id, evaluated with it first (as a real pair would be).
@@ -112,6 +126,15 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
         pairs.push_back(q);
       }
     }
+  }
+  if (pairs.size() > maxPairs)
+  {
+    pairs.clear();
+    if (overflow)
+    {
+      *overflow = true;
+    }
+    return {};
   }
   std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
     return x.a != y.a ? x.a < y.a : x.b < y.b;

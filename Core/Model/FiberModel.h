@@ -43,4 +43,13 @@ bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi);
 /// the fiber (by index and id) and the point; badFiber (optional) receives the fiber's index.
 std::string validateModel(const FiberModel& model, std::size_t* badFiber = nullptr);
 
+/// Bytes a generated model of `fibers` fibers with `points` points in all takes, together with one
+/// converted copy of the same size (the polydata a source hands on): for the sources' memory guard.
+inline double fiberModelBytes(double fibers, double points)
+{
+  constexpr double kPerPoint = sizeof(Vec3) + sizeof(double);
+  constexpr double kPerFiber = sizeof(Fiber) + 64.0; // + two allocations' bookkeeping
+  return 2.0 * (fibers * kPerFiber + points * kPerPoint);
+}
+
 } // namespace fiberpli

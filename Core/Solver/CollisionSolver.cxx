@@ -2,11 +2,14 @@
 
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
+#include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
+#include <unordered_map>
 
 namespace fiberpli
 {
@@ -155,6 +158,75 @@ struct PairPush
   Vec3 a0, a1, b0, b1;
 };
 
+// What the solver keeps per point (model point and radius, velocity and source index, force) and
+// per link (its capsule and the grid's buffers); links ≈ points.
+constexpr double kBytesPerPoint = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
+double bytesPerPoint()
+{
+  return kBytesPerPoint + CollisionGrid::bytesPerLink();
+}
+double bytesPerPair()
+{
+  return CollisionGrid::bytesPerPair() + static_cast<double>(sizeof(PairPush));
+}
+
+// Exact copies of fibers (same points and radii): how many fibers repeat an earlier one, and the
+// id and copy count of the largest stack. Hash first, then compare bytes.
+struct DuplicateStacks
+{
+  std::size_t copies = 0;
+  std::size_t largest = 0;
+  std::int64_t largestId = 0;
+};
+
+// A few exact copies separate like any overlap; a stack of many is a data error (tractography
+// output repeating a streamline) whose pairs grow with the square of its height.
+constexpr std::size_t kMaxExactCopies = 16;
+// Gaps beyond a few radii make every link collide with the links of all fibers nearby.
+constexpr double kMaxGapRadii = 10.0;
+
+DuplicateStacks findDuplicateStacks(const FiberModel& model)
+{
+  DuplicateStacks d;
+  std::unordered_multimap<std::size_t, std::size_t> seen;
+  std::vector<std::size_t> count(model.fibers.size(), 0);
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fib = model.fibers[f];
+    std::size_t h = fib.points.size();
+    const auto mix = [&h](const void* data, std::size_t bytes) {
+      const auto* c = static_cast<const unsigned char*>(data);
+      for (std::size_t i = 0; i < bytes; ++i)
+        h = h * 1099511628211ull + c[i];
+    };
+    mix(fib.points.data(), fib.points.size() * sizeof(Vec3));
+    mix(fib.radii.data(), fib.radii.size() * sizeof(double));
+    bool copy = false;
+    const auto range = seen.equal_range(h);
+    for (auto it = range.first; it != range.second && !copy; ++it)
+    {
+      const Fiber& o = model.fibers[it->second];
+      if (o.points.size() == fib.points.size() &&
+        std::memcmp(o.points.data(), fib.points.data(), fib.points.size() * sizeof(Vec3)) == 0 &&
+        std::memcmp(o.radii.data(), fib.radii.data(), fib.radii.size() * sizeof(double)) == 0)
+      {
+        copy = true;
+        ++d.copies;
+        if (++count[it->second] > d.largest)
+        {
+          d.largest = count[it->second];
+          d.largestId = o.id;
+        }
+      }
+    }
+    if (!copy)
+    {
+      seen.emplace(h, f);
+    }
+  }
+  return d;
+}
+
 class Solver
 {
 public:
@@ -272,17 +344,56 @@ public:
     return true;
   }
 
-  void detect()
+  // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
+  // than their limit (packingPairBound or the memory budget); detectError_ says why.
+  bool detect()
   {
     buildLinks(model_, &active_, threads_, links_, &pointOffset_, periodic() ? &closed_ : nullptr, scale_);
+    return findBoundedPairs();
+  }
+
+  bool findBoundedPairs()
+  {
+    const double bound = packingPairBound(links_, o_.minimumGap);
+    const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
+    const double affordable = std::max(0.0, budget) / bytesPerPair();
+    const double limit = std::min(bound, affordable);
+    const auto maxPairs = static_cast<std::size_t>(limit);
+    bool overflow = false;
     if (periodic())
     {
-      detectError_ = periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_);
+      detectError_ = periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow);
+      if (!detectError_.empty())
+      {
+        return false;
+      }
     }
     else
     {
-      grid_.findPairs(links_, o_.minimumGap, threads_, pairs_);
+      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs);
     }
+    if (!overflow)
+    {
+      return true;
+    }
+    std::ostringstream msg;
+    msg << "more than " << static_cast<std::size_t>(limit) << " capsule pairs of " << links_.size()
+        << " links collide (MinimumGap " << o_.minimumGap << ")";
+    if (limit == bound)
+    {
+      double rhoMax = 0.0;
+      for (const CapsuleLink& l : links_)
+        rhoMax = std::max(rhoMax, l.rho);
+      msg << ", more than any packing of fibers of radius up to " << rhoMax << " um can have: ";
+      msg << "the fibers lie (nearly) on top of each other; spread them or lower the radii";
+    }
+    else
+    {
+      msg << ": " << checkMemoryBudget(affordable * bytesPerPair() + 1.0, "storing them")
+          << "; lower the density or MinimumGap";
+    }
+    detectError_ = msg.str();
+    return false;
   }
 
   // Point index (into force_) of the outer neighbour of a link's first (before) or second (after)
@@ -590,15 +701,10 @@ void configure(Solver& s, std::vector<std::string>& warnings)
   }
 }
 
-// §8: splitting makes up to (arc length / l_min) points per fiber; refuse absurd sizes before
-// any allocation instead of running out of memory in the middle of a step.
+// §8: splitting makes up to (arc length / l_min) points per fiber; refuse sizes beyond the memory
+// budget before any allocation instead of running out of memory in the middle of a step.
 std::string checkMemory(const Solver& s)
 {
-  constexpr double kMaxPoints = 2.0e8; // ~20 GB of solver state
-  if (!(s.segmentLength_ > 0.0))
-  {
-    return {};
-  }
   double length = 0.0;
   double points = 0.0;
   for (const Fiber& f : s.model_.fibers)
@@ -609,16 +715,45 @@ std::string checkMemory(const Solver& s)
     }
     points += static_cast<double>(f.size());
   }
-  const double estimate = points + length / (s.segmentLength_ * (2.0 / 3.0));
-  if (estimate > kMaxPoints)
+  const double estimate = s.segmentLength_ > 0.0 ? points + length / (s.segmentLength_ * (2.0 / 3.0)) : points;
+  // Colliding pairs per link at the start of a dense run: a partner fiber crosses a link's reach
+  // of ~4 radii with 1 + 4ρ/L̄ of its links; 2 partners per link at the paper's density (measured:
+  // 5 pairs per link at L̄ = 2.5ρ, 40 at L̄ = ρ/8).
+  const double meanLink = s.segmentLength_ > 0.0 ? s.segmentLength_ : length / std::max(1.0, points);
+  const double pairsPerLink = meanLink > 0.0 ? 2.0 * (1.0 + 4.0 * medianRadius(s.model_) / meanLink) : 2.0;
+  const double bytes = estimate * (bytesPerPoint() + pairsPerLink * bytesPerPair());
+  std::ostringstream what;
+  what << "SegmentLength " << s.segmentLength_ << " with a total fiber length of " << length
+       << " (up to " << estimate << " points)";
+  const std::string problem = checkMemoryBudget(bytes, what.str());
+  return problem.empty() ? problem : problem + "; raise SegmentLength";
+}
+
+// Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
+// kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
+// the colliding pairs grow with the square of the copies or the gap.
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o)
+{
+  std::ostringstream msg;
+  const DuplicateStacks d = findDuplicateStacks(model);
+  if (d.largest > kMaxExactCopies)
   {
-    std::ostringstream msg;
-    msg << "SegmentLength " << s.segmentLength_ << " with a total fiber length of " << length
-        << " would need up to " << estimate << " points (limit " << kMaxPoints
-        << "); raise SegmentLength";
+    msg << "fiber id " << d.largestId << " has " << d.largest << " exact copies (" << d.copies
+        << " duplicate fibers in all; at most " << kMaxExactCopies
+        << " copies of a fiber are separated): remove the duplicates";
     return msg.str();
   }
-  return {};
+  double rhoMax = 0.0;
+  for (const Fiber& f : model.fibers)
+    for (double r : f.radii)
+      rhoMax = std::max(rhoMax, r);
+  if (o.minimumGap > kMaxGapRadii * rhoMax)
+  {
+    msg << "MinimumGap is " << o.minimumGap << ", more than " << kMaxGapRadii
+        << " x the largest fiber radius " << rhoMax
+        << ": the solver separates touching fibers, it does not spread them apart; lower it";
+  }
+  return msg.str();
 }
 
 } // namespace
@@ -701,6 +836,20 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   // Before anything touches the model: a refused run leaves it unchanged.
   s.segmentLength_ = resolveSegmentLength(model, o);
   result.error = checkMemory(s);
+  if (result.error.empty())
+  {
+    result.error = checkStacksAndGap(model, o);
+  }
+  if (result.error.empty() && !s.periodic())
+  {
+    // Stacks of nearly identical fibers are refused on the input as it came, before the model
+    // changes (the limit is checked again at every step; periodic runs restore the input).
+    buildLinks(model, nullptr, threads, s.links_, nullptr);
+    if (!s.findBoundedPairs())
+    {
+      result.error = s.detectError_;
+    }
+  }
   if (!result.error.empty())
   {
     return result;
@@ -726,12 +875,18 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   while (true)
   {
     changed = s.shapeControl();
-    s.detect();
-    if (!s.detectError_.empty())
+    if (!s.detect())
     {
-      model = input;
-      result = CollisionSolverResult{};
-      result.error = s.detectError_;
+      if (s.periodic())
+      {
+        model = input;
+        result = CollisionSolverResult{};
+        result.error = s.detectError_;
+      }
+      else // the pair limit, met in the middle of a run: the model is in this step's state
+      {
+        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
+      }
       return result;
     }
     const std::size_t count = s.pairs_.size();
@@ -791,7 +946,11 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     if (!reportProgress(progress, fraction))
     {
       result.aborted = true;
-      s.detect(); // collisions must describe the geometry that is returned
+      if (!s.detect()) // collisions must describe the geometry that is returned
+      {
+        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
+        return result;
+      }
       changed = !s.shapeWithinLimits();
       break;
     }
@@ -802,7 +961,11 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     // The output has the input radii: count what is left at full size.
     const double reached = s.periodic() ? cellVolumeFraction(model, o.periodicCell) * s.scale_ * s.scale_ : -1.0;
     s.scale_ = 1.0;
-    s.detect();
+    if (!s.detect())
+    {
+      result.error = s.detectError_ + " (at full radius after step " + std::to_string(result.steps) + ")";
+      return result;
+    }
     if (!result.aborted)
     {
       std::ostringstream w;
@@ -858,14 +1021,26 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
       closed[f] = model.fibers[f].size() >= 3 && isClosedFiber(model.fibers[f], cell, t);
     }
     buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr, &closed);
-    PeriodicPairs finder;
-    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs);
-    return pairs.size();
   }
-  buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
-  CollisionGrid grid;
-  grid.findPairs(links, minimumGap, numberOfThreads, pairs);
-  return pairs.size();
+  else
+  {
+    buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
+  }
+  const double limit = std::min(packingPairBound(links, minimumGap),
+    std::max(0.0, memoryBudgetBytes()) / CollisionGrid::bytesPerPair());
+  const auto maxPairs = static_cast<std::size_t>(limit);
+  bool overflow = false;
+  if (cell.enabled())
+  {
+    PeriodicPairs finder;
+    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow);
+  }
+  else
+  {
+    CollisionGrid grid;
+    overflow = !grid.findPairs(links, minimumGap, numberOfThreads, pairs, maxPairs);
+  }
+  return overflow ? maxPairs + 1 : pairs.size();
 }
 
 bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)

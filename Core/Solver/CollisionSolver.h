@@ -87,7 +87,10 @@ struct CollisionSolverResult
   double minGap = 0.0;
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   std::vector<std::string> warnings; ///< recoverable oddities, one message each, with counts
-  std::string error;                 ///< non-empty: nothing was done, the model is unchanged
+  /// Non-empty: nothing was done and the model is unchanged; or, only when the colliding pairs
+  /// outgrew their limit in the middle of a run (the message says at which step), the model is in
+  /// that step's state and must not be used.
+  std::string error;
 };
 
 /// Called after every move step with the step number (1, 2, …) and the current model, from the
@@ -98,12 +101,17 @@ using StepObserver = std::function<void(int step, const FiberModel& model)>;
 /// first and last points stay first and last. Fibers with fewer than 2 points (after removing
 /// repeated consecutive points) are left unchanged and excluded (warning). Errors (bad options,
 /// mismatched radii, non-finite coordinates, radius <= 0) leave the model unchanged and name the
-/// option or the fiber and point. Never throws, never prints.
+/// option or the fiber and point. Memory is bounded: the points the split can make must fit the
+/// memory budget (Util/MemoryBudget.h), and the colliding pairs stored per step at most
+/// packingPairBound (Index/CollisionGrid.h) and what the budget allows; stacks of identical fibers
+/// and gaps that make every link collide are refused with a message saying so (counting the exact
+/// copies). Never throws, never prints.
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
   const ProgressFn& progress = {}, const StepObserver& observer = {});
 
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
-/// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports.
+/// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
+/// solver's pair limit it stops counting and returns a number larger than that limit.
 std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
   const PeriodicCell& periodicCell = PeriodicCell{});
 

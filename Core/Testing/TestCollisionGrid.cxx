@@ -169,3 +169,48 @@ TEST(CollisionGrid, ReusedGridGivesTheSameAnswerAsAFreshOne)
       std::reverse(m.fibers.begin(), m.fibers.end());
   }
 }
+
+TEST(CollisionGrid, StopsExactlyWhenThePairsExceedTheLimit)
+{
+  // 20 parallel fibers 1 µm apart with radius 0.8: every neighbour pair collides. The reference
+  // count is the limit where findPairs switches from "all found" to "refused", for any threads.
+  FiberModel m;
+  for (int i = 0; i < 20; ++i)
+    m.fibers.push_back(fiber({ { 0, double(i), 0 }, { 2, double(i), 0 }, { 4, double(i), 0 },
+                               { 6, double(i), 0 } }, 0.8, i));
+  const std::vector<CapsuleLink> links = linksOf(m);
+  const std::size_t expected = fiberpli_test::refPairs(fiberpli_test::refLinks(m)).size();
+  ASSERT_GT(expected, 40u);
+  for (int threads : { 1, 2, 3 })
+  {
+    CollisionGrid grid;
+    std::vector<CapsulePair> pairs;
+    EXPECT_TRUE(grid.findPairs(links, 0.0, threads, pairs, expected));
+    EXPECT_EQ(pairs.size(), expected);
+    EXPECT_FALSE(grid.findPairs(links, 0.0, threads, pairs, expected - 1));
+    EXPECT_TRUE(pairs.empty());
+    EXPECT_TRUE(grid.findPairs(links, 0.0, threads, pairs, expected)); // reusable after a refusal
+    EXPECT_EQ(pairs.size(), expected);
+  }
+}
+
+TEST(CollisionGrid, PackingBoundAdmitsDenseStartsButNotStacks)
+{
+  // Random straight fibers at 4× the paper's density: far below the bound. 200 copies of one
+  // fiber: every link collides with ~3 links of each copy, above it.
+  CubeOptions o;
+  o.numberOfFibers = 500;
+  o.populations = 3;
+  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(0.5) / 2.0;
+  const FiberModel dense = generateCube(o);
+  const std::vector<CapsuleLink> denseLinks = linksOf(dense);
+  const double denseCount = static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(dense)).size());
+  EXPECT_LT(denseCount, 0.5 * packingPairBound(denseLinks, 0.0));
+
+  FiberModel stack;
+  for (int i = 0; i < 200; ++i)
+    stack.fibers.push_back(fiber({ { 0, 0, 0 }, { 2, 0, 0 }, { 4, 0, 0 }, { 6, 0, 0 }, { 8, 0, 0 } }, 0.8, i));
+  const std::vector<CapsuleLink> stackLinks = linksOf(stack);
+  const double stackCount = static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(stack)).size());
+  EXPECT_GT(stackCount, packingPairBound(stackLinks, 0.0));
+}

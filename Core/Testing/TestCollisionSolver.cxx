@@ -8,7 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -625,4 +628,110 @@ TEST(CollisionSolver, MixedRadiiWithOneThickFiber)
   EXPECT_TRUE(r.solved) << r.collisions;
   EXPECT_EQ(fiberpli_test::refCollisionCount(m), 0u);
   EXPECT_TRUE(allFinite(m));
+}
+
+namespace
+{
+// Peak resident set of this process in bytes (Linux reports KiB).
+double peakRssBytes()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return 1024.0 * static_cast<double>(u.ru_maxrss);
+}
+
+// Copies of one fiber are refused above 16; 4 are separated like any overlap.
+FiberModel copiesOfOneFiber(int copies)
+{
+  FiberModel m;
+  for (int i = 0; i < copies; ++i)
+    m.fibers.push_back(line({ 0, 0, 0 }, { 2, 0.1, 0 }, 10, 0.8, i));
+  return m;
+}
+} // namespace
+
+TEST(CollisionSolver, StacksOfIdenticalFibersAreRefusedInBoundedMemory)
+{
+  // Tractography output often repeats a streamline: 1000 and 3000 copies of one 10-point fiber
+  // make 12 M / 110 M colliding pairs (GBs). Refused before any pair is stored, model unchanged,
+  // naming the copies.
+  for (int copies : { 1000, 3000 })
+  {
+    FiberModel m = copiesOfOneFiber(copies);
+    const FiberModel in = m;
+    CollisionSolverOptions o;
+    o.numberOfThreads = 2;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    EXPECT_NE(r.error.find("fiber id 0 has " + std::to_string(copies - 1) + " exact copies"), std::string::npos) << r.error;
+    EXPECT_EQ(r.steps, 0);
+    EXPECT_TRUE(bitwiseEqual(m, in));
+  }
+  EXPECT_LT(peakRssBytes(), 50e6);
+}
+
+TEST(CollisionSolver, NearlyIdenticalFibersAreRefusedByThePairLimit)
+{
+  // 1000 copies 1 nm apart are no exact copies, but still 12 M colliding pairs: the pair limit
+  // (packingPairBound, ~1.4 M here) refuses them with bounded memory.
+  FiberModel m;
+  for (int i = 0; i < 1000; ++i)
+    m.fibers.push_back(line({ 0, 1e-3 * i, 0 }, { 2, 0.1, 0 }, 10, 0.8, i));
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.numberOfThreads = 2;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("more than any packing"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("on top of each other"), std::string::npos) << r.error;
+  EXPECT_TRUE(bitwiseEqual(m, in));
+  // Counting stops above the limit as well (the true count is 12 M).
+  EXPECT_GT(countCollisions(m), 1000000u);
+  EXPECT_LT(peakRssBytes(), 300e6);
+}
+
+TEST(CollisionSolver, AFewCopiesOfAFiberAreStillSeparated)
+{
+  FiberModel m = copiesOfOneFiber(4);
+  CollisionSolverOptions o;
+  o.maxSteps = 4000;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_TRUE(r.solved);
+  EXPECT_EQ(fiberpli_test::refCollisionCount(m), 0u);
+}
+
+TEST(CollisionSolver, HugeMinimumGapIsRefused)
+{
+  // 100 fibers of 28 links 20 µm apart; MinimumGap 1e6 µm makes all 3.8 M link pairs collide.
+  FiberModel m;
+  for (int i = 0; i < 100; ++i)
+    m.fibers.push_back(line({ 0, 20.0 * (i % 10), 20.0 * (i / 10) }, { 2, 0, 0 }, 29, 0.8, i));
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.minimumGap = 1e6;
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("MinimumGap is 1e+06, more than 10 x the largest fiber radius 0.8"), std::string::npos) << r.error;
+  EXPECT_TRUE(bitwiseEqual(m, in));
+  EXPECT_LT(peakRssBytes(), 100e6);
+}
+
+TEST(CollisionSolver, SmallSegmentLengthIsCheckedAgainstTheMemoryBudget)
+{
+  // 300 fibers of 52 µm: SegmentLength 0.01 makes up to 2.4 M points, and each link collides with
+  // hundreds of short links: GBs of solver state, refused under a 200 MiB budget; SegmentLength 2
+  // is accepted.
+  setenv("FIBERPLI_MEMORY_LIMIT", "200M", 1);
+  FiberModel m = paperCube(1, 300, 3);
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.segmentLength = 0.01;
+  o.maxSteps = 1;
+  CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("SegmentLength 0.01"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("memory budget"), std::string::npos) << r.error;
+  EXPECT_TRUE(bitwiseEqual(m, in));
+  o.segmentLength = 2.0;
+  r = solveCollisions(m, o);
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  unsetenv("FIBERPLI_MEMORY_LIMIT");
+  EXPECT_LT(peakRssBytes(), 200e6);
 }

@@ -1,6 +1,8 @@
 #include "Tissue/BundleOptions.h"
 
+#include "Model/FiberModel.h"
 #include "Tissue/Trajectory.h"
+#include "Util/MemoryBudget.h"
 
 #include <cmath>
 #include <sstream>
@@ -155,17 +157,20 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   pathLength *= 1.5;
   const double fibers = seedCandidates(o) * crossSectionCount(o.shape);
   const double perFiber = pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
-  if (fibers > kMaxBundleFibers)
+  // Fibers alone first (a tiny FiberSpacing), then with their points.
+  const std::string fiberProblem = checkMemoryBudget(fiberModelBytes(fibers, 2.0 * fibers), "the fibers");
+  const std::string pointProblem = checkMemoryBudget(fiberModelBytes(fibers, fibers * perFiber), "the points");
+  if (!fiberProblem.empty())
   {
     msg << "BundleRadius " << o.bundleRadius << " with FiberSpacing " << o.fiberSpacing
         << " / NumberOfFibers " << o.numberOfFibers << " would need about " << fibers
-        << " fibers, more than the limit " << kMaxBundleFibers;
+        << " fibers, more than the limit: " << fiberProblem;
   }
-  else if (perFiber > kMaxBundlePoints || fibers * perFiber > kMaxBundlePoints)
+  else if (!pointProblem.empty())
   {
     msg << "Length " << pathLength / 1.5 << " with SegmentLength " << o.segmentLength
         << " (and RanvierSpacing " << ranvier << ") for about " << fibers << " fibers would need about "
-        << fibers * perFiber << " points, more than the limit " << kMaxBundlePoints;
+        << fibers * perFiber << " points, more than the limit: " << pointProblem;
   }
   return msg.str();
 }

@@ -51,10 +51,6 @@ struct BundleOptions
 /// Λ after resolving the "shape default" sentinel: 20 µm for Chiasm, 0 otherwise (§8).
 double effectiveRanvierSpacing(const BundleOptions& options);
 
-/// Upper limits that reject absurd requests before anything is allocated.
-constexpr double kMaxBundleFibers = 1.0e7;
-constexpr double kMaxBundlePoints = 2.0e8;
-
 /// Empty string when the options (and, for Shape = Trajectory, the polyline with its optional scale)
 /// are usable, else a message naming the property and its value or the trajectory point:
 /// non-finite values; FiberRadius <= 0; BundleRadius < FiberRadius; Length <= 0; RadiusSpread < 0
@@ -62,7 +58,8 @@ constexpr double kMaxBundlePoints = 2.0e8;
 /// SegmentLength <= 0; Displacement < 0; CrossingAngle outside (0, 180] (Crossing) or (0, 180)
 /// (YShape, Chiasm); UncrossedFraction outside [0, 1]; with Ranvier on: RanvierDepth outside [0, 1),
 /// RanvierLength <= 0 or 2·RanvierLength > RanvierSpacing; Trajectory without a polyline or a bad
-/// polyline (validateTrajectory); more than kMaxBundleFibers fibers or kMaxBundlePoints points.
+/// polyline (validateTrajectory); more fibers or points than the memory budget allows
+/// (Util/MemoryBudget.h, with fiberModelBytes).
 std::string validateBundleOptions(const BundleOptions& options, const std::vector<Vec3>* trajectory = nullptr,
   const std::vector<double>* trajectoryScale = nullptr);
 

@@ -1,5 +1,6 @@
 #include "Tissue/CubeGenerator.h"
 
+#include "Util/MemoryBudget.h"
 #include "Util/Random.h"
 
 #include <algorithm>
@@ -11,9 +12,6 @@ namespace fiberpli
 
 namespace
 {
-// Above this many points the request is certainly a mistake (several GB of fibers).
-constexpr double kMaxPoints = 2.0e8;
-
 // A closed fiber needs 3 points: with 2, its only link would be its own neighbour.
 int pointsPerFiber(const CubeOptions& o)
 {
@@ -124,11 +122,18 @@ std::string validateCubeOptions(const CubeOptions& o)
   {
     msg << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
   }
-  else if (fiberCountEstimate(o) * (o.edgeLength / o.segmentLength + 1.0) > kMaxPoints)
+  else
   {
-    msg << "NumberOfFibers " << fiberCountEstimate(o) << " with EdgeLength " << o.edgeLength
-        << " and SegmentLength " << o.segmentLength << " would need more than " << kMaxPoints
-        << " points";
+    const double fibers = fiberCountEstimate(o);
+    const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
+    std::ostringstream what;
+    what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
+         << " and SegmentLength " << o.segmentLength << " (" << points << " points)";
+    const std::string problem = checkMemoryBudget(fiberModelBytes(fibers, points), what.str());
+    if (!problem.empty())
+    {
+      msg << problem << "; it would need too many points";
+    }
   }
   return msg.str();
 }
