@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
@@ -260,6 +261,16 @@ vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInforma
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
+  // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLISimulation",
+    [&] { return this->ExecutePiece(request, inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
