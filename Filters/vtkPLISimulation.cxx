@@ -262,6 +262,11 @@ vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInforma
 int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
+  {
+    return 0;
+  }
   const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
   const bool wantImage = port != 1;
   const bool wantTissue = port != 0;

@@ -1,5 +1,6 @@
 #include "vtkFiberReader.h"
 
+#include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -60,6 +61,7 @@ int vtkFiberReader::CanReadFile(const char* fileName)
 //------------------------------------------------------------------------------
 int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
   if (this->FileName == nullptr || this->FileName[0] == '\0')

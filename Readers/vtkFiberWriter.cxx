@@ -1,5 +1,6 @@
 #include "vtkFiberWriter.h"
 
+#include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -31,6 +32,7 @@ int vtkFiberWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 void vtkFiberWriter::WriteData()
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   if (this->FileName == nullptr || this->FileName[0] == '\0')
   {
     vtkErrorMacro(<< "FiberWriter: no FileName set");
