@@ -1,6 +1,7 @@
 #include "vtkPLIAnalysis.h"
 
 #include "Analysis/PliAnalysis.h"
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 
@@ -107,12 +108,12 @@ const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
   return buffer.data();
 }
 
-/// MAX over all processes when a controller with more than one process exists, else identity.
+/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
 /// Every rank calls it exactly once per RequestData (see RequestData), so it cannot deadlock.
-double GlobalMax(double local)
+double GlobalMax(double local, vtkInformation* outInfo)
 {
-  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
-  if (!c || c->GetNumberOfProcesses() < 2)
+  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
+  if (!c)
   {
     return local;
   }
@@ -149,14 +150,23 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
 
-  // Exactly one AllReduce per call on every rank, whatever path this rank takes.
+  // Exactly one AllReduce per call on every rank, whatever path this rank takes, then one
+  // agreement on the error state (FiberCollective.h): all ranks fail together or none does.
   bool reduced = false;
+  std::ostringstream failure; // this rank's error
   auto finish = [&](int rc) {
     if (!reduced)
     {
-      GlobalMax(0.0);
+      GlobalMax(0.0, outInfo);
     }
-    return rc;
+    const std::string error = fiberpli::FiberCollective::AgreeOnError(outInfo, "PLIAnalysis", rc ? "" : failure.str());
+    if (!error.empty())
+    {
+      output->Initialize();
+      vtkErrorMacro(<< error);
+      return 0;
+    }
+    return 1;
   };
 
   if (!input || input->GetNumberOfPoints() == 0)
@@ -173,14 +183,14 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (inExt[5] != inExt[4])
   {
-    vtkErrorMacro(<< "PLIAnalysis: the input has " << inExt[5] - inExt[4] + 1
-                  << " slices along z; expected one slice (the PLISimulation image)");
+    failure << "PLIAnalysis: the input has " << inExt[5] - inExt[4] + 1
+                  << " slices along z; expected one slice (the PLISimulation image)";
     return finish(0);
   }
   vtkDataArray* intensity = input->GetPointData()->GetArray("intensity");
   if (!intensity)
   {
-    vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
+    failure << "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)";
     return finish(0);
   }
   const int n = intensity->GetNumberOfComponents();
@@ -201,13 +211,13 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (rho.size() < 3)
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed");
+    failure << "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed";
     return finish(0);
   }
   if (static_cast<std::size_t>(n) != rho.size())
   {
-    vtkErrorMacro(<< "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
-                  << rho.size() << " angles; they must be equal");
+    failure << "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
+                  << rho.size() << " angles; they must be equal";
     return finish(0);
   }
 
@@ -227,8 +237,8 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
     }
     if (a->GetNumberOfComponents() != n)
     {
-      vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
-                    << " components, 'intensity' has " << n << "; they must be equal");
+      failure << "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
+                    << " components, 'intensity' has " << n << "; they must be equal";
       return finish(0);
     }
     buffers.emplace_back();
@@ -237,7 +247,7 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const std::string tiltError = ReadTiltViews(input, stack.tilts.size(), stack.tiltViews);
   if (!tiltError.empty())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << tiltError);
+    failure << "PLIAnalysis: " << tiltError;
     return finish(0);
   }
   stack.convention = FieldValue(input, "tilt_convention", 0.0) == 1.0 ? fiberpli::TiltConvention::FastPLI
@@ -249,9 +259,9 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   options.referenceRetardation = this->ReferenceRetardation;
   options.noiseGain = this->NoiseGain;
   options.threads = this->NumberOfThreads;
-  options.globalMaxRetardation = [&reduced](double local) {
+  options.globalMaxRetardation = [&reduced, outInfo](double local) {
     reduced = true;
-    return GlobalMax(local);
+    return GlobalMax(local, outInfo);
   };
   const fiberpli::PixelRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
 
@@ -264,7 +274,7 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (!err.empty())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << err);
+    failure << "PLIAnalysis: " << err;
     return finish(0);
   }
 

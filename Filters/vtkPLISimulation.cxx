@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
@@ -263,6 +264,16 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
   vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
+  // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLISimulation",
+    [&] { return this->ExecutePiece(request, inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
   if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
   {
     return 0;

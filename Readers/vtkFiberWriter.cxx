@@ -20,6 +20,7 @@ vtkStandardNewMacro(vtkFiberWriter);
 vtkFiberWriter::~vtkFiberWriter()
 {
   this->SetFileName(nullptr);
+  this->SetLastWriteError(nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -33,10 +34,11 @@ int vtkFiberWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkFiberWriter::WriteData()
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  this->SetErrorCode(vtkErrorCode::NoError);
+  this->SetLastWriteError(nullptr);
   if (this->FileName == nullptr || this->FileName[0] == '\0')
   {
-    vtkErrorMacro(<< "FiberWriter: no FileName set");
-    this->SetErrorCode(vtkErrorCode::NoFileNameError);
+    this->Fail(vtkErrorCode::NoFileNameError, "FiberWriter: no FileName set");
     return;
   }
   const std::string path(this->FileName);
@@ -44,8 +46,7 @@ void vtkFiberWriter::WriteData()
   fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberWriter");
   if (!in.ok())
   {
-    vtkErrorMacro(<< in.error);
-    this->SetErrorCode(vtkErrorCode::UserError);
+    this->Fail(vtkErrorCode::UserError, in.error);
     return;
   }
   if (!in.warning.empty())
@@ -58,9 +59,16 @@ void vtkFiberWriter::WriteData()
   const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model) : fiberpli::writeFiberFile(path, in.model);
   if (!error.empty())
   {
-    vtkErrorMacro(<< "FiberWriter: " << error);
-    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
+    this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberWriter::Fail(unsigned long code, const std::string& message)
+{
+  vtkErrorMacro(<< message);
+  this->SetErrorCode(code);
+  this->SetLastWriteError(message.c_str());
 }
 
 //------------------------------------------------------------------------------

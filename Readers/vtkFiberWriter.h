@@ -14,6 +14,8 @@
 #include "FiberPLIReadersModule.h" // for export macro
 #include "vtkWriter.h"
 
+#include <string> // for Fail
+
 class vtkPolyData;
 
 class FIBERPLIREADERS_EXPORT vtkFiberWriter : public vtkWriter
@@ -31,6 +33,15 @@ public:
   vtkGetStringMacro(FileName);
   ///@}
 
+  ///@{
+  /**
+   * The error message of the last Write(), nullptr after a success. vtkFiberParallelWriter
+   * reports it on every rank.
+   */
+  vtkSetStringMacro(LastWriteError);
+  vtkGetStringMacro(LastWriteError);
+  ///@}
+
 protected:
   vtkFiberWriter() = default;
   ~vtkFiberWriter() override;
@@ -41,7 +52,11 @@ private:
   vtkFiberWriter(const vtkFiberWriter&) = delete;
   void operator=(const vtkFiberWriter&) = delete;
 
+  /// Reports `message`, sets the error code and LastWriteError.
+  void Fail(unsigned long code, const std::string& message);
+
   char* FileName = nullptr;
+  char* LastWriteError = nullptr;
 };
 
 #endif

@@ -105,6 +105,16 @@ for steps in (0, 10000):
     check(s["collisions"][0] == own, "FiberMetrics %s vs solver %d" % (s["collisions"], own))
     check((own > 0) == (steps == 0) and (s["min_gap"][0] < 0) == (own > 0), "solved/unsolved %s" % s)
 
+# The same in a periodic cell (periodic_cell field data from the source): pairs by minimum image.
+periodic = FiberCubeSource(Populations=2, NumberOfFibers=40, EdgeLength=16, Periodic=1, Seed=6)
+solver = FiberCollisionSolver(Input=periodic, MaxSteps=0)
+ErrorCatcher(solver)
+solver.UpdatePipeline()
+own = servermanager.Fetch(solver).GetFieldData().GetArray("collisions").GetValue(0)
+s = summary(FiberMetrics(Input=solver, ComputeVolumeFraction=0))
+print("periodic cube: solver %d collisions, FiberMetrics %d" % (own, s["collisions"][0]))
+check(s["periodic"][0] == 1 and s["collisions"][0] == own > 0, "periodic: FiberMetrics %s vs solver %d" % (s, own))
+
 # Bad options: an error naming Box; the pipeline works again once it is fixed.
 bad = FiberMetrics(Input=polydata(lattice), Box=[0, 0, -5, 5, -5, 5])
 errors = ErrorCatcher(bad)

@@ -1,0 +1,131 @@
+#include "FiberCollective.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCommand.h>
+#include <vtkCommunicator.h>
+#include <vtkDataObject.h>
+#include <vtkExecutive.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
+#include <vtkMultiProcessStream.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <climits>
+
+namespace fiberpli
+{
+
+namespace
+{
+/// Collects the ErrorEvent messages of an algorithm, without the "ERROR: In <file>, line <n>" and
+/// "<class> (<address>): " decoration vtkErrorMacro adds.
+class ErrorCapture : public vtkCommand
+{
+public:
+  static ErrorCapture* New() { return new ErrorCapture; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    std::string text = data ? static_cast<const char*>(data) : "";
+    Raw += text;
+    if (text.rfind("ERROR: In ", 0) == 0 && text.find('\n') != std::string::npos)
+    {
+      text = text.substr(text.find('\n') + 1);
+    }
+    const std::size_t object = text.find("): ");
+    if (object != std::string::npos && text.find(" (0x") < object)
+    {
+      text = text.substr(object + 3);
+    }
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+    {
+      text.pop_back();
+    }
+    Message += (Message.empty() ? "" : "; ") + text;
+  }
+  std::string Message, Raw;
+};
+} // namespace
+
+vtkMultiProcessController* FiberCollective::ControllerFor(vtkInformation* info)
+{
+  vtkMultiProcessController* c = vtkMultiProcessController::GetGlobalController();
+  if (!c || c->GetNumberOfProcesses() < 2 || !info ||
+    !info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+  {
+    return nullptr;
+  }
+  return info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) == c->GetNumberOfProcesses() ? c
+                                                                                                             : nullptr;
+}
+
+std::string FiberCollective::AgreeOnError(vtkInformation* info, const std::string& who, const std::string& localError)
+{
+  vtkMultiProcessController* c = ControllerFor(info);
+  if (!c)
+  {
+    return localError;
+  }
+  const int rank = c->GetLocalProcessId();
+  const int mine = localError.empty() ? INT_MAX : rank;
+  int first = INT_MAX;
+  c->AllReduce(&mine, &first, 1, vtkCommunicator::MIN_OP);
+  if (first == INT_MAX)
+  {
+    return {};
+  }
+  vtkMultiProcessStream message;
+  if (rank == first)
+  {
+    message << localError;
+  }
+  c->Broadcast(message, first);
+  if (!localError.empty())
+  {
+    return localError;
+  }
+  std::string text;
+  message >> text;
+  return who + ": rank " + std::to_string(first) + " failed, so no rank gives output: " + text;
+}
+
+int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request, vtkInformationVector* outputVector,
+  const std::string& who, const std::function<int()>& piece)
+{
+  // While piece runs, its errors are captured for the other ranks; if nobody else listens, they
+  // are displayed afterwards as they would have been.
+  const bool observed = self->HasObserver(vtkCommand::ErrorEvent) != 0;
+  vtkNew<ErrorCapture> capture;
+  const unsigned long tag = self->AddObserver(vtkCommand::ErrorEvent, capture);
+  const int rc = piece();
+  self->RemoveObserver(tag);
+  if (!observed && !capture->Raw.empty())
+  {
+    vtkOutputWindow::GetInstance()->DisplayErrorText(capture->Raw.c_str());
+  }
+  std::string local;
+  if (rc == 0)
+  {
+    local = capture->Message.empty() ? who + ": failed" : capture->Message;
+  }
+  int port = request && request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : 0;
+  port = port >= 0 && port < outputVector->GetNumberOfInformationObjects() ? port : 0;
+  const std::string error = AgreeOnError(outputVector->GetInformationObject(port), who, local);
+  if (error.empty() || !local.empty())
+  {
+    return rc; // all succeeded, or this rank failed and its outputs are what piece left them
+  }
+  for (int p = 0; p < outputVector->GetNumberOfInformationObjects(); ++p)
+  {
+    if (vtkDataObject* data = outputVector->GetInformationObject(p)->Get(vtkDataObject::DATA_OBJECT()))
+    {
+      data->Initialize();
+    }
+  }
+  vtkErrorWithObjectMacro(self, << error);
+  return 0;
+}
+
+} // namespace fiberpli
