@@ -20,7 +20,8 @@ int vtkFiberParallelWriter::RequestData(vtkInformation* request, vtkInformationV
     writer->SetLastWriteError(nullptr);
   }
   const int rc = this->Superclass::RequestData(request, inputVector, outputVector);
-  std::string local = writer && writer->GetLastWriteError() ? writer->GetLastWriteError() : "";
+  const bool reported = writer && writer->GetLastWriteError(); // by the inner writer, on this rank
+  std::string local = reported ? writer->GetLastWriteError() : "";
   if (rc == 0 && local.empty())
   {
     local = "FiberWriter: writing " + std::string(this->GetFileName() ? this->GetFileName() : "") + " failed";
@@ -32,9 +33,9 @@ int vtkFiberParallelWriter::RequestData(vtkInformation* request, vtkInformationV
   {
     return 1;
   }
-  if (error != local || rc != 0)
+  if (error != local || !reported)
   {
-    vtkErrorMacro(<< error); // the inner writer reported its own error already
+    vtkErrorMacro(<< error);
   }
   return 0;
 }

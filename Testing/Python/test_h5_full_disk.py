@@ -39,7 +39,8 @@ if not mounted:
     resource.setrlimit(resource.RLIMIT_FSIZE, (64 * 1024, saved_limit[1]))
 try:
     writer = CreateWriter(target, big)
-    catcher = ErrorCatcher(writer.GetClientSideObject().GetWriter())
+    catcher = ErrorCatcher(writer.GetClientSideObject().GetWriter())  # the error of the write
+    outer = ErrorCatcher(writer)  # the parallel writer fails too (its executive reports it)
     writer.UpdatePipeline()
 finally:
     resource.setrlimit(resource.RLIMIT_FSIZE, saved_limit)
