@@ -42,6 +42,7 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
   options.periodic = this->Periodic;
   options.volumeFraction = this->VolumeFraction;
+  options.seeding = static_cast<fiberpli::CubeSeeding>(this->Seeding);
   const std::string invalid = fiberpli::validateCubeOptions(options);
   if (!invalid.empty())
   {
@@ -77,5 +78,6 @@ void vtkFiberCubeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusDistribution: " << this->RadiusDistribution << "\n";
   os << indent << "Periodic: " << this->Periodic << "\n";
   os << indent << "VolumeFraction: " << this->VolumeFraction << "\n";
+  os << indent << "Seeding: " << this->Seeding << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

@@ -114,6 +114,15 @@ public:
 
   ///@{
   /**
+   * Placement across a periodic cell: 0 = Random (uniform, default), 1 = Lattice (jittered sites of
+   * an ordered lattice commensurate with the cell; needs Periodic on).
+   */
+  vtkSetMacro(Seeding, int);
+  vtkGetMacro(Seeding, int);
+  ///@}
+
+  ///@{
+  /**
    * Seed of the random placement; the same seed gives the same fibers. Default is 42.
    */
   vtkSetMacro(Seed, int);
@@ -139,6 +148,7 @@ private:
   int RadiusDistribution = 3;
   bool Periodic = false;
   double VolumeFraction = 0.0;
+  int Seeding = 0;
   int Seed = 42;
 };
 

@@ -5,6 +5,7 @@
 //        [--max-steps 20000] [--init-scale X] [--spread S] [--gamma] [--samples 1e6] [--seed 42]
 //        [--curvature 4] [--cap SECONDS] [--overlap-push X] [--separation-speed X]
 //        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
+//        [--lattice (Seeding Lattice instead of Random)]
 #include "BenchUtil.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
@@ -127,15 +128,18 @@ int main(int argc, char** argv)
   double overlapPush = -1.0, separationSpeed = -1.0, maxDisplacement = -1.0;
   double displacement = 0.5;
   double drag = -1.0;
+  bool lattice = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if (i + 1 >= argc && a != "--gamma")
+    if (i + 1 >= argc && a != "--gamma" && a != "--lattice")
     {
       std::fprintf(stderr, "missing value after %s\n", a.c_str());
       return 2;
     }
-    if (a == "--edge")
+    if (a == "--lattice")
+      lattice = true;
+    else if (a == "--edge")
       edge = std::atof(argv[++i]);
     else if (a == "--pops")
       pops = list(argv[++i]);
@@ -175,6 +179,7 @@ int main(int argc, char** argv)
       return 2;
     }
   }
+  std::printf("seeding: %s, displacement %.2f um\n", lattice ? "Lattice" : "Random", displacement);
   std::printf("| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | "
               "load after | peak RSS [MB] | solved | collisions | radius scale | phi solver | phi MC "
               "(27 images) | min gap [um] |\n");
@@ -192,6 +197,7 @@ int main(int argc, char** argv)
       c.volumeFraction = phi;
       c.seed = static_cast<std::uint64_t>(seed);
       c.radiusSpread = spread;
+      c.seeding = lattice ? CubeSeeding::Lattice : CubeSeeding::Random;
       c.radiusDistribution = gamma ? RadiusDistribution::Gamma : RadiusDistribution::LogNormal;
       if (gamma)
         c.fiberRadius = 1.0; // α = 1/s², β = s² (µm): s = 0.5 is MEDUSA's α = 4, β = 0.25

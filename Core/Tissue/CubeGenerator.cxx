@@ -1,5 +1,7 @@
 #include "Tissue/CubeGenerator.h"
 
+#include "Tissue/LatticeSeeding.h"
+#include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Random.h"
 
@@ -72,6 +74,47 @@ Fiber makeFiber(const CubeOptions& o, int k, int j)
   f.radii.assign(static_cast<std::size_t>(n), r);
   return f;
 }
+// Lattice seeding: moves fiber j of population k from its drawn transverse position (the first two
+// draws of its stream) to a lattice site, jittered. The sites are shuffled by the stream
+// (seed, 3 + k, 0), fiber j takes the j-th and draws its jitter from (seed, 3 + k, 1 + j): keys
+// 3..5 are not fiber streams (those have key1 = population 0..2).
+void placeOnLattice(const CubeOptions& o, std::vector<std::vector<Fiber>>& byPopulation)
+{
+  std::vector<int> counts;
+  for (const auto& population : byPopulation)
+    counts.push_back(static_cast<int>(population.size()));
+  const PeriodicLattice lattice = periodicLattice(o.edgeLength, counts);
+  const double half = 0.5 * o.edgeLength;
+  const double room = std::max(0.0, 0.5 * lattice.spacing - o.fiberRadius);
+  for (std::size_t k = 0; k < byPopulation.size(); ++k)
+  {
+    std::vector<LatticeSite> sites = lattice.sites[k];
+    RandomStream shuffle(o.seed, 3 + k, 0);
+    for (std::size_t i = sites.size(); i > 1; --i)
+    {
+      const auto pick = static_cast<std::size_t>(shuffle.uniform() * static_cast<double>(i));
+      std::swap(sites[i - 1], sites[std::min(pick, i - 1)]);
+    }
+    const int other1 = static_cast<int>(k + 1) % 3;
+    const int other2 = static_cast<int>(k + 2) % 3;
+    for (std::size_t j = 0; j < byPopulation[k].size(); ++j)
+    {
+      RandomStream drawn(o.seed, k, j);
+      const double t1 = drawn.uniform(-half, half);
+      const double t2 = drawn.uniform(-half, half);
+      RandomStream jitter(o.seed, 3 + k, 1 + j);
+      const double u1 = jitter.uniform();
+      const Seed2D offset = randomSeedInDisc(u1, jitter.uniform(), room);
+      const double shift1 = sites[j].t1 + offset.x - t1;
+      const double shift2 = sites[j].t2 + offset.y - t2;
+      for (Vec3& p : byPopulation[k][j].points)
+      {
+        p[other1] += shift1;
+        p[other2] += shift2;
+      }
+    }
+  }
+}
 } // namespace
 
 PeriodicCell cubeCell(const CubeOptions& o)
@@ -117,6 +160,15 @@ std::string validateCubeOptions(const CubeOptions& o)
   else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
   {
     msg << "Displacement is " << o.displacement << ", must be >= 0";
+  }
+  else if (o.seeding == CubeSeeding::Lattice && !o.periodic)
+  {
+    msg << "Seeding is Lattice, which needs Periodic on (a lattice must be commensurate with a "
+           "periodic cell)";
+  }
+  else if (o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice)
+  {
+    msg << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
   }
   else if (!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0)
   {
@@ -176,6 +228,10 @@ FiberModel generateCube(const CubeOptions& o)
         byPopulation[static_cast<std::size_t>(k)].push_back(makeFiber(o, k, j));
       }
     }
+  }
+  if (o.seeding == CubeSeeding::Lattice)
+  {
+    placeOnLattice(o, byPopulation);
   }
   FiberModel model;
   std::int64_t nextId = 0;

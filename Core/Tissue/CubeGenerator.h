@@ -16,6 +16,13 @@
 namespace fiberpli
 {
 
+/// How the transverse positions of a cube's fibers are chosen.
+enum class CubeSeeding
+{
+  Random = 0,  ///< uniform over the cross-section
+  Lattice = 1, ///< periodic cells only: jittered sites of an ordered lattice (Tissue/LatticeSeeding.h)
+};
+
 struct CubeOptions
 {
   int populations = 1;             ///< 1..3
@@ -33,6 +40,10 @@ struct CubeOptions
   /// Radius spread s >= 0 (0 = constant FiberRadius) and its distribution (RadiusDistribution.h).
   double radiusSpread = 0.0;
   RadiusDistribution radiusDistribution = RadiusDistribution::Constant;
+  /// Lattice (needs periodic): the fibers of population k take sites of periodicLattice (at least
+  /// as many as fibers; the empty ones chosen at random), each jittered uniformly in the disc of
+  /// radius max(0, spacing/2 − fiberRadius); the drawn positions are replaced, the displacements kept.
+  CubeSeeding seeding = CubeSeeding::Random;
 };
 
 /// The cell of a periodic cube: [-L/2, L/2]³.
