@@ -145,7 +145,7 @@ TEST(LatticeSeeding, DenseCellsSolveToZeroOverlapsAtTheRequestedFraction)
     int pops;
     double edge, phi;
   };
-  for (const Case c : { Case{ 1, 12.0, 0.8 }, Case{ 2, 12.8, 0.66 }, Case{ 3, 12.8, 0.5 } })
+  for (const Case c : { Case{ 1, 12.0, 0.8 }, Case{ 2, 16.0, 0.62 }, Case{ 3, 12.8, 0.5 } })
   {
     const CubeOptions cube = latticeCube(c.pops, c.edge, c.phi, 11);
     FiberModel m = generateCube(cube);
@@ -156,8 +156,10 @@ TEST(LatticeSeeding, DenseCellsSolveToZeroOverlapsAtTheRequestedFraction)
     ASSERT_EQ(r.error, "");
     EXPECT_TRUE(r.solved) << c.pops << " populations: " << r.collisions << " left";
     EXPECT_EQ(fiberpli_test::refPeriodicCount(m, c.edge), 0u) << c.pops;
+    // The count is the closest to the target: within half a fiber's volume of it.
+    const double halfFiber = 0.5 * M_PI * 0.8 * 0.8 / (c.edge * c.edge);
     const double mc = fiberpli_test::monteCarloFraction(m, c.edge, 20000);
-    EXPECT_GE(mc + 4.0 * std::sqrt(mc * (1 - mc) / 20000), c.phi) << c.pops << " populations";
+    EXPECT_GE(mc + 4.0 * std::sqrt(mc * (1 - mc) / 20000), c.phi - halfFiber) << c.pops << " populations";
   }
 }
 
