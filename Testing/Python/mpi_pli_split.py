@@ -1,5 +1,5 @@
-"""pvbatch: PLISimulation splits the image plane over MPI ranks (pli-simulation.md §6.2) and gives
-exactly the one-process result.
+"""pvbatch: PLISimulation splits the image plane (and the tissue port) over MPI ranks
+(pli-simulation.md §6.2) and gives exactly the one-process result.
 
 Usage: pvbatch mpi_pli_split.py <plugin> <tmp dir> serial   (one process: writes the reference)
        mpiexec -n 2 pvbatch mpi_pli_split.py <plugin> <tmp dir>   (compares with the reference)
@@ -30,7 +30,7 @@ sim = PLISimulation(Input=cube, VolumeOfInterest=[-8, 8, -6, 6, -4, 4], VoxelSiz
                     Wavelength=525.0, LightIntensity=26000.0, NumberOfRotations=9, TiltAngle=5.5,
                     Birefringence=-0.004, Absorption=0.5, Seed=4, Layers="", BackgroundAbsorption=0.0,
                     StepSize=1.0, Interpolation="Slerp", OpticalSigma=0.71, NoiseGain=3.0,
-                    RefractiveIndex=1.0, NumberOfThreads=1)
+                    RefractiveIndex=1.0, NumberOfThreads=1, ExportTissue=1)
 sim.UpdatePipeline()
 # Fetch every rank's piece on its own (PassThrough = rank) and assemble the image by pixel position;
 # pieces of an image share their boundary points, which must agree.
@@ -57,6 +57,30 @@ for rank, data in enumerate(pieces):
 for name in ARRAYS:
     check(not numpy.isnan(image[name]).any(), "%s: pixels missing from the pieces" % name)
 
+# The tissue port (ExportTissue) is split over the ranks too: every voxel of the 64 x 48 x 32
+# lattice once (extent = global voxel indices, x fastest), equal to the serial one.
+tissue = {"label": numpy.full((64, 48, 32), -1.0), "optic_axis": numpy.full((64, 48, 32, 3), numpy.nan)}
+tissueOwners = set()
+for rank in range(ranks):
+    data = servermanager.Fetch(sim, rank, idx=1)
+    e = data.GetExtent()
+    print("mpi_pli_split: tissue rank %d: %d points, extent %s" % (rank, data.GetNumberOfPoints(), e))
+    if data.GetNumberOfPoints() == 0:
+        continue
+    tissueOwners.add(rank)
+    shape = (e[5] - e[4] + 1, e[3] - e[2] + 1, e[1] - e[0] + 1)
+    box = (slice(e[0], e[1] + 1), slice(e[2], e[3] + 1), slice(e[4], e[5] + 1))
+    for name in tissue:
+        values = vtk_to_numpy(data.GetPointData().GetArray(name))
+        values = values.reshape(shape + values.shape[1:]).swapaxes(0, 2)  # to [x, y, z(, c)]
+        seen = tissue["label"][box] >= 0
+        if name == "label":
+            check((tissue[name][box][seen] == values[seen]).all(), "tissue: shared voxels differ between pieces")
+        tissue[name][box] = values
+check((tissue["label"] >= 0).all(), "tissue voxels missing from the pieces")
+check((tissue["label"] > 0).sum() > 1000, "the tissue has hardly any fiber voxel: not a real comparison")
+image.update({"tissue_" + name: tissue[name] for name in tissue})
+
 if serial:
     numpy.savez(reference, **image)
     print("mpi_pli_split: serial reference written to", reference)
@@ -68,4 +92,7 @@ for name in ARRAYS:
     diff = numpy.abs(image[name] - ref[name]).max()
     check(diff == 0.0, "%s: max |parallel - serial| = %g, must be 0" % (name, diff))
     check(image[name].max() - image[name].min() > 100.0, "%s is flat: not a real comparison" % name)
-print("mpi_pli_split: 2 ranks equal the serial result bit for bit")
+check(tissueOwners == {0, 1}, "the tissue was not split over both ranks: %s" % (tissueOwners,))
+for name in ["tissue_label", "tissue_optic_axis"]:
+    check(numpy.array_equal(image[name], ref[name], equal_nan=True), "%s differs between 2 ranks and 1" % name)
+print("mpi_pli_split: 2 ranks equal the serial result bit for bit (image and tissue)")
