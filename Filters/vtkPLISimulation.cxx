@@ -4,6 +4,7 @@
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
 #include "PLI/PLIPipeline.h"
 #include "PLI/TissueExport.h"
@@ -307,6 +308,19 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
+  }
+  // A periodic cell (field data periodic_cell) owns its tissue modulo the cell: the volume of
+  // interest is filled with the lattice translates of its fibers, so a larger one tiles the cell.
+  fiberpli::PeriodicCell cell;
+  std::string cellError;
+  if (fiberpli::ReadPeriodicCell(input, cell, cellError))
+  {
+    cellError = fiberpli::tileModel(in.model, cell, options.volumeOfInterest);
+  }
+  if (!cellError.empty())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << cellError);
+    return 0;
   }
   int ok = 1;
   if (wantImage)

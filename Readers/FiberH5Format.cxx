@@ -60,6 +60,41 @@ private:
   herr_t (*close_)(hid_t);
 };
 
+/// The periodic cell as a 6-value float64 attribute `periodic_cell` of `group` (FiberPLI's own).
+bool writeCellAttribute(hid_t group, const PeriodicCell& cell)
+{
+  const double b[6] = { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z };
+  const hsize_t n = 6;
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+  Handle attr(H5Acreate2(group, "periodic_cell", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  return attr.ok() && H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, b) >= 0;
+}
+
+/// Reads the attribute `periodic_cell` of `group` into cell when present; an error text when it is
+/// not 6 finite values with max > min.
+std::string readCellAttribute(hid_t group, PeriodicCell& cell)
+{
+  cell = PeriodicCell{};
+  if (H5Aexists(group, "periodic_cell") <= 0)
+  {
+    return {};
+  }
+  Handle attr(H5Aopen(group, "periodic_cell", H5P_DEFAULT), H5Aclose);
+  Handle space(attr.ok() ? H5Aget_space(attr.get()) : -1, H5Sclose);
+  const hssize_t n = space.ok() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+  if (n != 6)
+  {
+    return "attribute periodic_cell has " + std::to_string(n) + " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
+  }
+  double b[6];
+  if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, b) < 0)
+  {
+    return "attribute periodic_cell cannot be read as float64";
+  }
+  const std::string bad = periodicCellFromBounds(b, 6, cell);
+  return bad.empty() ? bad : "attribute " + bad;
+}
+
 /// "a soft link", "an external link", …: what a link of this type is, for error messages.
 const char* linkKind(H5L_type_t type)
 {
@@ -249,7 +284,8 @@ std::string FiberH5Format::BundleGroup(const std::string& path, const std::strin
   return {};
 }
 
-std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model)
+std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model,
+  PeriodicCell* cell)
 {
   QuietHdf5 quiet;
   model.fibers.clear();
@@ -280,6 +316,14 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   {
     return path + ": member '" + prefix + "/" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
       (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
+  }
+  if (cell)
+  {
+    const std::string cellError = readCellAttribute(root.get(), *cell);
+    if (!cellError.empty())
+    {
+      return path + ": group '" + (prefix.empty() ? "/" : prefix) + "' " + cellError;
+    }
   }
 
   // First pass: every dataset's declared size, so that the total (a dataset hard-linked many times
@@ -375,7 +419,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   return {};
 }
 
-std::string FiberH5Format::Write(const std::string& path, const FiberModel& model)
+std::string FiberH5Format::Write(const std::string& path, const FiberModel& model, const PeriodicCell& cell)
 {
   std::map<int, std::vector<const Fiber*>> bundles;
   double points = 0.0;
@@ -419,6 +463,10 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
       return path + ": cannot create the HDF5 file in memory";
     }
     std::string error;
+    if (cell.enabled() && !writeCellAttribute(fileId, cell))
+    {
+      error = path + ": cannot write the attribute periodic_cell";
+    }
     for (auto it = bundles.begin(); it != bundles.end() && error.empty(); ++it)
     {
       const std::string groupName = std::to_string(it->first);

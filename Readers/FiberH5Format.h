@@ -12,6 +12,7 @@
 #ifndef FiberH5Format_h
 #define FiberH5Format_h
 
+#include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 
 #include <string>
@@ -36,13 +37,17 @@ public:
   /// links are followed (soft and external links are errors), bundle group names must be
   /// 0 .. INT_MAX, and the total of the declared points (a dataset hard-linked n times counts n
   /// times) is checked against the file size and the memory budget before any allocation.
-  static std::string Read(const std::string& path, const std::string& group, FiberModel& model);
+  /// cell (optional) receives the attribute `periodic_cell` (6 float64: xmin xmax ymin ymax zmin
+  /// zmax) of the group when present (else it is left disabled); a malformed one is an error.
+  static std::string Read(const std::string& path, const std::string& group, FiberModel& model,
+    PeriodicCell* cell = nullptr);
 
   /// Writes `model` to `path` the way every FiberPLI writer does (IO/AtomicFile.h): the HDF5 file
   /// is built in memory and written to an exclusive temporary file that replaces the target only
   /// when complete; the target's permission bits are kept. Fibers are grouped by bundle_id in
-  /// increasing order. Returns an empty string or an error naming the file.
-  static std::string Write(const std::string& path, const FiberModel& model);
+  /// increasing order. An enabled cell is stored as the root attribute `periodic_cell` (fastPLI
+  /// ignores attributes it does not know). Returns an empty string or an error naming the file.
+  static std::string Write(const std::string& path, const FiberModel& model, const PeriodicCell& cell = PeriodicCell{});
 };
 
 } // namespace fiberpli

@@ -1,5 +1,6 @@
 #include "vtkFiberReader.h"
 
+#include "FiberFieldData.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -72,11 +73,12 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
   this->UpdateProgress(0.0);
 
   fiberpli::FiberReadResult result;
+  fiberpli::PeriodicCell cell;
   try // the readers check sizes before allocating; this is the last line against a crash
   {
     if (HasH5Extension(path))
     {
-      result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model);
+      result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model, &cell);
       if (result.ok())
       {
         // .h5 files hold all points; validate like the text formats do.
@@ -109,6 +111,10 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
   }
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(result.model, output);
+  if (cell.enabled())
+  {
+    fiberpli::AddPeriodicCell(output, cell);
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,5 +1,6 @@
 #include "vtkFiberWriter.h"
 
+#include "FiberFieldData.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -54,7 +55,19 @@ void vtkFiberWriter::WriteData()
 
   std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model) : fiberpli::writeFiberFile(path, in.model);
+  // The periodic cell goes where the format can hold it (.h5 attribute); the text formats have no
+  // place for it.
+  fiberpli::PeriodicCell cell;
+  std::string cellError;
+  fiberpli::ReadPeriodicCell(input, cell, cellError);
+  if (!cellError.empty())
+  {
+    vtkErrorMacro(<< "FiberWriter: input field data " << cellError);
+    this->SetErrorCode(vtkErrorCode::UserError);
+    return;
+  }
+  const std::string error =
+    ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell) : fiberpli::writeFiberFile(path, in.model);
   if (!error.empty())
   {
     this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);

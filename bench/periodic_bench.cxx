@@ -4,7 +4,7 @@
 // Usage: fiberpli_periodic_bench [--edge 30] [--pops 1,2,3] [--phi 0.85,0.72,0.58] [--threads 1,2]
 //        [--max-steps 20000] [--init-scale X] [--spread S] [--gamma] [--samples 1e6] [--seed 42]
 //        [--curvature 4] [--cap SECONDS] [--overlap-push X] [--separation-speed X]
-//        [--max-displacement X]
+//        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
 #include "BenchUtil.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
@@ -125,6 +125,8 @@ int main(int argc, char** argv)
   double curvature = 4.0;
   double cap = 1e9;
   double overlapPush = -1.0, separationSpeed = -1.0, maxDisplacement = -1.0;
+  double displacement = 0.5;
+  double drag = -1.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -157,6 +159,10 @@ int main(int argc, char** argv)
       curvature = std::atof(argv[++i]);
     else if (a == "--cap")
       cap = std::atof(argv[++i]);
+    else if (a == "--drag")
+      drag = std::atof(argv[++i]);
+    else if (a == "--displacement")
+      displacement = std::atof(argv[++i]);
     else if (a == "--overlap-push")
       overlapPush = std::atof(argv[++i]);
     else if (a == "--separation-speed")
@@ -182,6 +188,7 @@ int main(int argc, char** argv)
       c.populations = static_cast<int>(pops[k]);
       c.edgeLength = edge;
       c.periodic = true;
+      c.displacement = displacement;
       c.volumeFraction = phi;
       c.seed = static_cast<std::uint64_t>(seed);
       c.radiusSpread = spread;
@@ -208,6 +215,8 @@ int main(int argc, char** argv)
         o.separationSpeed = separationSpeed;
       if (maxDisplacement > 0.0)
         o.maxDisplacement = maxDisplacement;
+      if (drag >= 0.0)
+        o.drag = drag;
       const double t0 = bench::seconds();
       const CollisionSolverResult r =
         solveCollisions(m, o, [&](double) { return bench::seconds() - t0 < cap; });

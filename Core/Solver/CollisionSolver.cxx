@@ -254,30 +254,6 @@ public:
   PeriodicPairs periodic_;
   std::string detectError_;
   double scale_ = 1.0; // capsule radii relative to the fibers' radii (radius growth)
-  double straighten_ = 0.0; // pull towards the neighbours' midpoint while growing (untangling)
-
-  // [ours] While the capsules are small, every point is also pulled towards the midpoint of its
-  // neighbours: fibers straighten before they are thick enough to block each other, so the
-  // random braid of the tortuous input does not lock them into a loose packing.
-  void straighten(const Fiber& fib, Vec3* force, const Vec3* closure) const
-  {
-    const std::size_t n = fib.size();
-    const double k = straighten_;
-    Vec3 first;
-    if (closure)
-    {
-      first = k * (0.5 * ((fib.points[n - 2] - *closure) + fib.points[1]) - fib.points[0]);
-    }
-    for (std::size_t i = 1; i + 1 < n; ++i)
-    {
-      force[i] += k * (0.5 * (fib.points[i - 1] + fib.points[i + 1]) - fib.points[i]);
-    }
-    if (closure)
-    {
-      force[0] += first;
-      force[n - 1] += first;
-    }
-  }
 
   bool periodic() const { return o_.periodicCell.enabled(); }
 
@@ -415,6 +391,17 @@ public:
     return periodic() && closed_[l.fiber] ? base + 1 : SIZE_MAX;
   }
 
+  // Largest factor s <= 1 with δ >= s·(ρa + ρb) + g for every colliding pair.
+  double overlapFreeScale() const
+  {
+    double f = 1.0;
+    for (const CapsulePair& p : pairs_)
+    {
+      f = std::min(f, std::max(0.0, p.distance - o_.minimumGap) / (links_[p.a].rho + links_[p.b].rho));
+    }
+    return f;
+  }
+
   double maxOverlap() const
   {
     double m = 0.0;
@@ -499,10 +486,6 @@ public:
         // First and last point are one point: both get the sum of their pushes.
         force[0] += force[n - 1];
         force[n - 1] = force[0];
-      }
-      if (straighten_ > 0.0)
-      {
-        straighten(fib, force, closed ? &closure_[static_cast<std::size_t>(f)] : nullptr);
       }
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -864,7 +847,6 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   // Growth per step while the deepest overlap is below 5 % of the median radius (at this size).
   const double growth = 0.002;
   const double growthTolerance = 0.05 * medianRadius(model);
-  const double straightenRate = 0.25;
   int sinceGrowth = 0;    // move steps since the last growth event
   constexpr int kGrowthStall = 2000;
 
@@ -891,7 +873,6 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     }
     const std::size_t count = s.pairs_.size();
     const bool growing = s.scale_ < 1.0; // count is at the size before any growth below
-    s.straighten_ = s.scale_ < 1.0 ? straightenRate : 0.0;
     if (growing && s.maxOverlap() <= growthTolerance * s.scale_)
     {
       // [ours] Overlaps shallow at this size: grow for the next step.
@@ -995,8 +976,15 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     std::ostringstream w;
     w << result.collisions << " capsule pairs still overlap after " << result.steps
       << " steps (best " << result.bestCollisions << " at step " << result.bestStep
-      << ", max overlap " << result.maxOverlap
-      << " um); raise MaxSteps, lower the density or the radii";
+      << ", max overlap " << result.maxOverlap << " um";
+    if (s.periodic())
+    {
+      // How far it got: the radius scale at which this geometry would be free of overlaps.
+      const double free = s.overlapFreeScale();
+      w << "; overlap-free at " << 100.0 * free << " % of the radii, i.e. a volume fraction of "
+        << result.volumeFraction * free * free << " of the requested " << result.volumeFraction;
+    }
+    w << "); raise MaxSteps, lower the density or the radii";
     result.warnings.push_back(w.str());
   }
   result.sourceIndex.resize(nf);

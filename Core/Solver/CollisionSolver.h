@@ -58,9 +58,10 @@ struct CollisionSolverOptions
   /// last point are one point, its first and last links are neighbours, closure kept exactly).
   PeriodicCell periodicCell;
   /// [ours] Radius growth (Lubachevsky–Stillinger style): capsules start at this fraction of their
-  /// radii and grow each time the overlaps at the current size are resolved, until full size.
-  /// While growing, points are also pulled towards their neighbours' midpoint (untangling).
-  /// 1 = off; 0 = automatic (off). The output always has the input radii. Default 0.
+  /// radii and grow by 0.2 % per step while the deepest overlap is below 5 % of the median radius,
+  /// until full size; then the ordinary solve finishes. 1 = off; 0 = automatic (off: measured
+  /// slower and looser than plain pushing on the periodic benchmarks, bench/README.md). The output
+  /// always has the input radii. Default 0.
   double initialRadiusScale = 0.0;
 };
 

@@ -2,12 +2,14 @@
 // The references here (overlap count over all 27 images, volume fraction by Monte Carlo over
 // the cell) share no code with the solver: distances come from BruteForceOverlap.h.
 #include "BruteForceOverlap.h"
+#include "Model/PeriodicTiling.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace fiberpli;
@@ -309,7 +311,39 @@ TEST(PeriodicSolver, InfeasibleTargetStopsBoundedWithAWarning)
   EXPECT_GT(r.collisions, 0u);
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_NE(r.warnings.back().find("still overlap"), std::string::npos) << r.warnings.back();
+  EXPECT_NE(r.warnings.back().find("overlap-free at"), std::string::npos) << r.warnings.back();
   expectClosed(m, c.edgeLength);
+}
+
+TEST(PeriodicSolver, RadiusGrowthEndsAtFullRadiiOrSaysHowFarItGot)
+{
+  // Feasible: growth from 70 % ends at full size without overlaps, radii untouched.
+  const CubeOptions c = periodicCube(1, 14.0, 0.4, 6);
+  FiberModel m = generateCube(c);
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.initialRadiusScale = 0.7;
+  o.maxSteps = 3000;
+  CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_TRUE(r.solved);
+  EXPECT_EQ(r.radiusScale, 1.0);
+  EXPECT_EQ(refPeriodicCount(m, c.edgeLength), 0u);
+  for (const Fiber& f : m.fibers)
+    for (double x : f.radii)
+      EXPECT_EQ(x, 0.8);
+  // Infeasible: stops at MaxSteps below full size and reports the fraction reached.
+  const CubeOptions d = periodicCube(1, 10.0, 0.95, 6);
+  m = generateCube(d);
+  o.periodicCell = cubeCell(d);
+  o.maxSteps = 40;
+  r = solveCollisions(m, o);
+  EXPECT_FALSE(r.solved);
+  EXPECT_LT(r.radiusScale, 1.0);
+  EXPECT_EQ(r.steps, 40);
+  bool said = false;
+  for (const std::string& w : r.warnings)
+    said = said || w.find("radius growth stalled at") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(PeriodicSolver, CellTooSmallForTheLinksIsAnErrorAndLeavesTheModel)
@@ -338,4 +372,43 @@ TEST(PeriodicCell, BoundsFieldIsValidated)
   EXPECT_NE(periodicCellFromBounds(flat, 6, cell), "");
   const double nan[6] = { -1, 1, -2, std::nan(""), -3, 3 };
   EXPECT_NE(periodicCellFromBounds(nan, 6, cell), "");
+}
+
+TEST(PeriodicTiling, CopiesExactlyTheTranslatesThatReachTheBox)
+{
+  // One closed fiber along x through (0, 0, 0), radius 0.5, in the cell [-5, 5]³; it spans
+  // x in [-5.5, 5.5] with its radius, so a box [-15, 15] x [-5, 5]² needs the translates
+  // i = -2 … 2 along x (|i|·10 − 5.5 < 15) and none across.
+  FiberModel m;
+  Fiber f;
+  f.points = { { -5, 0, 0 }, { 0, 0.2, 0 }, { 5, 0, 0 } };
+  f.radii = { 0.5, 0.5, 0.5 };
+  f.id = 7;
+  f.bundle = 1;
+  m.fibers.push_back(f);
+  const PeriodicCell cell{ { -5, -5, -5 }, { 5, 5, 5 } };
+  const double box[6] = { -15, 15, -5, 5, -5, 5 };
+  ASSERT_EQ(tileModel(m, cell, box), "");
+  ASSERT_EQ(m.fibers.size(), 5u);
+  std::vector<std::int64_t> ids;
+  for (std::size_t c = 0; c < 5; ++c)
+  {
+    EXPECT_EQ(m.fibers[c].points[1].x, -20.0 + 10.0 * double(c));
+    EXPECT_EQ(m.fibers[c].points[1].y, 0.2);
+    EXPECT_EQ(m.fibers[c].bundle, 1);
+    ids.push_back(m.fibers[c].id);
+  }
+  EXPECT_EQ(m.fibers[2].id, 7); // the cell's own copy
+  std::sort(ids.begin(), ids.end());
+  EXPECT_EQ(std::unique(ids.begin(), ids.end()), ids.end());
+  // The same fiber near the top face (y in [4.3, 5.5] with its radius) and a box reaching 0.2
+  // beyond the y faces: the translate one period down (y in [-5.7, -4.5]) reaches in, the one
+  // above does not: 5 × 2.
+  FiberModel n;
+  n.fibers.push_back(f);
+  for (Vec3& p : n.fibers[0].points)
+    p.y += 4.8;
+  const double taller[6] = { -15, 15, -5.2, 5.2, -1, 1 };
+  ASSERT_EQ(tileModel(n, cell, taller), "");
+  EXPECT_EQ(n.fibers.size(), 10u);
 }

@@ -8,6 +8,7 @@
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkPointData.h>
 
 #include <gtest/gtest.h>
@@ -244,4 +245,35 @@ TEST(FiberReaderWriter, H5RefusesNegativeBundleIds)
   EXPECT_FALSE(Write(model, kTmp + "/negative.h5", catcher));
   EXPECT_NE(catcher->Errors.find("bundle_id -1 is negative"), std::string::npos) << catcher->Errors;
   EXPECT_TRUE(Write(model, kTmp + "/negative.dat")); // .dat renumbers bundles: fine
+}
+
+TEST(FiberReaderWriter, H5KeepsThePeriodicCell)
+{
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPeriodic(true);
+  cube->SetEdgeLength(12.0);
+  cube->SetVolumeFraction(0.3);
+  cube->SetPopulations(2);
+  cube->Update();
+  const std::string path = kTmp + "/periodic.h5";
+  ASSERT_TRUE(Write(cube->GetOutput(), path));
+  auto back = Read(path);
+  vtkDataArray* cell = back->GetFieldData()->GetArray("periodic_cell");
+  ASSERT_NE(cell, nullptr);
+  ASSERT_EQ(cell->GetNumberOfTuples(), 6);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(cell->GetTuple1(i), i % 2 ? 6.0 : -6.0);
+  ExpectSameFibers(cube->GetOutput(), back, 0.0, true, true);
+  // A file without the cell reads without it; .dat has no place for it.
+  ASSERT_TRUE(Write(Model(), kTmp + "/open.h5"));
+  EXPECT_EQ(Read(kTmp + "/open.h5")->GetFieldData()->GetArray("periodic_cell"), nullptr);
+
+  // A malformed periodic_cell on the input is an error naming it, nothing is written.
+  vtkNew<vtkPolyData> bad;
+  bad->DeepCopy(cube->GetOutput());
+  vtkDataArray* field = bad->GetFieldData()->GetArray("periodic_cell");
+  field->SetTuple1(1, -6.0); // xmax == xmin... below it
+  vtkNew<ErrorCatcher> catcher;
+  EXPECT_FALSE(Write(bad, kTmp + "/bad_cell.h5", catcher));
+  EXPECT_NE(catcher->Errors.find("periodic_cell axis 0"), std::string::npos) << catcher->Errors;
 }

@@ -4,6 +4,7 @@
 #include "FiberPolyData.h"
 #include "FiberTestData.h"
 #include "PLI/TissueExport.h"
+#include "vtkFiberCubeSource.h"
 #include "vtkPLISimulation.h"
 
 #include <vtkDataArray.h>
@@ -540,4 +541,51 @@ TEST(PLISimulation, TissuePortIsTheCoreVoxelisationAndLeavesTheImageAlone)
   sim->SetExportTissue(0);
   sim->Update(1);
   EXPECT_EQ(sim->GetOutput(1)->GetNumberOfPoints(), 0);
+}
+
+TEST(PLISimulation, PeriodicCellTilesAVolumeOfInterestLargerThanTheCell)
+{
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPopulations(2);
+  cube->SetEdgeLength(12.0);
+  cube->SetPeriodic(true);
+  cube->SetVolumeFraction(0.3);
+  cube->SetSeed(3);
+  cube->Update();
+  auto run = [&](vtkPolyData* fibers) {
+    vtkNew<vtkPLISimulation> s;
+    s->SetInputData(fibers);
+    s->SetVolumeOfInterest(-6, 18, -6, 6, -6, 6); // two cells along x
+    s->SetVoxelSize(0.5);
+    s->SetPixelSize(1.0);
+    s->SetOpticalSigma(0.0);
+    s->SetNoiseGain(0.0);
+    s->SetNumberOfRotations(4);
+    s->SetNumberOfThreads(2);
+    s->Update();
+    vtkSmartPointer<vtkImageData> out = s->GetOutput();
+    return out;
+  };
+  // With the cell, column i and column i + 12 (one period to the right) see the same tissue.
+  vtkSmartPointer<vtkImageData> tiled = run(cube->GetOutput());
+  int dims[3];
+  tiled->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 24);
+  vtkDataArray* I = tiled->GetPointData()->GetArray("intensity");
+  ASSERT_NE(I, nullptr);
+  auto differing = [&](vtkDataArray* a) {
+    int n = 0;
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < 12; ++i)
+        for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+          n += std::fabs(a->GetComponent(j * dims[0] + i, c) - a->GetComponent(j * dims[0] + i + 12, c)) > 1e-6 * kI0;
+    return n;
+  };
+  EXPECT_EQ(differing(I), 0);
+  // Without it the right half holds only what sticks out of the cell: the test can tell.
+  vtkNew<vtkPolyData> open;
+  open->DeepCopy(cube->GetOutput());
+  open->GetFieldData()->RemoveArray("periodic_cell");
+  vtkSmartPointer<vtkImageData> plain = run(open);
+  EXPECT_GT(differing(plain->GetPointData()->GetArray("intensity")), 100);
 }

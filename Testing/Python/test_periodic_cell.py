@@ -1,0 +1,80 @@
+"""pvpython: a periodic cell from FiberCubeSource solved by FiberCollisionSolver, its field data,
+closure of every fiber, Gamma radii, bad input, and a rendering of the solved cell's tubes."""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fiberpli_test import ErrorCatcher, check, compare_image, load_plugin  # noqa: E402
+from paraview.simple import *  # noqa: F401,F403,E402
+from paraview import servermanager  # noqa: E402
+
+load_plugin(globals())
+EDGE = 14.0
+src = FiberCubeSource(Populations=2, EdgeLength=EDGE, Periodic=1, VolumeFraction=0.45,
+                      FiberRadius=0.8, SegmentLength=2.0, Displacement=0.3, Seed=4)
+src.UpdatePipeline()
+fibers = servermanager.Fetch(src)
+cell = fibers.GetFieldData().GetArray("periodic_cell")
+check(cell is not None and cell.GetNumberOfTuples() == 6, "periodic_cell missing")
+check([cell.GetValue(i) for i in range(6)] == [-7.0, 7.0] * 3, "periodic_cell values")
+# N = φ L² / (π r²) = 0.45 · 196 / (π · 0.64) = 43.9 fibers
+check(fibers.GetNumberOfLines() == 44, "fiber count %d" % fibers.GetNumberOfLines())
+
+
+def closed_shift(pd):
+    """Per fiber: last point − first point (must be one period along one axis)."""
+    shifts = []
+    lines = pd.GetLines()
+    lines.InitTraversal()
+    from vtkmodules.vtkCommonCore import vtkIdList
+    ids = vtkIdList()
+    while lines.GetNextCell(ids):
+        a = pd.GetPoint(ids.GetId(0))
+        b = pd.GetPoint(ids.GetId(ids.GetNumberOfIds() - 1))
+        shifts.append(tuple(b[d] - a[d] for d in range(3)))
+    return shifts
+
+
+solver = FiberCollisionSolver(Input=src, MaxSteps=4000, NumberOfThreads=2)
+solver.UpdatePipeline()
+solved = servermanager.Fetch(solver)
+fd = solved.GetFieldData()
+check(fd.GetArray("solved").GetValue(0) == 1, "not solved: %d collisions" % fd.GetArray("collisions").GetValue(0))
+phi = fd.GetArray("volume_fraction").GetValue(0)
+check(0.45 <= phi < 0.55, "volume_fraction %g" % phi)
+check(fd.GetArray("min_gap").GetValue(0) >= 0.0, "negative min_gap")
+check(fd.GetArray("periodic_cell") is not None, "periodic_cell not passed on")
+for s in closed_shift(solved):
+    moved = [abs(x) for x in s if abs(x) > 1e-9]
+    check(len(moved) == 1 and abs(moved[0] - EDGE) < 1e-6, "fiber not closed: %s" % (s,))
+r = solved.GetPointData().GetArray("radius").GetRange()
+check(r[0] == 0.8 and r[1] == 0.8, "radii changed: %s" % (r,))
+
+# Gamma radii by name (api.md): mean r, spread s; MEDUSA's alpha = 4, beta = 0.25 um.
+gamma = FiberCubeSource(Populations=1, EdgeLength=20.0, Periodic=1, VolumeFraction=0.3,
+                        FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma", Seed=2)
+gamma.UpdatePipeline()
+g = servermanager.Fetch(gamma)
+radii = g.GetPointData().GetArray("radius")
+lo, hi = radii.GetRange()
+check(0.25 <= lo < hi <= 4.0, "gamma radii range %s" % ((lo, hi),))
+volume = 0.0
+lines = g.GetLines()
+lines.InitTraversal()
+from vtkmodules.vtkCommonCore import vtkIdList  # noqa: E402
+ids = vtkIdList()
+while lines.GetNextCell(ids):
+    rr = radii.GetValue(ids.GetId(0))
+    volume += math.pi * rr * rr * 20.0
+check(abs(volume / 20.0 ** 3 - 0.3) < 0.01, "gamma fiber volume %g" % (volume / 8000.0))
+
+bad = FiberCubeSource(Periodic=1, EdgeLength=20.0, VolumeFraction=0.3)
+catcher = ErrorCatcher(bad)
+bad.VolumeFraction = 1.5
+bad.UpdatePipeline()
+check("VolumeFraction is 1.5" in catcher.text(), "no VolumeFraction error: %s" % catcher.text())
+
+tubes = FiberTubes(Input=solver, NumberOfSides=8)
+compare_image(tubes, "bundle_id", position=(30, 24, 36))
+print("test_periodic_cell passed")
