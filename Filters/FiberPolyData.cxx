@@ -20,12 +20,55 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkSmartPointer.h>
 
+#include <vtkVariant.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace fiberpli
 {
+
+namespace
+{
+// The id at cell `c` as an integer in [lo, hi]; false (and `text` the value as read) when it is
+// not one: NaN, a fraction or out of range in a floating-point array, a 64-bit value beyond hi.
+bool readId(vtkDataArray* ids, vtkIdType c, long long lo, long long hi, long long& out, std::string& text)
+{
+  const int type = ids->GetDataType();
+  if (type == VTK_FLOAT || type == VTK_DOUBLE)
+  {
+    const double v = ids->GetComponent(c, 0);
+    std::ostringstream t;
+    t << v;
+    text = t.str();
+    // 2^63 is exactly representable; every double below it (and >= -2^63) fits a long long.
+    if (!(v == std::floor(v)) || !(v >= static_cast<double>(lo)) || !(v <= static_cast<double>(hi)) ||
+      v >= 9223372036854775808.0)
+    {
+      return false;
+    }
+    out = static_cast<long long>(v);
+    return true;
+  }
+  const vtkVariant value = ids->GetVariantValue(c * ids->GetNumberOfComponents());
+  text = value.ToString();
+  if (type == VTK_UNSIGNED_LONG || type == VTK_UNSIGNED_LONG_LONG)
+  {
+    const unsigned long long u = value.ToUnsignedLongLong();
+    if (u > static_cast<unsigned long long>(hi))
+    {
+      return false;
+    }
+    out = static_cast<long long>(u);
+    return true;
+  }
+  out = value.ToLongLong();
+  return out >= lo && out <= hi;
+}
+} // namespace
 
 void FiberPolyData::RequestAllFibers(vtkInformation* inputInfo)
 {
@@ -122,8 +165,35 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     }
     std::vector<long long> pointIds(ids, ids + n);
     Fiber f;
-    f.id = fiberIds ? static_cast<std::int64_t>(fiberIds->GetComponent(cellId, 0)) : cellId;
-    f.bundle = bundleIds ? static_cast<int>(bundleIds->GetComponent(cellId, 0)) : 0;
+    f.id = cellId;
+    f.bundle = 0;
+    long long value = 0;
+    std::string text;
+    const auto badId = [&](const char* name, const char* range) {
+      result.error = who + ": line cell " + std::to_string(cellId) + ": " + name + " is " + text +
+        ", must be an integer in " + range;
+      result.model.fibers.clear();
+      result.sourceCell.clear();
+      result.sourcePoints.clear();
+    };
+    if (fiberIds)
+    {
+      if (!readId(fiberIds, cellId, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max(), value, text))
+      {
+        badId("fiber_id", "[-2^63, 2^63)");
+        return result;
+      }
+      f.id = value;
+    }
+    if (bundleIds)
+    {
+      if (!readId(bundleIds, cellId, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), value, text))
+      {
+        badId("bundle_id", "[-2^31, 2^31)");
+        return result;
+      }
+      f.bundle = static_cast<int>(value);
+    }
     f.points.resize(static_cast<std::size_t>(n));
     f.radii.resize(static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)

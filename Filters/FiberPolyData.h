@@ -10,7 +10,8 @@
  * - NaN/Inf coordinates or radius <= 0 → error naming the fiber (cell index and fiber_id) and point;
  * - an input without points and cells → an empty model, no error (empty MPI pieces).
  * `fiber_id` (any integer array) and `bundle_id` cell arrays are read when present; otherwise the
- * fiber id is the cell index and the bundle id 0.
+ * fiber id is the cell index and the bundle id 0. An id that is no integer of its range (NaN,
+ * a fraction, beyond 64 bits; a bundle_id beyond int) → error naming the cell and the value.
  */
 #ifndef FiberPolyData_h
 #define FiberPolyData_h

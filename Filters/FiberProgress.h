@@ -1,18 +1,24 @@
 /**
  * @file FiberProgress.h
- * @brief the one bridge from Core progress callbacks to VTK progress and abort
+ * @brief the one bridge from Core progress callbacks to VTK progress and abort, and the thread
+ * count check, for every FiberPLI filter, source, reader and writer
  *
  * MakeProgress(algorithm) returns a fiberpli::ProgressFn that calls UpdateProgress and returns
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
+ * AbortScope, the first line of every RequestData, makes an abort apply to one execution only.
+ * CheckThreads applies the NumberOfThreads rule of Util/Threads.h with VTK messages.
  */
 #ifndef FiberProgress_h
 #define FiberProgress_h
 
 #include "Util/Progress.h"
+#include "Util/Threads.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkVersion.h>
+
+#include <string>
 
 namespace fiberpli
 {
@@ -28,6 +34,53 @@ inline ProgressFn MakeProgress(vtkAlgorithm* algorithm, double begin = 0.0, doub
     return !algorithm->GetAbortExecute();
 #endif
   };
+}
+
+/// Clears the abort request when the execution ends. VTK leaves AbortExecute set after an abort
+/// (from a progress observer or the GUI), so every later update of this algorithm, and of every
+/// algorithm downstream (CheckAbort looks upstream), would stop at once and pass empty output on.
+/// The aborted execution itself is still reported to the executive (its output is marked aborted
+/// and is made again by the next update).
+class AbortScope
+{
+public:
+  explicit AbortScope(vtkAlgorithm* algorithm)
+    : Algorithm(algorithm)
+  {
+  }
+  ~AbortScope()
+  {
+    if (this->Algorithm->GetAbortExecute())
+    {
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
+      this->Algorithm->CheckAbort(); // marks the output as aborted
+#endif
+      this->Algorithm->SetAbortExecute(0);
+    }
+  }
+  AbortScope(const AbortScope&) = delete;
+  AbortScope& operator=(const AbortScope&) = delete;
+
+private:
+  vtkAlgorithm* Algorithm;
+};
+
+/// NumberOfThreads rule: false (with an error naming the value) outside [0, kMaxThreads]; a
+/// warning when it is clamped to 4 × the cores.
+inline bool CheckThreads(vtkAlgorithm* algorithm, const char* who, int requested)
+{
+  const std::string error = validateThreadCount(requested);
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << who << ": " << error);
+    return false;
+  }
+  const std::string warning = threadCountWarning(requested);
+  if (!warning.empty())
+  {
+    vtkWarningWithObjectMacro(algorithm, << who << ": " << warning);
+  }
+  return true;
 }
 
 } // namespace fiberpli

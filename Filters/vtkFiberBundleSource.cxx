@@ -53,6 +53,7 @@ int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
@@ -64,6 +65,11 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
     return 1;
   }
 
+  if (this->Seed < 0)
+  {
+    vtkErrorMacro(<< "FiberBundleSource: Seed is " << this->Seed << ", must be >= 0");
+    return 0;
+  }
   fiberpli::BundleOptions options;
   options.shape = static_cast<fiberpli::BundleShape>(this->Shape);
   options.bundleRadius = this->BundleRadius;
@@ -112,6 +118,13 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
                     << scaleArray->GetNumberOfComponents() << " components, must have 1");
       return 0;
     }
+    if (scaleArray && scaleArray->GetNumberOfTuples() != input->GetNumberOfPoints())
+    {
+      vtkErrorMacro(<< "FiberBundleSource: the Trajectory point array 'scale' has "
+                    << scaleArray->GetNumberOfTuples() << " values for " << input->GetNumberOfPoints()
+                    << " points");
+      return 0;
+    }
     auto it = vtk::TakeSmartPointer(input->GetLines()->NewIterator());
     it->GoToFirstCell();
     vtkIdType n = 0;
@@ -119,6 +132,12 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
     it->GetCurrentCell(n, ids);
     for (vtkIdType i = 0; i < n; ++i)
     {
+      if (ids[i] < 0 || ids[i] >= input->GetNumberOfPoints())
+      {
+        vtkErrorMacro(<< "FiberBundleSource: the Trajectory line refers to point " << ids[i]
+                      << ", but the input has " << input->GetNumberOfPoints() << " points");
+        return 0;
+      }
       double p[3];
       input->GetPoint(ids[i], p);
       trajectory.push_back({ p[0], p[1], p[2] });

@@ -57,7 +57,7 @@ public:
    * Model: 0 Cylinder, 1 Trajectory (the polyline on input port 0), 2 Crossing, 3 YShape,
    * 4 Chiasm. Default is 0.
    */
-  vtkSetClampMacro(Shape, int, 0, 4);
+  vtkSetMacro(Shape, int);
   vtkGetMacro(Shape, int);
   ///@}
 
@@ -65,7 +65,7 @@ public:
   /**
    * Radius of each bundle in µm, >= FiberRadius. Default is 10.
    */
-  vtkSetClampMacro(BundleRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(BundleRadius, double);
   vtkGetMacro(BundleRadius, double);
   ///@}
 
@@ -74,7 +74,7 @@ public:
    * Length in µm: of the cylinder, of each crossing bundle or nerve (through the origin), or
    * trunk + branch of the Y-shape; not used for Trajectory. Default is 60.
    */
-  vtkSetClampMacro(Length, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Length, double);
   vtkGetMacro(Length, double);
   ///@}
 
@@ -82,7 +82,7 @@ public:
   /**
    * Nominal fiber radius in µm, > 0. Default is 0.8.
    */
-  vtkSetClampMacro(FiberRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(FiberRadius, double);
   vtkGetMacro(FiberRadius, double);
   ///@}
 
@@ -90,7 +90,7 @@ public:
   /**
    * Spread s of the fiber radii, >= 0 (0 = all radii equal; < 1 for Uniform). Default is 0.
    */
-  vtkSetClampMacro(RadiusSpread, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(RadiusSpread, double);
   vtkGetMacro(RadiusSpread, double);
   ///@}
 
@@ -100,7 +100,7 @@ public:
    * 2 Gamma (mean r, coefficient of variation s: shape 1/s², scale r·s², truncated to
    * [r/4, 4r]), 3 Constant (every radius FiberRadius). Default is 0.
    */
-  vtkSetClampMacro(RadiusDistribution, int, 0, 3);
+  vtkSetMacro(RadiusDistribution, int);
   vtkGetMacro(RadiusDistribution, int);
   ///@}
 
@@ -108,7 +108,7 @@ public:
   /**
    * Spacing of the triangular seed grid in µm, > 0; used when NumberOfFibers is 0. Default is 2.
    */
-  vtkSetClampMacro(FiberSpacing, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(FiberSpacing, double);
   vtkGetMacro(FiberSpacing, double);
   ///@}
 
@@ -117,7 +117,7 @@ public:
    * Fibers per bundle cross-section at random positions; 0 = triangular grid of FiberSpacing.
    * Default is 0.
    */
-  vtkSetClampMacro(NumberOfFibers, int, 0, VTK_INT_MAX);
+  vtkSetMacro(NumberOfFibers, int);
   vtkGetMacro(NumberOfFibers, int);
   ///@}
 
@@ -125,7 +125,7 @@ public:
   /**
    * Distance of consecutive fiber points along the trajectory in µm, > 0. Default is 2.
    */
-  vtkSetClampMacro(SegmentLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(SegmentLength, double);
   vtkGetMacro(SegmentLength, double);
   ///@}
 
@@ -134,7 +134,7 @@ public:
    * Maximum random displacement of every point per axis in µm (uniform in ±D), >= 0.
    * Default is 0.2.
    */
-  vtkSetClampMacro(Displacement, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Displacement, double);
   vtkGetMacro(Displacement, double);
   ///@}
 
@@ -143,7 +143,7 @@ public:
    * Angle in degrees: between the bundles (Crossing, up to 180), opening of the Y (YShape, below
    * 180), between the nerves (Chiasm, below 180). Default is 90.
    */
-  vtkSetClampMacro(CrossingAngle, double, 0.0, 180.0);
+  vtkSetMacro(CrossingAngle, double);
   vtkGetMacro(CrossingAngle, double);
   ///@}
 
@@ -152,7 +152,7 @@ public:
    * Chiasm: fraction of each nerve's fibers (the most lateral ones) that stay on their side,
    * 0 to 1. Default is 0.25.
    */
-  vtkSetClampMacro(UncrossedFraction, double, 0.0, 1.0);
+  vtkSetMacro(UncrossedFraction, double);
   vtkGetMacro(UncrossedFraction, double);
   ///@}
 
@@ -161,7 +161,7 @@ public:
    * Distance of the nodes of Ranvier along each fiber in µm; 0 = off, -1 = shape default
    * (Chiasm 20 µm, other shapes off). Default is -1.
    */
-  vtkSetClampMacro(RanvierSpacing, double, -1.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(RanvierSpacing, double);
   vtkGetMacro(RanvierSpacing, double);
   ///@}
 
@@ -169,7 +169,7 @@ public:
   /**
    * Relative radius reduction at a node of Ranvier, 0 to 1 (exclusive). Default is 0.3.
    */
-  vtkSetClampMacro(RanvierDepth, double, 0.0, 1.0);
+  vtkSetMacro(RanvierDepth, double);
   vtkGetMacro(RanvierDepth, double);
   ///@}
 
@@ -177,7 +177,7 @@ public:
   /**
    * Length of a node of Ranvier in µm, > 0, at most half the RanvierSpacing. Default is 1.
    */
-  vtkSetClampMacro(RanvierLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(RanvierLength, double);
   vtkGetMacro(RanvierLength, double);
   ///@}
 
@@ -186,7 +186,7 @@ public:
    * Seed of the random positions, radii, node phases and displacements; the same seed gives the
    * same fibers. Default is 42.
    */
-  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
   ///@}
 

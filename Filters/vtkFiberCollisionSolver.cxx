@@ -62,6 +62,11 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
 //------------------------------------------------------------------------------
 int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "FiberCollisionSolver", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);

@@ -39,9 +39,10 @@ public:
   ///@{
   /**
    * Mean segment length in µm; link lengths are kept in [2/3, 4/3] of it by splitting and
-   * merging. 0 = automatic (2 × median radius). Default is 2.
+   * merging. 0 = automatic (2 × median radius), negative = off (no splitting or merging).
+   * Default is 2.
    */
-  vtkSetClampMacro(SegmentLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(SegmentLength, double);
   vtkGetMacro(SegmentLength, double);
   ///@}
 
@@ -50,7 +51,7 @@ public:
    * Minimum radius of curvature in µm (circumradius of three consecutive points); 0 = off.
    * Default is 0.
    */
-  vtkSetClampMacro(MinCurvatureRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(MinCurvatureRadius, double);
   vtkGetMacro(MinCurvatureRadius, double);
   ///@}
 
@@ -58,7 +59,7 @@ public:
   /**
    * Maximum number of steps; the solver never runs longer. Default is 10000.
    */
-  vtkSetClampMacro(MaxSteps, int, 0, VTK_INT_MAX);
+  vtkSetMacro(MaxSteps, int);
   vtkGetMacro(MaxSteps, int);
   ///@}
 
@@ -67,7 +68,7 @@ public:
    * Smallest push of a colliding pair per step, relative to the smallest radius of its points
    * (the paper's value at r = 0.8 µm, collision-solver.md §4.1), 0 to 1. Default is 0.025.
    */
-  vtkSetClampMacro(SeparationSpeed, double, 0.0, 1.0);
+  vtkSetMacro(SeparationSpeed, double);
   vtkGetMacro(SeparationSpeed, double);
   ///@}
 
@@ -76,7 +77,7 @@ public:
    * Extra clearance in µm between capsules: a pair collides when its axis distance is below
    * ρa + ρb + MinimumGap. Default is 0 (the paper).
    */
-  vtkSetClampMacro(MinimumGap, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(MinimumGap, double);
   vtkGetMacro(MinimumGap, double);
   ///@}
 
@@ -84,7 +85,7 @@ public:
   /**
    * Number of threads, 0 = all cores. The result does not depend on it. Default is 0.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
@@ -94,7 +95,7 @@ public:
    * solving (dense targets); 1 = off, 0 = automatic (on in a periodic cell). The output always
    * has the input radii. Default is 0.
    */
-  vtkSetClampMacro(InitialRadiusScale, double, 0.0, 1.0);
+  vtkSetMacro(InitialRadiusScale, double);
   vtkGetMacro(InitialRadiusScale, double);
   ///@}
 
@@ -111,7 +112,7 @@ public:
   /**
    * Steps between two time steps when IterationsAsTime is on, >= 1. Default is 50.
    */
-  vtkSetClampMacro(TimeStepInterval, int, 1, VTK_INT_MAX);
+  vtkSetMacro(TimeStepInterval, int);
   vtkGetMacro(TimeStepInterval, int);
   ///@}
 

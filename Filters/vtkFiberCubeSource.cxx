@@ -1,5 +1,6 @@
 #include "vtkFiberCubeSource.h"
 
+#include "FiberProgress.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "Tissue/CubeGenerator.h"
@@ -21,8 +22,14 @@ vtkFiberCubeSource::vtkFiberCubeSource()
 //------------------------------------------------------------------------------
 int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
 
+  if (this->Seed < 0)
+  {
+    vtkErrorMacro(<< "FiberCubeSource: Seed is " << this->Seed << ", must be >= 0");
+    return 0;
+  }
   fiberpli::CubeOptions options;
   options.populations = this->Populations;
   options.numberOfFibers = this->NumberOfFibers;

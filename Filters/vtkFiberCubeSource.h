@@ -30,7 +30,7 @@ public:
   /**
    * Number of mutually perpendicular populations: 1 (x), 2 (x, y) or 3 (x, y, z). Default is 1.
    */
-  vtkSetClampMacro(Populations, int, 1, 3);
+  vtkSetMacro(Populations, int);
   vtkGetMacro(Populations, int);
   ///@}
 
@@ -38,7 +38,7 @@ public:
   /**
    * Total number of fibers, split as evenly as possible over the populations. Default is 1000.
    */
-  vtkSetClampMacro(NumberOfFibers, int, 0, VTK_INT_MAX);
+  vtkSetMacro(NumberOfFibers, int);
   vtkGetMacro(NumberOfFibers, int);
   ///@}
 
@@ -47,7 +47,7 @@ public:
    * Cube edge in µm; the cube is centred at the origin. Must exceed 2 × FiberRadius.
    * Default is 51.96 (= √3 · 30, the paper's benchmark).
    */
-  vtkSetClampMacro(EdgeLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(EdgeLength, double);
   vtkGetMacro(EdgeLength, double);
   ///@}
 
@@ -55,7 +55,7 @@ public:
   /**
    * Fiber radius in µm, > 0 (median or mean with a RadiusSpread). Default is 0.8.
    */
-  vtkSetClampMacro(FiberRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(FiberRadius, double);
   vtkGetMacro(FiberRadius, double);
   ///@}
 
@@ -63,7 +63,7 @@ public:
   /**
    * Distance of consecutive fiber points in µm before displacement, > 0. Default is 2.
    */
-  vtkSetClampMacro(SegmentLength, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(SegmentLength, double);
   vtkGetMacro(SegmentLength, double);
   ///@}
 
@@ -72,7 +72,7 @@ public:
    * Maximum random displacement of every point per axis in µm (uniform in ±D), >= 0.
    * Default is 0.5.
    */
-  vtkSetClampMacro(Displacement, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Displacement, double);
   vtkGetMacro(Displacement, double);
   ///@}
 
@@ -80,7 +80,7 @@ public:
   /**
    * Spread s of the fiber radii, >= 0 (0 = all radii FiberRadius). Default is 0.
    */
-  vtkSetClampMacro(RadiusSpread, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(RadiusSpread, double);
   vtkGetMacro(RadiusSpread, double);
   ///@}
 
@@ -89,7 +89,7 @@ public:
    * Radius distribution: 0 LogNormal, 1 Uniform, 2 Gamma, 3 Constant (as in
    * FiberBundleSource). Default is 3 (Constant: every radius FiberRadius).
    */
-  vtkSetClampMacro(RadiusDistribution, int, 0, 3);
+  vtkSetMacro(RadiusDistribution, int);
   vtkGetMacro(RadiusDistribution, int);
   ///@}
 
@@ -116,7 +116,7 @@ public:
   /**
    * Seed of the random placement; the same seed gives the same fibers. Default is 42.
    */
-  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
   ///@}
 

@@ -111,6 +111,11 @@ int vtkFiberMetrics::RequestUpdateExtent(vtkInformation*, vtkInformationVector**
 //------------------------------------------------------------------------------
 int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "FiberMetrics", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* summary = vtkTable::GetData(outputVector, 1);

@@ -99,7 +99,7 @@ public:
   /**
    * Number of threads, 0 = all cores. Default is 0. Results do not depend on it.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 

@@ -129,6 +129,11 @@ int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation*, vtkInfo
 int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "FiberOrientationGroundTruth", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);

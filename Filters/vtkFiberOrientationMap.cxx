@@ -1,5 +1,6 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
 
 #include <vtkDataArray.h>
@@ -80,6 +81,11 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 //------------------------------------------------------------------------------
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "FiberOrientationMap", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkImageData* legend = vtkImageData::GetData(outputVector, 1);

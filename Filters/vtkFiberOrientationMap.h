@@ -78,7 +78,7 @@ public:
   /**
    * Number of threads, 0 = all cores. Default is 0.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 

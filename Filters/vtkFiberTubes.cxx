@@ -27,6 +27,11 @@ vtkStandardNewMacro(vtkFiberTubes);
 //------------------------------------------------------------------------------
 int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "FiberTubes", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();

@@ -140,6 +140,11 @@ int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, 
 //------------------------------------------------------------------------------
 int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  if (!fiberpli::CheckThreads(this, "PLIAnalysis", this->NumberOfThreads))
+  {
+    return 0;
+  }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);

@@ -74,7 +74,7 @@ public:
   /**
    * Number of threads, 0 = all cores. The result does not depend on it. Default is 0.
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 

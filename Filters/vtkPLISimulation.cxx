@@ -261,6 +261,7 @@ vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInforma
 int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
   // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
   return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLISimulation",
@@ -271,6 +272,10 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
 int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
+  {
+    return 0;
+  }
   const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
   const bool wantImage = port != 1;
   const bool wantTissue = port != 0;

@@ -1,6 +1,7 @@
 #include "vtkFiberReader.h"
 
 #include "FiberFieldData.h"
+#include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -61,6 +62,7 @@ int vtkFiberReader::CanReadFile(const char* fileName)
 //------------------------------------------------------------------------------
 int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
   if (this->FileName == nullptr || this->FileName[0] == '\0')

@@ -37,7 +37,7 @@ public:
    * Radius in µm given to every point of files that store none (.trk, .tck without .radius.tsf), > 0.
    * Default is 1.
    */
-  vtkSetClampMacro(DefaultRadius, double, 1e-12, VTK_DOUBLE_MAX);
+  vtkSetMacro(DefaultRadius, double);
   vtkGetMacro(DefaultRadius, double);
   ///@}
 

@@ -1,6 +1,7 @@
 #include "vtkFiberWriter.h"
 
 #include "FiberFieldData.h"
+#include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
@@ -33,6 +34,7 @@ int vtkFiberWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 void vtkFiberWriter::WriteData()
 {
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   this->SetErrorCode(vtkErrorCode::NoError);
   this->SetLastWriteError(nullptr);
   if (this->FileName == nullptr || this->FileName[0] == '\0')

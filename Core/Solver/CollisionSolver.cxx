@@ -756,9 +756,9 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "MaxSteps is " << o.maxSteps << ", must be >= 0";
   }
-  else if (!std::isfinite(o.separationSpeed) || o.separationSpeed <= 0.0)
+  else if (!std::isfinite(o.separationSpeed) || o.separationSpeed <= 0.0 || o.separationSpeed > 1.0)
   {
-    msg << "SeparationSpeed is " << o.separationSpeed << ", must be > 0";
+    msg << "SeparationSpeed is " << o.separationSpeed << ", must be in (0, 1]";
   }
   else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
   {
@@ -776,9 +776,9 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "Drag is " << o.drag << ", must be in [0, 1)";
   }
-  else if (o.numberOfThreads < 0)
+  else if (!validateThreadCount(o.numberOfThreads).empty())
   {
-    msg << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0 (0 = all cores)";
+    msg << validateThreadCount(o.numberOfThreads);
   }
   else if (!std::isfinite(o.minimumGap) || o.minimumGap < 0.0)
   {

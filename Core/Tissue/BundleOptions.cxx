@@ -72,7 +72,12 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   std::ostringstream msg;
   const double ranvier = effectiveRanvierSpacing(o);
   const bool usesLength = o.shape != BundleShape::Trajectory;
-  if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
+  const int shape = static_cast<int>(o.shape);
+  if (shape < 0 || shape > static_cast<int>(BundleShape::Chiasm))
+  {
+    msg << "Shape is " << shape << ", must be 0 (Cylinder) to 4 (Chiasm)";
+  }
+  else if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
   {
     msg << "FiberRadius is " << o.fiberRadius << ", must be > 0";
   }

@@ -48,6 +48,11 @@ const char* radiusDistributionName(RadiusDistribution kind)
 
 std::string validateRadiusDistribution(RadiusDistribution kind, double spread)
 {
+  const int k = static_cast<int>(kind);
+  if (k < 0 || k > static_cast<int>(RadiusDistribution::Constant))
+  {
+    return "RadiusDistribution is " + std::to_string(k) + ", must be 0 (LogNormal) to 3 (Constant)";
+  }
   if (!std::isfinite(spread) || spread < 0.0)
   {
     return "RadiusSpread is " + std::to_string(spread) + ", must be >= 0";

@@ -26,7 +26,8 @@ enum class RadiusDistribution
 /// The api string of a radius distribution ("LogNormal", "Uniform", "Gamma", "Constant").
 const char* radiusDistributionName(RadiusDistribution kind);
 
-/// Empty when spread s and distribution are usable, else a message naming RadiusSpread.
+/// Empty when spread s and distribution are usable, else a message naming RadiusSpread (or
+/// RadiusDistribution, for a value outside the enum).
 std::string validateRadiusDistribution(RadiusDistribution kind, double spread);
 
 /// The smallest radius the distribution can return, as a fraction of r.

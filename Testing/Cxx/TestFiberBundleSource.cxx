@@ -349,3 +349,52 @@ TEST(FiberBundleSource, EveryModelIsSolvedWithoutOverlaps)
     EXPECT_EQ(out->GetNumberOfLines(), src->GetOutput()->GetNumberOfLines()) << shape;
   }
 }
+
+TEST(FiberBundleSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
+{
+  // The setters used to clamp: NumberOfFibers -1 became 0 (a grid, no message), FiberRadius -2
+  // became 0 ("is 0"), Shape 7 became Chiasm. Now each is an error with the value typed.
+  vtkNew<vtkFiberBundleSource> src;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(src);
+  const auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    src->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
+  };
+  src->SetNumberOfFibers(-1);
+  expectError("NumberOfFibers is -1");
+  src->SetNumberOfFibers(0);
+  src->SetFiberRadius(-2.0);
+  expectError("FiberRadius is -2");
+  src->SetFiberRadius(0.8);
+  src->SetShape(7);
+  expectError("Shape is 7");
+  src->SetShape(vtkFiberBundleSource::CYLINDER);
+  src->SetRadiusDistribution(9);
+  expectError("RadiusDistribution is 9");
+  src->SetRadiusDistribution(0);
+  src->SetSeed(-4);
+  expectError("Seed is -4");
+  src->SetSeed(1);
+  catcher->Clear();
+  src->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_GT(src->GetOutput()->GetNumberOfLines(), 0);
+}
+
+TEST(FiberBundleSource, ScaleArrayOfTheWrongLengthIsAnError)
+{
+  // A 'scale' point array with fewer values than points used to be read past its end / ignored.
+  auto trajectory = Polyline({ { 0, 0, 0 }, { 10, 0, 0 }, { 20, 0, 0 } }, { 1.0, 1.5, 1.0 });
+  trajectory->GetPointData()->GetArray("scale")->SetNumberOfTuples(2);
+  vtkNew<vtkFiberBundleSource> src;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(src);
+  src->SetShape(vtkFiberBundleSource::TRAJECTORY);
+  src->SetInputData(trajectory);
+  src->Update();
+  EXPECT_NE(catcher->Errors.find("'scale' has 2 values for 3 points"), std::string::npos) << catcher->Errors;
+  EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
+}

@@ -92,3 +92,38 @@ TEST(FiberCubeSource, BadPropertiesAreNamedAndRecoverable)
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(cube->GetOutput()->GetNumberOfLines(), 10);
 }
+
+TEST(FiberCubeSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
+{
+  // The setters used to clamp silently: NumberOfFibers -1 → an empty cube without a word,
+  // EdgeLength -5 → "EdgeLength is 0", Populations 7 → 3.
+  vtkNew<vtkFiberCubeSource> cube;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(cube);
+  cube->SetNumberOfFibers(20);
+  const auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    cube->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    EXPECT_EQ(cube->GetOutput()->GetNumberOfPoints(), 0);
+  };
+  cube->SetNumberOfFibers(-1);
+  expectError("NumberOfFibers is -1");
+  cube->SetNumberOfFibers(20);
+  cube->SetEdgeLength(-5.0);
+  expectError("EdgeLength is -5");
+  cube->SetEdgeLength(20.0);
+  cube->SetFiberRadius(-0.5);
+  expectError("FiberRadius is -0.5");
+  cube->SetFiberRadius(0.8);
+  cube->SetPopulations(7);
+  expectError("Populations is 7");
+  cube->SetPopulations(3);
+  cube->SetSeed(-1);
+  expectError("Seed is -1");
+  cube->SetSeed(42);
+  catcher->Clear();
+  cube->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_EQ(cube->GetOutput()->GetNumberOfLines(), 20);
+}

@@ -7,6 +7,9 @@
 #include "vtkFiberTubes.h"
 
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 
@@ -154,4 +157,52 @@ TEST(FiberPolyData, LinesReferringToMissingPointsAreAnError)
   bad->GetCellData()->GetArray("fiber_id")->InsertNextTuple1(102);
   bad->GetCellData()->GetArray("bundle_id")->InsertNextTuple1(0);
   ExpectErrorThenRecovery(bad, { "line cell 2 refers to point 99" });
+}
+
+TEST(FiberPolyData, IdsThatAreNoIntegersOfTheirRangeAreErrors)
+{
+  // fiber_id NaN / 1e30 / 2.5 in a double array, bundle_id 3e9 (beyond int): each an error naming
+  // the array, the cell and the value (they used to become INT64_MIN / INT_MIN silently).
+  const struct
+  {
+    const char* array;
+    double value;
+    const char* text;
+  } cases[] = { { "fiber_id", std::numeric_limits<double>::quiet_NaN(), "fiber_id is nan" },
+    { "fiber_id", 1e30, "fiber_id is 1e+30" }, { "fiber_id", 2.5, "fiber_id is 2.5" },
+    { "bundle_id", 3e9, "bundle_id is 3e+09" } };
+  for (const auto& c : cases)
+  {
+    auto bad = MakeTwoFibers();
+    vtkNew<vtkDoubleArray> ids;
+    ids->SetName(c.array);
+    ids->SetNumberOfTuples(2);
+    ids->SetValue(0, 7);
+    ids->SetValue(1, c.value);
+    bad->GetCellData()->RemoveArray(c.array);
+    bad->GetCellData()->AddArray(ids);
+    ExpectErrorThenRecovery(bad, { "line cell 1", c.text });
+  }
+  // Integral values in a double array and a 64-bit id beyond 2^53 are read exactly.
+  auto good = MakeTwoFibers();
+  vtkNew<vtkIdTypeArray> big;
+  big->SetName("fiber_id");
+  big->SetNumberOfTuples(2);
+  big->SetValue(0, 9007199254740993LL); // 2^53 + 1: not representable as a double
+  big->SetValue(1, -5);
+  good->GetCellData()->RemoveArray("fiber_id");
+  good->GetCellData()->AddArray(big);
+  vtkNew<vtkDoubleArray> bundles;
+  bundles->SetName("bundle_id");
+  bundles->SetNumberOfTuples(2);
+  bundles->SetValue(0, -3.0);
+  bundles->SetValue(1, 2147483647.0);
+  good->GetCellData()->RemoveArray("bundle_id");
+  good->GetCellData()->AddArray(bundles);
+  const fiberpli::FiberConversion c = fiberpli::FiberPolyData::ToModel(good, "Test");
+  ASSERT_TRUE(c.ok()) << c.error;
+  EXPECT_EQ(c.model.fibers[0].id, 9007199254740993LL);
+  EXPECT_EQ(c.model.fibers[1].id, -5);
+  EXPECT_EQ(c.model.fibers[0].bundle, -3);
+  EXPECT_EQ(c.model.fibers[1].bundle, 2147483647);
 }
