@@ -6,6 +6,7 @@
 #include "FiberProgress.h"
 #include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
+#include "PLI/OptionLimits.h"
 #include "PLI/PLIPipeline.h"
 #include "PLI/TissueExport.h"
 
@@ -72,10 +73,18 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
 }
 
 
-/// Resizes a list property; returns true when the size changed.
-bool ResizeList(std::vector<double>& list, int n)
+/// Resizes a list property; returns true when the size changed. A count outside [0, max] is an
+/// error (it used to allocate n doubles, 16 GB for 2^31 - 1): the list gets max + 1 entries, which
+/// planPLI refuses by name, so the filter fails instead of running with a stale list.
+bool ResizeList(vtkPLISimulation* self, std::vector<double>& list, int n, int max, const char* name)
 {
-  const std::size_t size = static_cast<std::size_t>(std::max(0, n));
+  std::size_t size = static_cast<std::size_t>(std::max(0, n));
+  if (n < 0 || n > max)
+  {
+    vtkErrorWithObjectMacro(self, << "PLISimulation: " << name << " has " << n << " values, at most " << max
+                                  << " are allowed");
+    size = static_cast<std::size_t>(max) + 1;
+  }
   if (list.size() == size)
   {
     return false;
@@ -118,10 +127,10 @@ vtkPLISimulation::~vtkPLISimulation()
 
 //------------------------------------------------------------------------------
 // The list properties: ParaView sets the count first, then every value by index.
-#define FIBERPLI_LIST_ACCESSORS(SetCount, SetValue, GetValue, list)                                 \
+#define FIBERPLI_LIST_ACCESSORS(SetCount, SetValue, GetValue, list, max)                            \
   void vtkPLISimulation::SetCount(int n)                                                          \
   {                                                                                                \
-    if (ResizeList(this->list, n))                                                                 \
+    if (ResizeList(this, this->list, n, max, #list))                                               \
       this->Modified();                                                                            \
   }                                                                                                \
   void vtkPLISimulation::SetValue(int i, double v)                                                \
@@ -130,9 +139,12 @@ vtkPLISimulation::~vtkPLISimulation()
       this->Modified();                                                                            \
   }                                                                                                \
   double vtkPLISimulation::GetValue(int i) const { return ListValue(this->list, i); }
-FIBERPLI_LIST_ACCESSORS(SetNumberOfRotationAngles, SetRotationAngle, GetRotationAngle, RotationAngles)
-FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleValue, TiltAngles)
-FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths)
+FIBERPLI_LIST_ACCESSORS(SetNumberOfRotationAngles, SetRotationAngle, GetRotationAngle, RotationAngles,
+  fiberpli::pli::kMaxRotationAngles)
+FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleValue, TiltAngles,
+  fiberpli::pli::kMaxTiltAngles)
+FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths,
+  fiberpli::pli::kMaxTiltAzimuths)
 #undef FIBERPLI_LIST_ACCESSORS
 
 //------------------------------------------------------------------------------
@@ -207,7 +219,7 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     this->TissueError = fiberpli::pli::tissueBox(plan, this->TissueVolume, box).error;
     if (this->TissueError.empty())
     {
-      this->TissueError = fiberpli::pli::checkTissueBudget(plan, box);
+      this->TissueError = fiberpli::pli::checkTissueBudget(plan, options, box);
     }
   }
   if (this->ExportTissue && this->TissueError.empty())
@@ -343,8 +355,16 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
   vtkInformation* outInfo, vtkImageData* output)
 {
-  int ext[6];
+  int ext[6], whole[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  // A failed run (e.g. a piece above the memory budget) leaves its update extent in the pipeline;
+  // after the image shrank it may reach beyond the new whole extent.
+  for (int a = 0; a < 4; a += 2)
+  {
+    ext[a] = std::max(ext[a], whole[a]);
+    ext[a + 1] = std::min(ext[a + 1], whole[a + 1]);
+  }
   if (ext[0] > ext[1] || ext[2] > ext[3])
   {
     return 1;
@@ -455,11 +475,15 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   }
   this->SetProgressText("Voxelising the tissue");
   fiberpli::pli::TissueVolume tv;
-  st = fiberpli::pli::exportTissue(model, plan, options, piece, tv);
+  st = fiberpli::pli::exportTissue(model, plan, options, piece, tv, fiberpli::MakeProgress(this));
   if (!st.ok())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
+  }
+  if (tv.aborted)
+  {
+    return 1; // aborted: the port stays empty
   }
   const double voxel = plan.lattice.voxel;
   output->SetExtent(static_cast<int>(piece.lo[0]), static_cast<int>(piece.hi[0] - 1), static_cast<int>(piece.lo[1]),

@@ -21,7 +21,7 @@ struct Range
 
 /// Orientation of a set of links: the length-weighted orientation tensor T = Σ l·u·uᵀ / Σ l of the
 /// unit link directions u. c2 = ⟨P2(cos θ)⟩ = (3·λ1 − 1)/2 with λ1 the largest eigenvalue of T
-/// (1: all parallel, 0: isotropic, −1/2: all perpendicular to one axis); direction = its
+/// (in [0, 1] since λ1 >= 1/3: 1 all parallel, 0 isotropic); direction = its
 /// eigenvector, sign chosen so that its largest component is positive. NaN without links.
 struct Orientation
 {

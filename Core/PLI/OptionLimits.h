@@ -21,5 +21,12 @@ constexpr double kMaxNoiseGain = 1000.0;
 /// overflows to inf and the images become NaN.
 constexpr double kMaxBirefringence = 1.0;
 
+/// List lengths of RotationAngles, TiltAngles and TiltAzimuths, and of their product (tilted
+/// views): beyond these the images are not more useful, only larger.
+constexpr int kMaxRotationAngles = 3600;
+constexpr int kMaxTiltAngles = 64;
+constexpr int kMaxTiltAzimuths = 360;
+constexpr int kMaxTiltedViews = 1024;
+
 } // namespace pli
 } // namespace fiberpli

@@ -57,15 +57,15 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
   rotDeg = o.rotationAngles;
   if (rotDeg.empty())
   {
-    if (o.numberOfRotations < 3 || o.numberOfRotations > 3600)
+    if (o.numberOfRotations < 3 || o.numberOfRotations > kMaxRotationAngles)
     {
-      m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, 3600]";
+      m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, " << kMaxRotationAngles << "]";
       return m.str();
     }
     for (int k = 0; k < o.numberOfRotations; ++k)
       rotDeg.push_back(k * 180.0 / o.numberOfRotations);
   }
-  std::string e = checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, 3600);
+  std::string e = checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, kMaxRotationAngles);
   if (!e.empty())
     return e;
   tiltDeg = o.tiltAngles;
@@ -79,15 +79,15 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     if (o.tiltAngle > 0.0)
       tiltDeg.push_back(o.tiltAngle);
   }
-  else if (!(e = checkAngleList("TiltAngles", tiltDeg, 0.0, true, 45.0, 1, 64)).empty())
+  else if (!(e = checkAngleList("TiltAngles", tiltDeg, 0.0, true, 45.0, 1, kMaxTiltAngles)).empty())
     return e;
   azDeg = o.tiltAzimuths.empty() ? std::vector<double>{ 0.0, 90.0, 180.0, 270.0 } : o.tiltAzimuths;
-  e = checkAngleList("TiltAzimuths", azDeg, 0.0, false, 360.0, 1, 360);
+  e = checkAngleList("TiltAzimuths", azDeg, 0.0, false, 360.0, 1, kMaxTiltAzimuths);
   if (!e.empty())
     return e;
-  if (tiltDeg.size() * azDeg.size() > 1024)
+  if (tiltDeg.size() * azDeg.size() > static_cast<std::size_t>(kMaxTiltedViews))
   {
-    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than 1024 views";
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than " << kMaxTiltedViews << " views";
     return m.str();
   }
   return {};
@@ -189,28 +189,7 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
 
-  SimParams sp;
-  sp.rho = plan.rho;
-  sp.threads = o.numberOfThreads;
-  sp.tile = o.tileSize;
-  sp.interp = o.interpolation;
-  const ColumnRange all{ 0, plan.lattice.n[0], 0, plan.lattice.n[1] };
-  plan.estimatedBytes = estimateSimulationBytes(plan.lattice, sp, plan.views, all);
-  // Blur buffers of one view at voxel resolution (x pass, y pass), then the pixel stacks of every
-  // view twice: the Core image and the VTK arrays it is copied into.
-  plan.estimatedBytes += 2.0 * static_cast<double>(all.nx()) * static_cast<double>(all.ny()) * plan.rho.size() * 8.0;
-  plan.estimatedBytes += 2.0 * static_cast<double>(plan.views.size()) * static_cast<double>(plan.pixels[0]) *
-    static_cast<double>(plan.pixels[1]) * plan.rho.size() * 8.0;
-  std::ostringstream what;
-  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x " << plan.lattice.n[1]
-       << " x " << plan.lattice.n[2] << " voxels, " << plan.rho.size() << " polarizer angles and " << plan.views.size()
-       << " views";
-  st.error = checkMemoryBudget(plan.estimatedBytes, what.str());
-  if (!st.ok())
-  {
-    st.error += ": increase VoxelSize or reduce the volume";
-    return st;
-  }
+  plan.estimatedBytes = estimatePieceBytes(plan, o, PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
   double rmin = 0.0;
   bool first = true;
   for (const Fiber& f : model.fibers)
@@ -247,6 +226,24 @@ ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& o, const Pixe
   return binnedVoxels(plan, o, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
 }
 
+double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
+{
+  SimParams sp;
+  sp.rho = plan.rho;
+  sp.threads = o.numberOfThreads;
+  sp.tile = o.tileSize;
+  sp.interp = o.interpolation;
+  const ColumnRange cols = voxelColumnsFor(plan, o, px);
+  double bytes = estimateSimulationBytes(plan.lattice, sp, plan.views, cols);
+  // Blur buffers of one view at voxel resolution (x pass, y pass), then the pixel stacks of every
+  // view twice: the Core image and the VTK arrays it is copied into.
+  const double nrho = static_cast<double>(plan.rho.size());
+  bytes += 2.0 * static_cast<double>(cols.nx()) * static_cast<double>(cols.ny()) * nrho * 8.0;
+  bytes += 2.0 * static_cast<double>(plan.views.size()) * static_cast<double>(px.nx()) *
+    static_cast<double>(px.ny()) * nrho * 8.0;
+  return bytes;
+}
+
 Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
 {
   image = PLIImage();
@@ -266,6 +263,19 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
   }
   image.range = px;
   const ColumnRange cols = voxelColumnsFor(plan, o, px);
+  // The budget of this piece only: under MPI every rank holds its own columns and pixels, so a
+  // job too large for one process may fit split over the ranks.
+  std::ostringstream what;
+  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x "
+       << plan.lattice.n[1] << " x " << plan.lattice.n[2] << " voxels (" << cols.nx() << " x " << cols.ny()
+       << " voxel columns in this piece), " << plan.rho.size() << " polarizer angles and " << plan.views.size()
+       << " views";
+  st.error = checkMemoryBudget(estimatePieceBytes(plan, o, px), what.str());
+  if (!st.ok())
+  {
+    st.error += ": increase VoxelSize, reduce the volume or split the image over more MPI ranks";
+    return st;
+  }
 
   SimParams sp;
   sp.wavelengthNm = o.wavelength;

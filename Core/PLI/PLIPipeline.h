@@ -64,10 +64,12 @@ struct PLIPlan
   double tiltInTissue = 0.0;        ///< largest θ_t, radians (0 = untilted only)
   double sigmaVox = 0.0;            ///< blur σ in voxels
   std::size_t bytesPerVoxel = 0;    ///< tile buffer bytes per voxel (§3.4)
-  double estimatedBytes = 0.0;      ///< whole-image run
+  double estimatedBytes = 0.0;      ///< whole-image run in one process (estimatePieceBytes)
 };
 
-/// Validates options (before any allocation) and derives the plan. Errors name the property.
+/// Validates options (before any allocation) and derives the plan. Errors name the property. The
+/// memory budget is not checked here but by runPLI for the piece it computes (estimatePieceBytes):
+/// the whole image may exceed one process's budget when it is split over MPI ranks.
 Status planPLI(const FiberModel& model, const PLIOptions& options, PLIPlan& plan);
 
 struct PLIImage
@@ -86,8 +88,12 @@ struct PLIImage
 /// that bin into it, grown by the blur radius (§6.2 step 3).
 ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
 
+/// Bytes runPLI plans for the pixel range `pixels`: tile buffers and voxel stacks of its columns
+/// (with the blur halo), the blur buffers, and its pixel stacks twice (Core and VTK arrays).
+double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
+
 /// Runs the simulation for `pixels` (an empty range = the whole image). status.error set on
-/// invalid options; the model must be valid (validateModel).
+/// invalid options or when the piece exceeds the memory budget; the model must be valid (validateModel).
 Status runPLI(const FiberModel& model, const PLIOptions& options, PixelRange pixels, PLIImage& image,
   const ProgressFn& progress = {});
 

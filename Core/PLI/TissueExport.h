@@ -6,6 +6,7 @@
 
 #include "Model/FiberModel.h"
 #include "PLI/PLIPipeline.h"
+#include "Util/Progress.h"
 
 #include <cstdint>
 #include <string>
@@ -28,24 +29,26 @@ struct VoxelBox
 /// axis = the whole lattice. Errors: NaN, min > max on some axes only, no voxel centre inside.
 Status tissueBox(const PLIPlan& plan, const double box[6], VoxelBox& out);
 
-/// Bytes exportTissue allocates for the box (block buffer and output arrays).
-double tissueExportBytes(const PLIPlan& plan, const VoxelBox& box);
+/// Bytes exportTissue allocates for the box (one tile buffer and the output arrays).
+double tissueExportBytes(const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box);
 
 /// "" when the box fits the memory budget, else the message naming TissueVolume and the fix.
-std::string checkTissueBudget(const PLIPlan& plan, const VoxelBox& box);
+std::string checkTissueBudget(const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box);
 
 struct TissueVolume
 {
   VoxelBox box;
   std::vector<std::int32_t> label; ///< per voxel, x fastest, then y, then z; 0 = embedding medium
   std::vector<float> axis;         ///< 3 per voxel, unit or (0, 0, 0) where there is no axis
+  bool aborted = false;            ///< progress returned false: the arrays are empty
 };
 
 /// Voxelises `box` of the plan (from planPLI) like the simulation. Refuses boxes above the memory
 /// budget (checkMemoryBudget) before allocating. Labels are 1 + b·L + l for layer l of bundle
-/// slot b (plan.tissue: sorted bundle ids, L = maxLayers()).
+/// slot b (plan.tissue: sorted bundle ids, L = maxLayers()). progress is called between column
+/// tiles of options.tileSize; when it returns false the export stops with out.aborted set.
 Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box,
-  TissueVolume& out);
+  TissueVolume& out, const ProgressFn& progress = {});
 
 } // namespace pli
 } // namespace fiberpli

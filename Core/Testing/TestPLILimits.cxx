@@ -189,13 +189,44 @@ TEST(PLILimits, BirefringenceAboveOneIsRefused)
 TEST(PLILimits, SimulationSizeFollowsTheMemoryBudget)
 {
   PLIOptions o = smallOptions();
-  PLIPlan plan;
+  PLIImage img;
   {
     fiberpli::testing::MemoryLimitGuard limit("64K");
-    const Status st = planPLI(oneFiber(), o, plan);
+    const Status st = runPLI(oneFiber(), o, PixelRange{}, img);
     EXPECT_NE(st.error.find("VoxelSize"), std::string::npos) << st.error;
     EXPECT_NE(st.error.find("memory budget"), std::string::npos) << st.error;
   }
   fiberpli::testing::MemoryLimitGuard limit("64M");
-  EXPECT_TRUE(planPLI(oneFiber(), o, plan).ok());
+  EXPECT_TRUE(runPLI(oneFiber(), o, PixelRange{}, img).ok());
+}
+
+// The budget is per piece: a whole image above it is refused, but its quarter (one MPI rank's
+// piece of a split) runs and equals the crop of the whole image computed without the limit.
+TEST(PLILimits, MemoryBudgetIsCheckedPerPiece)
+{
+  PLIOptions o = smallOptions();
+  const double voi[6] = { -8, 8, -8, 8, -2, 2 };
+  std::copy(voi, voi + 6, o.volumeOfInterest);
+  PLIPlan plan;
+  ASSERT_TRUE(planPLI(oneFiber(), o, plan).ok());
+  const PixelRange whole{ 0, plan.pixels[0], 0, plan.pixels[1] };
+  const PixelRange quarter{ 0, plan.pixels[0] / 2, 0, plan.pixels[1] / 2 };
+  const double wholeBytes = estimatePieceBytes(plan, o, whole);
+  const double pieceBytes = estimatePieceBytes(plan, o, quarter);
+  ASSERT_LT(1.5 * pieceBytes, wholeBytes);
+  EXPECT_EQ(plan.estimatedBytes, wholeBytes);
+  PLIImage full;
+  ASSERT_TRUE(runPLI(oneFiber(), o, whole, full).ok());
+  const std::string between = std::to_string(static_cast<long long>(std::sqrt(wholeBytes * pieceBytes)));
+  fiberpli::testing::MemoryLimitGuard limit(between.c_str());
+  EXPECT_TRUE(planPLI(oneFiber(), o, plan).ok()); // planning never refuses a job that may be split
+  PLIImage img;
+  const Status refused = runPLI(oneFiber(), o, whole, img);
+  EXPECT_NE(refused.error.find("memory budget"), std::string::npos) << refused.error;
+  EXPECT_NE(refused.error.find("MPI"), std::string::npos) << refused.error;
+  ASSERT_TRUE(runPLI(oneFiber(), o, quarter, img).ok());
+  for (std::int64_t j = quarter.j0; j < quarter.j1; ++j)
+    for (std::int64_t i = quarter.i0; i < quarter.i1; ++i)
+      for (int k = 0; k < img.views[0].nrho; ++k)
+        ASSERT_EQ(img.views[0].at(i, j, k), full.views[0].at(i, j, k)) << i << " " << j << " " << k;
 }

@@ -100,10 +100,17 @@ Expected bruteForce(const FiberModel& m, const Vec3& c)
 }
 } // namespace
 
-TEST(PLITissueExport, SubVolumeEqualsBruteForceVoxelisation)
+// Tile size 64: the box is one tile; 5: many tiles not dividing the box (the export's own tiling).
+class PLITissueExportTiles : public ::testing::TestWithParam<int>
+{
+};
+INSTANTIATE_TEST_SUITE_P(TileSizes, PLITissueExportTiles, ::testing::Values(64, 5));
+
+TEST_P(PLITissueExportTiles, SubVolumeEqualsBruteForceVoxelisation)
 {
   const FiberModel m = model();
-  const PLIOptions o = options();
+  PLIOptions o = options();
+  o.tileSize = GetParam();
   PLIPlan plan;
   const Status ps = planPLI(m, o, plan);
   ASSERT_TRUE(ps.ok()) << ps.error;
@@ -167,4 +174,35 @@ TEST(PLITissueExport, BoxesAreCheckedAndOversizedOnesRefused)
   EXPECT_NE(st.error.find("memory budget"), std::string::npos) << st.error;
   EXPECT_TRUE(tv.label.empty());
   EXPECT_TRUE(exportTissue(m, plan, o, vb, tv).ok());
+}
+
+// Progress between tiles, increasing from 0 to 1; returning false stops the export (empty arrays).
+TEST(PLITissueExport, ReportsProgressAndAborts)
+{
+  const FiberModel m = model();
+  PLIOptions o = options();
+  o.tileSize = 4;
+  PLIPlan plan;
+  ASSERT_TRUE(planPLI(m, o, plan).ok());
+  const double whole[6] = { 1, -1, 1, -1, 1, -1 };
+  VoxelBox vb;
+  ASSERT_TRUE(tissueBox(plan, whole, vb).ok());
+  std::vector<double> seen;
+  TissueVolume tv;
+  ASSERT_TRUE(exportTissue(m, plan, o, vb, tv, [&seen](double f) {
+    seen.push_back(f);
+    return true;
+  }).ok());
+  EXPECT_FALSE(tv.aborted);
+  ASSERT_EQ(seen.size(), 6u * 6u + 1u); // 24 x 24 columns in tiles of 4, then 1
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  for (std::size_t a = 1; a < seen.size(); ++a)
+    EXPECT_GT(seen[a], seen[a - 1]);
+  int calls = 0;
+  ASSERT_TRUE(exportTissue(m, plan, o, vb, tv, [&calls](double) { return ++calls < 3; }).ok());
+  EXPECT_TRUE(tv.aborted);
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(tv.label.empty());
+  EXPECT_TRUE(tv.axis.empty());
 }

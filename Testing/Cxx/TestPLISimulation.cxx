@@ -375,6 +375,19 @@ TEST(PLISimulation, BadInputIsReportedAndRecovers)
   sim->SetLayers("1 -0.001 0 p");
   expectGood();
 
+  // A list count far beyond the Core maximum: an error at once (no 16 GB resize) and at run time.
+  catcher->Clear();
+  sim->SetNumberOfRotationAngles(2147483647);
+  EXPECT_NE(catcher->Errors.find("RotationAngles has 2147483647 values, at most 3600"), std::string::npos)
+    << catcher->Errors;
+  EXPECT_EQ(sim->GetNumberOfRotationAngles(), 3601);
+  expectError("RotationAngles");
+  sim->SetNumberOfTiltAzimuths(-1);
+  EXPECT_NE(catcher->Errors.find("TiltAzimuths has -1 values"), std::string::npos) << catcher->Errors;
+  sim->SetNumberOfTiltAzimuths(0);
+  sim->SetNumberOfRotationAngles(0);
+  expectGood();
+
   auto noRadius = MakeFibers({ { { -20, 0, 0, 1 }, { 20, 0, 0, 1 } } }, false);
   sim->SetInputData(noRadius);
   expectError("radius");

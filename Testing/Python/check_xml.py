@@ -23,7 +23,8 @@ def header_of(cls):
 
 for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
     root = ET.parse(xml_path).getroot()
-    for proxy in [p for group in root.iter("ProxyGroup") for p in group]:
+    # Views (the FOM legend view) are ParaView classes with no properties of their own.
+    for proxy in [p for group in root.iter("ProxyGroup") if group.get("name") != "views" for p in group]:
         if proxy.get("class") is None:
             continue
         name = proxy.get("name")
