@@ -17,8 +17,9 @@
  * distances by the minimum-image convention, fibers closed through the cell stay closed, and the
  * output carries `periodic_cell`. `volume_fraction`: fiber volume Σ π ρ² · link length over the
  * periodic cell's volume, or without a cell over the model's bounding box. The result is identical for any NumberOfThreads.
- * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …,
- * MaxSteps) so that ParaView's animation shows the fibers separating; the solve runs once and is
+ * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …, and the
+ * step the solve ended at, at most MaximumSnapshots of them) so that ParaView's animation shows
+ * the fibers separating; the solve runs once, when the pipeline information is updated, and is
  * cached.
  */
 #ifndef vtkFiberCollisionSolver_h
@@ -101,7 +102,9 @@ public:
 
   ///@{
   /**
-   * Expose the solver's steps as time steps (0, TimeStepInterval, …, MaxSteps). Default is off.
+   * Expose the solver's steps as time steps: 0, TimeStepInterval, 2 × TimeStepInterval, … and the
+   * step the solve ended at, which is the last time step (the solve runs when the pipeline
+   * information is updated, once, and is cached). Default is off.
    */
   vtkSetMacro(IterationsAsTime, bool);
   vtkGetMacro(IterationsAsTime, bool);
@@ -116,11 +119,23 @@ public:
   vtkGetMacro(TimeStepInterval, int);
   ///@}
 
+  ///@{
+  /**
+   * Most states kept for IterationsAsTime, >= 2 (memory: each is a copy of the fibers). When a
+   * solve takes more, every second one is dropped and the interval doubles, so the time steps
+   * still cover the whole solve. Default is 100.
+   */
+  vtkSetMacro(MaximumSnapshots, int);
+  vtkGetMacro(MaximumSnapshots, int);
+  ///@}
+
 protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Solves `input` unless the cache holds its solve: 1 solved, 0 error (reported), -1 aborted.
+  int Solve(vtkPolyData* input);
 
 private:
   vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
@@ -135,6 +150,7 @@ private:
   double InitialRadiusScale = 0.0;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
+  int MaximumSnapshots = 100;
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   std::unique_ptr<Snapshots> Cache;

@@ -6,6 +6,7 @@
 #include "Util/Threads.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -851,6 +852,12 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   constexpr int kGrowthStall = 2000;
 
   bool changed = false;
+  double done = 0.0;                                    // progress reported so far
+  auto lastReport = std::chrono::steady_clock::now();
+  const auto stepShareAfter = [&o](int steps) {
+    return o.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / o.maxSteps) : 1.0;
+  };
+  std::size_t firstCount = static_cast<std::size_t>(-1); // collisions at the first detection
   bool first = true;
   int sinceImprovement = 0;
   bool warnedStall = false;
@@ -872,6 +879,25 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
       return result;
     }
     const std::size_t count = s.pairs_.size();
+    // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
+    // first step (log scale: the last few take most of the steps), never going back.
+    if (firstCount == static_cast<std::size_t>(-1))
+    {
+      firstCount = count;
+    }
+    const double stepShare = stepShareAfter(result.steps);
+    const double resolved = firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /
+        std::log1p(static_cast<double>(firstCount)) : 1.0;
+    done = std::max(done, std::min(0.99, std::max(stepShare, resolved)));
+    // A step of a large model takes long: then abort is also checked between its two long phases
+    // (shape control and detection; moves), so a stop request waits for at most one phase.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - lastReport > std::chrono::milliseconds(250) && (lastReport = now, !reportProgress(progress, std::max(done, 1e-9))))
+    {
+      result.aborted = true;
+      changed = !s.shapeWithinLimits();
+      break;
+    }
     const bool growing = s.scale_ < 1.0; // count is at the size before any growth below
     if (growing && s.maxOverlap() <= growthTolerance * s.scale_)
     {
@@ -922,9 +948,8 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     {
       observer(result.steps, model);
     }
-    const double fraction =
-      o.maxSteps > 0 ? static_cast<double>(result.steps) / static_cast<double>(o.maxSteps) : 1.0;
-    if (!reportProgress(progress, fraction))
+    lastReport = std::chrono::steady_clock::now();
+    if (!reportProgress(progress, std::max(done, stepShareAfter(result.steps))))
     {
       result.aborted = true;
       if (!s.detect()) // collisions must describe the geometry that is returned
