@@ -87,7 +87,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     return e;
   if (tiltDeg.size() * azDeg.size() > static_cast<std::size_t>(kMaxTiltedViews))
   {
-    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than " << kMaxTiltedViews << " views";
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than "
+      << kMaxTiltedViews << " views";
     return m.str();
   }
   return {};
