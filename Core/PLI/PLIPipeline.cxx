@@ -86,7 +86,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     return e;
   if (tiltDeg.size() * azDeg.size() > static_cast<std::size_t>(kMaxTiltedViews))
   {
-    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than " << kMaxTiltedViews << " views";
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than "
+      << kMaxTiltedViews << " views";
     return m.str();
   }
   return {};
@@ -181,7 +182,9 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     plan.tiltInTissue = std::max(plan.tiltInTissue, inTissue);
     for (double az : azDeg)
     {
-      plan.views.push_back(View{ inTissue, az * kDeg });
+      // The tilted sensor sees the section foreshortened by cos τ of the stage tilt (in air).
+      const double stretch = o.tiltedSensor ? 1.0 / std::cos(tilt * kDeg) : 1.0;
+      plan.views.push_back(View{ inTissue, az * kDeg, stretch });
       plan.tiltDeg.push_back(inTissue / kDeg);
       plan.azimuthDeg.push_back(az);
     }
