@@ -21,10 +21,10 @@ public:
   MidpointHash(const std::vector<Vec3>& mid, double reach, const PeriodicCell& cell)
     : cell_(cell)
   {
-    if (cell.enabled)
+    if (cell.enabled())
     {
       lo_ = cell.lo;
-      extent_ = cell.size();
+      extent_ = cell.edge();
     }
     else
     {
@@ -87,7 +87,7 @@ public:
     for (int i = 0; i < 3; ++i)
     {
       std::int64_t k = n_[i] > 1 ? static_cast<std::int64_t>(std::floor((p[i] - lo_[i]) / edge_[i])) : 0;
-      if (cell_.enabled)
+      if (cell_.enabled())
       {
         k = ((k % n_[i]) + n_[i]) % n_[i];
       }
@@ -112,7 +112,7 @@ public:
           bool inside = true;
           for (std::size_t i = 0; i < 3; ++i)
           {
-            if (cell_.enabled)
+            if (cell_.enabled())
             {
               k[i] = ((k[i] % n_[i]) + n_[i]) % n_[i];
             }

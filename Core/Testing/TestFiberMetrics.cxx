@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace fiberpli;
 
@@ -52,7 +53,6 @@ FiberModel lattice(double x0, double x1, double r)
 PeriodicCell cube(double half)
 {
   PeriodicCell c;
-  c.enabled = true;
   c.lo = { -half, -half, -half };
   c.hi = { half, half, half };
   return c;
@@ -357,6 +357,13 @@ TEST(FiberMetrics, BadOptionsAreErrorsNamingTheValue)
   MetricsOptions badCell = box(5, 0.1);
   badCell.cell = cube(5);
   badCell.cell.hi.x = badCell.cell.lo.x;
+  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  // The cell is checked whatever is measured: a zero-width or infinite cell would give a wrong
+  // collision count and a NaN gap.
+  badCell.volumeFraction = false;
+  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  badCell.cell = cube(5);
+  badCell.cell.hi.y = std::numeric_limits<double>::infinity();
   EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
   // A planar model has no volume in its point bounds: the message says to set Box.
   FiberModel planar;
