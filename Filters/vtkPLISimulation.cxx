@@ -67,6 +67,7 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
   o.opticalSigma = self->GetOpticalSigma();
   o.noiseGain = self->GetNoiseGain();
   o.refractiveIndex = self->GetRefractiveIndex();
+  o.tiltedSensor = self->GetTiltedSensor() != 0;
   o.numberOfThreads = self->GetNumberOfThreads();
   return o;
 }
@@ -433,6 +434,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   fiberpli::AddFieldDoubles(output, "section_thickness", { plan.thickness });
   fiberpli::AddFieldDoubles(output, "wavelength", { options.wavelength });
   fiberpli::AddFieldInt(output, "tilt_convention", static_cast<int>(options.tiltConvention));
+  fiberpli::AddFieldInt(output, "tilted_sensor", options.tiltedSensor ? 1 : 0);
   fiberpli::AddFieldDoubles(output, "noise_gain", { options.noiseGain });
   fiberpli::AddFieldInt(output, "empty_section", image.emptySection ? 1 : 0);
   fiberpli::AddFieldDoubles(output, "voxel_size", { options.voxelSize });
@@ -555,5 +557,6 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpticalSigma: " << this->OpticalSigma << "\n";
   os << indent << "NoiseGain: " << this->NoiseGain << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
+  os << indent << "TiltedSensor: " << this->TiltedSensor << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -288,6 +288,19 @@ public:
 
   ///@{
   /**
+   * Tilted views on the tilted sensor's grid (1) instead of registered onto the sample's pixel grid
+   * (0, default): the camera looks at the tilted section along the tilted optical axis, so the
+   * section appears foreshortened by cos(tilt) along the tilt azimuth about the image centre, same
+   * PixelSize on the sensor (pli-simulation.md §4.6). Written to the field data tilted_sensor;
+   * PLIAnalysis refuses the tilt fit on such views.
+   */
+  vtkSetClampMacro(TiltedSensor, int, 0, 1);
+  vtkGetMacro(TiltedSensor, int);
+  vtkBooleanMacro(TiltedSensor, int);
+  ///@}
+
+  ///@{
+  /**
    * Number of threads, 0 = all cores. Default is 0.
    */
   vtkSetMacro(NumberOfThreads, int);
@@ -330,6 +343,7 @@ private:
   double OpticalSigma = 0.71;
   double NoiseGain = 3.0;
   double RefractiveIndex = 1.0;
+  int TiltedSensor = 0;
   int NumberOfThreads = 0;
 
   int ExportTissue = 0;

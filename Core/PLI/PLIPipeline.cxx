@@ -181,7 +181,9 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     plan.tiltInTissue = std::max(plan.tiltInTissue, inTissue);
     for (double az : azDeg)
     {
-      plan.views.push_back(View{ inTissue, az * kDeg });
+      // The tilted sensor sees the section foreshortened by cos τ of the stage tilt (in air).
+      const double stretch = o.tiltedSensor ? 1.0 / std::cos(tilt * kDeg) : 1.0;
+      plan.views.push_back(View{ inTissue, az * kDeg, stretch });
       plan.tiltDeg.push_back(inTissue / kDeg);
       plan.azimuthDeg.push_back(az);
     }

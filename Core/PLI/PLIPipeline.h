@@ -40,6 +40,7 @@ struct PLIOptions
   double opticalSigma = 0.71;    ///< output pixels, 0 = off
   double noiseGain = 3.0;        ///< 0 = off, else >= 1
   double refractiveIndex = 1.0;
+  bool tiltedSensor = false;     ///< tilted views on the tilted sensor's grid (§4.6), not registered
   int numberOfThreads = 0;
   // Core-only switches (§2.1).
   TiltConvention tiltConvention = TiltConvention::Physical;

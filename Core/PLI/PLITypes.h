@@ -89,10 +89,15 @@ struct Lattice
 };
 
 /// One view (§4.3): in-tissue tilt θ_t and tilt azimuth φ_t, radians. (0, 0) = untilted.
+/// stretch: 1 = the image registered onto the sample's pixel grid (every ray crosses the section's
+/// mid-plane at its column centre); s > 1 = the tilted sensor (§4.6): the ray of sensor column m
+/// crosses the mid-plane at c + s·((m − c)·d)·d + (m − c − ((m − c)·d)·d), c the image centre and d
+/// the tilt azimuth, s = 1/cos τ of the stage tilt τ.
 struct View
 {
   double theta = 0.0;
   double phi = 0.0;
+  double stretch = 1.0;
 };
 
 /// Light propagation settings (§4, §6.1).

@@ -1,4 +1,4 @@
-// Rotation and mirror covariance of every PLI view. Turning the fiber model by 90°, 180° or 270°
+// Rotation and mirror covariance of every PLI view, registered and on the tilted sensor. Turning the fiber model by 90°, 180° or 270°
 // about z, or mirroring it in x or y, must turn every image of every view exactly:
 //  - pixel (i, j) goes where the transform puts the voxel centre;
 //  - the view of tilt azimuth φ_t goes to the azimuth of the transformed beam direction;
@@ -89,12 +89,15 @@ int wrap(int k, int n) { return ((k % n) + n) % n; }
 TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
 {
   const FiberModel base = model();
+  for (bool sensor : { false, true })
   for (TiltConvention conv : { TiltConvention::Physical, TiltConvention::FastPLI })
     for (Interp interp : { Interp::NN, Interp::Lerp, Interp::Slerp })
       for (double step : { 0.5, 1.0, 2.0 })
       {
         PLIOptions o = options(interp, step);
         o.tiltConvention = conv; // both conventions rotate the axes with the stage, either way round
+        // The tilted sensor stretches about the image centre along the azimuth: both turn with T.
+        o.tiltedSensor = sensor;
         const PLIImage ref = run(base, o);
         ASSERT_EQ(ref.views.size(), 5u);
         const std::int64_t n = ref.views[0].nx; // square image
@@ -134,7 +137,7 @@ TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
               }
             ASSERT_LT(worst, 1e-12 * o.lightIntensity)
               << T.name << " view " << v << " -> " << w << " interpolation " << static_cast<int>(interp)
-              << " StepSize " << step << " convention " << static_cast<int>(conv);
+              << " StepSize " << step << " convention " << static_cast<int>(conv) << " TiltedSensor " << sensor;
           }
         }
       }
