@@ -119,8 +119,8 @@ ColumnRange RayMarcher::midPlaneColumns(const ColumnRange& cols) const
         hi[a] = std::max(hi[a], p[a]);
       }
     }
-  return ColumnRange{ static_cast<std::int64_t>(std::floor(lo[0])) - 1, static_cast<std::int64_t>(std::floor(hi[0])) + 2,
-    static_cast<std::int64_t>(std::floor(lo[1])) - 1, static_cast<std::int64_t>(std::floor(hi[1])) + 2 };
+  auto column = [](double x) { return static_cast<std::int64_t>(std::floor(x)); };
+  return ColumnRange{ column(lo[0]) - 1, column(hi[0]) + 2, column(lo[1]) - 1, column(hi[1]) + 2 };
 }
 
 void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j, const ColumnRange& clamp, double* out) const

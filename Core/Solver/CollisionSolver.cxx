@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -1046,7 +1047,10 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   if (cell.enabled())
   {
     PeriodicPairs finder;
-    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow);
+    if (!finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow).empty())
+    {
+      return std::numeric_limits<std::size_t>::max(); // cell too small for its links: no count
+    }
   }
   else
   {
