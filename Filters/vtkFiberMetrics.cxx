@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <new>
 #include <string>
 
 vtkStandardNewMacro(vtkFiberMetrics);
@@ -139,7 +140,17 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   }
 
   this->SetProgressText("Measuring fibers");
-  const fiberpli::MetricsResult m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+  fiberpli::MetricsResult m;
+  try
+  {
+    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+  }
+  catch (const std::bad_alloc&) // no Core exception may leave through VTK (it would end pvpython)
+  {
+    vtkErrorMacro(<< "FiberMetrics: out of memory measuring " << in.model.fibers.size()
+                  << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
+    return 0;
+  }
   if (!m.error.empty())
   {
     vtkErrorMacro(<< "FiberMetrics: " << m.error);

@@ -270,6 +270,23 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
   }
 }
 
+TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
+{
+  // Four 1 µm links 1e7 µm apart on every axis: extent/reach ~1e7 per axis would be 1e21 cells.
+  FiberModel m;
+  const double far = 1e7;
+  for (const Vec3& a : { Vec3{ 0, 0, 0 }, Vec3{ far, 0, 0 }, Vec3{ 0, far, 0 }, Vec3{ 0, 0, far } })
+  {
+    m.fibers.push_back(straight(a, a + Vec3{ 1, 0, 0 }, 1, 0.5, m.fibers.size()));
+  }
+  MetricsOptions o;
+  o.volumeFraction = false;
+  const MetricsResult res = computeFiberMetrics(m, o, nullptr);
+  EXPECT_TRUE(res.error.empty()) << res.error;
+  EXPECT_EQ(res.pairs.collisions, 0);
+  EXPECT_DOUBLE_EQ(res.pairs.minGap, far - 2.0); // link 0 ends at x = 1, link 1 starts at 1e7
+}
+
 TEST(FiberMetrics, SegmentDistanceMatchesSampling)
 {
   RandomStream rng(3);
