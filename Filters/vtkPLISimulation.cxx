@@ -5,6 +5,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Model/PeriodicTiling.h"
+#include "Model/VolumeOfInterest.h"
 #include "PLI/OptionLimits.h"
 #include "PLI/PLIPipeline.h"
 #include "PLI/TissueExport.h"
@@ -72,10 +73,6 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
   return o;
 }
 
-bool IsBoundsSentinel(const double* voi)
-{
-  return voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
-}
 
 /// Resizes a list property; returns true when the size changed. A count outside [0, max] is an
 /// error (it used to allocate n doubles, 16 GB for 2^31 - 1): the list gets max + 1 entries, which
@@ -175,7 +172,7 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
 
   const fiberpli::pli::PLIOptions options = MakeOptions(this);
   fiberpli::FiberModel model;
-  if (IsBoundsSentinel(options.volumeOfInterest))
+  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     // The image size depends on the fibers' bounds, which only the input data knows: bring the
     // input up to date now with the request RequestUpdateExtent makes anyway (piece 0 of 1), so the
@@ -326,7 +323,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     vtkWarningMacro(<< in.warning);
   }
   fiberpli::pli::PLIOptions options = MakeOptions(this);
-  if (IsBoundsSentinel(options.volumeOfInterest))
+  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
   }

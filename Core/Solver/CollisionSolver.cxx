@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -1046,7 +1047,10 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   if (cell.enabled())
   {
     PeriodicPairs finder;
-    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow);
+    if (!finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow).empty())
+    {
+      return std::numeric_limits<std::size_t>::max(); // cell too small for its links: no count
+    }
   }
   else
   {
@@ -1058,13 +1062,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
 
 bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
 {
-  if (!cell.enabled() || fiber.size() < 2)
-  {
-    return false;
-  }
-  const Vec3 e = cell.edge();
-  const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
-  return cell.isLatticeVector(fiber.points.back() - fiber.points.front(), tol, closure);
+  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)

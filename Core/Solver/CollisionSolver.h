@@ -112,7 +112,8 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
-/// solver's pair limit it stops counting and returns a number larger than that limit.
+/// solver's pair limit it stops counting and returns a number larger than that limit; in a
+/// periodic cell too small for its links (PeriodicPairs refuses it) it returns SIZE_MAX, never 0.
 std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
   const PeriodicCell& periodicCell = PeriodicCell{});
 

@@ -150,6 +150,7 @@ TEST(GroundTruth, UniformSlabS6)
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 2;
+  o.histogram = true;
   ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(10, 10), maps), "");
   ASSERT_EQ(maps.nx, 10);
   ASSERT_EQ(maps.ny, 10);
@@ -181,6 +182,7 @@ TEST(GroundTruth, VerticalFiberS8a)
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;
+    o.histogram = true;
     ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(3, 5), maps), "");
     int count = 0;
     for (int y = 0; y < 5; ++y)
@@ -271,6 +273,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   GroundTruthOptions o1, o2;
   o1.threads = 1;
   o2.threads = 2;
+  o1.histogram = o2.histogram = true;
   GroundTruthMaps a, b, part;
   ASSERT_EQ(computeGroundTruth(m, lat, o1, wholeImage(10, 10), a), "");
   ASSERT_EQ(computeGroundTruth(m, lat, o2, wholeImage(10, 10), b), "");

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace fiberpli;
 
@@ -411,4 +412,24 @@ TEST(PeriodicTiling, CopiesExactlyTheTranslatesThatReachTheBox)
   const double taller[6] = { -15, 15, -5.2, 5.2, -1, 1 };
   ASSERT_EQ(tileModel(n, cell, taller), "");
   EXPECT_EQ(n.fibers.size(), 10u);
+}
+
+TEST(PeriodicDetection, ACellTooSmallForItsLinksIsNeverCountedAsOverlapFree)
+{
+  // Two crossing straight fibers whose 4 µm links reach further than half the 5 µm cell: the
+  // minimum image is ambiguous, so no count is possible — and 0 ("no overlaps") would be a lie.
+  FiberModel m;
+  Fiber a;
+  a.points = { Vec3{ -2, 0, 0 }, Vec3{ 2, 0, 0 } };
+  a.radii = { 0.8, 0.8 };
+  a.id = 0;
+  Fiber b = a;
+  b.points = { Vec3{ 0, -2, 0 }, Vec3{ 0, 2, 0 } };
+  b.id = 1;
+  m.fibers = { a, b };
+  PeriodicCell cell;
+  cell.lo = Vec3{ -2.5, -2.5, -2.5 };
+  cell.hi = Vec3{ 2.5, 2.5, 2.5 };
+  EXPECT_EQ(countCollisions(m, 0.0, 1), 1u); // open space: they cross
+  EXPECT_EQ(countCollisions(m, 0.0, 1, cell), std::numeric_limits<std::size_t>::max());
 }
