@@ -21,10 +21,10 @@ public:
   MidpointHash(const std::vector<Vec3>& mid, double reach, const PeriodicCell& cell)
     : cell_(cell)
   {
-    if (cell.enabled)
+    if (cell.enabled())
     {
       lo_ = cell.lo;
-      extent_ = cell.size();
+      extent_ = cell.edge();
     }
     else
     {
@@ -39,17 +39,22 @@ public:
       }
       extent_ = hi_ - lo_;
     }
-    // Never more cells than capsules: a coarser grid is still correct, only slower.
+    // Never more cells than capsules: a coarser grid is still correct, only slower. Counted in
+    // double with each axis capped at the capsule count, so that spread-out models (extent/reach
+    // ~1e7 per axis) cannot overflow the product.
+    const double cap = static_cast<double>(mid.size()) + 1.0;
     double edge = reach;
     for (;;)
     {
-      std::int64_t total = 1;
+      double total = 1.0;
       for (int i = 0; i < 3; ++i)
       {
-        n_[i] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(extent_[i] / edge)));
-        total *= n_[i];
+        double k = std::floor(extent_[i] / edge);
+        k = k >= 1.0 ? std::min(k, cap) : 1.0; // also NaN (zero extent and reach) → 1
+        n_[i] = static_cast<std::int64_t>(k);
+        total *= k;
       }
-      if (total <= static_cast<std::int64_t>(mid.size()) + 1)
+      if (total <= cap)
       {
         break;
       }
@@ -87,7 +92,7 @@ public:
     for (int i = 0; i < 3; ++i)
     {
       std::int64_t k = n_[i] > 1 ? static_cast<std::int64_t>(std::floor((p[i] - lo_[i]) / edge_[i])) : 0;
-      if (cell_.enabled)
+      if (cell_.enabled())
       {
         k = ((k % n_[i]) + n_[i]) % n_[i];
       }
@@ -112,7 +117,7 @@ public:
           bool inside = true;
           for (std::size_t i = 0; i < 3; ++i)
           {
-            if (cell_.enabled)
+            if (cell_.enabled())
             {
               k[i] = ((k[i] % n_[i]) + n_[i]) % n_[i];
             }

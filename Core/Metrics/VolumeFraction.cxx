@@ -31,7 +31,7 @@ class CapsuleCells
 {
 public:
   CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi, const PeriodicCell& cell)
-    : set_(set), lo_(lo), periodic_(cell.enabled)
+    : set_(set), lo_(lo), periodic_(cell.enabled())
   {
     const Vec3 size = hi - lo;
     double reach = 0.0;
@@ -210,7 +210,7 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
     {
       bmin[i] = std::min(cap.a[i], cap.b[i]) - grow;
       bmax[i] = std::max(cap.a[i], cap.b[i]) + grow;
-      outside = outside || (!cell.enabled && (bmax[i] < lo[i] || bmin[i] > hi[i]));
+      outside = outside || (!cell.enabled() && (bmax[i] < lo[i] || bmin[i] > hi[i]));
     }
     if (outside)
     {
@@ -218,14 +218,14 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
     }
     std::int64_t k0 = static_cast<std::int64_t>(std::floor((bmin.z - lo.z) / result.voxel.z));
     std::int64_t k1 = static_cast<std::int64_t>(std::floor((bmax.z - lo.z) / result.voxel.z));
-    if (!cell.enabled)
+    if (!cell.enabled())
     {
       k0 = std::max<std::int64_t>(k0, 0);
       k1 = std::min<std::int64_t>(k1, n[2] - 1);
     }
     for (std::int64_t k = k0; k <= k1; ++k)
     {
-      const std::int64_t layer = cell.enabled ? wrap(k, n[2]) : k;
+      const std::int64_t layer = cell.enabled() ? wrap(k, n[2]) : k;
       // Shifting the capsule by −(whole periods) puts unwrapped layer k onto the stored layer.
       const double periods = static_cast<double>((k - layer) / n[2]);
       layers[static_cast<std::size_t>(layer)].push_back({ c, Vec3{ 0.0, 0.0, -periods * size.z } });
@@ -264,7 +264,7 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
           {
             range[i][0] = static_cast<std::int64_t>(std::floor((std::min(a[i], b[i]) - grow - lo[i]) / result.voxel[i]));
             range[i][1] = static_cast<std::int64_t>(std::floor((std::max(a[i], b[i]) + grow - lo[i]) / result.voxel[i]));
-            if (!cell.enabled)
+            if (!cell.enabled())
             {
               range[i][0] = std::max<std::int64_t>(range[i][0], 0);
               range[i][1] = std::min<std::int64_t>(range[i][1], n[i] - 1);
@@ -273,11 +273,11 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
           for (std::int64_t j = range[1][0]; j <= range[1][1]; ++j)
           {
             const double y = lo.y + (static_cast<double>(j) + 0.5) * result.voxel.y;
-            const std::int64_t row = (cell.enabled ? wrap(j, n[1]) : j) * n[0];
+            const std::int64_t row = (cell.enabled() ? wrap(j, n[1]) : j) * n[0];
             for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
             {
               const Vec3 centre{ lo.x + (static_cast<double>(i) + 0.5) * result.voxel.x, y, z };
-              double& s = plane[static_cast<std::size_t>(row + (cell.enabled ? wrap(i, n[0]) : i))];
+              double& s = plane[static_cast<std::size_t>(row + (cell.enabled() ? wrap(i, n[0]) : i))];
               s = std::min(s, pointSegmentDistance(centre, a, b) - cap.r);
             }
           }

@@ -1062,13 +1062,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
 
 bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
 {
-  if (!cell.enabled() || fiber.size() < 2)
-  {
-    return false;
-  }
-  const Vec3 e = cell.edge();
-  const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
-  return cell.isLatticeVector(fiber.points.back() - fiber.points.front(), tol, closure);
+  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)

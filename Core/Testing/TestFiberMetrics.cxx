@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace fiberpli;
 
@@ -52,7 +53,6 @@ FiberModel lattice(double x0, double x1, double r)
 PeriodicCell cube(double half)
 {
   PeriodicCell c;
-  c.enabled = true;
   c.lo = { -half, -half, -half };
   c.hi = { half, half, half };
   return c;
@@ -270,6 +270,23 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
   }
 }
 
+TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
+{
+  // Four 1 µm links 1e7 µm apart on every axis: extent/reach ~1e7 per axis would be 1e21 cells.
+  FiberModel m;
+  const double far = 1e7;
+  for (const Vec3& a : { Vec3{ 0, 0, 0 }, Vec3{ far, 0, 0 }, Vec3{ 0, far, 0 }, Vec3{ 0, 0, far } })
+  {
+    m.fibers.push_back(straight(a, a + Vec3{ 1, 0, 0 }, 1, 0.5, m.fibers.size()));
+  }
+  MetricsOptions o;
+  o.volumeFraction = false;
+  const MetricsResult res = computeFiberMetrics(m, o, nullptr);
+  EXPECT_TRUE(res.error.empty()) << res.error;
+  EXPECT_EQ(res.pairs.collisions, 0);
+  EXPECT_DOUBLE_EQ(res.pairs.minGap, far - 2.0); // link 0 ends at x = 1, link 1 starts at 1e7
+}
+
 TEST(FiberMetrics, SegmentDistanceMatchesSampling)
 {
   RandomStream rng(3);
@@ -357,6 +374,13 @@ TEST(FiberMetrics, BadOptionsAreErrorsNamingTheValue)
   MetricsOptions badCell = box(5, 0.1);
   badCell.cell = cube(5);
   badCell.cell.hi.x = badCell.cell.lo.x;
+  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  // The cell is checked whatever is measured: a zero-width or infinite cell would give a wrong
+  // collision count and a NaN gap.
+  badCell.volumeFraction = false;
+  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  badCell.cell = cube(5);
+  badCell.cell.hi.y = std::numeric_limits<double>::infinity();
   EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
   // A planar model has no volume in its point bounds: the message says to set Box.
   FiberModel planar;
