@@ -2,11 +2,11 @@
  * @class   vtkFiberCollisionSolver
  * @brief   moves fibers until no two capsules overlap, keeping segment lengths and curvature in limits
  *
- * Input and output: fiber polydata (api.md). Every link (p_i, p_i+1) is a capsule of radius
+ * Input and output: fiber polydata (docs/data-contract.md §1). Every link (p_i, p_i+1) is a capsule of radius
  * max(r_i, r_i+1); the solver repeats detection (uniform grid), separation of colliding links and
  * shape control (links kept in [2/3, 4/3] · SegmentLength by splitting and merging, points whose
  * circumradius is below MinCurvatureRadius flattened) until no pair overlaps or MaxSteps is
- * reached (collision-solver.md). The output has the same fibers in the same order with their
+ * reached (docs/solver.md §6). The output has the same fibers in the same order with their
  * fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
  * (floating-point arrays interpolated, integer arrays copied from the point before). Field data:
  * `steps`, `collisions` (pairs still overlapping), `solved` (1/0), `max_overlap` (µm),
@@ -67,7 +67,7 @@ public:
   ///@{
   /**
    * Smallest push of a colliding pair per step, relative to the smallest radius of its points
-   * (the paper's value at r = 0.8 µm, collision-solver.md §4.1), 0 to 1. Default is 0.025.
+   * (the paper's value at r = 0.8 µm, docs/solver.md §4.1), 0 to 1. Default is 0.025.
    */
   vtkSetMacro(SeparationSpeed, double);
   vtkGetMacro(SeparationSpeed, double);
@@ -93,8 +93,8 @@ public:
   ///@{
   /**
    * Radius growth: capsules start at this fraction of their radii and grow to full size while
-   * solving (dense targets); 1 = off, 0 = automatic (on in a periodic cell). The output always
-   * has the input radii. Default is 0.
+   * solving (dense targets); 1 = off; 0 = automatic, which is off for now (measured slower and
+   * looser than plain pushing, bench/README.md). The output always has the input radii. Default 0.
    */
   vtkSetMacro(InitialRadiusScale, double);
   vtkGetMacro(InitialRadiusScale, double);

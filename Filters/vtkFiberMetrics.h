@@ -3,7 +3,7 @@
  * @brief   measures a fiber model: volume fraction, collisions and smallest gap, orientation order,
  *          tortuosity, link length and radius ranges
  *
- * Input: fiber polydata (api.md). The measurements are the Core's (Core/Metrics), independent of
+ * Input: fiber polydata (docs/data-contract.md §1). The measurements are the Core's (Core/Metrics), independent of
  * the solver's own collision code.
  *
  * Output port 0: the input fibers passed through, with cell arrays `fiber_length` and

@@ -26,7 +26,7 @@ namespace
 {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-/// The simulation lattice and image geometry of PLISimulation (pli-simulation.md §3.1, §5.2;
+/// The simulation lattice and image geometry of PLISimulation (docs/pli-simulation.md §3.1, §5.2;
 /// Core/PLI/PLIPipeline.cxx planPLI) for these properties. Returns "" or an error naming the property.
 std::string PlanGrid(const fiberpli::FiberModel& model, const double voiIn[6], double voxel, double pixel,
   fiberpli::TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny, double origin[3])

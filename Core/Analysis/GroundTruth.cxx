@@ -24,7 +24,7 @@ struct Link
   std::int64_t g;      // global link index: bundle order, fiber order, link order
 };
 
-// pli-simulation.md §5.2: the one integer function shared with the simulator.
+// docs/pli-simulation.md §5.2: the one integer function shared with the simulator.
 std::int64_t pixelOf(std::int64_t voxel, double scale)
 {
   return static_cast<std::int64_t>(std::floor((static_cast<double>(voxel) + 0.5) * scale));

@@ -1,8 +1,8 @@
 /// GroundTruth: orientation ground truth of a fiber model on the pixel grid of a simulated
-/// section (pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
-/// unit(Q − P) of the link that owns them (nearest capsule axis, pli-simulation.md §3.3: key
+/// section (docs/pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
+/// unit(Q − P) of the link that owns them (nearest capsule axis, docs/pli-simulation.md §3.3: key
 /// (d², g), ties to the larger global link index g, label > 0 iff d² <= S²·r² with the Linear
-/// radius taper); voxels bin into pixels as in pli-simulation.md §5.2 (voxel i → pixel
+/// radius taper); voxels bin into pixels as in docs/pli-simulation.md §5.2 (voxel i → pixel
 /// floor((i + ½)·VoxelSize/PixelSize), all z), and each pixel summarises its voxels with
 /// TruthAccumulator (tensor mean axis, anisotropy, tissue fraction, histogram).
 #pragma once
@@ -19,7 +19,7 @@
 namespace fiberpli
 {
 
-/// The voxel lattice of the simulation (pli-simulation.md §3.1) and its CCD pixel size (§5.2).
+/// The voxel lattice of the simulation (docs/pli-simulation.md §3.1) and its CCD pixel size (§5.2).
 struct TruthLattice
 {
   Vec3 origin;                    ///< µm, lower corner of voxel (0, 0, 0)

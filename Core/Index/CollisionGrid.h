@@ -1,5 +1,5 @@
 /// CollisionGrid: broad + narrow phase collision detection of capsule links on a uniform grid
-/// (collision-solver.md §3). Memory is linear in the number of links plus the pairs found, and the
+/// (docs/solver.md §3). Memory is linear in the number of links plus the pairs found, and the
 /// caller bounds the pairs (maxPairs); the pair list is sorted by (a, b) and therefore identical for
 /// any thread count or schedule.
 #pragma once
@@ -13,7 +13,7 @@
 namespace fiberpli
 {
 
-/// One link of a fiber as the detector sees it (collision-solver.md §1). Its index in the link
+/// One link of a fiber as the detector sees it (docs/solver.md §1). Its index in the link
 /// array is its global link id (fibers in input order, links in fiber order).
 struct CapsuleLink
 {
@@ -41,7 +41,7 @@ struct CapsulePair
   Vec3 direction;        ///< unit push direction of a (b moves opposite), §2.4 when δ ≈ 0
 };
 
-/// Same-fiber rule of collision-solver.md §3.1 [ours]: true when the pair is never tested
+/// Same-fiber rule of docs/solver.md §3.1 [ours]: true when the pair is never tested
 /// (other fiber: false; adjacent links; arc length strictly between them < 2·(ρa + ρb); on a
 /// closed fiber the shorter way round counts, so its first and last links are adjacent).
 bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);

@@ -1,4 +1,4 @@
-/// FiberModel: the data contract of api.md in Core form. A fiber is an ordered polyline of points
+/// FiberModel: the data contract (docs/data-contract.md §1) in Core form. A fiber is an ordered polyline of points
 /// with one radius per point (µm); a link (p_i, p_i+1) is a capsule of radius max(r_i, r_i+1).
 /// Every fiber carries its fiber id and the bundle (population) it belongs to.
 #pragma once

@@ -1,4 +1,4 @@
-/// PLIPipeline: the whole `PLISimulation` filter in Core form (pli-simulation.md §2.1, §6.2, §7):
+/// PLIPipeline: the whole `PLISimulation` filter in Core form (docs/pli-simulation.md §2.1, §6.2, §7):
 /// options → lattice, layers and views → simulate the voxel columns a pixel range needs (with
 /// the blur halo) → blur → bin → noise. Any pixel sub-rectangle gives exactly the crop of the
 /// whole image, so the VTK filter can split the plane over MPI ranks without communication.

@@ -1,4 +1,4 @@
-/// PLITypes: the value types shared by the 3D-PLI simulation (pli-simulation.md §7.1). Units: µm,
+/// PLITypes: the value types shared by the 3D-PLI simulation (docs/pli-simulation.md §7.2). Units: µm,
 /// nm for the wavelength, 1/mm for absorption, radians inside Core.
 #pragma once
 
@@ -29,7 +29,7 @@ struct Layer
   AxisModel model = AxisModel::Parallel;
 };
 
-/// Local radius of a link (§3.3): Linear taper (fastPLI) or the api.md capsule radius max(rP, rQ).
+/// Local radius of a link (§3.3): Linear taper (fastPLI) or the collision capsule radius max(rP, rQ).
 enum class RadiusModel : std::uint8_t
 {
   Linear,

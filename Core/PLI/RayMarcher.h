@@ -1,5 +1,5 @@
 /// RayMarcher: Müller-matrix light propagation of one ray through a voxelised block
-/// (pli-simulation.md §4.2–§4.4): Stokes vectors for every polarizer angle, tilted views, step
+/// (docs/pli-simulation.md §4.2–§4.4): Stokes vectors for every polarizer angle, tilted views, step
 /// rule, label-aware axis sampling.
 #pragma once
 

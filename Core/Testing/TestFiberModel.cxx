@@ -1,4 +1,4 @@
-// Data contract checks of the Core fiber model (api.md).
+// Data contract checks of the Core fiber model (docs/data-contract.md §3).
 #include "Model/FiberModel.h"
 #include "Util/Random.h"
 

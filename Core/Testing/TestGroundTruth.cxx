@@ -1,4 +1,4 @@
-// Orientation ground truth from fibers (pli-analysis.md §5, test vector A-7), the orientation
+// Orientation ground truth from fibers (docs/pli-analysis.md §5, test vector A-7), the orientation
 // tensor, axis canonicalisation and the comparison metrics.
 #include "Analysis/Axis.h"
 #include "Analysis/GroundTruth.h"
@@ -238,7 +238,7 @@ TEST(GroundTruth, PartialCoverageFraction)
   EXPECT_DOUBLE_EQ(maps.fraction[0], (4 + 4) * 2 / 40.0);
 }
 
-// §3.3 tie rule: a voxel equidistant from two links belongs to the larger global link index,
+// docs/pli-simulation.md §3.3 tie rule: a voxel equidistant from two links belongs to the larger global link index,
 // and links are numbered bundle by bundle, not in the order of the fiber list.
 TEST(GroundTruth, TiesGoToTheLaterLinkInBundleOrder)
 {

@@ -1,4 +1,4 @@
-// The tilted-sensor mode (pli-simulation.md §4.6): the tilted camera sees the section foreshortened
+// The tilted-sensor mode (docs/pli-simulation.md §4.6): the tilted camera sees the section foreshortened
 // by cos τ along the tilt azimuth, about the image centre. Checked against closed forms on an
 // absorbing band (its optical-density integral and centroid along the tilt direction shrink by
 // cos τ, across it nothing changes), bit-for-bit identity where the mode must change nothing, and

@@ -199,7 +199,7 @@ TEST(PeriodicCube, BadInputIsRejectedNamingTheProperty)
 
 TEST(PeriodicCube, OpenCubeDrawsAreUnchanged)
 {
-  // Periodic off, constant radius: the draws of tissue-models.md §6.1 (position, then the
+  // Periodic off, constant radius: the draws of docs/tissue-models.md §6.1 (position, then the
   // displacements), so existing cubes keep their bytes.
   CubeOptions o;
   o.numberOfFibers = 3;

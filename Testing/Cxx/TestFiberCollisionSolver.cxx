@@ -24,7 +24,7 @@ double Field(vtkPolyData* pd, const char* name)
   return a ? a->GetTuple1(0) : -1.0;
 }
 
-/// Two fibers crossing at 90°, axes 0.5 µm apart, radius 1 (collision-solver.md §10 test 14).
+/// Two fibers crossing at 90°, axes 0.5 µm apart, radius 1 (docs/solver.md §10 test 14).
 vtkSmartPointer<vtkPolyData> CrossingPair()
 {
   std::vector<std::array<double, 4>> a, b;

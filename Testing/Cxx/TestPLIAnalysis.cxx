@@ -1,6 +1,6 @@
 // PLIAnalysis, FiberOrientationMap and FiberOrientationGroundTruth against closed forms
-// (pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)), independent of
-// the simulator; tilted views from the rotation of pli-simulation.md §4.3.
+// (docs/pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)), independent of
+// the simulator; tilted views from the rotation of docs/pli-simulation.md §4.3.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
 #include "vtkFiberOrientationGroundTruth.h"

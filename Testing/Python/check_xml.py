@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks the server-manager XML (architecture.md §6c): every proxy and property is documented,
+"""Checks the server-manager XML (docs/architecture.md §6 (c)): every proxy and property is documented,
 every command= setter exists in the class header, and every proxy has a pvpython-safe label."""
 import glob
 import os
