@@ -236,8 +236,18 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
     const Vec3 d{ rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1) };
     m.fibers.push_back(straight(a, a + d, 1, rng.uniform(0.1, 0.3), i));
   }
+  // Then with three long links (reach 2.65 > twice any short one: oversize, outside the hash).
+  for (bool longLinks : { false, true })
   for (bool periodic : { false, true })
   {
+    if (longLinks && m.fibers.size() == 300)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const Vec3 a{ rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5) };
+        m.fibers.push_back(straight(a, a + Vec3{ 4.8, 0.3 * i, 0 }, 1, 0.25, 300 + i));
+      }
+    }
     PeriodicCell cell = periodic ? cube(5) : PeriodicCell{};
     const CapsuleSet set = makeCapsules(m, cell);
     std::int64_t collisions = 0;
@@ -267,8 +277,8 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
     for (int threads : { 1, 2 })
     {
       const PairResult res = compareCapsulePairs(set, cell, threads, nullptr);
-      EXPECT_EQ(res.collisions, collisions) << periodic << threads;
-      EXPECT_EQ(res.minGap, minGap) << periodic << threads;
+      EXPECT_EQ(res.collisions, collisions) << periodic << threads << longLinks;
+      EXPECT_EQ(res.minGap, minGap) << periodic << threads << longLinks;
     }
   }
 }
