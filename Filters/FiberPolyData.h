@@ -1,6 +1,6 @@
 /**
  * @class   FiberPolyData
- * @brief   THE conversion layer between fiber vtkPolyData (api.md data contract) and fiberpli::FiberModel
+ * @brief   THE conversion layer between fiber vtkPolyData (docs/data-contract.md §3) and fiberpli::FiberModel
  *
  * Every FiberPLI filter, reader and writer converts fibers through this class only, so the data
  * contract is validated in one place:

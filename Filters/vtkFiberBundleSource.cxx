@@ -58,7 +58,7 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
 
-  // It has an input port, so it runs on every rank: only piece 0 makes fibers (architecture §7.9).
+  // It has an input port, so it runs on every rank: only piece 0 makes fibers (docs/architecture.md §7).
   if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
   {

@@ -2,12 +2,12 @@
  * @class   vtkFiberBundleSource
  * @brief   bundles of fibers along a trajectory: cylinder, input polyline, crossing, Y-shape, chiasm
  *
- * Output: fiber polydata (api.md): one polyline per fiber, point array `radius` (µm), cell arrays
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
  * `fiber_id` (0..N-1) and `bundle_id`, field data `segment_length` and `seed`. The cross-section
  * of a bundle of radius BundleRadius is filled with fibers on a triangular grid of spacing
  * FiberSpacing (or NumberOfFibers random seeds) and carried along the trajectory by a
  * rotation-minimising frame; every point is then displaced uniformly within ±Displacement per axis
- * (tissue-models.md §2, §5, §6). Shapes and bundle ids:
+ * (docs/tissue-models.md §2, §5, §6). Shapes and bundle ids:
  * - Cylinder: along x from (-Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
  * - Trajectory: along the first line cell of the optional input port 0 (`Trajectory`); an optional
  *   point array `scale` (> 0) widens or narrows the bundle per point; bundle 0.

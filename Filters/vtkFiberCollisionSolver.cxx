@@ -4,6 +4,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Solver/CollisionSolver.h"
+#include "Util/MemoryBudget.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -21,16 +22,18 @@
 
 vtkStandardNewMacro(vtkFiberCollisionSolver);
 
-// The states of one solve at steps 0, Δ, 2Δ, …, kept while input and properties are unchanged.
+// The states of one solve at steps 0, Δ, 2Δ, … (at most MaximumSnapshots: when full, every
+// second one is dropped and Δ doubles), then the final state; kept while input and properties
+// are unchanged.
 struct vtkFiberCollisionSolver::Snapshots
 {
   vtkMTimeType inputTime = 0;
   vtkMTimeType filterTime = 0;
   std::vector<fiberpli::FiberModel> models; // snapshots, then the final state (result.sourceIndex)
+  std::vector<int> steps;                   // the solver step of each entry of models
   fiberpli::CollisionSolverResult result;
   fiberpli::FiberConversion input;
 };
-
 
 //------------------------------------------------------------------------------
 // Construct with SegmentLength 2, MinCurvatureRadius 0 (off), MaxSteps 10000, SeparationSpeed
@@ -39,23 +42,153 @@ vtkFiberCollisionSolver::vtkFiberCollisionSolver() = default;
 vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (this->IterationsAsTime) // otherwise the input's own time steps pass through
+  if (!this->IterationsAsTime) // the input's own time steps pass through
   {
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-    std::vector<double> times;
-    for (int step = 0; step < this->MaxSteps; step += this->TimeStepInterval)
-    {
-      times.push_back(step);
-    }
-    times.push_back(this->MaxSteps);
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-    const double range[2] = { 0.0, static_cast<double>(this->MaxSteps) };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+    return 1;
   }
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  // The time steps are the steps the solve really took, so the solve runs here (once, cached):
+  // the timeline then ends where the solve ended instead of at MaxSteps.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  fiberpli::FiberPolyData::UpdateAllFibers(this, inInfo);
+  vtkPolyData* input = inInfo ? vtkPolyData::GetData(inInfo) : nullptr;
+  if (fiberpli::FiberPolyData::IsEmpty(input))
+  {
+    return 1;
+  }
+  if (this->Solve(input) != 1)
+  {
+    return 1; // an error is reported (again by RequestData, which makes no output); or aborted
+  }
+  std::vector<double> times(this->Cache->steps.begin(), this->Cache->steps.end());
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
+{
+  if (this->Cache && this->Cache->inputTime == input->GetMTime() && this->Cache->filterTime == this->GetMTime())
+  {
+    return 1;
+  }
+  this->Cache.reset();
+  if (!fiberpli::CheckThreads(this, "FiberCollisionSolver", this->NumberOfThreads))
+  {
+    return 0;
+  }
+  if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
+  {
+    vtkErrorMacro(<< "FiberCollisionSolver: TimeStepInterval is " << this->TimeStepInterval
+                  << " and MaximumSnapshots " << this->MaximumSnapshots << ", must be >= 1 and >= 2");
+    return 0;
+  }
+  auto cache = std::make_unique<Snapshots>();
+  cache->inputTime = input->GetMTime();
+  cache->filterTime = this->GetMTime();
+  cache->input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
+  if (!cache->input.ok())
+  {
+    vtkErrorMacro(<< cache->input.error);
+    return 0;
+  }
+  if (!cache->input.warning.empty())
+  {
+    vtkWarningMacro(<< cache->input.warning);
+  }
+
+  fiberpli::CollisionSolverOptions options;
+  std::string cellError;
+  if (!fiberpli::ReadPeriodicCell(input, options.periodicCell, cellError) && !cellError.empty())
+  {
+    vtkErrorMacro(<< "FiberCollisionSolver: input field data " << cellError);
+    return 0;
+  }
+  options.initialRadiusScale = this->InitialRadiusScale;
+  options.segmentLength = this->SegmentLength;
+  options.minCurvatureRadius = this->MinCurvatureRadius;
+  options.maxSteps = this->MaxSteps;
+  options.separationSpeed = this->SeparationSpeed;
+  options.minimumGap = this->MinimumGap;
+  options.numberOfThreads = this->NumberOfThreads;
+
+  fiberpli::FiberModel model = cache->input.model;
+  fiberpli::StepObserver observer;
+  int interval = this->TimeStepInterval;
+  if (this->IterationsAsTime)
+  {
+    // Snapshots of twice the input's points each (splitting) must fit the memory budget.
+    const double bytes = 2.0 * static_cast<double>(this->MaximumSnapshots) *
+      static_cast<double>(model.numberOfPoints()) * (sizeof(fiberpli::Vec3) + sizeof(double));
+    const std::string problem = fiberpli::checkMemoryBudget(bytes,
+      "MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + " of " +
+        std::to_string(model.numberOfPoints()) + " points");
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "FiberCollisionSolver: " << problem << "; lower MaximumSnapshots");
+      return 0;
+    }
+    cache->models.push_back(model);
+    cache->steps.push_back(0);
+    const std::size_t maxSnapshots = static_cast<std::size_t>(this->MaximumSnapshots);
+    observer = [&cache, &interval, maxSnapshots](int step, const fiberpli::FiberModel& current) {
+      if (step % interval != 0)
+      {
+        return;
+      }
+      if (cache->models.size() == maxSnapshots) // full: keep steps 0, 2Δ, 4Δ, … and double Δ
+      {
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < cache->models.size(); i += 2, ++kept)
+        {
+          cache->models[kept] = std::move(cache->models[i]);
+          cache->steps[kept] = cache->steps[i];
+        }
+        cache->models.resize(kept);
+        cache->steps.resize(kept);
+        interval *= 2;
+        if (step % interval != 0)
+        {
+          return;
+        }
+      }
+      cache->models.push_back(current);
+      cache->steps.push_back(step);
+    };
+  }
+  this->SetProgressText("Solving collisions");
+  // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
+  cache->result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
+  if (!cache->result.error.empty())
+  {
+    vtkErrorMacro(<< "FiberCollisionSolver: " << cache->result.error);
+    return 0;
+  }
+  if (cache->result.aborted)
+  {
+    return -1; // partial results are never passed on
+  }
+  // One warning per kind; an unsolved model is among them, naming the collisions left.
+  for (const std::string& w : cache->result.warnings)
+  {
+    vtkWarningMacro(<< "FiberCollisionSolver: " << w);
+  }
+  // The final state replaces a snapshot of its own step (taken before the last shape control).
+  if (!cache->steps.empty() && cache->steps.back() == cache->result.steps)
+  {
+    cache->models.pop_back();
+    cache->steps.pop_back();
+  }
+  cache->models.push_back(std::move(model));
+  cache->steps.push_back(cache->result.steps);
+  this->Cache = std::move(cache);
   return 1;
 }
 
@@ -63,10 +196,6 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
 int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  if (!fiberpli::CheckThreads(this, "FiberCollisionSolver", this->NumberOfThreads))
-  {
-    return 0;
-  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -76,92 +205,24 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     return 1;
   }
 
-  const bool cached = this->Cache && this->Cache->inputTime == input->GetMTime() &&
-    this->Cache->filterTime == this->GetMTime();
-  if (!cached)
+  const int solved = this->Solve(input);
+  if (solved != 1)
   {
-    auto cache = std::make_unique<Snapshots>();
-    cache->inputTime = input->GetMTime();
-    cache->filterTime = this->GetMTime();
-    cache->input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
-    if (!cache->input.ok())
-    {
-      vtkErrorMacro(<< cache->input.error);
-      this->Cache.reset();
-      return 0;
-    }
-    if (!cache->input.warning.empty())
-    {
-      vtkWarningMacro(<< cache->input.warning);
-    }
-
-    fiberpli::CollisionSolverOptions options;
-    std::string cellError;
-    if (!fiberpli::ReadPeriodicCell(input, options.periodicCell, cellError) && !cellError.empty())
-    {
-      vtkErrorMacro(<< "FiberCollisionSolver: input field data " << cellError);
-      this->Cache.reset();
-      return 0;
-    }
-    options.initialRadiusScale = this->InitialRadiusScale;
-    options.segmentLength = this->SegmentLength;
-    options.minCurvatureRadius = this->MinCurvatureRadius;
-    options.maxSteps = this->MaxSteps;
-    options.separationSpeed = this->SeparationSpeed;
-    options.minimumGap = this->MinimumGap;
-    options.numberOfThreads = this->NumberOfThreads;
-
-    fiberpli::FiberModel model = cache->input.model;
-    fiberpli::StepObserver observer;
-    if (this->IterationsAsTime)
-    {
-      cache->models.push_back(model);
-      const int interval = this->TimeStepInterval;
-      observer = [&cache, interval](int step, const fiberpli::FiberModel& current) {
-        if (step % interval == 0)
-        {
-          cache->models.push_back(current);
-        }
-      };
-    }
-    this->SetProgressText("Solving collisions");
-    // Progress: the solver reports the fraction of MaxSteps; it usually ends much earlier.
-    cache->result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
-    if (!cache->result.error.empty())
-    {
-      vtkErrorMacro(<< "FiberCollisionSolver: " << cache->result.error);
-      this->Cache.reset();
-      return 0;
-    }
-    if (cache->result.aborted)
-    {
-      this->Cache.reset();
-      return 1; // partial results are never passed on
-    }
-    // One warning per kind; an unsolved model is among them, naming the collisions left.
-    for (const std::string& w : cache->result.warnings)
-    {
-      vtkWarningMacro(<< "FiberCollisionSolver: " << w);
-    }
-    cache->models.push_back(std::move(model));
-    this->Cache = std::move(cache);
+    return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
   }
 
-  // Which state to show: the last one, or the snapshot of the requested time step.
+  // Which state to show: the last one, or the last snapshot at or before the requested time.
   std::size_t shown = this->Cache->models.size() - 1;
-  int shownStep = this->Cache->result.steps;
   if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
   {
     const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    const auto k = static_cast<std::size_t>(std::max(0.0, std::floor(t / this->TimeStepInterval + 1e-9)));
-    // A snapshot strictly before the solver's last step; from there on, the final state.
-    if (k < shown && static_cast<int>(k) * this->TimeStepInterval < this->Cache->result.steps)
-    {
-      shown = k;
-      shownStep = static_cast<int>(k) * this->TimeStepInterval;
-    }
+    const std::vector<int>& steps = this->Cache->steps;
+    const auto after = std::upper_bound(steps.begin(), steps.end(), t + 1e-9,
+      [](double time, int step) { return time < static_cast<double>(step); });
+    shown = after == steps.begin() ? 0 : static_cast<std::size_t>(after - steps.begin()) - 1;
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   }
+  const int shownStep = this->IterationsAsTime ? this->Cache->steps[shown] : this->Cache->result.steps;
 
   const fiberpli::FiberModel& model = this->Cache->models[shown];
   const fiberpli::CollisionSolverResult& r = this->Cache->result;
@@ -222,4 +283,5 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
+  os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";
 }

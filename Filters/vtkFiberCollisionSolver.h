@@ -2,11 +2,11 @@
  * @class   vtkFiberCollisionSolver
  * @brief   moves fibers until no two capsules overlap, keeping segment lengths and curvature in limits
  *
- * Input and output: fiber polydata (api.md). Every link (p_i, p_i+1) is a capsule of radius
+ * Input and output: fiber polydata (docs/data-contract.md §1). Every link (p_i, p_i+1) is a capsule of radius
  * max(r_i, r_i+1); the solver repeats detection (uniform grid), separation of colliding links and
  * shape control (links kept in [2/3, 4/3] · SegmentLength by splitting and merging, points whose
  * circumradius is below MinCurvatureRadius flattened) until no pair overlaps or MaxSteps is
- * reached (collision-solver.md). The output has the same fibers in the same order with their
+ * reached (docs/solver.md §6). The output has the same fibers in the same order with their
  * fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
  * (floating-point arrays interpolated, integer arrays copied from the point before). Field data:
  * `steps`, `collisions` (pairs still overlapping), `solved` (1/0), `max_overlap` (µm),
@@ -17,8 +17,9 @@
  * distances by the minimum-image convention, fibers closed through the cell stay closed, and the
  * output carries `periodic_cell`. `volume_fraction`: fiber volume Σ π ρ² · link length over the
  * periodic cell's volume, or without a cell over the model's bounding box. The result is identical for any NumberOfThreads.
- * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …,
- * MaxSteps) so that ParaView's animation shows the fibers separating; the solve runs once and is
+ * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …, and the
+ * step the solve ended at, at most MaximumSnapshots of them) so that ParaView's animation shows
+ * the fibers separating; the solve runs once, when the pipeline information is updated, and is
  * cached.
  */
 #ifndef vtkFiberCollisionSolver_h
@@ -66,7 +67,7 @@ public:
   ///@{
   /**
    * Smallest push of a colliding pair per step, relative to the smallest radius of its points
-   * (the paper's value at r = 0.8 µm, collision-solver.md §4.1), 0 to 1. Default is 0.025.
+   * (the paper's value at r = 0.8 µm, docs/solver.md §4.1), 0 to 1. Default is 0.025.
    */
   vtkSetMacro(SeparationSpeed, double);
   vtkGetMacro(SeparationSpeed, double);
@@ -92,8 +93,8 @@ public:
   ///@{
   /**
    * Radius growth: capsules start at this fraction of their radii and grow to full size while
-   * solving (dense targets); 1 = off, 0 = automatic (on in a periodic cell). The output always
-   * has the input radii. Default is 0.
+   * solving (dense targets); 1 = off; 0 = automatic, which is off for now (measured slower and
+   * looser than plain pushing, bench/README.md). The output always has the input radii. Default 0.
    */
   vtkSetMacro(InitialRadiusScale, double);
   vtkGetMacro(InitialRadiusScale, double);
@@ -101,7 +102,9 @@ public:
 
   ///@{
   /**
-   * Expose the solver's steps as time steps (0, TimeStepInterval, …, MaxSteps). Default is off.
+   * Expose the solver's steps as time steps: 0, TimeStepInterval, 2 × TimeStepInterval, … and the
+   * step the solve ended at, which is the last time step (the solve runs when the pipeline
+   * information is updated, once, and is cached). Default is off.
    */
   vtkSetMacro(IterationsAsTime, bool);
   vtkGetMacro(IterationsAsTime, bool);
@@ -116,11 +119,23 @@ public:
   vtkGetMacro(TimeStepInterval, int);
   ///@}
 
+  ///@{
+  /**
+   * Most states kept for IterationsAsTime, >= 2 (memory: each is a copy of the fibers). When a
+   * solve takes more, every second one is dropped and the interval doubles, so the time steps
+   * still cover the whole solve. Default is 100.
+   */
+  vtkSetMacro(MaximumSnapshots, int);
+  vtkGetMacro(MaximumSnapshots, int);
+  ///@}
+
 protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Solves `input` unless the cache holds its solve: 1 solved, 0 error (reported), -1 aborted.
+  int Solve(vtkPolyData* input);
 
 private:
   vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
@@ -135,6 +150,7 @@ private:
   double InitialRadiusScale = 0.0;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
+  int MaximumSnapshots = 100;
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   std::unique_ptr<Snapshots> Cache;

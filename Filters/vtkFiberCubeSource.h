@@ -2,11 +2,11 @@
  * @class   vtkFiberCubeSource
  * @brief   the paper's cube benchmark: straight fibers of 1–3 perpendicular populations in a cube
  *
- * Output: fiber polydata (api.md): one polyline per fiber, point array `radius` (µm), cell arrays
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
  * `fiber_id` and `bundle_id` (= population: 0 along x, 1 along y, 2 along z), field data
  * `segment_length` and `seed`. Fibers are placed uniformly at random in a cube of edge
  * EdgeLength centred at the origin; points are SegmentLength apart and each is displaced uniformly
- * within ±Displacement per axis (tissue-models.md §6.1). With Periodic on, the cube is a periodic
+ * within ±Displacement per axis (docs/tissue-models.md §6.1). With Periodic on, the cube is a periodic
  * cell: every fiber spans exactly one period along its axis and is closed through the faces (its
  * last point is its first point shifted by EdgeLength; points unwrapped), and the cell goes to
  * field data `periodic_cell` (xmin xmax ymin ymax zmin zmax) for the solver and the writers.

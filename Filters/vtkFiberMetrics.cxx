@@ -1,5 +1,6 @@
 #include "vtkFiberMetrics.h"
 
+#include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Metrics/FiberMetrics.h"
@@ -22,6 +23,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <new>
 #include <string>
 
 vtkStandardNewMacro(vtkFiberMetrics);
@@ -56,30 +58,6 @@ void AddCount(vtkTable* table, const char* name, long long value)
   a->SetName(name);
   a->InsertNextValue(static_cast<vtkIdType>(value));
   table->AddColumn(a);
-}
-
-/// The periodic cell from the `periodic_cell` field data (6 values), or an error.
-std::string ReadPeriodicCell(vtkPolyData* input, fiberpli::PeriodicCell& cell)
-{
-  vtkDataArray* a = input->GetFieldData() ? input->GetFieldData()->GetArray("periodic_cell") : nullptr;
-  if (!a)
-  {
-    return "";
-  }
-  if (a->GetNumberOfValues() != 6)
-  {
-    return "FiberMetrics: the periodic_cell field data has " + std::to_string(a->GetNumberOfValues()) +
-      " values, 6 expected (xmin xmax ymin ymax zmin zmax)";
-  }
-  double v[6];
-  for (int i = 0; i < 6; ++i)
-  {
-    v[i] = a->GetComponent(i / a->GetNumberOfComponents(), i % a->GetNumberOfComponents());
-  }
-  cell.enabled = true;
-  cell.lo = { v[0], v[2], v[4] };
-  cell.hi = { v[1], v[3], v[5] };
-  return "";
 }
 
 } // namespace
@@ -153,16 +131,26 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   options.numberOfThreads = this->NumberOfThreads;
   if (this->UsePeriodicCell)
   {
-    const std::string error = ReadPeriodicCell(input, options.cell);
-    if (!error.empty())
+    std::string error;
+    if (!fiberpli::ReadPeriodicCell(input, options.cell, error) && !error.empty())
     {
-      vtkErrorMacro(<< error);
+      vtkErrorMacro(<< "FiberMetrics: " << error);
       return 0;
     }
   }
 
   this->SetProgressText("Measuring fibers");
-  const fiberpli::MetricsResult m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+  fiberpli::MetricsResult m;
+  try
+  {
+    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+  }
+  catch (const std::bad_alloc&) // no Core exception may leave through VTK (it would end pvpython)
+  {
+    vtkErrorMacro(<< "FiberMetrics: out of memory measuring " << in.model.fibers.size()
+                  << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
+    return 0;
+  }
   if (!m.error.empty())
   {
     vtkErrorMacro(<< "FiberMetrics: " << m.error);
@@ -203,7 +191,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   summary->AddColumn(method);
   AddValue(summary, "voxel_size", { m.volume.voxel.x, m.volume.voxel.y, m.volume.voxel.z });
   AddValue(summary, "box", { m.regionLo.x, m.regionHi.x, m.regionLo.y, m.regionHi.y, m.regionLo.z, m.regionHi.z });
-  AddCount(summary, "periodic", options.cell.enabled ? 1 : 0);
+  AddCount(summary, "periodic", options.cell.enabled() ? 1 : 0);
   AddCount(summary, "collisions", m.pairs.collisions);
   AddValue(summary, "min_gap", { m.pairs.minGap });
   AddValue(summary, "c2", { s.orientation.c2 });

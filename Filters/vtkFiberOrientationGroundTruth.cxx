@@ -3,6 +3,7 @@
 #include "Analysis/GroundTruth.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "Model/VolumeOfInterest.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDoubleArray.h>
@@ -25,34 +26,23 @@ namespace
 {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-/// The simulation lattice and image geometry of PLISimulation (pli-simulation.md §3.1, §5.2;
+/// The simulation lattice and image geometry of PLISimulation (docs/pli-simulation.md §3.1, §5.2;
 /// Core/PLI/PLIPipeline.cxx planPLI) for these properties. Returns "" or an error naming the property.
 std::string PlanGrid(const fiberpli::FiberModel& model, const double voiIn[6], double voxel, double pixel,
   fiberpli::TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny, double origin[3])
 {
-  double voi[6];
-  std::copy(voiIn, voiIn + 6, voi);
   std::ostringstream m;
-  if (voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5])
+  if (!(voxel > 0.0) || !std::isfinite(voxel))
   {
-    fiberpli::Vec3 lo, hi;
-    if (!fiberpli::modelBounds(model, true, lo, hi))
-    {
-      return "VolumeOfInterest is the input-bounds sentinel but the input has no fibers";
-    }
-    voi[0] = lo.x, voi[1] = hi.x, voi[2] = lo.y, voi[3] = hi.y, voi[4] = lo.z, voi[5] = hi.z;
+    m << "VoxelSize is " << voxel << ", must be > 0";
+    return m.str();
   }
-  const char* axis[3] = { "x", "y", "z" };
-  for (int a = 0; a < 3; ++a)
+  // The same check as PLISimulation's (Core/Model/VolumeOfInterest.h).
+  double voi[6];
+  const std::string voiError = fiberpli::resolveVolumeOfInterest(voiIn, model, voxel, voi, lattice.n);
+  if (!voiError.empty())
   {
-    const double n = std::round((voi[2 * a + 1] - voi[2 * a]) / voxel);
-    if (!(voi[2 * a] < voi[2 * a + 1]) || !(n >= 1.0 && n <= 1e9))
-    {
-      m << "VolumeOfInterest " << axis[a] << " range [" << voi[2 * a] << ", " << voi[2 * a + 1] << "] at VoxelSize "
-        << voxel << " must have min < max and give 1 .. 1e9 voxels (or min > max on every axis for the input bounds)";
-      return m.str();
-    }
-    lattice.n[a] = static_cast<std::int64_t>(n);
+    return voiError;
   }
   lattice.origin = fiberpli::Vec3{ voi[0], voi[2], voi[4] };
   lattice.voxelSize = voxel;
@@ -89,14 +79,14 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   // The image size depends on the fibers' bounds (VolumeOfInterest sentinel), so the fibers are
   // brought up to date here; RequestUpdateExtent then asks for the same piece 0 of 1.
-  if (this->VolumeOfInterest[0] > this->VolumeOfInterest[1] && this->GetNumberOfInputConnections(0) > 0)
+  const bool sentinel = fiberpli::isBoundsSentinel(this->VolumeOfInterest);
+  if (sentinel && this->GetNumberOfInputConnections(0) > 0)
   {
     fiberpli::FiberPolyData::UpdateAllFibers(this, inputVector[0]->GetInformationObject(0));
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
-  const bool sentinel = this->VolumeOfInterest[0] > this->VolumeOfInterest[1];
   {
     // An explicit VolumeOfInterest does not need the fibers; the sentinel needs their bounds.
     fiberpli::FiberConversion c;

@@ -8,7 +8,7 @@
  * as active scalars; NaN pixels are black. Output port 1: the colour legend, a LegendSize ×
  * LegendSize image of the upper hemisphere seen from +z (centre = fiber along z, rim = in-plane
  * fibers, direction = angle around the centre) with the same `fom` array, white outside the disc,
- * spanning [−1, 1]² (pli-analysis.md §4). Schemes: HSV-black (hue = 2·direction, value =
+ * spanning [−1, 1]² (docs/pli-analysis.md §4). Schemes: HSV-black (hue = 2·direction, value =
  * 1 − |inclination|/90) and RGB (|x|, |y|, |z| of the fiber axis). With a Mask, background
  * pixels — retardation below MaskThreshold, or transmittance above it — are black and the point
  * array `mask` (unsigned char, 1 = shown, 0 = background) is added. A missing array is an error

@@ -2,7 +2,7 @@
  * @class   vtkFiberTubes
  * @brief   closed triangle mesh around every fiber, radius from the "radius" point array
  *
- * Input: fiber polydata (api.md). Output: one watertight, consistently (outward) oriented tube of
+ * Input: fiber polydata (docs/data-contract.md §1). Output: one watertight, consistently (outward) oriented tube of
  * triangles per fiber, following the per-point radius, with point normals; cell arrays `fiber_id`
  * and `bundle_id` copied from the fiber to each of its triangles. Rings are carried along the
  * fiber by parallel transport, so tubes do not twist at sharp bends. Other input arrays are not

@@ -250,6 +250,20 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
     failure << "PLIAnalysis: " << tiltError;
     return finish(0);
   }
+  // Views on the tilted sensor's grid are not pixel-aligned with the untilted view: a pixel's
+  // tilted intensities would belong to other points of the section, so the tilt fit is refused.
+  if (FieldValue(input, "tilted_sensor", 0.0) == 1.0 && !stack.tilts.empty())
+  {
+    if (this->InclinationMethod == TILT)
+    {
+      failure << "PLIAnalysis: InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
+                 "but these are on the tilted sensor's grid (field data tilted_sensor = 1): simulate with "
+                 "TiltedSensor off, or use InclinationMethod Retardation";
+      return finish(0);
+    }
+    stack.tilts.clear(); // Auto: the retardation method, from the untilted view alone
+    stack.tiltViews.clear();
+  }
   stack.convention = FieldValue(input, "tilt_convention", 0.0) == 1.0 ? fiberpli::TiltConvention::FastPLI
                                                                        : fiberpli::TiltConvention::Physical;
   stack.noiseGain = FieldValue(input, "noise_gain", -1.0);

@@ -2,7 +2,7 @@
  * @class   vtkPLIAnalysis
  * @brief   3D-PLI analysis: polarizer stack → transmittance, direction, retardation, inclination
  *
- * Input: a one-slice vtkImageData as written by PLISimulation (pli-simulation.md §7): point array
+ * Input: a one-slice vtkImageData as written by PLISimulation (docs/pli-simulation.md §7): point array
  * `intensity` (N >= 3 components, one per polarizer angle), optionally tilted views
  * `intensity_tilt_0..M−1` (same N); field data `polarizer_angles` (degrees; when missing, N
  * equidistant angles k·180°/N), `tilt_angles` and `tilt_directions` (degrees, in-tissue tilt and
@@ -12,7 +12,7 @@
  * (double) `transmittance` (2·a0, intensity units), `direction` (degrees in [0, 180), in-plane
  * fiber axis counter-clockwise from +x), `retardation` (|sin δ| in [0, 1]), `inclination`
  * (degrees in [0, 90]); with the tilt fit also `inclination_signed` (degrees in [−90, 90]),
- * `relative_thickness` and `fit_chi2` (pli-analysis.md §1–§3). Input arrays are not passed.
+ * `relative_thickness` and `fit_chi2` (docs/pli-analysis.md §1–§3). Input arrays are not passed.
  * Pixels with a0 <= 0 or non-finite data are NaN in every output. Field data `reference_retardation`
  * and `inclination_method` (1 Retardation, 2 Tilt) report what was used.
  *
@@ -39,7 +39,7 @@ public:
   enum InclinationMethods
   {
     AUTO = 0,        ///< TILT when at least 2 tilted views with tilt > 0 exist, else RETARDATION
-    RETARDATION = 1, ///< unsigned inclination from the retardation (pli-analysis.md §3.1)
+    RETARDATION = 1, ///< unsigned inclination from the retardation (docs/pli-analysis.md §3.1)
     TILT = 2         ///< signed inclination from the tilt fit (§3.2)
   };
 

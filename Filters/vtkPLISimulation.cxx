@@ -5,6 +5,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Model/PeriodicTiling.h"
+#include "Model/VolumeOfInterest.h"
 #include "PLI/OptionLimits.h"
 #include "PLI/PLIPipeline.h"
 #include "PLI/TissueExport.h"
@@ -67,14 +68,11 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
   o.opticalSigma = self->GetOpticalSigma();
   o.noiseGain = self->GetNoiseGain();
   o.refractiveIndex = self->GetRefractiveIndex();
+  o.tiltedSensor = self->GetTiltedSensor() != 0;
   o.numberOfThreads = self->GetNumberOfThreads();
   return o;
 }
 
-bool IsBoundsSentinel(const double* voi)
-{
-  return voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
-}
 
 /// Resizes a list property; returns true when the size changed. A count outside [0, max] is an
 /// error (it used to allocate n doubles, 16 GB for 2^31 - 1): the list gets max + 1 entries, which
@@ -174,7 +172,7 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
 
   const fiberpli::pli::PLIOptions options = MakeOptions(this);
   fiberpli::FiberModel model;
-  if (IsBoundsSentinel(options.volumeOfInterest))
+  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     // The image size depends on the fibers' bounds, which only the input data knows: bring the
     // input up to date now with the request RequestUpdateExtent makes anyway (piece 0 of 1), so the
@@ -325,7 +323,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     vtkWarningMacro(<< in.warning);
   }
   fiberpli::pli::PLIOptions options = MakeOptions(this);
-  if (IsBoundsSentinel(options.volumeOfInterest))
+  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
   }
@@ -433,6 +431,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   fiberpli::AddFieldDoubles(output, "section_thickness", { plan.thickness });
   fiberpli::AddFieldDoubles(output, "wavelength", { options.wavelength });
   fiberpli::AddFieldInt(output, "tilt_convention", static_cast<int>(options.tiltConvention));
+  fiberpli::AddFieldInt(output, "tilted_sensor", options.tiltedSensor ? 1 : 0);
   fiberpli::AddFieldDoubles(output, "noise_gain", { options.noiseGain });
   fiberpli::AddFieldInt(output, "empty_section", image.emptySection ? 1 : 0);
   fiberpli::AddFieldDoubles(output, "voxel_size", { options.voxelSize });
@@ -555,5 +554,6 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OpticalSigma: " << this->OpticalSigma << "\n";
   os << indent << "NoiseGain: " << this->NoiseGain << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
+  os << indent << "TiltedSensor: " << this->TiltedSensor << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -2,8 +2,8 @@
  * @class   vtkPLISimulation
  * @brief   3D-PLI simulation: the polarimeter's image stack of a tissue section voxelised from fibers
  *
- * Input: fiber polydata (api.md: polylines with the point array `radius`, optional cell array
- * `bundle_id`). The fibers are voxelised into a section (layered capsules, pli-simulation.md §3),
+ * Input: fiber polydata (docs/data-contract.md §2: polylines with the point array `radius`, optional cell array
+ * `bundle_id`). The fibers are voxelised into a section (layered capsules, docs/pli-simulation.md §3),
  * light is propagated through it with Müller matrices for every polarizer angle and view (§4), then
  * blurred, binned to camera pixels and given camera noise (§5). All work is done by the Core
  * (fiberpli::pli::runPLI).
@@ -62,7 +62,7 @@ public:
   vtkTypeMacro(vtkPLISimulation, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Optic-axis interpolation along tilted rays (pli-simulation.md §4.5).
+  /// Optic-axis interpolation along tilted rays (docs/pli-simulation.md §4.5).
   enum InterpolationType
   {
     NEAREST = 0,
@@ -165,7 +165,7 @@ public:
   double GetTiltAzimuth(int i) const;
   ///@}
 
-  /// How the tilted beam sees the optic axis (docs/pli-simulation.md): 0 = physical (the beam
+  /// How the tilted beam sees the optic axis (docs/pli-simulation.md §4.3): 0 = physical (the beam
   /// frame of the tilted stage), 1 = fastPLI's (the transposed rotation, for comparisons).
   enum TiltConventionType
   {
@@ -288,6 +288,19 @@ public:
 
   ///@{
   /**
+   * Tilted views on the tilted sensor's grid (1) instead of registered onto the sample's pixel grid
+   * (0, default): the camera looks at the tilted section along the tilted optical axis, so the
+   * section appears foreshortened by cos(tilt) along the tilt azimuth about the image centre, same
+   * PixelSize on the sensor (docs/pli-simulation.md §4.6). Written to the field data tilted_sensor;
+   * PLIAnalysis refuses the tilt fit on such views.
+   */
+  vtkSetClampMacro(TiltedSensor, int, 0, 1);
+  vtkGetMacro(TiltedSensor, int);
+  vtkBooleanMacro(TiltedSensor, int);
+  ///@}
+
+  ///@{
+  /**
    * Number of threads, 0 = all cores. Default is 0.
    */
   vtkSetMacro(NumberOfThreads, int);
@@ -330,6 +343,7 @@ private:
   double OpticalSigma = 0.71;
   double NoiseGain = 3.0;
   double RefractiveIndex = 1.0;
+  int TiltedSensor = 0;
   int NumberOfThreads = 0;
 
   int ExportTissue = 0;

@@ -12,8 +12,13 @@
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
 
+#include "vtkSMProperty.h"
+#include "vtkWeakPointer.h"
+
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -37,11 +42,62 @@ vtkPVArrayInformation* cellArray(vtkPVDataInformation* info, const char* name)
   return info->GetCellDataInformation()->GetArrayInformation(name);
 }
 
+// Colour tables of true-colour displays: a colour bar of such a table would show a blue-red
+// "fom Magnitude" scale that has nothing to do with the pixel colours.
+std::vector<vtkWeakPointer<vtkSMProxy>>& trueColourTables()
+{
+  static std::vector<vtkWeakPointer<vtkSMProxy>> tables;
+  return tables;
+}
+
 void showTrueColour(vtkSMProxy* repr)
 {
   vtkSMPVRepresentationProxy::SetScalarColoring(repr, "fom", vtkDataObject::POINT);
   vtkSMPropertyHelper(repr, "MapScalars").Set(0);
   repr->UpdateVTKObjects();
+  vtkSMProxy* lut = vtkSMPropertyHelper(repr, "LookupTable", true).GetAsProxy();
+  auto& tables = trueColourTables();
+  if (lut && std::find(tables.begin(), tables.end(), lut) == tables.end())
+  {
+    tables.emplace_back(lut);
+  }
+}
+
+// The GUI shows a colour bar for every new coloured display right after creating it. For a colour
+// bar of a true-colour table that first switch-on is undone; a user who wants the (meaningless)
+// bar anyway clicks the colour-legend button once more.
+class FirstShowVeto : public vtkCommand
+{
+public:
+  static FirstShowVeto* New() { return new FirstShowVeto; }
+  vtkWeakPointer<vtkSMProxy> Bar;
+  void Execute(vtkObject* caller, unsigned long, void*) override
+  {
+    if (!this->Bar || vtkSMPropertyHelper(this->Bar, "Visibility").GetAsInt() == 0)
+    {
+      return;
+    }
+    caller->RemoveObserver(this); // one-shot: deletes this command once Execute returns
+    vtkSMPropertyHelper(this->Bar, "Visibility").Set(0);
+  }
+};
+
+void vetoFirstShow(vtkSMProxy* bar)
+{
+  vtkSMProxy* lut = vtkSMPropertyHelper(bar, "LookupTable", true).GetAsProxy();
+  const auto& tables = trueColourTables();
+  vtkSMProperty* visibility = bar->GetProperty("Visibility");
+  if (!lut || !visibility || std::find(tables.begin(), tables.end(), lut) == tables.end())
+  {
+    return;
+  }
+  // A new bar is visible by default; whoever created it switches it on right after registering
+  // it, and that switch-on is undone.
+  vtkSMPropertyHelper(visibility).Set(0);
+  bar->UpdateVTKObjects();
+  vtkNew<FirstShowVeto> veto;
+  veto->Bar = bar;
+  visibility->AddObserver(vtkCommand::ModifiedEvent, veto);
 }
 
 void showIntensityComponent(vtkSMProxy* repr)
@@ -125,7 +181,8 @@ void applyDefaults(vtkSMProxy* repr)
 }
 
 // Every session proxy manager forwards its registrations to the proxy-manager singleton; a new
-// display is registered in "representations" once its input and first colouring are set up.
+// display is registered in "representations" once its input and first colouring are set up, a
+// colour bar in "scalar_bars" before the GUI switches it on.
 class RepresentationObserver : public vtkCommand
 {
 public:
@@ -133,10 +190,19 @@ public:
   void Execute(vtkObject*, unsigned long, void* callData) override
   {
     auto* info = static_cast<vtkSMProxyManager::RegisteredProxyInformation*>(callData);
-    if (info && info->Type == vtkSMProxyManager::RegisteredProxyInformation::PROXY && info->Proxy &&
-      info->GroupName && std::string(info->GroupName) == "representations")
+    if (!info || info->Type != vtkSMProxyManager::RegisteredProxyInformation::PROXY ||
+      !info->Proxy || !info->GroupName)
+    {
+      return;
+    }
+    const std::string group = info->GroupName;
+    if (group == "representations")
     {
       applyDefaults(info->Proxy);
+    }
+    else if (group == "scalar_bars")
+    {
+      vetoFirstShow(info->Proxy);
     }
   }
 };

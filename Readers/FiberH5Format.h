@@ -2,12 +2,12 @@
  * @class   FiberH5Format
  * @brief   fastPLI HDF5 fiber bundles (.h5) through VTK's HDF5 library
  *
- * Layout (api.md, fastPLI `io.fiber_bundles`): the root — or the group given to fastPLI's
+ * Layout (docs/api.md §4, fastPLI `io.fiber_bundles`): the root — or the group given to fastPLI's
  * `save(..., group_name=...)` — holds one group per bundle named "0",
  * "1", …; each group holds one float64 dataset of shape (n, 4) — x, y, z, r per point — per fiber,
  * named "0", "1", …. Names are ordered numerically (HDF5 lists "10" before "2"). The bundle index
  * becomes bundle_id; fibers get consecutive fiber ids in bundle/fiber order. This lives in the
- * Readers module, not in Core, because it needs ParaView's HDF5 (architecture.md §5).
+ * Readers module, not in Core, because it needs ParaView's HDF5 (docs/architecture.md §5).
  */
 #ifndef FiberH5Format_h
 #define FiberH5Format_h

@@ -2,7 +2,7 @@
  * @class   vtkFiberReader
  * @brief   reads fiber files: fastPLI .dat and .h5, MRtrix .tck, TrackVis .trk
  *
- * Output: fiber polydata (api.md): one polyline per fiber, point array `radius` (µm), cell arrays
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
  * `fiber_id` (position of the fiber in the file) and `bundle_id` (bundle of .dat/.h5 files, 0 for
  * .tck/.trk). The format is chosen by the extension; CanReadFile looks at the content, so other
  * files with these extensions (Tecplot .dat, CONVERGE .h5, …) are left to their readers. A .tck

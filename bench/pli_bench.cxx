@@ -1,4 +1,4 @@
-// PLI simulation benchmark (bench/README.md "3D-PLI simulation", REFERENCE.md table): the
+// PLI simulation benchmark (bench/README.md "3D-PLI simulation" and its fastPLI table): the
 // 2-population 1000-fiber cube, section x, y in [-15, 15] um, 60 um thick, axon core + radial
 // myelin, 9 rotations, 5 views, pixel 1 um, blur 0.71 px, gain 3.
 // Usage: pli_bench [voxel_um=0.25] [threads=1] [model.dat]
@@ -24,7 +24,7 @@ using namespace fiberpli;
 
 namespace
 {
-// The REFERENCE.md model: generateCube (2 populations, 1000 fibers, seed 42) solved by the Core
+// The reference model (bench/README.md): generateCube (2 populations, 1000 fibers, seed 42) solved by the Core
 // collision solver with default options and MinCurvatureRadius 4 (bit-identical for any thread
 // count), cached as fastPLI .dat so the ~2.5 min solve runs once.
 bool solvedCube(const std::string& cache, FiberModel& model, std::string& source)
@@ -113,7 +113,7 @@ int main(int argc, char** argv)
   const double voxels = static_cast<double>(n[0] * n[1] * n[2]);
   const double views = static_cast<double>(img.plan.views.size());
 
-  // REFERENCE.md, fastPLI on the solved cube: tissue s, simulate s, peak RSS MB.
+  // fastPLI on the solved cube (bench/README.md): tissue s, simulate s, peak RSS MB.
   double refTissue = 0, refSim = 0, refRss = 0;
   if (std::abs(voxel - 0.1) < 1e-9)
   {

@@ -1,5 +1,5 @@
-// Collision solver benchmark (bench/README.md): the workloads of shared/bench/README.md on cubes
-// from generateCube (seed 42), timed against the fastPLI reference figures (REFERENCE.md).
+// Collision solver benchmark (bench/README.md): the workloads of bench/README.md on cubes
+// from generateCube (seed 42), timed against the fastPLI reference figures (bench/README.md).
 // Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|quick|cube|all]...
 //        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
 //        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
@@ -28,7 +28,7 @@ struct Workload
   const char* name;
   int populations;
   int fibers;
-  double referenceSeconds; // fastPLI, 1 thread (REFERENCE.md); cube-b hit the 540 s cap
+  double referenceSeconds; // fastPLI, 1 thread (bench/README.md); cube-b hit the 540 s cap
 };
 
 const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200, 10.6 },

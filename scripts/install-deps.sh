@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package FiberPLI needs to build, test and run (architecture.md §5).
+# Installs every Debian 12 package FiberPLI needs to build, test and run (docs/architecture.md §5).
 # Idempotent and non-interactive. Run as root (or with sudo available).
 set -euo pipefail
 

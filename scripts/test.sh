@@ -9,7 +9,7 @@ export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 bash scripts/install-deps.sh
 bash scripts/build.sh
 
-# One HDF5 in the process: our libraries must link ParaView's libhdf5_openmpi only (architecture.md §5).
+# One HDF5 in the process: our libraries must link ParaView's libhdf5_openmpi only (docs/architecture.md §5).
 libs=$(find build/lib -name 'FiberPLI*.so*' -o -name 'libFiberPLI*.so*' | sort)
 linked=$(ldd $libs)
 if grep -q 'libhdf5_serial' <<<"$linked"; then

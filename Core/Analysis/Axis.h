@@ -1,4 +1,4 @@
-/// Axis: fiber axes as undirected unit vectors (pli-analysis.md §3.2 step 4, §5). One canonical
+/// Axis: fiber axes as undirected unit vectors (docs/pli-analysis.md §3.2 step 4, §5). One canonical
 /// representative per axis, its (direction, inclination) angles, and the comparison metrics of §5.
 /// Angles in radians.
 #pragma once

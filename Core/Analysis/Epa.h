@@ -1,5 +1,5 @@
 /// Epa: transmittance, direction and retardation of a polarizer-angle stack by a least-squares
-/// fit of the first harmonic I(ρ) ≈ a0 + a1·sin 2ρ + b1·cos 2ρ (pli-analysis.md §2). Works for
+/// fit of the first harmonic I(ρ) ≈ a0 + a1·sin 2ρ + b1·cos 2ρ (docs/pli-analysis.md §2). Works for
 /// any set of N >= 3 polarizer angles that determine the harmonic; equidistant angles take the
 /// closed-form fast path of §2.2. Angles in radians.
 #pragma once

@@ -1,4 +1,4 @@
-/// FiberOrientationMap: colour coding of direction and inclination (pli-analysis.md §4) in the
+/// FiberOrientationMap: colour coding of direction and inclination (docs/pli-analysis.md §4) in the
 /// HSV-black and RGB schemes of fastPLI, with the channel quantisation
 /// q(x) = clamp(floor(255·x + 1e-6), 0, 255), plus a legend image in the same mapping.
 /// Angles here are in degrees (they come straight from the VTK arrays, and H = 2·d mod 360 must
@@ -13,16 +13,16 @@
 namespace fiberpli
 {
 
-/// api.md ColorScheme: HSV-black (default) or RGB.
+/// ColorScheme (docs/api.md §1): HSV-black (default) or RGB.
 enum class FomScheme
 {
   HsvBlack = 0,
   Rgb = 1
 };
 
-/// "HSV-black" / "RGB" (api.md spelling) → scheme; false for any other text.
+/// "HSV-black" / "RGB" (docs/api.md §1 spelling) → scheme; false for any other text.
 bool parseFomScheme(const std::string& name, FomScheme& scheme);
-/// The api.md spelling of a scheme.
+/// The spelling of a scheme (docs/api.md §1).
 const char* fomSchemeName(FomScheme scheme);
 
 struct Rgb8
@@ -32,7 +32,7 @@ struct Rgb8
   std::uint8_t b = 0;
 };
 
-/// §4: colour of direction d and inclination i (degrees; the sign of i is ignored, |i| > 90 is
+/// docs/pli-analysis.md §4: colour of direction d and inclination i (degrees; the sign of i is ignored, |i| > 90 is
 /// treated as 90). Any NaN input → black.
 Rgb8 fomColor(double directionDeg, double inclinationDeg, FomScheme scheme);
 
@@ -58,7 +58,7 @@ enum class FomMask
 std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold, std::uint8_t* rgb,
   std::uint8_t* tissue);
 
-/// Legend (§4): a size × size image (x fastest, row 0 at the bottom = y −1, as vtkImageData) of the
+/// Legend (docs/pli-analysis.md §4): a size × size image (x fastest, row 0 at the bottom = y −1, as vtkImageData) of the
 /// upper hemisphere seen from +z. Pixel centre (x, y) in [−1, 1]² inside the unit disc gets
 /// d = atan2(y, x) folded into [0°, 180°) and i = asin(√(1 − x² − y²)); pixels outside the disc
 /// get `background`. rgb is resized to 3·size². Error when size < 1 or size > 16384.

@@ -1,5 +1,6 @@
 #include "Analysis/GroundTruth.h"
 
+#include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
@@ -23,7 +24,7 @@ struct Link
   std::int64_t g;      // global link index: bundle order, fiber order, link order
 };
 
-// pli-simulation.md §5.2: the one integer function shared with the simulator.
+// docs/pli-simulation.md §5.2: the one integer function shared with the simulator.
 std::int64_t pixelOf(std::int64_t voxel, double scale)
 {
   return static_cast<std::int64_t>(std::floor((static_cast<double>(voxel) + 0.5) * scale));
@@ -186,7 +187,27 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
     return msg.str();
   }
 
-  const std::size_t nHist = static_cast<std::size_t>(options.nPhi) * static_cast<std::size_t>(options.nAlpha);
+  const std::size_t nHist =
+    options.histogram ? static_cast<std::size_t>(options.nPhi) * static_cast<std::size_t>(options.nAlpha) : 0;
+  const int nThreads = resolveThreadCount(options.threads);
+  std::size_t linkCount = 0;
+  for (const Fiber& f : model.fibers)
+  {
+    linkCount += f.size() > 1 ? f.size() - 1 : 0;
+  }
+  // Five maps (and the histograms) of the whole grid, a copy of the range's maps in the caller's
+  // output, per thread one pixel row of voxel owners (distance + link pointer), and the links.
+  const double pixelBytes = static_cast<double>(nx) * static_cast<double>(ny) * (5.0 + static_cast<double>(nHist)) * 8.0;
+  const double bytes = pixelBytes + 5.0 * 8.0 * static_cast<double>(range.count()) +
+    static_cast<double>(nThreads) * rowVoxels * 16.0 + static_cast<double>(linkCount) * sizeof(Link);
+  std::ostringstream what;
+  what << "the ground truth of " << nx << " x " << ny << " pixels (PixelSize " << lat.pixelSize << ", VoxelSize "
+       << lat.voxelSize << ", " << nz << " voxels deep)";
+  err = checkMemoryBudget(bytes, what.str());
+  if (!err.empty())
+  {
+    return err;
+  }
   const std::size_t npx = static_cast<std::size_t>(nx * ny);
   maps.nx = nx;
   maps.ny = ny;
@@ -194,7 +215,7 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
   {
     v->resize(npx, kNaN);
   }
-  maps.histogram.resize(npx * nHist, 0.0);
+  maps.histogram.assign(npx * nHist, 0.0);
 
   std::vector<Link> links = collectLinks(model, options.radiusScale);
   // Sorted by the bottom of their box, a row stops scanning at the first link above it. Ownership
@@ -209,7 +230,6 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
   }
   const double S2 = options.radiusScale * options.radiusScale;
   const double h = lat.voxelSize;
-  const int nThreads = resolveThreadCount(options.threads);
   const std::int64_t rows = range.height();
   const std::int64_t block = std::max<std::int64_t>(1, rows / 50);
 
@@ -293,7 +313,7 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
           }
         }
         const std::size_t p = static_cast<std::size_t>(i + nx * j);
-        const PixelTruth t = acc.result(maps.histogram.data() + p * nHist);
+        const PixelTruth t = acc.result(nHist > 0 ? maps.histogram.data() + p * nHist : nullptr);
         maps.fraction[p] = t.fraction;
         maps.direction[p] = t.direction;
         maps.inclination[p] = t.inclination;

@@ -1,8 +1,8 @@
 /// GroundTruth: orientation ground truth of a fiber model on the pixel grid of a simulated
-/// section (pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
-/// unit(Q − P) of the link that owns them (nearest capsule axis, pli-simulation.md §3.3: key
+/// section (docs/pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
+/// unit(Q − P) of the link that owns them (nearest capsule axis, docs/pli-simulation.md §3.3: key
 /// (d², g), ties to the larger global link index g, label > 0 iff d² <= S²·r² with the Linear
-/// radius taper); voxels bin into pixels as in pli-simulation.md §5.2 (voxel i → pixel
+/// radius taper); voxels bin into pixels as in docs/pli-simulation.md §5.2 (voxel i → pixel
 /// floor((i + ½)·VoxelSize/PixelSize), all z), and each pixel summarises its voxels with
 /// TruthAccumulator (tensor mean axis, anisotropy, tissue fraction, histogram).
 #pragma once
@@ -19,7 +19,7 @@
 namespace fiberpli
 {
 
-/// The voxel lattice of the simulation (pli-simulation.md §3.1) and its CCD pixel size (§5.2).
+/// The voxel lattice of the simulation (docs/pli-simulation.md §3.1) and its CCD pixel size (§5.2).
 struct TruthLattice
 {
   Vec3 origin;                    ///< µm, lower corner of voxel (0, 0, 0)
@@ -39,6 +39,8 @@ struct GroundTruthOptions
 {
   double radiusScale = 1.0; ///< S = largest layer scale: tissue where d <= S·r
   bool maxRadius = false;   ///< RadiusModel Max (max(r_P, r_Q)) instead of the Linear taper
+  bool histogram = false;   ///< per-pixel histograms (nPhi·nAlpha doubles per pixel, off: the
+                            ///< filter does not output them and 162 doubles per pixel are large)
   int nPhi = 18;            ///< histogram direction bins over [0°, 180°)
   int nAlpha = 9;           ///< histogram |inclination| bins over [0°, 90°]
   int threads = 0;          ///< OpenMP threads, 0 = all
@@ -49,7 +51,7 @@ struct GroundTruthMaps
 {
   std::int64_t nx = 0, ny = 0; ///< round(n_vox·VoxelSize/PixelSize)
   std::vector<double> fraction, direction, inclination, inclinationSigned, anisotropy;
-  std::vector<double> histogram; ///< nPhi·nAlpha values per pixel, pixel-major
+  std::vector<double> histogram; ///< nPhi·nAlpha values per pixel, pixel-major; empty unless requested
 };
 
 /// Pixel-grid size of a lattice (§5.2): n_px = round(n_vox·scale). Returns "" or an error naming
@@ -60,7 +62,8 @@ std::string truthPixelGrid(const TruthLattice& lattice, std::int64_t& nx, std::i
 /// resized to the whole grid; pixels outside the range keep their values (NaN / 0 when new).
 /// Result is bit-identical for any thread count. Returns "" on success, the error (invalid
 /// model: the validateModel message; bad lattice/options/range; more than 2^31 voxels in one
-/// pixel row), or "cancelled" when progress asked to stop.
+/// pixel row; more memory than the budget of Util/MemoryBudget.h, checked before allocating), or
+/// "cancelled" when progress asked to stop.
 std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lattice,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});

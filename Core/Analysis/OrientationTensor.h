@@ -1,4 +1,4 @@
-/// OrientationTensor: per-pixel summary of fiber axes (pli-analysis.md §5). Accumulates the
+/// OrientationTensor: per-pixel summary of fiber axes (docs/pli-analysis.md §5). Accumulates the
 /// tensor M = (1/n_t)·Σ e·eᵀ of the tissue voxels' axes, the tissue fraction and the
 /// direction × |inclination| histogram; the mean axis is the principal eigenvector of M (Jacobi).
 #pragma once

@@ -1,5 +1,5 @@
 /// PixelRange: the sub-rectangle of an nx × ny image (x fastest) that one Core analysis call
-/// computes (pli-analysis.md §1; pli-simulation.md §6: an MPI piece or an UPDATE_EXTENT).
+/// computes (docs/pli-analysis.md §1; docs/pli-simulation.md §6: an MPI piece or an UPDATE_EXTENT).
 /// Every map function reads and writes full-size arrays but touches only the pixels in the range.
 #pragma once
 

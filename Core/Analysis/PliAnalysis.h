@@ -1,4 +1,4 @@
-/// PliAnalysis: the whole `PLIAnalysis` computation of pli-analysis.md §1 on plain arrays —
+/// PliAnalysis: the whole `PLIAnalysis` computation of docs/pli-analysis.md §1 on plain arrays —
 /// EPA of the untilted stack (§2), then the inclination by the chosen method (§3.1 retardation
 /// or §3.2 tilt fit). Angles in radians (the VTK side converts to degrees).
 #pragma once
@@ -16,7 +16,7 @@
 namespace fiberpli
 {
 
-/// api.md/pli-analysis.md §1 InclinationMethod.
+/// InclinationMethod of docs/pli-analysis.md §1.
 enum class InclinationMethod
 {
   Auto = 0,        ///< Tilt when at least 2 tilted views exist, else Retardation
@@ -24,7 +24,7 @@ enum class InclinationMethod
   Tilt = 2         ///< §3.2, signed, with relative thickness and χ²
 };
 
-/// The simulation output (pli-simulation.md §7) as plain arrays.
+/// The simulation output (docs/pli-simulation.md §7) as plain arrays.
 struct PliStack
 {
   const double* intensity = nullptr;            ///< nx·ny pixels × rho.size(), pixel-major, x fastest
@@ -39,7 +39,7 @@ struct PliStack
 struct PliAnalysisOptions
 {
   InclinationMethod method = InclinationMethod::Auto;
-  double referenceRetardation = 0.0; ///< §3.1 r_ref in [0, 1]; 0 = largest retardation (automatic)
+  double referenceRetardation = 0.0; ///< docs/pli-analysis.md §3.1 r_ref in [0, 1]; 0 = largest retardation (automatic)
   double noiseGain = -1.0;           ///< −1 = stack.noiseGain if present, else 3; g <= 0 → 1 in the fit
   int threads = 0;                   ///< OpenMP threads, 0 = all
   /// Automatic r_ref across MPI pieces: receives the local maximum, returns the global one (the
@@ -53,11 +53,11 @@ struct PliAnalysisMaps
 {
   InclinationMethod method = InclinationMethod::Retardation; ///< the method actually used
   double referenceRetardation = 0.0;                         ///< r_ref used (Retardation method)
-  std::vector<double> transmittance, direction, retardation, inclination; ///< api.md outputs
+  std::vector<double> transmittance, direction, retardation, inclination; ///< outputs of docs/api.md §3
   std::vector<double> inclinationSigned, relativeThickness, chi2;         ///< Tilt method only, else empty
 };
 
-/// Runs §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
+/// Runs docs/pli-analysis.md §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
 /// direction (consistent with inclinationSigned) and a pixel whose fit has invalid data is NaN
 /// in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few or
 /// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range.

@@ -1,5 +1,5 @@
 /// RetardationInclination: unsigned inclination from the retardation of one untilted view
-/// (pli-analysis.md §3.1). For a homogeneous column r = |sin((π/2)·t_rel·cos²α)|; with the
+/// (docs/pli-analysis.md §3.1). For a homogeneous column r = |sin((π/2)·t_rel·cos²α)|; with the
 /// reference r_ref = retardation of an in-plane fiber, α = arccos(√(asin(min(r, r_ref))/asin(r_ref))).
 /// Only valid while t_rel <= 1 (sin still monotonic), e.g. Δn −0.001 at 60 µm and 525 nm
 /// (t_rel 0.457); at Δn −0.004 (t_rel 1.83) the inversion is ambiguous. The sign of α is unknown.

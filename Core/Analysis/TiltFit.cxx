@@ -137,7 +137,7 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
     s_[k] = std::sin(2.0 * rho[k]);
     c_[k] = std::cos(2.0 * rho[k]);
   }
-  // View 0 is the identity; the tilted views use R(τ, ψ) of pli-simulation.md §4.3.
+  // View 0 is the identity; the tilted views use R(τ, ψ) of docs/pli-simulation.md §4.3.
   frames_.assign(1 + options.views.size(), Frame{ { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, M_PI / 2.0 });
   for (std::size_t j = 1; j < frames_.size(); ++j)
   {

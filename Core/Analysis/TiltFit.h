@@ -1,5 +1,5 @@
 /// TiltFit: signed inclination, direction and relative thickness from one untilted and four
-/// tilted views (ROFL, Schmitz et al. 2018; pli-analysis.md §3.2). Per pixel: EPA of each view,
+/// tilted views (ROFL, Schmitz et al. 2018; docs/pli-analysis.md §3.2). Per pixel: EPA of each view,
 /// normalised data y_jk = I_jk/A_j − 1 with camera-noise weights, a start grid over (α, t) at the
 /// EPA direction of the flat view, then Levenberg–Marquardt on (φ, α, t) with an analytic
 /// Jacobian. Angles in radians.
@@ -16,7 +16,7 @@
 namespace fiberpli
 {
 
-/// How the simulation rotated the optic axis into the beam frame (pli-simulation.md §4.3);
+/// How the simulation rotated the optic axis into the beam frame (docs/pli-simulation.md §4.3);
 /// the values are those of the field data `tilt_convention`.
 enum class TiltConvention
 {
@@ -46,7 +46,7 @@ struct TiltFitOptions
 /// Fit of one pixel; every field NaN (iterations 0) when a view has a0 <= 0 or non-finite data.
 struct TiltFitResult
 {
-  double direction;          ///< canonical axis (§3.2 step 4), [0, π)
+  double direction;          ///< canonical axis (docs/pli-analysis.md §3.2 step 4), [0, π)
   double inclinationSigned;  ///< [−π/2, π/2]
   double inclination;        ///< |inclinationSigned|
   double relativeThickness;  ///< |t| = 4·d·|Δn|/λ of the untilted section
@@ -58,7 +58,7 @@ struct TiltFitResult
 class TiltFit
 {
 public:
-  /// Errors: fewer than 4 polarizer angles (§3.2), angles EPA refuses, fewer than 2 tilted views,
+  /// Errors: fewer than 4 polarizer angles (docs/pli-analysis.md §3.2), angles EPA refuses, fewer than 2 tilted views,
   /// a tilt not in (0, 90°), a non-finite azimuth, two equal views, maxIterations < 1.
   std::string init(const std::vector<double>& rho, const TiltFitOptions& options);
 

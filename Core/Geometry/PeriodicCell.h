@@ -5,6 +5,7 @@
 
 #include "Geometry/Vec3.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -67,6 +68,20 @@ struct PeriodicCell
     return nonZero;
   }
 };
+
+/// True when a fiber from `first` to `last` is closed through the cell: last − first is a non-zero
+/// lattice vector within 1e-5 × the cell's largest edge per axis (docs/data-contract.md); closure
+/// receives it exactly. The one closure rule of the solver and the metrics.
+inline bool closesThroughCell(const Vec3& first, const Vec3& last, const PeriodicCell& cell, Vec3& closure)
+{
+  if (!cell.enabled())
+  {
+    return false;
+  }
+  const Vec3 e = cell.edge();
+  const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
+  return cell.isLatticeVector(last - first, tol, closure);
+}
 
 /// The cell from the six values of the `periodic_cell` field (xmin xmax ymin ymax zmin zmax).
 /// Empty message when usable, else why not (count, non-finite, max <= min).

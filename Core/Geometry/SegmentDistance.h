@@ -1,4 +1,4 @@
-/// SegmentDistance: closest points of two line segments (collision-solver.md §2) and the
+/// SegmentDistance: closest points of two line segments (docs/solver.md §2) and the
 /// deterministic separation direction of a pair whose axes touch (§2.4). Scale free: every
 /// threshold is relative to the segment lengths, so µm and mm models take the same branches.
 #pragma once
@@ -19,14 +19,14 @@ struct SegmentClosest
   bool parallel = false;  ///< the parallel branch (§2.2) or a zero-length segment was used
 };
 
-/// Closest points of segments [a0, a1] and [b0, b1] (collision-solver.md §2.1, §2.2): clamped
+/// Closest points of segments [a0, a1] and [b0, b1] (docs/solver.md §2.1, §2.2): clamped
 /// parametric minimum with relative tolerances; parallel segments take the middle of their
 /// overlap; a zero-length segment uses parameter 0.5 on its side. Never divides by zero, never
 /// returns NaN for finite input.
 SegmentClosest closestPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
 
 /// Unit direction along which link a moves (link b moves opposite) when the axes meet
-/// (collision-solver.md §2.4): u × v when the links are not parallel, else u × e_m with e_m the
+/// (docs/solver.md §2.4): u × v when the links are not parallel, else u × e_m with e_m the
 /// coordinate axis least aligned with u (ties → lower axis), e_x when u = 0.
 /// u = a1 − a0 and v = b1 − b0 where a is the link with the smaller global id.
 Vec3 degenerateDirection(const Vec3& u, const Vec3& v);

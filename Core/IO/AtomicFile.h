@@ -1,5 +1,5 @@
-/// AtomicFile: replace a file so that a failed write never destroys what was there (api.md
-/// "Readers and writers": writers write to a temporary file beside the target and rename it).
+/// AtomicFile: replace a file so that a failed write never destroys what was there (docs/api.md
+/// §4: writers write to a temporary file beside the target and rename it).
 /// Steps: create "<target>.tmp-<16 random hex digits>" beside the target (same directory, hence
 /// same file system, so rename(2) is atomic) with O_EXCL | O_NOFOLLOW, so nothing planted there is
 /// followed or overwritten; let the caller write into it, flush, fsync, close (checked), rename

@@ -1,4 +1,4 @@
-/// DatFormat: the fastPLI text fiber format `.dat` (api.md "Readers and writers"; the layout of
+/// DatFormat: the fastPLI text fiber format `.dat` (docs/api.md §4; the layout of
 /// fastPLI's own reader/writer and of shared/bench/fiber_metrics.py read_dat/write_dat):
 ///   - one point per line: `x y z r` (4 numbers separated by spaces or tabs, µm);
 ///   - one blank line ends a fiber, a second consecutive blank line ends a bundle;

@@ -1,5 +1,5 @@
-/// FiberFile: path-level entry points of Core/IO for the VTK FiberReader/FiberWriter (api.md
-/// "Readers and writers"): pick the format by extension, open the file, call the stream reader or
+/// FiberFile: path-level entry points of Core/IO for the VTK FiberReader/FiberWriter (docs/api.md
+/// §4): pick the format by extension, open the file, call the stream reader or
 /// writer, and write through AtomicFile. HDF5 (.h5) is not handled here (the Readers module does
 /// it with VTK's HDF5).
 #pragma once

@@ -1,4 +1,4 @@
-/// FiberReadResult: what every fiber reader of Core/IO returns (api.md "Readers and writers").
+/// FiberReadResult: what every fiber reader of Core/IO returns (docs/api.md §4).
 /// Readers never throw and never print: a failure is an error message that names the file and the
 /// line (text formats) or byte offset (binary formats); on failure the model is empty.
 #pragma once

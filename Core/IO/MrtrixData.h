@@ -1,5 +1,5 @@
 /// MrtrixData: the binary body shared by MRtrix tracks (.tck, 3 values per point) and track scalars
-/// (.tsf, 1 value per point) (api.md "Readers and writers"; MRtrix3 docs, "Tracks file format"):
+/// (.tsf, 1 value per point) (docs/api.md §4; MRtrix3 docs, "Tracks file format"):
 /// points as groups of values, an all-NaN group after each streamline, an all-Inf group at the end.
 /// Internal helper, not part of the public API.
 #pragma once

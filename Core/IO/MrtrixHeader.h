@@ -1,5 +1,5 @@
 /// MrtrixHeader: the text header shared by MRtrix's streamline files, tracks (.tck, TckFormat.h)
-/// and track scalars (.tsf, TsfFormat.h) (api.md "Readers and writers"; MRtrix3 docs, "Tracks file
+/// and track scalars (.tsf, TsfFormat.h) (docs/api.md §4; MRtrix3 docs, "Tracks file
 /// format"). Layout: a magic first line, "key: value" lines, "END". Keys used here: `datatype`
 /// (Float32LE, Float32BE, Float64LE, Float64BE), `file: . <offset>` (data in the same file from
 /// byte <offset>), `count` (streamlines) and `timestamp` (pairs a .tsf with its .tck); other keys

@@ -1,4 +1,4 @@
-/// TckFormat: MRtrix streamlines `.tck` (api.md "Readers and writers"; MRtrix3 docs, "Tracks file
+/// TckFormat: MRtrix streamlines `.tck` (docs/api.md §4; MRtrix3 docs, "Tracks file
 /// format"). Layout: a text header whose first line is "mrtrix tracks", then "key: value" lines,
 /// then "END"; the keys used here are `datatype` (Float32LE, Float32BE, Float64LE or Float64BE),
 /// `file: . <offset>` (binary data of this file starts at byte <offset>) and `count` (number of

@@ -1,4 +1,4 @@
-/// TrkFormat: TrackVis `.trk` streamlines, read only (api.md "Readers and writers"; TrackVis file
+/// TrkFormat: TrackVis `.trk` streamlines, read only (docs/api.md §4; TrackVis file
 /// format page, trackvis.org/docs/?subsect=fileformat, and nibabel.streamlines.trk).
 ///
 /// Header, 1000 bytes (offsets in bytes): id_string[6] "TRACK" (0), short dim[3] (6),

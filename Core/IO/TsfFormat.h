@@ -1,4 +1,4 @@
-/// TsfFormat: MRtrix track scalar files `.tsf` (api.md "Readers and writers"; MRtrix3 docs,
+/// TsfFormat: MRtrix track scalar files `.tsf` (docs/api.md §4; MRtrix3 docs,
 /// "Track Scalar File format"): one value per point of the streamlines of a .tck. Layout as .tck
 /// (MrtrixHeader.h) with the first line "mrtrix track scalars" and one value instead of an x y z
 /// triplet per point: a NaN after each streamline, an Inf at the end. The header's `timestamp`

@@ -1,5 +1,5 @@
 /// CollisionGrid: broad + narrow phase collision detection of capsule links on a uniform grid
-/// (collision-solver.md §3). Memory is linear in the number of links plus the pairs found, and the
+/// (docs/solver.md §3). Memory is linear in the number of links plus the pairs found, and the
 /// caller bounds the pairs (maxPairs); the pair list is sorted by (a, b) and therefore identical for
 /// any thread count or schedule.
 #pragma once
@@ -13,7 +13,7 @@
 namespace fiberpli
 {
 
-/// One link of a fiber as the detector sees it (collision-solver.md §1). Its index in the link
+/// One link of a fiber as the detector sees it (docs/solver.md §1). Its index in the link
 /// array is its global link id (fibers in input order, links in fiber order).
 struct CapsuleLink
 {
@@ -41,7 +41,7 @@ struct CapsulePair
   Vec3 direction;        ///< unit push direction of a (b moves opposite), §2.4 when δ ≈ 0
 };
 
-/// Same-fiber rule of collision-solver.md §3.1 [ours]: true when the pair is never tested
+/// Same-fiber rule of docs/solver.md §3.1 [ours]: true when the pair is never tested
 /// (other fiber: false; adjacent links; arc length strictly between them < 2·(ρa + ρb); on a
 /// closed fiber the shorter way round counts, so its first and last links are adjacent).
 bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
@@ -80,6 +80,26 @@ private:
     Vec3 lo;
     Vec3 hi;
   };
+  /// Where the grid lies and how it is cut (phases 1 and 2).
+  struct Layout
+  {
+    Vec3 origin;               ///< lower corner of all boxes
+    Vec3 top;                  ///< upper corner of all boxes
+    double h = 0.0;            ///< cell edge
+    std::int64_t nx = 0, ny = 0, nz = 0;
+    double limit = 0.0;        ///< a box edge above this makes a link oversize
+    std::size_t nOversize = 0; ///< 0: no link is oversize (limit is then not used)
+  };
+  // The phases of findPairs, in order; each fills the buffers below that the next one reads.
+  Layout boundLinks(const std::vector<CapsuleLink>& links, double halfGap, int nThreads);
+  Layout chooseCells(std::size_t n, const Layout& bounds) const;
+  void collectOversize(const Layout& grid);
+  void sortByCell(const Layout& grid, int nThreads);
+  void buildCellArrays(int nThreads);
+  bool collectPairs(const std::vector<CapsuleLink>& links, double minimumGap, const Layout& grid, int nThreads,
+    std::size_t maxPairs);
+  void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
+
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
   std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)

@@ -30,18 +30,10 @@ CapsuleSet makeCapsules(const FiberModel& model, const PeriodicCell& cell)
     set.fiberLength.push_back(arc);
     set.links.push_back(fiber.size() > 1 ? fiber.size() - 1 : 0);
     char isClosed = 0;
-    if (cell.enabled && fiber.size() > 2)
+    Vec3 closure;
+    if (fiber.size() > 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure))
     {
-      const Vec3 d = fiber.points.back() - fiber.points.front();
-      const Vec3 size = cell.size();
-      bool lattice = true, nonZero = false;
-      for (int i = 0; i < 3; ++i)
-      {
-        const double n = std::round(d[i] / size[i]);
-        lattice = lattice && std::abs(d[i] - n * size[i]) <= 1e-6 * size[i];
-        nonZero = nonZero || n != 0.0;
-      }
-      isClosed = lattice && nonZero ? 1 : 0;
+      isClosed = 1;
     }
     set.closed.push_back(isClosed);
   }
@@ -51,9 +43,9 @@ CapsuleSet makeCapsules(const FiberModel& model, const PeriodicCell& cell)
 Vec3 minimumImageShift(const Vec3& p, const Vec3& q, const PeriodicCell& cell)
 {
   Vec3 shift;
-  if (cell.enabled)
+  if (cell.enabled())
   {
-    const Vec3 size = cell.size();
+    const Vec3 size = cell.edge();
     for (int i = 0; i < 3; ++i)
     {
       shift[i] = size[i] * std::round((p[i] - q[i]) / size[i]);

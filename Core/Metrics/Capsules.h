@@ -1,9 +1,10 @@
 /// Capsules: a fiber model flattened into its links (capsules) for the metrics, with the periodic
-/// cell and this module's own segment distance. Deliberately independent of Core/Geometry's
+/// cell (Geometry/PeriodicCell.h) and this module's own segment distance. Deliberately independent of Core/Geometry's
 /// closestPoints and of the solver's collision grid, so that the metrics check the solver instead
 /// of repeating it.
 #pragma once
 
+#include "Geometry/PeriodicCell.h"
 #include "Geometry/Vec3.h"
 #include "Model/FiberModel.h"
 
@@ -12,14 +13,6 @@
 
 namespace fiberpli
 {
-
-/// An axis-aligned periodic cell [lo, hi) (the `periodic_cell` field data); disabled by default.
-struct PeriodicCell
-{
-  bool enabled = false;
-  Vec3 lo, hi;
-  Vec3 size() const { return hi - lo; }
-};
 
 /// One link of one fiber: the segment [a, b] swept by a sphere of radius r.
 struct Capsule
@@ -41,7 +34,7 @@ struct CapsuleSet
 };
 
 /// Flattens the model; in a periodic cell a fiber whose end is its start shifted by a lattice
-/// vector (within 1e-6 of the cell size) is a closed loop, so its first and last links are neighbours.
+/// vector (closesThroughCell) is a closed loop, so its first and last links are neighbours.
 CapsuleSet makeCapsules(const FiberModel& model, const PeriodicCell& cell);
 
 /// The lattice vector to add to `q` to bring it nearest to `p` (minimum image); zero without a cell.

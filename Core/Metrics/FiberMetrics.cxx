@@ -19,20 +19,27 @@ std::string boxText(const Vec3& lo, const Vec3& hi)
   return s.str();
 }
 
+/// Empty when the cell is off (hi == lo on every axis, the default) or usable (finite, min < max on
+/// every axis), else why not: a half-set or infinite cell would silently skip or break the images.
+std::string checkCell(const PeriodicCell& cell)
+{
+  const Vec3 e = cell.edge();
+  bool off = true, usable = true;
+  for (int i = 0; i < 3; ++i)
+  {
+    off = off && cell.hi[i] == cell.lo[i];
+    usable = usable && std::isfinite(cell.lo[i]) && std::isfinite(cell.hi[i]) && e[i] > 0.0 && std::isfinite(e[i]);
+  }
+  return off || usable ? "" : "periodic_cell " + boxText(cell.lo, cell.hi) + " must be finite with min < max on every axis";
+}
+
 /// The region of the volume fraction, or an error naming the offending value.
 std::string chooseRegion(const FiberModel& model, const MetricsOptions& options, Vec3& lo, Vec3& hi)
 {
-  if (options.cell.enabled)
+  if (options.cell.enabled())
   {
     lo = options.cell.lo;
     hi = options.cell.hi;
-    for (int i = 0; i < 3; ++i)
-    {
-      if (!(hi[i] > lo[i]) || !std::isfinite(hi[i] - lo[i]))
-      {
-        return "periodic_cell " + boxText(lo, hi) + " must have min < max on every axis";
-      }
-    }
     return "";
   }
   const bool fromBounds = options.boxLo.x > options.boxHi.x || options.boxLo.y > options.boxHi.y ||
@@ -79,6 +86,11 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   result.volume.errorBound = NaN;
   result.pairs.collisions = -1;
   result.pairs.minGap = NaN;
+  result.error = checkCell(options.cell);
+  if (!result.error.empty())
+  {
+    return result;
+  }
   if (!(options.voxelSize >= 0.0) || !std::isfinite(options.voxelSize))
   {
     std::ostringstream s;

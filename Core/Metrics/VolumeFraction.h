@@ -25,13 +25,13 @@ struct VolumeFractionResult
 /// capsule. Its true covered fraction can differ from that only if some capsule surface passes
 /// within half a voxel diagonal m of its centre; counting those voxels (signed distance in
 /// (−m, m)) bounds the error exactly: errorBound = max(estimate − certain, possible − estimate).
-/// With cell.enabled, [lo, hi] is the cell and voxels wrap around it, so every image counts.
+/// With cell.enabled(), [lo, hi] is the cell and voxels wrap around it, so every image counts.
 VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
   double voxelSize, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);
 
 /// Monte Carlo alternative: `samples` uniform points of [lo, hi] (drawn in chunks of 65536 from
 /// RandomStream(seed, chunk), so the result is the same for any thread count); fraction = share
-/// inside a capsule (every periodic image with cell.enabled), errorBound = its standard error
+/// inside a capsule (every periodic image with cell.enabled()), errorBound = its standard error
 /// √(φ(1 − φ)/samples); voxel stays zero.
 VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
   std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);

@@ -1,4 +1,4 @@
-/// AxisSampler: the optic axis at a continuous ray position (pli-simulation.md §4.5): nearest
+/// AxisSampler: the optic axis at a continuous ray position (docs/pli-simulation.md §4.5): nearest
 /// voxel, or label-aware trilinear Lerp/Slerp over the 8 surrounding voxel centres.
 #pragma once
 

@@ -1,4 +1,4 @@
-/// Optics: the camera side of the polarimeter (pli-simulation.md §5): Gaussian PSF at voxel
+/// Optics: the camera side of the polarimeter (docs/pli-simulation.md §5): Gaussian PSF at voxel
 /// resolution, binning to CCD pixels, camera noise. Every function works on a piece of the global
 /// image and gives exactly the values of the whole-image computation (global mirror edges, global
 /// pixel keys for the noise).

@@ -1,5 +1,6 @@
 #include "PLI/PLIPipeline.h"
 
+#include "Model/VolumeOfInterest.h"
 #include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
@@ -86,7 +87,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     return e;
   if (tiltDeg.size() * azDeg.size() > static_cast<std::size_t>(kMaxTiltedViews))
   {
-    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than " << kMaxTiltedViews << " views";
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than "
+      << kMaxTiltedViews << " views";
     return m.str();
   }
   return {};
@@ -98,9 +100,6 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   Status st;
   plan = PLIPlan();
   std::ostringstream m;
-  double voi[6];
-  std::copy(o.volumeOfInterest, o.volumeOfInterest + 6, voi);
-  const bool sentinel = voi[0] > voi[1] && voi[2] > voi[3] && voi[4] > voi[5];
   if (!(o.voxelSize > 0.0) || !std::isfinite(o.voxelSize))
     m << "VoxelSize is " << o.voxelSize << ", must be > 0";
   else if (!(o.pixelSize >= o.voxelSize) || !std::isfinite(o.pixelSize))
@@ -129,37 +128,12 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     st.error = m.str();
     return st;
   }
-  if (sentinel)
-  {
-    Vec3 lo, hi;
-    if (!modelBounds(model, true, lo, hi))
-    {
-      st.error = "VolumeOfInterest is the input-bounds sentinel but the input has no fibers";
-      return st;
-    }
-    voi[0] = lo.x, voi[1] = hi.x, voi[2] = lo.y, voi[3] = hi.y, voi[4] = lo.z, voi[5] = hi.z;
-  }
-  const char* axisName[3] = { "x", "y", "z" };
+  double voi[6];
+  st.error = resolveVolumeOfInterest(o.volumeOfInterest, model, o.voxelSize, voi, plan.lattice.n);
+  if (!st.ok())
+    return st;
   for (int a = 0; a < 3; ++a)
-  {
-    if (!std::isfinite(voi[2 * a]) || !std::isfinite(voi[2 * a + 1]) || !(voi[2 * a] < voi[2 * a + 1]))
-    {
-      m << "VolumeOfInterest " << axisName[a] << " range [" << voi[2 * a] << ", " << voi[2 * a + 1]
-        << "] must have min < max (or min > max on every axis for the input bounds)";
-      st.error = m.str();
-      return st;
-    }
-    const double n = std::round((voi[2 * a + 1] - voi[2 * a]) / o.voxelSize);
-    if (n < 1.0 || n > 1e9)
-    {
-      m << "VolumeOfInterest " << axisName[a] << " extent " << voi[2 * a + 1] - voi[2 * a] << " at VoxelSize "
-        << o.voxelSize << " gives " << n << " voxels, needs 1 .. 1e9";
-      st.error = m.str();
-      return st;
-    }
     plan.lattice.origin[a] = voi[2 * a];
-    plan.lattice.n[a] = static_cast<std::int64_t>(n);
-  }
   plan.lattice.voxel = o.voxelSize;
 
   std::vector<int> bundles;
@@ -181,7 +155,9 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     plan.tiltInTissue = std::max(plan.tiltInTissue, inTissue);
     for (double az : azDeg)
     {
-      plan.views.push_back(View{ inTissue, az * kDeg });
+      // The tilted sensor sees the section foreshortened by cos τ of the stage tilt (in air).
+      const double stretch = o.tiltedSensor ? 1.0 / std::cos(tilt * kDeg) : 1.0;
+      plan.views.push_back(View{ inTissue, az * kDeg, stretch });
       plan.tiltDeg.push_back(inTissue / kDeg);
       plan.azimuthDeg.push_back(az);
     }

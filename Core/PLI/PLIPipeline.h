@@ -1,4 +1,4 @@
-/// PLIPipeline: the whole `PLISimulation` filter in Core form (pli-simulation.md §2.1, §6.2, §7):
+/// PLIPipeline: the whole `PLISimulation` filter in Core form (docs/pli-simulation.md §2.1, §6.2, §7):
 /// options → lattice, layers and views → simulate the voxel columns a pixel range needs (with
 /// the blur halo) → blur → bin → noise. Any pixel sub-rectangle gives exactly the crop of the
 /// whole image, so the VTK filter can split the plane over MPI ranks without communication.
@@ -40,6 +40,7 @@ struct PLIOptions
   double opticalSigma = 0.71;    ///< output pixels, 0 = off
   double noiseGain = 3.0;        ///< 0 = off, else >= 1
   double refractiveIndex = 1.0;
+  bool tiltedSensor = false;     ///< tilted views on the tilted sensor's grid (§4.6), not registered
   int numberOfThreads = 0;
   // Core-only switches (§2.1).
   TiltConvention tiltConvention = TiltConvention::Physical;

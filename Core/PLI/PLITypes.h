@@ -1,4 +1,4 @@
-/// PLITypes: the value types shared by the 3D-PLI simulation (pli-simulation.md §7.1). Units: µm,
+/// PLITypes: the value types shared by the 3D-PLI simulation (docs/pli-simulation.md §7.2). Units: µm,
 /// nm for the wavelength, 1/mm for absorption, radians inside Core.
 #pragma once
 
@@ -29,7 +29,7 @@ struct Layer
   AxisModel model = AxisModel::Parallel;
 };
 
-/// Local radius of a link (§3.3): Linear taper (fastPLI) or the api.md capsule radius max(rP, rQ).
+/// Local radius of a link (§3.3): Linear taper (fastPLI) or the collision capsule radius max(rP, rQ).
 enum class RadiusModel : std::uint8_t
 {
   Linear,
@@ -89,10 +89,15 @@ struct Lattice
 };
 
 /// One view (§4.3): in-tissue tilt θ_t and tilt azimuth φ_t, radians. (0, 0) = untilted.
+/// stretch: 1 = the image registered onto the sample's pixel grid (every ray crosses the section's
+/// mid-plane at its column centre); s > 1 = the tilted sensor (§4.6): the ray of sensor column m
+/// crosses the mid-plane at c + s·((m − c)·d)·d + (m − c − ((m − c)·d)·d), c the image centre and d
+/// the tilt azimuth, s = 1/cos τ of the stage tilt τ.
 struct View
 {
   double theta = 0.0;
   double phi = 0.0;
+  double stretch = 1.0;
 };
 
 /// Light propagation settings (§4, §6.1).

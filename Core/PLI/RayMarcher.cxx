@@ -46,6 +46,11 @@ RayMarcher::RayMarcher(const Lattice& lattice, const SimParams& params, const Vi
   L_[0] = s * cp;
   L_[1] = s * sp;
   L_[2] = c;
+  dir_[0] = cp;
+  dir_[1] = sp;
+  stretch_ = tilted_ ? view.stretch : 1.0;
+  centre_[0] = 0.5 * static_cast<double>(lattice.n[0]);
+  centre_[1] = 0.5 * static_cast<double>(lattice.n[1]);
   const double R[3][3] = { { c * cp * cp + sp * sp, (c - 1.0) * sp * cp, s * cp },
     { (c - 1.0) * sp * cp, c * sp * sp + cp * cp, s * sp }, { -s * cp, -s * sp, c } };
   for (int a = 0; a < 3; ++a)
@@ -85,6 +90,39 @@ RayMarcher::RayMarcher(const Lattice& lattice, const SimParams& params, const Vi
   }
 }
 
+void RayMarcher::midPlanePoint(std::int64_t i, std::int64_t j, double out[2]) const
+{
+  out[0] = static_cast<double>(i) + 0.5;
+  out[1] = static_cast<double>(j) + 0.5;
+  if (stretch_ == 1.0)
+    return;
+  // Only the component along the tilt azimuth is stretched (the tilt axis is perpendicular to d).
+  const double t = (stretch_ - 1.0) * ((out[0] - centre_[0]) * dir_[0] + (out[1] - centre_[1]) * dir_[1]);
+  out[0] += t * dir_[0];
+  out[1] += t * dir_[1];
+}
+
+ColumnRange RayMarcher::midPlaneColumns(const ColumnRange& cols) const
+{
+  if (stretch_ == 1.0 || cols.nx() < 1 || cols.ny() < 1)
+    return cols;
+  // The map is affine: the extremes are at the corner columns.
+  double lo[2] = { INFINITY, INFINITY }, hi[2] = { -INFINITY, -INFINITY };
+  for (std::int64_t j : { cols.j0, cols.j1 - 1 })
+    for (std::int64_t i : { cols.i0, cols.i1 - 1 })
+    {
+      double p[2];
+      midPlanePoint(i, j, p);
+      for (int a = 0; a < 2; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+    }
+  auto column = [](double x) { return static_cast<std::int64_t>(std::floor(x)); };
+  return ColumnRange{ column(lo[0]) - 1, column(hi[0]) + 2, column(lo[1]) - 1, column(hi[1]) + 2 };
+}
+
 void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j, const ColumnRange& clamp, double* out) const
 {
   const int nr = static_cast<int>(c2r_.size());
@@ -109,8 +147,10 @@ void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j,
     S2[k] = 0.0;
     S3[k] = 0.5 * I0;
   }
-  const double px0 = static_cast<double>(i) + 0.5 + p0off_[0];
-  const double py0 = static_cast<double>(j) + 0.5 + p0off_[1];
+  double mid[2];
+  midPlanePoint(i, j, mid);
+  const double px0 = mid[0] + p0off_[0];
+  const double py0 = mid[1] + p0off_[1];
   const double lambdaUm = par_.wavelengthNm * 1e-3;
   const double twoPiOverLambda = 2.0 * M_PI / lambdaUm;
   const double voxel = lat_.voxel;

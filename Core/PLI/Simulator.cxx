@@ -57,7 +57,12 @@ double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const s
   const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
   const double B = std::min<double>(par.tile, std::max<double>(cols.nx(), cols.ny()));
   const double threads = resolveThreadCount(par.threads);
-  const double tile = (B + 2 * h) * (B + 2 * h) * static_cast<double>(lat.n[2]) * kTileBytesPerVoxel;
+  // The tilted sensor's block covers the stretched mid-plane points of the tile (+3: floor, ±1).
+  double stretch = 1.0;
+  for (const View& v : views)
+    stretch = std::max(stretch, v.theta > 0.0 ? v.stretch : 1.0);
+  const double side = stretch == 1.0 ? B + 2 * h : B * stretch + 2 * h + 3;
+  const double tile = side * side * static_cast<double>(lat.n[2]) * kTileBytesPerVoxel;
   const double outBytes = static_cast<double>(views.size()) * static_cast<double>(cols.nx()) *
     static_cast<double>(cols.ny()) * static_cast<double>(par.rho.size()) * sizeof(double);
   return threads * tile + outBytes;
@@ -119,8 +124,20 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
   const std::int64_t B = par.tile;
   res.estimatedBytes = static_cast<std::size_t>(estimateSimulationBytes(lat, par, views, cols));
 
+  const LabelProps props = LabelProps::fromSpec(spec);
+  std::vector<RayMarcher> marchers;
+  for (const View& v : views)
+    marchers.emplace_back(lat, par, v, props);
+  // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
+  ColumnRange region = grow(cols, halo);
+  for (const RayMarcher& rm : marchers)
+  {
+    const ColumnRange r = grow(rm.midPlaneColumns(cols), halo);
+    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
+      std::max(region.j1, r.j1) };
+  }
   LinkTable table;
-  buildLinkTable(model, spec, lat, grow(cols, halo), B, table);
+  buildLinkTable(model, spec, lat, region, B, table);
   res.estimatedBytes += table.links.size() * sizeof(LinkTable::Link);
   if (table.zeroLengthLinks > 0)
     res.status.warnings.push_back(std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
@@ -130,11 +147,6 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
   out.assign(views.size(), Stack());
   for (Stack& s : out)
     s.resize(cols, nrho);
-
-  const LabelProps props = LabelProps::fromSpec(spec);
-  std::vector<RayMarcher> marchers;
-  for (const View& v : views)
-    marchers.emplace_back(lat, par, v, props);
 
   // Tiles aligned to the global B grid, so a split changes which tile a column is in but never
   // how it is computed.
@@ -185,32 +197,55 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
 #endif
       const ColumnRange& tile = tiles[static_cast<std::size_t>(ti)];
       TissueBlock& block = blocks[me];
-      const double t0 = now();
-      block.reset(grow(tile, halo), lat.n[2]);
-      VoxeliseStats vs;
-      HaloShape shape{ tile, reach };
-      voxeliseBlock(table, spec, lat, par.lateral, block, vs, &shape);
-      overlap[static_cast<std::size_t>(ti)] = vs.overlap ? 1 : 0;
-      std::int64_t inside = 0;
-      for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]); ++j)
-        for (std::int64_t i = std::max<std::int64_t>(tile.i0, 0); i < std::min(tile.i1, lat.n[0]); ++i)
-          for (std::int64_t k = 0; k < lat.n[2]; ++k)
-            inside += block.label(i, j, k) != 0 ? 1 : 0;
-      labelled[static_cast<std::size_t>(ti)] = inside;
-      const double t1 = now();
-      ColumnRange clamp = block.cols;
-      if (par.lateral == LateralOutside::Background)
-        clamp = ColumnRange{ 0, lat.n[0], 0, lat.n[1] };
+      // Views whose rays cross the mid-plane in the same columns share one block: all of them
+      // when registered; on the tilted sensor each stretched view has its own (§4.6).
+      std::vector<std::size_t> pending(views.size());
       for (std::size_t v = 0; v < views.size(); ++v)
+        pending[v] = v;
+      bool first = true;
+      while (!pending.empty())
       {
-        for (std::int64_t j = tile.j0; j < tile.j1; ++j)
-          for (std::int64_t i = tile.i0; i < tile.i1; ++i)
-            marchers[v].march(block, i, j, clamp, &out[v].at(i, j, 0));
-        nSteps[me] += marchers[v].numberOfSteps() * tile.nx() * tile.ny();
+        const double t0 = now();
+        const ColumnRange core = marchers[pending.front()].midPlaneColumns(tile);
+        block.reset(grow(core, halo), lat.n[2]);
+        VoxeliseStats vs;
+        HaloShape shape{ core, reach };
+        voxeliseBlock(table, spec, lat, par.lateral, block, vs, &shape);
+        overlap[static_cast<std::size_t>(ti)] |= vs.overlap ? 1 : 0;
+        // The first block holding the tile's own columns (views[0], untilted, in a PLIPlan).
+        if (first && block.contains(tile.i0, tile.j0) && block.contains(tile.i1 - 1, tile.j1 - 1))
+        {
+          std::int64_t inside = 0;
+          for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]); ++j)
+            for (std::int64_t i = std::max<std::int64_t>(tile.i0, 0); i < std::min(tile.i1, lat.n[0]); ++i)
+              for (std::int64_t k = 0; k < lat.n[2]; ++k)
+                inside += block.label(i, j, k) != 0 ? 1 : 0;
+          labelled[static_cast<std::size_t>(ti)] = inside;
+          first = false;
+        }
+        const double t1 = now();
+        ColumnRange clamp = block.cols;
+        if (par.lateral == LateralOutside::Background)
+          clamp = ColumnRange{ 0, lat.n[0], 0, lat.n[1] };
+        std::vector<std::size_t> later;
+        for (std::size_t v : pending)
+        {
+          const ColumnRange c = marchers[v].midPlaneColumns(tile);
+          if (c.i0 != core.i0 || c.i1 != core.i1 || c.j0 != core.j0 || c.j1 != core.j1)
+          {
+            later.push_back(v);
+            continue;
+          }
+          for (std::int64_t j = tile.j0; j < tile.j1; ++j)
+            for (std::int64_t i = tile.i0; i < tile.i1; ++i)
+              marchers[v].march(block, i, j, clamp, &out[v].at(i, j, 0));
+          nSteps[me] += marchers[v].numberOfSteps() * tile.nx() * tile.ny();
+        }
+        pending.swap(later);
+        tVox[me] += t1 - t0;
+        tProp[me] += now() - t1;
+        nVox[me] += block.cols.nx() * block.cols.ny() * lat.n[2];
       }
-      tVox[me] += t1 - t0;
-      tProp[me] += now() - t1;
-      nVox[me] += block.cols.nx() * block.cols.ny() * lat.n[2];
     }
   }
   reportProgress(progress, 1.0);

@@ -1,5 +1,5 @@
 /// Simulator: voxel-resolution image stacks of every view for a range of voxel columns
-/// (pli-simulation.md §3.5 column tiles, §4 propagation, §6.1 OpenMP). Tissue is voxelised per
+/// (docs/pli-simulation.md §3.5 column tiles, §4 propagation, §6.1 OpenMP). Tissue is voxelised per
 /// tile (tile ± tilt halo, all depths) into a per-thread buffer and never stored whole.
 #pragma once
 

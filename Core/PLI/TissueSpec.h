@@ -1,5 +1,5 @@
 /// TissueSpec construction: the `Layers` property grammar and its validation
-/// (pli-simulation.md §3.2).
+/// (docs/pli-simulation.md §3.2).
 #pragma once
 
 #include "PLI/PLITypes.h"

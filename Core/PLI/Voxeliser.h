@@ -1,5 +1,5 @@
 /// Voxeliser: capsule fibers → layered tissue on the voxel lattice, one lateral block at a time
-/// (pli-simulation.md §3.3, §3.5). A block holds 16 bytes per voxel: while filling, the owner key
+/// (docs/pli-simulation.md §3.3, §3.5). A block holds 16 bytes per voxel: while filling, the owner key
 /// (d2 double, link id) and the label; afterwards the optic axis (3 × float) and the label.
 #pragma once
 

@@ -6,8 +6,10 @@
 #include "Util/Threads.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -79,36 +81,6 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
       }
     }
   }
-}
-
-std::string validateInput(const FiberModel& model)
-{
-  std::ostringstream msg;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
-  {
-    const Fiber& fib = model.fibers[f];
-    if (fib.radii.size() != fib.points.size())
-    {
-      msg << "fiber " << f << " (id " << fib.id << ") has " << fib.points.size() << " points but "
-          << fib.radii.size() << " radii";
-      return msg.str();
-    }
-    for (std::size_t i = 0; i < fib.points.size(); ++i)
-    {
-      if (!isFinite(fib.points[i]))
-      {
-        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has a non-finite coordinate";
-        return msg.str();
-      }
-      if (!std::isfinite(fib.radii[i]) || fib.radii[i] <= 0.0)
-      {
-        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has radius " << fib.radii[i]
-            << ", must be finite and > 0";
-        return msg.str();
-      }
-    }
-  }
-  return {};
 }
 
 double medianRadius(const FiberModel& model)
@@ -806,7 +778,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   result.error = validateCollisionSolverOptions(o);
   if (result.error.empty())
   {
-    result.error = validateInput(model);
+    result.error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
   }
   if (!result.error.empty())
   {
@@ -851,6 +823,12 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   constexpr int kGrowthStall = 2000;
 
   bool changed = false;
+  double done = 0.0;                                    // progress reported so far
+  auto lastReport = std::chrono::steady_clock::now();
+  const auto stepShareAfter = [&o](int steps) {
+    return o.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / o.maxSteps) : 1.0;
+  };
+  std::size_t firstCount = static_cast<std::size_t>(-1); // collisions at the first detection
   bool first = true;
   int sinceImprovement = 0;
   bool warnedStall = false;
@@ -872,6 +850,25 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
       return result;
     }
     const std::size_t count = s.pairs_.size();
+    // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
+    // first step (log scale: the last few take most of the steps), never going back.
+    if (firstCount == static_cast<std::size_t>(-1))
+    {
+      firstCount = count;
+    }
+    const double stepShare = stepShareAfter(result.steps);
+    const double resolved = firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /
+        std::log1p(static_cast<double>(firstCount)) : 1.0;
+    done = std::max(done, std::min(0.99, std::max(stepShare, resolved)));
+    // A step of a large model takes long: then abort is also checked between its two long phases
+    // (shape control and detection; moves), so a stop request waits for at most one phase.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - lastReport > std::chrono::milliseconds(250) && (lastReport = now, !reportProgress(progress, std::max(done, 1e-9))))
+    {
+      result.aborted = true;
+      changed = !s.shapeWithinLimits();
+      break;
+    }
     const bool growing = s.scale_ < 1.0; // count is at the size before any growth below
     if (growing && s.maxOverlap() <= growthTolerance * s.scale_)
     {
@@ -922,9 +919,8 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     {
       observer(result.steps, model);
     }
-    const double fraction =
-      o.maxSteps > 0 ? static_cast<double>(result.steps) / static_cast<double>(o.maxSteps) : 1.0;
-    if (!reportProgress(progress, fraction))
+    lastReport = std::chrono::steady_clock::now();
+    if (!reportProgress(progress, std::max(done, stepShareAfter(result.steps))))
     {
       result.aborted = true;
       if (!s.detect()) // collisions must describe the geometry that is returned
@@ -1021,7 +1017,10 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   if (cell.enabled())
   {
     PeriodicPairs finder;
-    finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow);
+    if (!finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow).empty())
+    {
+      return std::numeric_limits<std::size_t>::max(); // cell too small for its links: no count
+    }
   }
   else
   {
@@ -1033,13 +1032,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
 
 bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
 {
-  if (!cell.enabled() || fiber.size() < 2)
-  {
-    return false;
-  }
-  const Vec3 e = cell.edge();
-  const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
-  return cell.isLatticeVector(fiber.points.back() - fiber.points.front(), tol, closure);
+  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)

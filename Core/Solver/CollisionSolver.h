@@ -1,5 +1,5 @@
 /// CollisionSolver: moves fibers until no two capsules overlap, keeping segment lengths and
-/// curvature within limits (collision-solver.md, paper "Disentangling colliding fibers").
+/// curvature within limits (docs/solver.md §3–§6, paper "Disentangling colliding fibers").
 /// Deterministic: the output is bit-identical for any thread count (§4.4).
 #pragma once
 
@@ -16,7 +16,7 @@
 namespace fiberpli
 {
 
-/// Parameters (collision-solver.md §7). Lengths in µm.
+/// Parameters (docs/solver.md §7). Lengths in µm.
 struct CollisionSolverOptions
 {
   /// Mean segment length L̄ (µm); links are kept in [2/3, 4/3]·L̄ by split/merge (§5.1).
@@ -98,7 +98,7 @@ struct CollisionSolverResult
 /// calling thread (e.g. to expose iterations as time steps).
 using StepObserver = std::function<void(int step, const FiberModel& model)>;
 
-/// Solves the model in place (collision-solver.md §6): fibers keep count, order, id and bundle;
+/// Solves the model in place (docs/solver.md §6): fibers keep count, order, id and bundle;
 /// first and last points stay first and last. Fibers with fewer than 2 points (after removing
 /// repeated consecutive points) are left unchanged and excluded (warning). Errors (bad options,
 /// mismatched radii, non-finite coordinates, radius <= 0) leave the model unchanged and name the
@@ -112,7 +112,8 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
-/// solver's pair limit it stops counting and returns a number larger than that limit.
+/// solver's pair limit it stops counting and returns a number larger than that limit; in a
+/// periodic cell too small for its links (PeriodicPairs refuses it) it returns SIZE_MAX, never 0.
 std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
   const PeriodicCell& periodicCell = PeriodicCell{});
 

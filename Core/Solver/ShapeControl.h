@@ -1,4 +1,4 @@
-/// ShapeControl: the solver's shape rules per fiber (collision-solver.md §5): segment length
+/// ShapeControl: the solver's shape rules per fiber (docs/solver.md §5): segment length
 /// (split / merge, §5.1) and curvature (minimum circumradius and 60° vertex angle, §5.2).
 /// Both are sequential inside one fiber and independent between fibers (parallel over fibers).
 #pragma once
@@ -11,7 +11,7 @@
 namespace fiberpli
 {
 
-/// What end points may do when they move (collision-solver.md §4.2).
+/// What end points may do when they move (docs/solver.md §4.2).
 enum class EndPointRule
 {
   Perpendicular = 0, ///< move only perpendicular to the end link (paper; fibers keep their length)
@@ -28,10 +28,10 @@ struct FiberPointState
 };
 
 /// Applies the end-point rule to a displacement d of point i (0 or n−1) of fiber f; interior
-/// points are returned unchanged (collision-solver.md §4.2).
+/// points are returned unchanged (docs/solver.md §4.2).
 Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule rule);
 
-/// Split / merge of collision-solver.md §5.1 with l_min = 2/3·L̄, l_max = 4/3·L̄ (segmentLength =
+/// Split / merge of docs/solver.md §5.1 with l_min = 2/3·L̄, l_max = 4/3·L̄ (segmentLength =
 /// L̄ > 0). A split inserts the mean position, radius, velocity and source index; a merge deletes
 /// one point (never an end point, the one with the weaker radius feature). A fiber of minPoints
 /// points is never shortened (2; a fiber closed through a periodic cell needs 3). state arrays must
@@ -39,7 +39,7 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
 bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength,
   std::size_t minPoints = 2);
 
-/// Curvature rule of collision-solver.md §5.2 (division-free): a vertex whose circumradius is
+/// Curvature rule of docs/solver.md §5.2 (division-free): a vertex whose circumradius is
 /// below minRadius or whose angle is below 60° moves by +0.2·step towards the inside of the bend,
 /// its neighbours by −0.05·step; all moves of the fiber are summed in vertex order, then applied
 /// (end points obey rule). minRadius <= 0 disables it. Returns true when a vertex violated.

@@ -1,6 +1,6 @@
 // Independent reference for the collision tests: segment distance as the minimum of the four
 // end point–segment distances and the interior critical point (a different construction from
-// Geometry/SegmentDistance), and an O(N²) pair list with the §3.1 rules written out again.
+// Geometry/SegmentDistance), and an O(N²) pair list with the docs/solver.md §3.1 rules written out again.
 #pragma once
 
 #include "Model/FiberModel.h"

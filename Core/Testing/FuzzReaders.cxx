@@ -1,4 +1,4 @@
-// Fuzz test of the Core/IO readers (architecture.md §6: "never a crash"): the sample files are
+// Fuzz test of the Core/IO readers (docs/architecture.md §6: "never a crash"): the sample files are
 // mutated (bit flips, truncations, inserted garbage, huge numbers, chunk deletion/duplication)
 // with a fixed seed and fed to every reader and sniffer. Built with ASan/UBSan over the IO
 // sources directly; any sanitizer report aborts the run. Beyond "no crash", a successful read must

@@ -1,5 +1,5 @@
 // Helpers of the PLI tests: the Fourier (EPA) analysis of one pixel, written from its definition
-// (pli-analysis.md) and independent of the simulation code, plus small fiber builders.
+// (docs/pli-analysis.md §6) and independent of the simulation code, plus small fiber builders.
 #pragma once
 
 #include "Model/FiberModel.h"

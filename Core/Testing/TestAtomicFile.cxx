@@ -1,4 +1,4 @@
-// Atomic replacement of files (AtomicFile.h, api.md "Readers and writers"): a failed write never
+// Atomic replacement of files (AtomicFile.h, docs/api.md §4): a failed write never
 // destroys the existing target and leaves no temporary file behind. Tests run as root, so failures
 // are provoked with a missing directory, a directory as target, a failing content callback and a
 // throwing one (chmod would not stop root).

@@ -1,4 +1,4 @@
-// FiberBundleSource Core (tissue-models.md §2, §5.4, §6, §7, §8): fibers inside the bundle, following
+// FiberBundleSource Core (docs/tissue-models.md §2, §5.4, §6, §7, §8): fibers inside the bundle, following
 // a curved trajectory without twist, ids and bundle ids per shape, reproducibility, Ranvier profile,
 // bad input messages.
 #include "Tissue/BundleGenerator.h"

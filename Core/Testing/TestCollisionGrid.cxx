@@ -1,4 +1,4 @@
-// Uniform-grid collision detection (collision-solver.md §3, tests 9–13 of §10) against an
+// Uniform-grid collision detection (docs/solver.md §3, tests 9–13 of §10) against an
 // independent O(N²) reference.
 #include "Index/CollisionGrid.h"
 

@@ -1,4 +1,4 @@
-// Collision solver (collision-solver.md §4–§6, tests 14–27 of §10). Overlaps are counted by an
+// Collision solver (docs/solver.md §4–§6, tests 14–27 of §10). Overlaps are counted by an
 // independent brute-force checker (BruteForceOverlap.h), never by the solver's own detection.
 #include "Solver/CollisionSolver.h"
 

@@ -1,4 +1,4 @@
-// Cube benchmark generator (tissue-models.md §6.1): counts, directions, displacement bound, seeds.
+// Cube benchmark generator (docs/tissue-models.md §6.1): counts, directions, displacement bound, seeds.
 #include "Tissue/CubeGenerator.h"
 
 #include <gtest/gtest.h>

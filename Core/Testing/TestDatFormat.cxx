@@ -1,4 +1,4 @@
-// fastPLI .dat reader/writer (api.md "Readers and writers", DatFormat.h): layout, bit-exact round
+// fastPLI .dat reader/writer (docs/api.md §4, DatFormat.h): layout, bit-exact round
 // trip, the real fastPLI sample files, every bad-line case, content sniffing.
 #include "IO/DatFormat.h"
 #include "Util/Random.h"

@@ -1,4 +1,4 @@
-// Fiber orientation map colours (pli-analysis.md §4, test vector A-6) and the colour legend.
+// Fiber orientation map colours (docs/pli-analysis.md §4, test vector A-6) and the colour legend.
 #include "Analysis/FiberOrientationMap.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Orientation ground truth from fibers (pli-analysis.md §5, test vector A-7), the orientation
+// Orientation ground truth from fibers (docs/pli-analysis.md §5, test vector A-7), the orientation
 // tensor, axis canonicalisation and the comparison metrics.
 #include "Analysis/Axis.h"
 #include "Analysis/GroundTruth.h"
@@ -150,6 +150,7 @@ TEST(GroundTruth, UniformSlabS6)
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 2;
+  o.histogram = true;
   ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(10, 10), maps), "");
   ASSERT_EQ(maps.nx, 10);
   ASSERT_EQ(maps.ny, 10);
@@ -181,6 +182,7 @@ TEST(GroundTruth, VerticalFiberS8a)
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;
+    o.histogram = true;
     ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(3, 5), maps), "");
     int count = 0;
     for (int y = 0; y < 5; ++y)
@@ -236,7 +238,7 @@ TEST(GroundTruth, PartialCoverageFraction)
   EXPECT_DOUBLE_EQ(maps.fraction[0], (4 + 4) * 2 / 40.0);
 }
 
-// §3.3 tie rule: a voxel equidistant from two links belongs to the larger global link index,
+// docs/pli-simulation.md §3.3 tie rule: a voxel equidistant from two links belongs to the larger global link index,
 // and links are numbered bundle by bundle, not in the order of the fiber list.
 TEST(GroundTruth, TiesGoToTheLaterLinkInBundleOrder)
 {
@@ -271,6 +273,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   GroundTruthOptions o1, o2;
   o1.threads = 1;
   o2.threads = 2;
+  o1.histogram = o2.histogram = true;
   GroundTruthMaps a, b, part;
   ASSERT_EQ(computeGroundTruth(m, lat, o1, wholeImage(10, 10), a), "");
   ASSERT_EQ(computeGroundTruth(m, lat, o2, wholeImage(10, 10), b), "");

@@ -1,4 +1,4 @@
-// PLI analysis (pli-analysis.md §2, §3; test vectors A-1 … A-5): EPA on equidistant and arbitrary
+// PLI analysis (docs/pli-analysis.md §2, §3; test vectors A-1 … A-5): EPA on equidistant and arbitrary
 // polarizer angles, inclination from retardation, and the tilt fit on closed-form views.
 #include "Analysis/Epa.h"
 #include "Analysis/RetardationInclination.h"
@@ -47,7 +47,7 @@ double dirDiffDeg(double a, double b)
   return std::min(d, M_PI - d) / kDeg;
 }
 
-// Closed-form intensity of a homogeneous fiber, the paper's equation (pli-simulation.md §1),
+// Closed-form intensity of a homogeneous fiber, the paper's equation (docs/pli-simulation.md §1),
 // written here independently of any simulator: I(ρ) = I_T·(1 + sin 2(ρ − φ)·sin δ).
 std::vector<double> homogeneousFiber(double iT, double phi, double sinDelta, const std::vector<double>& rho)
 {
@@ -85,7 +85,7 @@ EpaPixel epa(const std::vector<double>& I, const std::vector<double>& rho)
 }
 } // namespace
 
-// the single voxel of pli-simulation S-1.
+// the single voxel of docs/pli-simulation.md §8 S-1.
 TEST(PLIAnalysis, EpaSingleVoxelA1)
 {
   const std::vector<double> I = { 6500, 10203.645730, 10203.645730, 6500, 2796.354270, 2796.354270 };
@@ -136,7 +136,7 @@ TEST(PLIAnalysis, EpaLeastSquaresOnIrregularAnglesA2)
   EXPECT_GT(std::abs(p.transmittance - w.transmittance), 1e-3);
 }
 
-// A-2 remaining rows: known amplitude and phase on 9 equidistant angles (sign convention of §2.3).
+// A-2 remaining rows: known amplitude and phase on 9 equidistant angles (sign convention of docs/pli-analysis.md §2.3).
 TEST(PLIAnalysis, EpaKnownHarmonicsA2)
 {
   const std::vector<double> rho = equidistant(9);
@@ -150,7 +150,7 @@ TEST(PLIAnalysis, EpaKnownHarmonicsA2)
     { 1000, 0, 400, 2000, 135, 0.4 },
     { 1000, 0, -400, 2000, 45, 0.4 },
     { 100, 150, 0, 200, 0, 1.0 }, // 1.5 clamped
-    { 500, 0, 0, 1000, 0, 0 },    // flat: direction 0 by the rule of §2.3
+    { 500, 0, 0, 1000, 0, 0 },    // flat: direction 0 by the rule of docs/pli-analysis.md §2.3
   };
   for (const Case& c : cases)
   {
@@ -363,7 +363,7 @@ struct Column
 // Closed-form intensities of a uniform column in view j (0 flat; 1..4 tilt azimuths 0°, 90°,
 // 180°, 270°) by tilting the specimen by tau (in tissue) about u = (−sin ψ, cos ψ, 0): the
 // beam sees the axis rotated by −tau (Physical: v_b = Rᵀv) or +tau (FastPLI: R·v), along a path
-// d/cos tau. I = (I0/4)(1 − sin δ · sin 2(ρ − φ_b)), δ = 2π·Δn·path·cos²α_b/λ (§4.2).
+// d/cos tau. I = (I0/4)(1 − sin δ · sin 2(ρ − φ_b)), δ = 2π·Δn·path·cos²α_b/λ (docs/pli-simulation.md §4.2).
 std::vector<double> columnView(const Column& c, int j, double tau, bool physical, const std::vector<double>& rho)
 {
   Vec3 v{ std::cos(c.inclDeg * kDeg) * std::cos(c.dirDeg * kDeg), std::cos(c.inclDeg * kDeg) * std::sin(c.dirDeg * kDeg),

@@ -1,4 +1,5 @@
-// Rotation and mirror covariance of every PLI view. Turning the fiber model by 90°, 180° or 270°
+// Rotation and mirror covariance of every PLI view, registered and on the tilted sensor (where the
+// image is stretched about its centre along the tilt azimuth). Turning the fiber model by 90°, 180° or 270°
 // about z, or mirroring it in x or y, must turn every image of every view exactly:
 //  - pixel (i, j) goes where the transform puts the voxel centre;
 //  - the view of tilt azimuth φ_t goes to the azimuth of the transformed beam direction;
@@ -89,55 +90,58 @@ int wrap(int k, int n) { return ((k % n) + n) % n; }
 TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
 {
   const FiberModel base = model();
-  for (TiltConvention conv : { TiltConvention::Physical, TiltConvention::FastPLI })
-    for (Interp interp : { Interp::NN, Interp::Lerp, Interp::Slerp })
-      for (double step : { 0.5, 1.0, 2.0 })
-      {
-        PLIOptions o = options(interp, step);
-        o.tiltConvention = conv; // both conventions rotate the axes with the stage, either way round
-        const PLIImage ref = run(base, o);
-        ASSERT_EQ(ref.views.size(), 5u);
-        const std::int64_t n = ref.views[0].nx; // square image
-        ASSERT_EQ(n, 16);
-        for (const Transform& T : kTransforms)
+  for (bool sensor : { false, true })
+    for (TiltConvention conv : { TiltConvention::Physical, TiltConvention::FastPLI })
+      for (Interp interp : { Interp::NN, Interp::Lerp, Interp::Slerp })
+        for (double step : { 0.5, 1.0, 2.0 })
         {
-          FiberModel m = base;
-          for (Fiber& f : m.fibers)
-            for (Vec3& p : f.points)
-              p = T.apply(p);
-          const PLIImage img = run(m, o); // the VOI is symmetric, so it maps onto itself
-          ASSERT_EQ(img.views.size(), 5u);
-          double worst = 0.0;
-          for (int v = 0; v < 5; ++v)
+          PLIOptions o = options(interp, step);
+          o.tiltConvention = conv; // both conventions rotate the axes with the stage, either way round
+          // The tilted sensor stretches about the image centre along the azimuth: both turn with T.
+          o.tiltedSensor = sensor;
+          const PLIImage ref = run(base, o);
+          ASSERT_EQ(ref.views.size(), 5u);
+          const std::int64_t n = ref.views[0].nx; // square image
+          ASSERT_EQ(n, 16);
+          for (const Transform& T : kTransforms)
           {
-            // Beam azimuth of view v (view 0 is untilted) and of its image under T.
-            int w = 0;
-            if (v > 0)
+            FiberModel m = base;
+            for (Fiber& f : m.fibers)
+              for (Vec3& p : f.points)
+                p = T.apply(p);
+            const PLIImage img = run(m, o); // the VOI is symmetric, so it maps onto itself
+            ASSERT_EQ(img.views.size(), 5u);
+            double worst = 0.0;
+            for (int v = 0; v < 5; ++v)
             {
-              const double phi = (v - 1) * M_PI / 2;
-              const Vec3 L = T.apply({ std::round(std::cos(phi)), std::round(std::sin(phi)), 0 });
-              w = 1 + wrap(static_cast<int>(std::lround(std::atan2(L.y, L.x) * 2 / M_PI)), 4);
-            }
-            for (std::int64_t j = 0; j < n; ++j)
-              for (std::int64_t i = 0; i < n; ++i)
+              // Beam azimuth of view v (view 0 is untilted) and of its image under T.
+              int w = 0;
+              if (v > 0)
               {
-                // Voxel centre relative to the image centre, in half-voxels (exact integers).
-                const Vec3 c = T.apply({ 2.0 * i + 1 - n, 2.0 * j + 1 - n, 0 });
-                const std::int64_t i2 = (static_cast<std::int64_t>(c.x) + n - 1) / 2;
-                const std::int64_t j2 = (static_cast<std::int64_t>(c.y) + n - 1) / 2;
-                for (int k = 0; k < kRot; ++k)
-                {
-                  const int k2 = T.mirror() ? wrap(kRot / 2 - k, kRot) : wrap(k + T.rotationDeg() / 10, kRot);
-                  const double d = std::fabs(img.views[w].at(i2, j2, k2) - ref.views[v].at(i, j, k));
-                  worst = std::max(worst, d);
-                }
+                const double phi = (v - 1) * M_PI / 2;
+                const Vec3 L = T.apply({ std::round(std::cos(phi)), std::round(std::sin(phi)), 0 });
+                w = 1 + wrap(static_cast<int>(std::lround(std::atan2(L.y, L.x) * 2 / M_PI)), 4);
               }
-            ASSERT_LT(worst, 1e-12 * o.lightIntensity)
-              << T.name << " view " << v << " -> " << w << " interpolation " << static_cast<int>(interp)
-              << " StepSize " << step << " convention " << static_cast<int>(conv);
+              for (std::int64_t j = 0; j < n; ++j)
+                for (std::int64_t i = 0; i < n; ++i)
+                {
+                  // Voxel centre relative to the image centre, in half-voxels (exact integers).
+                  const Vec3 c = T.apply({ 2.0 * i + 1 - n, 2.0 * j + 1 - n, 0 });
+                  const std::int64_t i2 = (static_cast<std::int64_t>(c.x) + n - 1) / 2;
+                  const std::int64_t j2 = (static_cast<std::int64_t>(c.y) + n - 1) / 2;
+                  for (int k = 0; k < kRot; ++k)
+                  {
+                    const int k2 = T.mirror() ? wrap(kRot / 2 - k, kRot) : wrap(k + T.rotationDeg() / 10, kRot);
+                    const double d = std::fabs(img.views[w].at(i2, j2, k2) - ref.views[v].at(i, j, k));
+                    worst = std::max(worst, d);
+                  }
+                }
+              ASSERT_LT(worst, 1e-12 * o.lightIntensity)
+                << T.name << " view " << v << " -> " << w << " interpolation " << static_cast<int>(interp)
+                << " StepSize " << step << " convention " << static_cast<int>(conv) << " TiltedSensor " << sensor;
+            }
           }
         }
-      }
 }
 
 TEST(PLICovariance, TheModelIsNotSymmetricSoTheTestCanFail)

@@ -1,4 +1,4 @@
-// Optics (pli-simulation.md §5, test vectors S-10): Gaussian PSF with mirrored edges, binning to
+// Optics (docs/pli-simulation.md §5, test vectors S-10): Gaussian PSF with mirrored edges, binning to
 // CCD pixels, Gamma–Poisson camera noise and its reproducibility.
 #include "PLI/Optics.h"
 #include "PLITestUtil.h"

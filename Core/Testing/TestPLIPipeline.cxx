@@ -1,4 +1,4 @@
-// End-to-end PLI simulation (pli-simulation.md S-6, S-7), determinism over threads and tiles,
+// End-to-end PLI simulation (docs/pli-simulation.md §8 S-6, S-7), determinism over threads and tiles,
 // pixel sub-rectangles equal to the crop of the whole image, option validation.
 #include "PLI/PLIPipeline.h"
 #include "PLI/Simulator.h"

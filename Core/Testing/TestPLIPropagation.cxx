@@ -1,5 +1,5 @@
 // Müller propagation against the closed form and the test vectors S-1 … S-5 of
-// pli-simulation.md §8 (single, stacked and tilted 60 µm voxels built from real fibers).
+// docs/pli-simulation.md §8 (single, stacked and tilted 60 µm voxels built from real fibers).
 #include "PLI/Simulator.h"
 #include "PLI/TissueSpec.h"
 #include "PLITestUtil.h"

@@ -1,4 +1,4 @@
-// Voxeliser (pli-simulation.md §3.3, test vectors S-8) and axis interpolation (§4.5, S-9).
+// Voxeliser (docs/pli-simulation.md §3.3, test vectors S-8) and axis interpolation (§4.5, S-9).
 #include "PLI/AxisSampler.h"
 #include "PLI/TissueSpec.h"
 #include "PLI/Voxeliser.h"

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace fiberpli;
 using fiberpli_test::monteCarloFraction;
@@ -125,7 +126,7 @@ TEST(PeriodicCube, BadInputIsRejectedNamingTheProperty)
 
 TEST(PeriodicCube, OpenCubeDrawsAreUnchanged)
 {
-  // Periodic off, constant radius: the draws of tissue-models.md §6.1 (position, then the
+  // Periodic off, constant radius: the draws of docs/tissue-models.md §6.1 (position, then the
   // displacements), so existing cubes keep their bytes.
   CubeOptions o;
   o.numberOfFibers = 3;
@@ -192,8 +193,11 @@ TEST(PeriodicSolver, SmallCellsSolveToZeroOverlapsKeepingClosureRadiiAndFraction
     for (const Fiber& f : m.fibers)
       for (double x : f.radii)
         EXPECT_EQ(x, 0.8);
-    // Closed fibers are at least one period long: the fraction never falls below the target.
-    EXPECT_GE(r.volumeFraction, targets[pops - 1]);
+    // generateCube stops adding fibers within ±½ fiber of the target, and the solver only
+    // lengthens closed fibers (each at least one period L long): the fraction is at least the
+    // target less half a one-period fiber, π r² L / 2 / L³.
+    const double L = c.edgeLength;
+    EXPECT_GE(r.volumeFraction, targets[pops - 1] - 0.5 * M_PI * 0.8 * 0.8 * L / (L * L * L));
     const double mc = monteCarloFraction(m, c.edgeLength, 20000);
     EXPECT_NEAR(mc, r.volumeFraction, 4.0 * std::sqrt(mc * (1 - mc) / 20000) + 0.005);
     EXPECT_GE(r.minGap, 0.0);
@@ -338,4 +342,24 @@ TEST(PeriodicTiling, CopiesExactlyTheTranslatesThatReachTheBox)
   const double taller[6] = { -15, 15, -5.2, 5.2, -1, 1 };
   ASSERT_EQ(tileModel(n, cell, taller), "");
   EXPECT_EQ(n.fibers.size(), 10u);
+}
+
+TEST(PeriodicDetection, ACellTooSmallForItsLinksIsNeverCountedAsOverlapFree)
+{
+  // Two crossing straight fibers whose 4 µm links reach further than half the 5 µm cell: the
+  // minimum image is ambiguous, so no count is possible — and 0 ("no overlaps") would be a lie.
+  FiberModel m;
+  Fiber a;
+  a.points = { Vec3{ -2, 0, 0 }, Vec3{ 2, 0, 0 } };
+  a.radii = { 0.8, 0.8 };
+  a.id = 0;
+  Fiber b = a;
+  b.points = { Vec3{ 0, -2, 0 }, Vec3{ 0, 2, 0 } };
+  b.id = 1;
+  m.fibers = { a, b };
+  PeriodicCell cell;
+  cell.lo = Vec3{ -2.5, -2.5, -2.5 };
+  cell.hi = Vec3{ 2.5, 2.5, 2.5 };
+  EXPECT_EQ(countCollisions(m, 0.0, 1), 1u); // open space: they cross
+  EXPECT_EQ(countCollisions(m, 0.0, 1, cell), std::numeric_limits<std::size_t>::max());
 }

@@ -1,4 +1,4 @@
-// Seeds and radius distributions (tissue-models.md §1, §5.3): grid geometry, cropping, random
+// Seeds and radius distributions (docs/tissue-models.md §1, §5.3): grid geometry, cropping, random
 // seeds uniform in area, radius statistics.
 #include "Tissue/RadiusDistribution.h"
 #include "Tissue/Seeds.h"
@@ -86,7 +86,7 @@ TEST(Seeds, CircleCropKeepsWholeFiberDiscsInside)
   }
   EXPECT_EQ(kept.size(), expected);
   // Lattice points of the hexagonal lattice (d = 2) within 9.2, counted independently in numpy: 85.
-  // The area estimate 2/(√3 d²)·π(R − r)² ≈ 77 of tissue-models.md §8 misses the boundary term.
+  // The area estimate 2/(√3 d²)·π(R − r)² ≈ 77 of docs/tissue-models.md §8 misses the boundary term.
   EXPECT_EQ(kept.size(), 85u);
   const double nominal = M_PI * (R - r) * (R - r) * 2.0 / (std::sqrt(3.0) * d * d);
   EXPECT_NEAR(static_cast<double>(kept.size()), nominal, 0.15 * nominal);

@@ -1,4 +1,4 @@
-// Closest points of two segments (collision-solver.md §2, tests 1–8 of §10).
+// Closest points of two segments (docs/solver.md §2, tests 1–8 of §10).
 #include "Geometry/SegmentDistance.h"
 
 #include "BruteForceOverlap.h"

@@ -1,4 +1,4 @@
-// MRtrix .tck reader/writer (TckFormat.h, api.md "Readers and writers"): a hand-made file checked
+// MRtrix .tck reader/writer (TckFormat.h, docs/api.md §4): a hand-made file checked
 // byte by byte, every datatype, round trip, bad files with byte offsets / header lines, sniffing.
 #include "IO/TckFormat.h"
 

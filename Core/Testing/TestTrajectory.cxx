@@ -1,4 +1,4 @@
-// Trajectory resampling and rotation-minimising frames (tissue-models.md §2): arc-length spacing,
+// Trajectory resampling and rotation-minimising frames (docs/tissue-models.md §2): arc-length spacing,
 // perpendicular untwisted cross-sections (analytic helix twist), 180° reversals, validation.
 #include "Tissue/Trajectory.h"
 

@@ -1,4 +1,4 @@
-// TrackVis .trk reader (TrkFormat.h, api.md "Readers and writers"): hand-made headers with the
+// TrackVis .trk reader (TrkFormat.h, docs/api.md §4): hand-made headers with the
 // fields at the spec's byte offsets, the voxmm -> world transform on cases computed by hand, both
 // byte orders, scalars/properties skipped, bad files with byte offsets, sniffing.
 #include "IO/TrkFormat.h"

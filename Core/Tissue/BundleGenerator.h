@@ -1,4 +1,4 @@
-/// BundleGenerator: FiberBundleSource's Core (tissue-models.md §2, §5, §6.2–§6.5, §7, §8). Builds
+/// BundleGenerator: FiberBundleSource's Core (docs/tissue-models.md §2, §5, §6.2–§6.5, §7, §8). Builds
 /// bundles of fibers along trajectories: a straight cylinder, a user polyline, or the paper's
 /// crossing, Y-shaped and chiasm-like models, ready for the collision solver.
 #pragma once
@@ -15,14 +15,14 @@
 namespace fiberpli
 {
 
-/// Lays one cross-section fiber along a resampled trajectory (tissue-models.md §2, §5.2, §5.4):
+/// Lays one cross-section fiber along a resampled trajectory (docs/tissue-models.md §2, §5.2, §5.4):
 /// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
 /// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
 /// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
 Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
   const RanvierOptions& ranvier, double displacement);
 
-/// FiberBundleSource (tissue-models.md §8). Shapes and bundle ids:
+/// FiberBundleSource (docs/tissue-models.md §8). Shapes and bundle ids:
 /// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
 /// - Trajectory: along *trajectory (optional per-point scale σ_k multiplies the offsets); bundle 0.
 /// - Crossing (§6.3): axes (1, 0, 0) and (cos ω, sin ω, 0), each of length Length through the
@@ -46,7 +46,7 @@ Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& fr
 FiberModel generateBundle(const BundleOptions& options, const std::vector<Vec3>* trajectory,
   const std::vector<double>* trajectoryScale = nullptr);
 
-/// Non-fatal problems of valid options, tissue-models.md §2 "Corners": a (resampled) trajectory
+/// Non-fatal problems of valid options, docs/tissue-models.md §2 "Corners": a (resampled) trajectory
 /// whose smallest radius of curvature is below BundleRadius·max σ, where inner fibers fold over.
 /// Empty when none; else one message naming the radius, the point and the fix.
 std::string bundleWarnings(const BundleOptions& options, const std::vector<Vec3>* trajectory,

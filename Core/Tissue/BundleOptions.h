@@ -1,4 +1,4 @@
-/// BundleOptions: the properties of FiberBundleSource (tissue-models.md §8, api.md) and their
+/// BundleOptions: the properties of FiberBundleSource (docs/api.md §3, docs/tissue-models.md §8) and their
 /// validation.
 #pragma once
 
@@ -22,12 +22,12 @@ enum class BundleShape
   Chiasm = 4      ///< §6.5: two nerves crossing, their lateral fibers turning back (UncrossedFraction)
 };
 
-/// The api.md string of a shape.
+/// The string of a shape (docs/api.md §1).
 const char* bundleShapeName(BundleShape shape);
-/// Parses an api.md shape string (exact spelling); false if unknown.
+/// Parses a shape string (docs/api.md §1) (exact spelling); false if unknown.
 bool parseBundleShape(const std::string& text, BundleShape& shape);
 
-/// FiberBundleSource properties, tissue-models.md §8, units µm and degrees.
+/// FiberBundleSource properties, docs/tissue-models.md §8, units µm and degrees.
 struct BundleOptions
 {
   BundleShape shape = BundleShape::Cylinder;

@@ -1,5 +1,5 @@
 /// CrossSection: the fibers of one bundle cross-section before they are laid along a trajectory
-/// (tissue-models.md §1, §5.3, §7): seed offset, radius, Ranvier phase and the fiber's own random
+/// (docs/tissue-models.md §1, §5.3, §7): seed offset, radius, Ranvier phase and the fiber's own random
 /// stream, positioned for the displacement draws.
 #pragma once
 
@@ -23,7 +23,7 @@ struct CrossSectionFiber
   RandomStream rng;      ///< stream (Seed, crossSection, key) after the phase draw
 };
 
-/// Fibers of cross-section `crossSection` (tissue-models.md §7: one stream per fiber,
+/// Fibers of cross-section `crossSection` (docs/tissue-models.md §7: one stream per fiber,
 /// RandomStream(options.seed, crossSection, key), draw order position (2) → radius → Ranvier phase;
 /// the displacements follow in the returned stream).
 /// Grid (numberOfFibers = 0): the centred triangular grid (§1.1) over |x|, |y| <= R + d, key = its

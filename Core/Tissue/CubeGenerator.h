@@ -1,4 +1,4 @@
-/// CubeGenerator: the paper's cube benchmark (tissue-models.md §6.1). Straight fibers of 1, 2 or 3
+/// CubeGenerator: the paper's cube benchmark (docs/tissue-models.md §6.1). Straight fibers of 1, 2 or 3
 /// mutually perpendicular populations (x; x+y; x+y+z) placed uniformly at random in a cube of edge
 /// L centred at the origin, n = max(2, round(L/l) + 1) points per fiber, every point displaced by
 /// U[-D, D] per axis, constant radius. bundle = population index (0, 1, 2).

@@ -1,4 +1,4 @@
-/// RadiusDistribution: per-fiber radii of a bundle or cube (tissue-models.md §5.3 [ours]).
+/// RadiusDistribution: per-fiber radii of a bundle or cube (docs/tissue-models.md §5.3 [ours]).
 #pragma once
 
 #include "Util/Random.h"
@@ -33,7 +33,7 @@ std::string validateRadiusDistribution(RadiusDistribution kind, double spread);
 /// The smallest radius the distribution can return, as a fraction of r.
 double minimumRadiusFactor(RadiusDistribution kind, double spread);
 
-/// Draws one fiber radius, tissue-models.md §5.3: nominal radius r, spread s >= 0, clamped to
+/// Draws one fiber radius, docs/tissue-models.md §5.3: nominal radius r, spread s >= 0, clamped to
 /// <= maxRadius (the bundle radius). Always consumes the same kind of draws for a given
 /// distribution, also for s = 0 (which returns r exactly; Gamma with s = 0 draws nothing), so that the draws after the radius
 /// (Ranvier phase, displacements; §7) do not depend on the spread. Truncations are done by

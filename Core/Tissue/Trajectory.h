@@ -1,9 +1,10 @@
-/// Trajectory: the centre line of a bundle and its cross-section frames (tissue-models.md §2).
+/// Trajectory: the centre line of a bundle and its cross-section frames (docs/tissue-models.md §2).
 /// Validation of user polylines, arc-length resampling through a centripetal Catmull–Rom curve, and
 /// the rotation-minimising (parallel-transport) frame that keeps the cross-section perpendicular to
 /// the tangent without twisting.
 #pragma once
 
+#include "Geometry/MinimalRotation.h" // rotateMinimal, the transport step of transportFrames
 #include "Geometry/Vec3.h"
 
 #include <cstddef>
@@ -16,7 +17,7 @@ namespace fiberpli
 /// Upper limit on the points of an input polyline (guards absurd inputs before allocating).
 constexpr std::size_t kMaxTrajectoryPoints = 100000;
 
-/// tissue-models.md §2 and §8 (Trajectory): empty when usable, else a message naming the point:
+/// docs/tissue-models.md §2 and §8 (Trajectory): empty when usable, else a message naming the point:
 /// fewer than 2 points, more than kMaxTrajectoryPoints, a NaN/Inf coordinate, a point that repeats
 /// the previous one; with a scale array: wrong size, or a scale that is not finite and > 0.
 std::string validateTrajectory(const std::vector<Vec3>& points, const std::vector<double>* scale = nullptr);
@@ -31,7 +32,7 @@ struct ResampledTrajectory
   std::vector<double> scale;
 };
 
-/// tissue-models.md §2 [ours] and §5.1: centripetal Catmull–Rom curve through the points (phantom
+/// docs/tissue-models.md §2 [ours] and §5.1: centripetal Catmull–Rom curve through the points (phantom
 /// end points 2P0 − P1 and 2P(m−1) − P(m−2), so a 2-point input stays a straight line), resampled to
 /// n = max(2, round(L/l) + 1) points equidistant in arc length (L measured on a dense sampling of
 /// the curve). End points are kept exactly; scale interpolates linearly along the curve.
@@ -40,7 +41,7 @@ ResampledTrajectory resampleTrajectory(const std::vector<Vec3>& points, const st
   double segmentLength);
 
 /// Per trajectory point: unit tangent t_k and the transported images u_k, v_k of the seed-plane
-/// axes e_x, e_y (tissue-models.md §2). t_k by central differences (one-sided at the ends); the
+/// axes e_x, e_y (docs/tissue-models.md §2). t_k by central differences (one-sided at the ends); the
 /// frame starts from t_(−1) = e_z and is carried by the minimal rotation taking t_(k−1) to t_k at
 /// every k. Transporting (u, v) is the same as transporting every seed offset, since the rotations
 /// are linear: offset of seed (x, y) at k = x·u_k + y·v_k.
@@ -54,14 +55,9 @@ struct TrajectoryFrames
 /// Frames of a polyline without repeated consecutive points (see TrajectoryFrames).
 TrajectoryFrames transportFrames(const std::vector<Vec3>& points);
 
-/// The minimal rotation taking unit vector a to unit vector b, applied to w (Rodrigues about
-/// a × b). For b = −a (180° reversal, where a × b vanishes and fastPLI aborts) [ours]: rotation by
-/// π about unit(a × e_m), e_m the coordinate axis least aligned with a.
-Vec3 rotateMinimal(const Vec3& a, const Vec3& b, const Vec3& w);
-
-/// Smallest circumradius of three consecutive points (collision-solver.md §5.2 formula, written
+/// Smallest circumradius of three consecutive points (docs/solver.md §5.2 formula, written
 /// with |cross| instead of Heron), and the index of its middle point; +inf for straight lines or
-/// fewer than 3 points. Used to warn when the bundle would fold at a bend (tissue-models.md §2).
+/// fewer than 3 points. Used to warn when the bundle would fold at a bend (docs/tissue-models.md §2).
 double minimumCircumradius(const std::vector<Vec3>& points, std::size_t* where = nullptr);
 
 } // namespace fiberpli

@@ -1,4 +1,4 @@
-/// Random: seedable, counter-keyed random streams (tissue-models.md §7). SplitMix64 derives one
+/// Random: seedable, counter-keyed random streams (docs/tissue-models.md §7). SplitMix64 derives one
 /// stream per (seed, key...) so that a fiber's draws never depend on other fibers, generation order
 /// or thread count; xoshiro256** is the engine. Distributions are our own code (std:: distributions
 /// differ between standard libraries, which would break bit-identical results).

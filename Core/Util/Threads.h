@@ -1,5 +1,5 @@
 /// Thread count of one Core call: an explicit argument, 0 = all available cores. Never changes the
-/// process-wide OpenMP setting (that belongs to the ParaView process, architecture.md §2).
+/// process-wide OpenMP setting (that belongs to the ParaView process, docs/architecture.md §2).
 /// One rule for every NumberOfThreads property: 0 to kMaxThreads is accepted (validateThreadCount),
 /// and more than 4 × the cores is clamped to that (threadCountWarning says so): results never
 /// depend on the thread count, only the memory for per-thread buffers and stacks grows with it.

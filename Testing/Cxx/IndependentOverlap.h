@@ -55,7 +55,7 @@ inline double SegmentDistance(const P& a0, const P& a1, const P& b0, const P& b1
 
 /// Capsule pairs with axis distance < ρa + ρb − tolerance, ρ = max of the link's end radii.
 /// Links of one fiber count when they are not neighbours and the arc length between them is at
-/// least twice their summed radii (the design's skip rule, collision-solver.md §3.1).
+/// least twice their summed radii (the design's skip rule, docs/solver.md §3.1).
 inline int CountOverlaps(vtkPolyData* pd, double tolerance = 1e-5)
 {
   struct Link { P a, b; double rho; vtkIdType fiber; int k; double arc; double length; };

@@ -24,7 +24,7 @@ double Field(vtkPolyData* pd, const char* name)
   return a ? a->GetTuple1(0) : -1.0;
 }
 
-/// Two fibers crossing at 90°, axes 0.5 µm apart, radius 1 (collision-solver.md §10 test 14).
+/// Two fibers crossing at 90°, axes 0.5 µm apart, radius 1 (docs/solver.md §10 test 14).
 vtkSmartPointer<vtkPolyData> CrossingPair()
 {
   std::vector<std::array<double, 4>> a, b;
@@ -178,7 +178,13 @@ TEST(FiberCollisionSolver, IterationsAsTimeShowTheFibersSeparating)
   solver->UpdateInformation();
   vtkInformation* info = solver->GetOutputInformation(0);
   ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
-  EXPECT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 201);
+  // The timeline ends where the solve ended (issue 13), not at MaxSteps: one time step per solver
+  // step (interval 1) and the last one is the final step.
+  const int length = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  EXPECT_LT(length, 201);
+  for (int i = 0; i < length; ++i)
+    EXPECT_EQ(times[i], static_cast<double>(i));
 
   solver->UpdateTimeStep(0.0);
   EXPECT_EQ(Field(solver->GetOutput(), "steps"), 0.0);
@@ -187,6 +193,40 @@ TEST(FiberCollisionSolver, IterationsAsTimeShowTheFibersSeparating)
   solver->UpdateTimeStep(200.0);
   EXPECT_EQ(Field(solver->GetOutput(), "solved"), 1.0);
   EXPECT_EQ(independent::CountOverlaps(solver->GetOutput()), 0);
+  EXPECT_EQ(Field(solver->GetOutput(), "steps"), times[length - 1]);
+}
+
+TEST(FiberCollisionSolver, IterationsAsTimeIsBoundedByMaximumSnapshots)
+{
+  // MaxSteps 2^31 - 1 used to allocate 43 M time values in RequestInformation (and overflow
+  // step += interval); MaximumSnapshots 4 with interval 1 keeps at most 4 states plus the final
+  // one, thinned to steps 0, 2^k, 2·2^k, … that still cover the whole solve.
+  auto input = CrossingPair();
+  vtkNew<vtkFiberCollisionSolver> solver;
+  solver->SetInputData(input);
+  solver->SetSegmentLength(1.0);
+  solver->SetIterationsAsTime(true);
+  solver->SetTimeStepInterval(1);
+  solver->SetMaximumSnapshots(4);
+  solver->SetMaxSteps(VTK_INT_MAX);
+  solver->UpdateInformation();
+  vtkInformation* info = solver->GetOutputInformation(0);
+  const int length = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  ASSERT_GE(length, 2);
+  EXPECT_LE(length, 5);
+  EXPECT_EQ(times[0], 0.0);
+  const double interval = times[1];
+  EXPECT_GT(interval, 1.0); // thinned
+  for (int i = 1; i + 1 < length; ++i)
+    EXPECT_EQ(times[i], i * interval);
+  solver->UpdateTimeStep(times[length - 1]);
+  EXPECT_EQ(Field(solver->GetOutput(), "solved"), 1.0);
+  EXPECT_EQ(Field(solver->GetOutput(), "steps"), times[length - 1]);
+  EXPECT_LT(times[length - 1], 4 * interval + interval); // the solve ended within the last span
+  // Between two time steps the earlier snapshot is shown.
+  solver->UpdateTimeStep(interval + 0.5);
+  EXPECT_EQ(Field(solver->GetOutput(), "steps"), interval);
 }
 
 TEST(FiberCollisionSolver, BadInputIsAClearErrorAndRecoverable)

@@ -1,4 +1,4 @@
-// The data contract (api.md) as every filter sees it through FiberPolyData: each bad input gives a
+// The data contract (docs/data-contract.md §3) as every filter sees it through FiberPolyData: each bad input gives a
 // clear error naming the problem and an empty output, and the pipeline works again once the input
 // is fixed.
 #include "ErrorCatcher.h"

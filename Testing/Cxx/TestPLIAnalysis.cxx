@@ -1,11 +1,12 @@
 // PLIAnalysis, FiberOrientationMap and FiberOrientationGroundTruth against closed forms
-// (pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)), independent of
-// the simulator; tilted views from the rotation of pli-simulation.md §4.3.
+// (docs/pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)), independent of
+// the simulator; tilted views from the rotation of docs/pli-simulation.md §4.3.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
 #include "vtkFiberOrientationGroundTruth.h"
 #include "vtkFiberOrientationMap.h"
 #include "vtkPLIAnalysis.h"
+#include "vtkPLISimulation.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -302,6 +303,60 @@ TEST(PLIAnalysis, TiltFitSignedInclination)
   h->Update();
   EXPECT_NEAR(Value(h->GetOutput(), "inclination", 0), 20.0, 1e-4);
   EXPECT_EQ(h->GetOutput()->GetPointData()->GetArray("inclination_signed"), nullptr);
+}
+
+// Tilted views on the tilted sensor's grid (field data tilted_sensor = 1) are not pixel-aligned:
+// Tilt is refused with a message naming the cause, Auto falls back to the retardation method.
+TEST(PLIAnalysis, TiltFitRefusesTiltedSensorViews)
+{
+  auto data = TiltStack(30, 20, 0.4571428571, 5.5, 18);
+  vtkNew<vtkIntArray> sensor;
+  sensor->SetName("tilted_sensor");
+  sensor->InsertNextValue(1);
+  data->GetFieldData()->AddArray(sensor);
+  vtkNew<vtkPLIAnalysis> f;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(f);
+  f->SetInputData(data);
+  f->SetInclinationMethod(vtkPLIAnalysis::TILT);
+  f->Update();
+  EXPECT_NE(catcher->Errors.find("tilted_sensor = 1"), std::string::npos) << catcher->Errors;
+  EXPECT_NE(catcher->Errors.find("TiltedSensor off"), std::string::npos) << catcher->Errors;
+  EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0);
+  catcher->Clear();
+  f->SetInclinationMethod(vtkPLIAnalysis::AUTO);
+  f->SetReferenceRetardation(0.6579387259);
+  f->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  vtkImageData* out = f->GetOutput();
+  EXPECT_EQ(out->GetFieldData()->GetArray("inclination_method")->GetComponent(0, 0), 1);
+  EXPECT_NEAR(Value(out, "inclination", 0), 20.0, 1e-4);
+  EXPECT_EQ(out->GetPointData()->GetArray("inclination_signed"), nullptr);
+}
+
+// End to end: PLISimulation with TiltedSensor writes tilted_sensor = 1, which PLIAnalysis reads.
+TEST(PLIAnalysis, SimulatedTiltedSensorViewsAreRefusedForTheTiltFit)
+{
+  vtkNew<vtkPLISimulation> sim;
+  sim->SetInputData(MakeFibers({ { { -20, -5, -3, 6 }, { 20, 5, 3, 6 } } }));
+  sim->SetVolumeOfInterest(-8, 8, -8, 8, -4, 4);
+  sim->SetVoxelSize(1.0);
+  sim->SetPixelSize(2.0);
+  sim->SetNoiseGain(0.0);
+  sim->SetTiltAngle(8.0);
+  sim->SetNumberOfThreads(1);
+  vtkNew<vtkPLIAnalysis> f;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(f);
+  f->SetInputConnection(sim->GetOutputPort());
+  f->SetInclinationMethod(vtkPLIAnalysis::TILT);
+  f->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors; // registered views: the fit runs
+  EXPECT_EQ(sim->GetOutput()->GetFieldData()->GetArray("tilted_sensor")->GetComponent(0, 0), 0);
+  sim->TiltedSensorOn();
+  f->Update();
+  EXPECT_EQ(sim->GetOutput()->GetFieldData()->GetArray("tilted_sensor")->GetComponent(0, 0), 1);
+  EXPECT_NE(catcher->Errors.find("tilted_sensor = 1"), std::string::npos) << catcher->Errors;
 }
 
 TEST(PLIAnalysis, SubExtent)

@@ -1,4 +1,4 @@
-// PLISimulation through VTK: closed-form intensities of a uniform slab (pli-simulation.md §4.2,
+// PLISimulation through VTK: closed-form intensities of a uniform slab (docs/pli-simulation.md §4.2,
 // S-6), extents and field data, sub-extent = crop, thread and seed reproducibility, bad input.
 #include "ErrorCatcher.h"
 #include "FiberPolyData.h"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks the server-manager XML (architecture.md §6c): every proxy and property is documented,
+"""Checks the server-manager XML (docs/architecture.md §6 (c)): every proxy and property is documented,
 every command= setter exists in the class header, and every proxy has a pvpython-safe label."""
 import glob
 import os
@@ -35,6 +35,14 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
         label = proxy.get("label", name)
         if re.sub(r"[^A-Za-z0-9_]", "", label) != name:
             errors.append("%s: label %r does not sanitise to %s" % (xml_path, label, name))
+        # Every menu entry has an icon from the plugin's resources (Plugin/Resources/FiberPLI.qrc).
+        for menu in proxy.iter("ShowInMenu"):
+            icon = menu.get("icon", "")
+            qrc = open(os.path.join(plugin_dir, "Resources", "FiberPLI.qrc"), encoding="utf-8").read()
+            relative = icon[len(":/FiberPLI/"):] if icon.startswith(":/FiberPLI/") else None
+            if not relative or "<file>%s</file>" % relative not in qrc or not os.path.exists(
+                    os.path.join(plugin_dir, "Resources", relative)):
+                errors.append("%s: %s has no icon from Plugin/Resources (%r)" % (xml_path, name, icon))
         # A parallel-serial writer wraps our writer class in its "Writer" subproxy.
         cls = proxy.get("class")
         for sub in proxy.iter("Proxy"):

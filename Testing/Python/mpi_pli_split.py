@@ -1,5 +1,5 @@
 """pvbatch: PLISimulation splits the image plane (and the tissue port) over MPI ranks
-(pli-simulation.md §6.2) and gives exactly the one-process result.
+(docs/pli-simulation.md §6.2) and gives exactly the one-process result.
 
 Usage: pvbatch mpi_pli_split.py <plugin> <tmp dir> serial   (one process: writes the reference)
        mpiexec -n 2 pvbatch mpi_pli_split.py <plugin> <tmp dir>   (compares with the reference)

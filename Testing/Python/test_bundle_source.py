@@ -14,7 +14,7 @@ load_plugin(globals())
 
 
 def grid_count(radius, fiber_radius, spacing):
-    """Seeds of a centred triangular grid (tissue-models.md 1.1) whose whole disc is inside."""
+    """Seeds of a centred triangular grid (docs/tissue-models.md §1.1) whose whole disc is inside."""
     h = spacing * math.sqrt(3.0) / 2.0
     limit = (radius - fiber_radius) ** 2
     n = int(radius / h) + 2

@@ -116,4 +116,27 @@ stack.UpdatePipeline()
 check("fiber id 0 has 999 exact copies" in catcher.text(), catcher.text())
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024.0
 check(peak < 1.0e9, "peak memory %.0f MB" % (peak / 1e6))
+# --- IterationsAsTime with MaxSteps 2^31 - 1: no allocation in RequestInformation, the timeline
+# ends where the solve ended, at most MaximumSnapshots + 1 time steps; progress never goes back.
+anim = FiberCollisionSolver(Input=src, IterationsAsTime=1, TimeStepInterval=1, MaximumSnapshots=16,
+                            MaxSteps=2147483647)  # creating the proxy solves (pipeline information)
+progress = []
+anim.GetClientSideObject().AddObserver(
+    "ProgressEvent", lambda obj, event: progress.append(obj.GetProgress()))
+anim.MaximumSnapshots = 8
+anim.UpdatePipelineInformation()
+solving = [p for p in progress if p < 1.0]  # the solve's progress (before the data pass)
+times = list(anim.TimestepValues)
+check(2 <= len(times) <= 9, "time steps %r" % times)
+anim.UpdatePipeline(times[-1])
+fd = servermanager.Fetch(anim).GetFieldData()
+check(fd.GetArray("solved").GetValue(0) == 1, "the last time step is the solved state")
+check(fd.GetArray("steps").GetValue(0) == times[-1], "the timeline ends at the solve's last step")
+check(times[-1] < 2147483647, "not at MaxSteps")
+monotone = [b >= a for a, b in zip(solving, solving[1:])].count(False) == 0  # (simple's * shadows all())
+check(len(solving) > 1 and monotone, "progress %r" % progress)
+# With MaxSteps 2^31 - 1 the steps' share stays ~0: the progress shown comes from the collisions.
+check(sorted(solving)[-1] > 0.5, "progress must follow the resolved collisions: %r" % solving)
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024.0
+check(peak < 1.0e9, "peak memory %.0f MB" % (peak / 1e6))
 print("test_hardening passed")

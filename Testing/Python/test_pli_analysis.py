@@ -1,5 +1,5 @@
 """pvpython: PLIAnalysis on a synthetic stack built from the closed form
-I(ρ) = I_T·(1 + r·sin 2(ρ − φ)) (independent of the simulator): api.md array names, values,
+I(ρ) = I_T·(1 + r·sin 2(ρ − φ)) (independent of the simulator): docs/api.md §3 array names, values,
 properties by their pvpython names, bad input caught and recovered."""
 import os
 import builtins
@@ -60,7 +60,7 @@ for j in range(4):
         d = builtins.abs(pd.GetArray("direction").GetValue(p) - 22.5 * i) % 180.0
         check(builtins.min(d, 180.0 - d) < 1e-6, "direction at %d" % p)
         check(builtins.abs(pd.GetArray("retardation").GetValue(p) - (0.1 + 0.2 * j)) < 1e-9, "retardation at %d" % p)
-# r = 0.7 = ReferenceRetardation → in-plane; r = 0.1 → steep (closed form of pli-analysis §3.1).
+# r = 0.7 = ReferenceRetardation → in-plane; r = 0.1 → steep (closed form of docs/pli-analysis.md §3.1).
 import math  # noqa: E402
 check(builtins.abs(pd.GetArray("inclination").GetValue(8 * 3)) < 1e-6, "r = r_ref must give 0°")
 expect = math.degrees(math.acos(math.sqrt(math.asin(0.1) / math.asin(0.7))))

@@ -1,4 +1,4 @@
-"""pvpython: PLISimulation -> PLIAnalysis on a uniform slab (pli-simulation.md S-6): one straight
+"""pvpython: PLISimulation -> PLIAnalysis on a uniform slab (docs/pli-simulation.md §8 S-6): one straight
 fiber of radius 1000 µm at in-plane direction 30° and inclination α fills the 60 µm section. The
 analysed direction is 30° within 1°, the retardation falls with α as |sin(π/2 · t_rel · cos²α)|
 with t_rel = 4·d·|Δn|/λ, and the tilt fit gives the signed inclination back."""
