@@ -93,8 +93,8 @@ public:
   ///@{
   /**
    * Radius growth: capsules start at this fraction of their radii and grow to full size while
-   * solving (dense targets); 1 = off, 0 = automatic (on in a periodic cell). The output always
-   * has the input radii. Default is 0.
+   * solving (dense targets); 1 = off; 0 = automatic, which is off for now (measured slower and
+   * looser than plain pushing, bench/README.md). The output always has the input radii. Default 0.
    */
   vtkSetMacro(InitialRadiusScale, double);
   vtkGetMacro(InitialRadiusScale, double);

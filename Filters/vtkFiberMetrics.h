@@ -18,8 +18,8 @@
  * (volume_fraction_error), or a Monte Carlo estimate with its standard error. Colliding pairs and the smallest surface gap compare every capsule pair
  * except chain neighbours of one fiber (the solver's contract), by minimum image in a periodic cell.
  *
- * Under MPI every rank measures all fibers; the outputs are filled on piece 0 only (so tables are
- * not appended once per rank). Bad input or options are errors naming the value; an empty input
+ * Under MPI only piece 0 measures (all the fibers it receives); the other pieces give empty
+ * outputs, so tables are not appended once per rank. Bad input or options are errors naming the value; an empty input
  * gives empty outputs.
  */
 #ifndef vtkFiberMetrics_h

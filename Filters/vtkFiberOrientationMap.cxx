@@ -125,6 +125,14 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
     output->Initialize();
     return 0;
   }
+  if (inclination->GetNumberOfTuples() != direction->GetNumberOfTuples())
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: the point arrays 'direction' (" << direction->GetNumberOfTuples()
+                  << " tuples) and 'inclination' (" << inclination->GetNumberOfTuples()
+                  << " tuples) differ in length");
+    output->Initialize();
+    return 0;
+  }
   output->ShallowCopy(input);
   const std::vector<double> d = ToDoubles(direction);
   const std::vector<double> i = ToDoubles(inclination);
@@ -148,6 +156,13 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
     {
       vtkErrorMacro(<< "FiberOrientationMap: Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
                     << " needs the point array '" << name << "' (PLIAnalysis makes it)");
+      output->Initialize();
+      return 0;
+    }
+    if (values->GetNumberOfTuples() != direction->GetNumberOfTuples())
+    {
+      vtkErrorMacro(<< "FiberOrientationMap: the Mask array '" << name << "' has " << values->GetNumberOfTuples()
+                    << " tuples, 'direction' has " << direction->GetNumberOfTuples() << " (they must match)");
       output->Initialize();
       return 0;
     }

@@ -79,8 +79,13 @@ def from_arrays(fibers, fiber_ids=None, bundle_ids=None):
     for k, f in enumerate(fibers):
         if f.ndim != 2 or f.shape[1] != 4 or f.shape[0] < 2:
             raise ValueError("fiberpli: fiber %d has shape %s, (n >= 2, 4) expected" % (k, f.shape))
-        if not np.all(np.isfinite(f)) or np.any(f[:, 3] <= 0):
-            raise ValueError("fiberpli: fiber %d has a non-finite value or a radius <= 0" % k)
+        # Same rule and wording as the C++ conversion (FiberPolyData / validateModel), which
+        # test_numpy_fibers.py checks on the same bad arrays.
+        for i, row in enumerate(f):
+            if not np.all(np.isfinite(row[:3])):
+                raise ValueError("fiberpli: fiber %d point %d has a non-finite coordinate" % (k, i))
+            if not (np.isfinite(row[3]) and row[3] > 0):
+                raise ValueError("fiberpli: fiber %d point %d has radius %g (must be finite and > 0)" % (k, i, row[3]))
     count = len(fibers)
     fiber_ids = np.arange(count) if fiber_ids is None else np.asarray(fiber_ids)
     bundle_ids = np.zeros(count, np.int32) if bundle_ids is None else np.asarray(bundle_ids)
@@ -89,6 +94,12 @@ def from_arrays(fibers, fiber_ids=None, bundle_ids=None):
     if len(np.unique(fiber_ids)) != count:
         raise ValueError("fiberpli: fiber ids are not unique")
 
+    return _unchecked_polydata(fibers, fiber_ids, bundle_ids)
+
+
+def _unchecked_polydata(fibers, fiber_ids, bundle_ids):
+    """The polydata of from_arrays without its checks (the tests feed bad arrays to the C++ side)."""
+    count = len(fibers)
     pd = vtkPolyData()
     if count == 0:
         return pd

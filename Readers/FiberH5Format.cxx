@@ -11,6 +11,7 @@
 #include <climits>
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -194,36 +195,60 @@ bool holdsBundles(hid_t group)
     H5Sget_simple_extent_dims(space.get(), dims, nullptr) == 2 && dims[1] == 4;
 }
 
-/// Paths ("/" = root) of the groups holding bundles, as fastPLI's save(..., group_name=...) makes
-/// them. Follows hard links only, at most 8 levels deep and 10000 members per group, and does not
-/// look inside a group that holds bundles.
-void findBundleGroups(hid_t group, const std::string& path, int depth, std::vector<std::string>& found)
+/// What findBundleGroups has already seen: group addresses (hard links may form cycles, e.g. a
+/// group linking to itself) and a budget of groups opened for the whole search.
+struct GroupSearch
 {
+  std::set<haddr_t> visited;
+  int budget = 10000;
+  std::vector<std::string> found;
+};
+
+/// Paths ("/" = root) of the groups holding bundles, as fastPLI's save(..., group_name=...) makes
+/// them. Follows hard links only, at most 8 levels deep and 10000 members per group, visits each
+/// group once and at most 10000 groups in all, and does not look inside a group that holds bundles.
+void findBundleGroups(hid_t group, const std::string& path, int depth, GroupSearch& search)
+{
+  H5O_info_t object;
+  if (--search.budget < 0 || H5Oget_info2(group, &object, H5O_INFO_BASIC) < 0 ||
+    !search.visited.insert(object.addr).second)
+  {
+    return;
+  }
   if (holdsBundles(group))
   {
-    found.push_back(path.empty() ? "/" : path);
+    search.found.push_back(path.empty() ? "/" : path);
     return;
   }
   H5G_info_t info;
-  if (depth >= 8 || found.size() > 16 || H5Gget_info(group, &info) < 0)
+  if (depth >= 8 || search.found.size() > 16 || H5Gget_info(group, &info) < 0)
   {
     return;
   }
-  for (hsize_t i = 0; i < std::min<hsize_t>(info.nlinks, 10000); ++i)
+  for (hsize_t i = 0; i < std::min<hsize_t>(info.nlinks, 10000) && search.budget > 0; ++i)
   {
     char name[256] = { 0 };
     H5L_info_t link{};
     if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
-      H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
+      H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD ||
+      search.visited.count(link.u.address))
     {
       continue;
     }
     Handle child(H5Gopen2(group, name, H5P_DEFAULT), H5Gclose); // fails quietly for datasets
     if (child.ok())
     {
-      findBundleGroups(child.get(), path + "/" + name, depth + 1, found);
+      findBundleGroups(child.get(), path + "/" + name, depth + 1, search);
     }
   }
+}
+
+/// The bundle groups of a file (see findBundleGroups).
+std::vector<std::string> bundleGroupsOf(hid_t file)
+{
+  GroupSearch search;
+  findBundleGroups(file, "", 0, search);
+  return search.found;
 }
 /// One (n, 4) dataset found by the first pass of Read.
 struct FiberDataset
@@ -242,12 +267,7 @@ bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
     return false;
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  std::vector<std::string> groups;
-  if (file.ok())
-  {
-    findBundleGroups(file.get(), "", 0, groups);
-  }
-  return !groups.empty();
+  return file.ok() && !bundleGroupsOf(file.get()).empty();
 }
 
 std::string FiberH5Format::BundleGroup(const std::string& path, const std::string& requested, std::string& group)
@@ -260,6 +280,14 @@ std::string FiberH5Format::BundleGroup(const std::string& path, const std::strin
   }
   if (!requested.empty())
   {
+    // Only hard links, as everywhere in the reader: H5Gopen2 would follow soft and external links.
+    const std::string relative = requested.find_first_not_of('/') == std::string::npos
+      ? std::string()
+      : requested.substr(requested.find_first_not_of('/'));
+    if (!relative.empty() && !hardLinkExists(file.get(), relative))
+    {
+      return path + ": Group '" + requested + "' is not a group stored in the file (only hard links are followed)";
+    }
     Handle g(H5Gopen2(file.get(), requested.c_str(), H5P_DEFAULT), H5Gclose);
     if (!g.ok())
     {
@@ -268,8 +296,7 @@ std::string FiberH5Format::BundleGroup(const std::string& path, const std::strin
     group = requested;
     return {};
   }
-  std::vector<std::string> groups;
-  findBundleGroups(file.get(), "", 0, groups);
+  const std::vector<std::string> groups = bundleGroupsOf(file.get());
   if (groups.size() > 1)
   {
     std::string list;

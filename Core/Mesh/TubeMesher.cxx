@@ -1,5 +1,6 @@
 #include "Mesh/TubeMesher.h"
 
+#include "Geometry/MinimalRotation.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
@@ -50,23 +51,6 @@ Vec3 perpendicular(const Vec3& t)
   return normalized(cross(t, a));
 }
 
-/// Rotates v by the minimal rotation that takes unit vector a to unit vector b (parallel transport).
-Vec3 transport(const Vec3& v, const Vec3& a, const Vec3& b)
-{
-  const Vec3 axis = cross(a, b);
-  const double s = norm(axis);
-  const double c = dot(a, b);
-  if (s < 1e-12)
-  {
-    // Parallel: nothing to do. Antiparallel (a hairpin): rotate by π about v's own perpendicular,
-    // which maps v to itself when v ⊥ a, so keep v.
-    return v;
-  }
-  const Vec3 k = axis / s;
-  // Rodrigues' formula.
-  return v * c + cross(k, v) * s + k * (dot(k, v) * (1.0 - c));
-}
-
 /// Ring plane normal at point i: bisector of the adjacent link directions.
 Vec3 ringAxis(const std::vector<Vec3>& dir, std::size_t i)
 {
@@ -102,7 +86,7 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
   for (std::size_t i = 0; i < n; ++i)
   {
     const Vec3 next = ringAxis(dir, i);
-    u = normalized(transport(u, axis, next));
+    u = normalized(rotateMinimal(axis, next, u)); // parallel transport, same rule as the bundle frames
     // Re-orthogonalise against round-off drift so the ring stays planar.
     u = normalized(u - next * dot(u, next));
     if (norm2(u) == 0.0)

@@ -1,7 +1,8 @@
 /// TubeMesher: one closed, consistently oriented (outward) triangle mesh around every fiber.
 /// Rings of `sides` vertices sit at every fiber point, perpendicular to the bisector of the two
 /// adjacent links, with the per-point radius. The ring frame is carried along the fiber by parallel
-/// transport (rotation-minimising), so rings never twist against each other; repeated points are
+/// transport (rotation-minimising, Geometry/MinimalRotation.h, the rule of the bundle frames; at an
+/// exact hairpin the ring turns by its half-turn rule), so rings never twist against each other; repeated points are
 /// skipped for directions. Capping closes both ends with a triangle fan around a centre vertex, so
 /// every edge is shared by exactly two triangles (watertight). Point normals are the radial
 /// directions (the tube axis direction at the cap centres).

@@ -161,16 +161,41 @@ struct Pass
   bool aborted = false;
 };
 
-/// One sweep with a hash whose cells cover midpoint distances up to maxExtent + margin: every pair
-/// with a gap <= margin is compared.
+/// One sweep with a hash whose cells cover midpoint distances up to 2·robustReach + margin: every
+/// pair of ordinary capsules with a gap <= margin is compared. Oversize capsules (reach above
+/// robustReach: a few long links) stay out of the hash and are compared with every capsule, as
+/// the solver's collision grid keeps its oversize list, so one long link cannot coarsen the grid.
 Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vector<double>& reach,
-  double maxReach, double margin, const PeriodicCell& cell, int threads, const ProgressFn& progress)
+  double robustReach, double margin, const PeriodicCell& cell, int threads, const ProgressFn& progress)
 {
   const std::vector<Capsule>& caps = set.capsules;
-  const MidpointHash hash(mid, 2.0 * maxReach + margin, cell);
+  const MidpointHash hash(mid, 2.0 * robustReach + margin, cell);
+  std::vector<std::size_t> oversize;
+  for (std::size_t c = 0; c < caps.size(); ++c)
+  {
+    if (reach[c] > robustReach)
+    {
+      oversize.push_back(c);
+    }
+  }
+  const auto isOversize = [&](std::size_t c) { return reach[c] > robustReach; };
   Pass pass;
   pass.complete = hash.single();
+  const auto compare = [&](std::size_t i, std::size_t j, std::int64_t& collisions, double& minGap) {
+    const Capsule &p = caps[i], &q = caps[j];
+    const Vec3 shift = minimumImageShift(mid[i], mid[j], cell);
+    // Lower bound on the gap from the midpoints: skip pairs that can change neither result.
+    const double bound = distance(mid[i], mid[j] + shift) - reach[i] - reach[j];
+    if ((bound >= 0.0 && bound >= minGap) || chainNeighbours(p, q, set))
+    {
+      return;
+    }
+    const double gap = segmentDistance(p.a, p.b, q.a + shift, q.b + shift) - p.r - q.r;
+    collisions += gap < 0.0 ? 1 : 0;
+    minGap = std::min(minGap, gap);
+  };
   const auto n = static_cast<std::int64_t>(caps.size());
+  const auto work = n + static_cast<std::int64_t>(oversize.size());
   const std::int64_t block = 4096;
   for (std::int64_t begin = 0; begin < n && !pass.aborted; begin += block)
   {
@@ -180,36 +205,42 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64) reduction(+ : collisions) reduction(min : minGap)
     for (std::int64_t i = begin; i < end; ++i)
     {
-      const Capsule& p = caps[static_cast<std::size_t>(i)];
-      for (std::int64_t cellIndex : hash.neighbours(hash.coords(mid[static_cast<std::size_t>(i)])))
+      const auto pi = static_cast<std::size_t>(i);
+      if (isOversize(pi))
+      {
+        continue;
+      }
+      for (std::int64_t cellIndex : hash.neighbours(hash.coords(mid[pi])))
       {
         hash.forEachIn(cellIndex, [&](std::size_t j) {
-          if (j <= static_cast<std::size_t>(i))
+          if (j > pi && !isOversize(j))
           {
-            return;
+            compare(pi, j, collisions, minGap);
           }
-          const Capsule& q = caps[j];
-          const Vec3 shift = minimumImageShift(mid[static_cast<std::size_t>(i)], mid[j], cell);
-          // Lower bound on the gap from the midpoints: skip pairs that can change neither result.
-          const double bound = distance(mid[static_cast<std::size_t>(i)], mid[j] + shift) -
-            reach[static_cast<std::size_t>(i)] - reach[j];
-          if (bound >= 0.0 && bound >= minGap)
-          {
-            return;
-          }
-          if (chainNeighbours(p, q, set))
-          {
-            return;
-          }
-          const double gap = segmentDistance(p.a, p.b, q.a + shift, q.b + shift) - p.r - q.r;
-          collisions += gap < 0.0 ? 1 : 0;
-          minGap = std::min(minGap, gap);
         });
       }
     }
     pass.collisions += collisions;
     pass.minGap = std::min(pass.minGap, minGap);
-    pass.aborted = !reportProgress(progress, static_cast<double>(end) / static_cast<double>(n));
+    pass.aborted = !reportProgress(progress, static_cast<double>(end) / static_cast<double>(work));
+  }
+  for (std::size_t o = 0; o < oversize.size() && !pass.aborted; ++o)
+  {
+    const std::size_t i = oversize[o];
+    std::int64_t collisions = 0;
+    double minGap = pass.minGap;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : collisions) reduction(min : minGap)
+    for (std::int64_t j = 0; j < n; ++j)
+    {
+      const auto pj = static_cast<std::size_t>(j);
+      if (pj != i && (!isOversize(pj) || pj > i))
+      {
+        compare(i, pj, collisions, minGap);
+      }
+    }
+    pass.collisions += collisions;
+    pass.minGap = std::min(pass.minGap, minGap);
+    pass.aborted = !reportProgress(progress, static_cast<double>(n + static_cast<std::int64_t>(o) + 1) / static_cast<double>(work));
   }
   return pass;
 }
@@ -229,20 +260,24 @@ PairResult compareCapsulePairs(const CapsuleSet& set, const PeriodicCell& cell, 
   // reach: how far a capsule's surface extends from its midpoint.
   std::vector<Vec3> mid(caps.size());
   std::vector<double> reach(caps.size());
-  double maxReach = 0.0;
   for (std::size_t c = 0; c < caps.size(); ++c)
   {
     mid[c] = 0.5 * (caps[c].a + caps[c].b);
     reach[c] = 0.5 * distance(caps[c].a, caps[c].b) + caps[c].r;
-    maxReach = std::max(maxReach, reach[c]);
   }
+  // The hash is sized from a robust reach: twice the 99th percentile, so that at most ~1 % of the
+  // capsules (the long links) go to the oversize list.
+  std::vector<double> sorted(reach);
+  const std::size_t q = std::min(sorted.size() - 1, (sorted.size() * 99) / 100);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(q), sorted.end());
+  const double robustReach = 2.0 * sorted[q];
   const int threads = resolveThreadCount(numberOfThreads);
-  double margin = maxReach;
+  double margin = robustReach;
   for (int round = 0;; ++round)
   {
     // Later rounds only widen the search for the smallest gap; show them as the last tenth.
     const double from = round == 0 ? 0.0 : 0.9, to = round == 0 ? 0.9 : 1.0;
-    const Pass pass = sweep(set, mid, reach, maxReach, margin, cell, threads,
+    const Pass pass = sweep(set, mid, reach, robustReach, margin, cell, threads,
       [&](double f) { return reportProgress(progress, from + (to - from) * f); });
     if (pass.aborted)
     {

@@ -43,19 +43,12 @@ private:
   std::size_t count_ = 0;
 };
 
-/// Orientation of the links of the fibers f with include(f) true.
-template <class Include>
-Orientation linkOrientation(const FiberModel& model, Include include)
+/// The length-weighted orientation tensor of the links added so far.
+class TensorAccumulator
 {
-  double t[3][3] = {};
-  double weight = 0.0;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+public:
+  void add(const Fiber& fiber)
   {
-    if (!include(f))
-    {
-      continue;
-    }
-    const Fiber& fiber = model.fibers[f];
     for (std::size_t k = 0; k + 1 < fiber.size(); ++k)
     {
       const Vec3 d = fiber.points[k + 1] - fiber.points[k];
@@ -69,38 +62,55 @@ Orientation linkOrientation(const FiberModel& model, Include include)
       {
         for (int c = 0; c < 3; ++c)
         {
-          t[r][c] += d[r] * d[c] / l;
+          t_[r][c] += d[r] * d[c] / l;
         }
       }
-      weight += l;
+      weight_ += l;
     }
   }
-  if (weight <= 0.0)
+
+  Orientation orientation() const
   {
-    return { NaN, Vec3{ NaN, NaN, NaN } };
-  }
-  for (auto& row : t)
-  {
-    for (double& v : row)
+    if (weight_ <= 0.0)
     {
-      v /= weight;
+      return { NaN, Vec3{ NaN, NaN, NaN } };
     }
+    double t[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        t[r][c] = t_[r][c] / weight_;
+      }
+    }
+    double values[3];
+    Vec3 vectors[3];
+    symmetricEigen3(t, values, vectors);
+    Vec3 dir = vectors[0];
+    int largest = 0;
+    for (int i = 1; i < 3; ++i)
+    {
+      largest = std::abs(dir[i]) > std::abs(dir[largest]) ? i : largest;
+    }
+    if (dir[largest] < 0.0)
+    {
+      dir = -dir;
+    }
+    return { 1.5 * values[0] - 0.5, dir };
   }
-  double values[3];
-  Vec3 vectors[3];
-  symmetricEigen3(t, values, vectors);
-  Vec3 dir = vectors[0];
-  int largest = 0;
-  for (int i = 1; i < 3; ++i)
-  {
-    largest = std::abs(dir[i]) > std::abs(dir[largest]) ? i : largest;
-  }
-  if (dir[largest] < 0.0)
-  {
-    dir = -dir;
-  }
-  return { 1.5 * values[0] - 0.5, dir };
-}
+
+private:
+  double t_[3][3] = {};
+  double weight_ = 0.0;
+};
+
+/// What fiberShape gathers per bundle in its single pass over the fibers.
+struct BundleAccumulator
+{
+  RangeAccumulator tortuosity, length;
+  TensorAccumulator tensor;
+  std::size_t fibers = 0;
+};
 
 } // namespace
 
@@ -108,8 +118,9 @@ ShapeResult fiberShape(const FiberModel& model, const CapsuleSet& set)
 {
   ShapeResult result;
   RangeAccumulator tortuosity, linkLength, radius;
-  std::map<int, std::pair<RangeAccumulator, RangeAccumulator>> perBundle; // tortuosity, length
-  std::map<int, std::size_t> fibersOf;
+  TensorAccumulator tensor;
+  // One pass, per-bundle accumulators: bundle_id = fiber index is common (one fiber per bundle).
+  std::map<int, BundleAccumulator> perBundle;
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
     const Fiber& fiber = model.fibers[f];
@@ -120,9 +131,12 @@ ShapeResult fiberShape(const FiberModel& model, const CapsuleSet& set)
     result.fiberLength.push_back(length);
     result.tortuosity.push_back(tau);
     tortuosity.add(tau);
-    perBundle[fiber.bundle].first.add(tau);
-    perBundle[fiber.bundle].second.add(length);
-    ++fibersOf[fiber.bundle];
+    BundleAccumulator& bundle = perBundle[fiber.bundle];
+    bundle.tortuosity.add(tau);
+    bundle.length.add(length);
+    bundle.tensor.add(fiber);
+    ++bundle.fibers;
+    tensor.add(fiber);
     for (double r : fiber.radii)
     {
       radius.add(r);
@@ -132,7 +146,7 @@ ShapeResult fiberShape(const FiberModel& model, const CapsuleSet& set)
   {
     linkLength.add(distance(c.a, c.b));
   }
-  result.orientation = linkOrientation(model, [](std::size_t) { return true; });
+  result.orientation = tensor.orientation();
   result.tortuosityRange = tortuosity.range();
   result.linkLength = linkLength.range();
   result.radius = radius.range();
@@ -140,10 +154,10 @@ ShapeResult fiberShape(const FiberModel& model, const CapsuleSet& set)
   {
     BundleShape b;
     b.bundle = entry.first;
-    b.fibers = fibersOf[entry.first];
-    b.orientation = linkOrientation(model, [&](std::size_t f) { return model.fibers[f].bundle == entry.first; });
-    b.tortuosity = entry.second.first.range();
-    b.fiberLength = entry.second.second.range();
+    b.fibers = entry.second.fibers;
+    b.orientation = entry.second.tensor.orientation();
+    b.tortuosity = entry.second.tortuosity.range();
+    b.fiberLength = entry.second.length.range();
     result.bundles.push_back(b);
   }
   return result;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace fiberpli
@@ -48,12 +49,9 @@ public:
       n_[i] = std::max<std::int64_t>(1, static_cast<std::int64_t>(size[i] / edge));
       edge_[i] = size[i] / static_cast<double>(n_[i]);
     }
-    std::vector<std::vector<LayerEntry>> lists(static_cast<std::size_t>(n_[0] * n_[1] * n_[2]));
-    for (std::size_t c = 0; c < set.capsules.size(); ++c)
-    {
-      const Capsule& cap = set.capsules[c];
-      std::int64_t range[3][2];
-      bool outside = false;
+    // The cells each capsule's box covers; entries counted before any is stored (a long
+    // unwrapped fiber in a periodic cell covers very many).
+    const auto cover = [&](const Capsule& cap, std::int64_t range[3][2]) {
       for (int i = 0; i < 3; ++i)
       {
         range[i][0] = static_cast<std::int64_t>(std::floor((std::min(cap.a[i], cap.b[i]) - cap.r - lo[i]) / edge_[i]));
@@ -62,10 +60,38 @@ public:
         {
           range[i][0] = std::max<std::int64_t>(range[i][0], 0);
           range[i][1] = std::min<std::int64_t>(range[i][1], n_[i] - 1);
-          outside = outside || range[i][0] > range[i][1];
+        }
+        if (range[i][0] > range[i][1])
+        {
+          return false;
         }
       }
-      if (outside)
+      return true;
+    };
+    const double cells = static_cast<double>(n_[0] * n_[1] * n_[2]);
+    double entries = 0.0;
+    for (const Capsule& cap : set.capsules)
+    {
+      std::int64_t range[3][2];
+      if (cover(cap, range))
+      {
+        entries += static_cast<double>(range[0][1] - range[0][0] + 1) * static_cast<double>(range[1][1] - range[1][0] + 1) *
+          static_cast<double>(range[2][1] - range[2][0] + 1);
+      }
+    }
+    // Entries are held twice (per-cell lists, then the flat copy).
+    error_ = checkMemoryBudget(2.0 * entries * sizeof(LayerEntry) +
+        cells * (sizeof(std::vector<LayerEntry>) + sizeof(std::size_t)), "FiberMetrics MonteCarlo volume fraction");
+    if (!error_.empty())
+    {
+      return;
+    }
+    std::vector<std::vector<LayerEntry>> lists(static_cast<std::size_t>(cells));
+    for (std::size_t c = 0; c < set.capsules.size(); ++c)
+    {
+      const Capsule& cap = set.capsules[c];
+      std::int64_t range[3][2];
+      if (!cover(cap, range))
       {
         continue;
       }
@@ -101,6 +127,9 @@ public:
     }
   }
 
+  /// Empty, or why the cells were not built (over the memory budget).
+  const std::string& error() const { return error_; }
+
   bool inside(const Vec3& p) const
   {
     std::int64_t idx[3];
@@ -128,6 +157,7 @@ private:
   Vec3 edge_;
   std::vector<std::size_t> start_;
   std::vector<LayerEntry> entries_;
+  std::string error_;
 };
 
 } // namespace
@@ -142,6 +172,11 @@ VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3&
     return result;
   }
   const CapsuleCells cells(set, lo, hi, cell);
+  if (!cells.error().empty())
+  {
+    result.error = cells.error();
+    return result;
+  }
   const std::int64_t chunk = 65536;
   const std::int64_t chunks = (samples + chunk - 1) / chunk;
   const int threads = resolveThreadCount(numberOfThreads);
@@ -198,30 +233,51 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
 
   // Bin capsules into the z layers they can reach (capsule box grown by r + margin); in a periodic
   // cell a capsule reaching past the cell's faces enters the wrapped layers with a lattice shift.
-  std::vector<std::vector<LayerEntry>> layers(static_cast<std::size_t>(n[2]));
-  std::size_t entries = 0;
-  for (std::size_t c = 0; c < set.capsules.size(); ++c)
-  {
-    const Capsule& cap = set.capsules[c];
+  // Entries are counted before any is stored: a long unwrapped fiber in a small cell reaches
+  // very many layers.
+  const auto reach = [&](const Capsule& cap, std::int64_t& k0, std::int64_t& k1) {
     const double grow = cap.r + margin;
     Vec3 bmin, bmax;
-    bool outside = false;
     for (int i = 0; i < 3; ++i)
     {
       bmin[i] = std::min(cap.a[i], cap.b[i]) - grow;
       bmax[i] = std::max(cap.a[i], cap.b[i]) + grow;
-      outside = outside || (!cell.enabled() && (bmax[i] < lo[i] || bmin[i] > hi[i]));
+      if (!cell.enabled() && (bmax[i] < lo[i] || bmin[i] > hi[i]))
+      {
+        return false;
+      }
     }
-    if (outside)
-    {
-      continue;
-    }
-    std::int64_t k0 = static_cast<std::int64_t>(std::floor((bmin.z - lo.z) / result.voxel.z));
-    std::int64_t k1 = static_cast<std::int64_t>(std::floor((bmax.z - lo.z) / result.voxel.z));
+    k0 = static_cast<std::int64_t>(std::floor((bmin.z - lo.z) / result.voxel.z));
+    k1 = static_cast<std::int64_t>(std::floor((bmax.z - lo.z) / result.voxel.z));
     if (!cell.enabled())
     {
       k0 = std::max<std::int64_t>(k0, 0);
       k1 = std::min<std::int64_t>(k1, n[2] - 1);
+    }
+    return k1 >= k0;
+  };
+  double entries = 0.0;
+  for (const Capsule& cap : set.capsules)
+  {
+    std::int64_t k0 = 0, k1 = -1;
+    entries += reach(cap, k0, k1) ? static_cast<double>(k1 - k0 + 1) : 0.0;
+  }
+  const int threads = resolveThreadCount(numberOfThreads);
+  const double planeBytes = static_cast<double>(n[0] * n[1]) * sizeof(double) * threads;
+  const std::string budget = checkMemoryBudget(planeBytes + entries * sizeof(LayerEntry) +
+      static_cast<double>(n[2]) * sizeof(std::vector<LayerEntry>), "FiberMetrics volume fraction");
+  if (!budget.empty())
+  {
+    result.error = budget;
+    return result;
+  }
+  std::vector<std::vector<LayerEntry>> layers(static_cast<std::size_t>(n[2]));
+  for (std::size_t c = 0; c < set.capsules.size(); ++c)
+  {
+    std::int64_t k0 = 0, k1 = -1;
+    if (!reach(set.capsules[c], k0, k1))
+    {
+      continue;
     }
     for (std::int64_t k = k0; k <= k1; ++k)
     {
@@ -229,16 +285,7 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
       // Shifting the capsule by −(whole periods) puts unwrapped layer k onto the stored layer.
       const double periods = static_cast<double>((k - layer) / n[2]);
       layers[static_cast<std::size_t>(layer)].push_back({ c, Vec3{ 0.0, 0.0, -periods * size.z } });
-      ++entries;
     }
-  }
-  const int threads = resolveThreadCount(numberOfThreads);
-  const double planeBytes = static_cast<double>(n[0] * n[1]) * sizeof(double) * threads;
-  const std::string budget = checkMemoryBudget(planeBytes + entries * sizeof(LayerEntry), "FiberMetrics volume fraction");
-  if (!budget.empty())
-  {
-    result.error = budget;
-    return result;
   }
 
   std::int64_t inside = 0, certain = 0, possible = 0;

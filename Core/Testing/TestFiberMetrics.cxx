@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 using namespace fiberpli;
@@ -233,8 +236,18 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
     const Vec3 d{ rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1) };
     m.fibers.push_back(straight(a, a + d, 1, rng.uniform(0.1, 0.3), i));
   }
+  // Then with three long links (reach 2.65 > twice any short one: oversize, outside the hash).
+  for (bool longLinks : { false, true })
   for (bool periodic : { false, true })
   {
+    if (longLinks && m.fibers.size() == 300)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const Vec3 a{ rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5) };
+        m.fibers.push_back(straight(a, a + Vec3{ 4.8, 0.3 * i, 0 }, 1, 0.25, 300 + i));
+      }
+    }
     PeriodicCell cell = periodic ? cube(5) : PeriodicCell{};
     const CapsuleSet set = makeCapsules(m, cell);
     std::int64_t collisions = 0;
@@ -264,8 +277,8 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
     for (int threads : { 1, 2 })
     {
       const PairResult res = compareCapsulePairs(set, cell, threads, nullptr);
-      EXPECT_EQ(res.collisions, collisions) << periodic << threads;
-      EXPECT_EQ(res.minGap, minGap) << periodic << threads;
+      EXPECT_EQ(res.collisions, collisions) << periodic << threads << longLinks;
+      EXPECT_EQ(res.minGap, minGap) << periodic << threads << longLinks;
     }
   }
 }
@@ -285,6 +298,30 @@ TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
   EXPECT_TRUE(res.error.empty()) << res.error;
   EXPECT_EQ(res.pairs.collisions, 0);
   EXPECT_DOUBLE_EQ(res.pairs.minGap, far - 2.0); // link 0 ends at x = 1, link 1 starts at 1e7
+}
+
+TEST(FiberMetrics, LongUnwrappedFiberIsCheckedAgainstTheMemoryBudget)
+{
+  // One fiber closed through a 10 µm cell after 1e5 periods: its 1e4 links of 100 µm each reach
+  // ~1000 voxel layers, 1e7 layer entries (~320 MB), refused before any is stored; the Monte Carlo
+  // cells are refused too.
+  FiberModel m;
+  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, 1e6 }, 10000, 0.5, 0));
+  MetricsOptions o = box(5, 0.1);
+  o.cell = cube(5);
+  o.pairs = false;
+  setenv("FIBERPLI_MEMORY_LIMIT", "50M", 1);
+  const MetricsResult grid = computeFiberMetrics(m, o, nullptr);
+  o.monteCarlo = true;
+  o.samples = 1000;
+  setenv("FIBERPLI_MEMORY_LIMIT", "1M", 1);
+  const MetricsResult mc = computeFiberMetrics(m, o, nullptr);
+  unsetenv("FIBERPLI_MEMORY_LIMIT");
+  EXPECT_NE(grid.error.find("memory budget"), std::string::npos) << grid.error;
+  EXPECT_NE(mc.error.find("MonteCarlo"), std::string::npos) << mc.error;
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  EXPECT_LT(1024.0 * static_cast<double>(u.ru_maxrss), 150e6);
 }
 
 TEST(FiberMetrics, SegmentDistanceMatchesSampling)

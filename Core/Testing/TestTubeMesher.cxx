@@ -140,6 +140,34 @@ TEST(TubeMesher, NoTwistAtSharpBendsAndOnAHelix)
   }
 }
 
+TEST(TubeMesher, AnExactHairpinTurnsTheRingByTheDocumentedHalfTurn)
+{
+  // Out along a and straight back: the last ring axis is exactly −a. The ring frame then turns by π
+  // about unit(a × e_m), e_m the axis least aligned with a (here e_z), as the bundle frames do.
+  // For a = (3, 2, 1)/√14 the start frame u0 = unit(a × e_y) differs from that axis, so the half
+  // turn really moves the ring (keeping u0 would be another, frame-dependent rule).
+  const Vec3 a = normalized(Vec3{ 3.0, 2.0, 1.0 });
+  FiberModel model;
+  model.fibers.push_back(makeFiber({ { 0, 0, 0 }, 4.0 * a, { 0, 0, 0 } }, { 0.5, 0.5, 0.5 }));
+  TubeOptions o;
+  o.sides = 8;
+  o.capping = false;
+  const TubeMesh m = meshTubes(model, o);
+  ASSERT_EQ(m.numberOfPoints(), 3u * 8u);
+  const Vec3 u0 = normalized(cross(a, Vec3{ 0, 1, 0 }));
+  const Vec3 k = normalized(cross(a, Vec3{ 0, 0, 1 }));
+  const Vec3 u2 = 2.0 * dot(k, u0) * k - u0; // u0 turned by π about k
+  ASSERT_GT(distance(u2, u0), 0.1);
+  EXPECT_NEAR(distance(vertex(m, 0), 0.5 * u0), 0.0, 1e-12);
+  EXPECT_NEAR(distance(vertex(m, 8), 4.0 * a + 0.5 * u0), 0.0, 1e-12);
+  EXPECT_NEAR(distance(vertex(m, 16), 0.5 * u2), 0.0, 1e-12);
+  for (int s = 0; s < 8; ++s) // the last ring stays perpendicular to its axis −a
+  {
+    EXPECT_NEAR(dot(vertex(m, 16 + s), a), 0.0, 1e-12) << s;
+    EXPECT_NEAR(norm(vertex(m, 16 + s)), 0.5, 1e-12) << s;
+  }
+}
+
 TEST(TubeMesher, OutputIsIndependentOfThreadCountAndCanBeAborted)
 {
   FiberModel model;

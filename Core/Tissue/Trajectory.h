@@ -4,6 +4,7 @@
 /// the tangent without twisting.
 #pragma once
 
+#include "Geometry/MinimalRotation.h" // rotateMinimal, the transport step of transportFrames
 #include "Geometry/Vec3.h"
 
 #include <cstddef>
@@ -53,11 +54,6 @@ struct TrajectoryFrames
 
 /// Frames of a polyline without repeated consecutive points (see TrajectoryFrames).
 TrajectoryFrames transportFrames(const std::vector<Vec3>& points);
-
-/// The minimal rotation taking unit vector a to unit vector b, applied to w (Rodrigues about
-/// a × b). For b = −a (180° reversal, where a × b vanishes and fastPLI aborts) [ours]: rotation by
-/// π about unit(a × e_m), e_m the coordinate axis least aligned with a.
-Vec3 rotateMinimal(const Vec3& a, const Vec3& b, const Vec3& w);
 
 /// Smallest circumradius of three consecutive points (docs/solver.md §5.2 formula, written
 /// with |cross| instead of Heron), and the index of its middle point; +inf for straight lines or

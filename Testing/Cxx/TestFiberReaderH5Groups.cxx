@@ -146,3 +146,37 @@ TEST(FiberReaderH5Groups, BadGroupIsAnErrorNamingIt)
   // The reader stays usable.
   EXPECT_EQ(Read(path, "").fibers, 3);
 }
+
+TEST(FiberReaderH5Groups, SelfLinkedGroupsAreVisitedOnce)
+{
+  // A group holding 30 hard links to itself: a search without a visited set would walk 30^8
+  // paths (FiberReader and File→Open hung).
+  const std::string path = MakeFile("self_linked.h5", { "/fiber_bundles" });
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  const hid_t loop = MakeGroup(file, "/loop");
+  for (int k = 0; k < 30; ++k)
+  {
+    H5Lcreate_hard(file, "/loop", loop, ("self" + std::to_string(k)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  }
+  H5Gclose(loop);
+  H5Fclose(file);
+  vtkNew<vtkFiberReader> sniff;
+  EXPECT_EQ(sniff->CanReadFile(path.c_str()), 1);
+  const ReadResult automatic = Read(path, nullptr);
+  EXPECT_TRUE(automatic.errors.empty()) << automatic.errors;
+  EXPECT_EQ(automatic.fibers, 3);
+}
+
+TEST(FiberReaderH5Groups, GroupThroughASoftLinkIsRefused)
+{
+  // Only data stored in the file by hard links is read; Group must not bypass that.
+  const std::string path = MakeFile("soft_group.h5", { "/fiber_bundles" });
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Lcreate_soft("/fiber_bundles", file, "/alias", H5P_DEFAULT, H5P_DEFAULT);
+  H5Fclose(file);
+  const ReadResult soft = Read(path, "alias");
+  EXPECT_EQ(soft.fibers, 0);
+  EXPECT_NE(soft.errors.find("Group 'alias' is not a group stored in the file (only hard links"), std::string::npos)
+    << soft.errors;
+  EXPECT_EQ(Read(path, "fiber_bundles").fibers, 3);
+}

@@ -3,7 +3,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import check, load_plugin  # noqa: E402
+from fiberpli_test import ErrorCatcher, check, load_plugin  # noqa: E402
 from paraview import servermanager  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
 
@@ -55,5 +55,24 @@ for bad, word in (([np.zeros((1, 4))], "fiber 0 has shape"), ([np.ones((3, 3))],
         check(False, "no error for %s" % word)
     except ValueError as e:
         check(word is None and "not unique" in str(e) or word is not None and word in str(e), str(e))
+
+# The Python checks reject what the C++ conversion (FiberPolyData, here through FiberMetrics)
+# rejects, in the same words.
+for bad, fiber, words in (([np.ones((2, 4)), np.c_[np.ones((2, 3)), [1, -1]]], 1, "point 1 has radius -1 (must be finite and > 0)"),
+                          ([np.ones((2, 4)), np.c_[np.ones((2, 3)), [0, 1]]], 1, "point 0 has radius 0 (must be finite and > 0)"),
+                          ([np.c_[[[1, np.nan, 1], [1, 1, 1]], [1, 1]]], 0, "point 0 has a non-finite coordinate"),
+                          ([np.c_[[[1, 1, 1], [1, 1, np.inf]], [1, 1]]], 0, "point 1 has a non-finite coordinate")):
+    try:
+        fiberpli.from_arrays(bad)
+        check(False, "Python: no error for %s" % words)
+    except ValueError as e:
+        check(words in str(e) and "fiber %d" % fiber in str(e), "Python: %s" % e)
+    raw = fiberpli.producer(fiberpli._unchecked_polydata(bad, np.arange(len(bad)), np.zeros(len(bad), np.int32)))
+    cxx = FiberMetrics(Input=raw)
+    errors = ErrorCatcher(cxx)
+    cxx.UpdatePipeline()
+    check(words in errors.text() and "fiber %d" % fiber in errors.text(), "C++: %r" % errors.text())
+    Delete(cxx)
+    Delete(raw)
 check(fiberpli.to_arrays(fiberpli.from_arrays([]))[0] == [], "empty")
 print("fiberpli NumPy module checks passed")
