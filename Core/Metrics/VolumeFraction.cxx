@@ -35,12 +35,22 @@ public:
     : set_(set), lo_(lo), periodic_(cell.enabled())
   {
     const Vec3 size = hi - lo;
-    double reach = 0.0;
+    // Cells about one capsule wide (the 99th percentile, so that a few long links do not make
+    // the cells coarse and every query scan all capsules; a long link is merely listed in more
+    // cells), but never more than 4 per capsule or 2^24 in all.
+    std::vector<double> widths;
+    widths.reserve(set.capsules.size());
     for (const Capsule& c : set.capsules)
     {
-      reach = std::max(reach, distance(c.a, c.b) + 2.0 * c.r);
+      widths.push_back(distance(c.a, c.b) + 2.0 * c.r);
     }
-    // Cells about one capsule wide, but never more than 4 per capsule or 2^24 in all.
+    double reach = 0.0;
+    if (!widths.empty())
+    {
+      const std::size_t q = std::min(widths.size() - 1, (widths.size() * 99) / 100);
+      std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(q), widths.end());
+      reach = widths[q];
+    }
     const double volume = size.x * size.y * size.z;
     const double cap = std::min(4.0 * static_cast<double>(set.capsules.size()) + 1.0, 16777216.0);
     const double edge = std::max(reach, std::cbrt(volume / cap));

@@ -53,14 +53,14 @@ bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi)
   return any;
 }
 
-std::string validateModel(const FiberModel& model, std::size_t* badFiber)
+std::string validateModel(const FiberModel& model, std::size_t* badFiber, ShortFibers shortFibers)
 {
   for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)
   {
     const Fiber& f = model.fibers[fi];
     // The problem with this fiber, if any; the message is only built on the error path.
     std::ostringstream problem;
-    if (f.points.size() < 2)
+    if (f.points.size() < 2 && shortFibers == ShortFibers::Refused)
     {
       problem << " has fewer than 2 points";
     }

@@ -38,10 +38,20 @@ struct FiberModel
 /// Returns false for a model without points.
 bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi);
 
-/// Checks the data contract: every fiber has >= 2 points, radii.size() == points.size(), finite
-/// coordinates, finite radii > 0. Returns an empty string when valid, else a message that names
-/// the fiber (by index and id) and the point; badFiber (optional) receives the fiber's index.
-std::string validateModel(const FiberModel& model, std::size_t* badFiber = nullptr);
+/// Whether validateModel accepts fibers of fewer than 2 points. The data contract refuses them;
+/// the collision solver takes them and copies them through unchanged (they have no link).
+enum class ShortFibers
+{
+  Refused,
+  Allowed
+};
+
+/// Checks the data contract: every fiber has >= 2 points (unless shortFibers is Allowed),
+/// radii.size() == points.size(), finite coordinates, finite radii > 0. Returns an empty string
+/// when valid, else a message that names the fiber (by index and id) and the point; badFiber
+/// (optional) receives the fiber's index.
+std::string validateModel(const FiberModel& model, std::size_t* badFiber = nullptr,
+  ShortFibers shortFibers = ShortFibers::Refused);
 
 /// Bytes a generated model of `fibers` fibers with `points` points in all takes, together with one
 /// converted copy of the same size (the polydata a source hands on): for the sources' memory guard.

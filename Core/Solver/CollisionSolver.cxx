@@ -83,36 +83,6 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-std::string validateInput(const FiberModel& model)
-{
-  std::ostringstream msg;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
-  {
-    const Fiber& fib = model.fibers[f];
-    if (fib.radii.size() != fib.points.size())
-    {
-      msg << "fiber " << f << " (id " << fib.id << ") has " << fib.points.size() << " points but "
-          << fib.radii.size() << " radii";
-      return msg.str();
-    }
-    for (std::size_t i = 0; i < fib.points.size(); ++i)
-    {
-      if (!isFinite(fib.points[i]))
-      {
-        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has a non-finite coordinate";
-        return msg.str();
-      }
-      if (!std::isfinite(fib.radii[i]) || fib.radii[i] <= 0.0)
-      {
-        msg << "fiber " << f << " (id " << fib.id << ") point " << i << " has radius " << fib.radii[i]
-            << ", must be finite and > 0";
-        return msg.str();
-      }
-    }
-  }
-  return {};
-}
-
 double medianRadius(const FiberModel& model)
 {
   std::vector<double> r;
@@ -808,7 +778,7 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
   result.error = validateCollisionSolverOptions(o);
   if (result.error.empty())
   {
-    result.error = validateInput(model);
+    result.error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
   }
   if (!result.error.empty())
   {

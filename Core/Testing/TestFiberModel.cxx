@@ -69,6 +69,22 @@ TEST(FiberModel, ValidationNamesTheFiberAndPoint)
   EXPECT_NE(validateModel(m).find("fewer than 2"), std::string::npos);
 }
 
+TEST(FiberModel, ShortFibersCanBeAllowedButTheOtherRulesStay)
+{
+  FiberModel m;
+  m.fibers = { straightFiber(10, 3), straightFiber(11, 1), Fiber{} };
+  std::size_t bad = 99;
+  EXPECT_NE(validateModel(m, &bad).find("fewer than 2"), std::string::npos);
+  EXPECT_EQ(bad, 1u);
+  EXPECT_TRUE(validateModel(m, nullptr, ShortFibers::Allowed).empty());
+  m.fibers[1].radii[0] = -1.0; // a short fiber still needs valid radii
+  const std::string msg = validateModel(m, &bad, ShortFibers::Allowed);
+  EXPECT_NE(msg.find("fiber 1"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("radius"), std::string::npos) << msg;
+  m.fibers[1].radii.clear();
+  EXPECT_NE(validateModel(m, nullptr, ShortFibers::Allowed).find("radii"), std::string::npos);
+}
+
 TEST(Random, StreamsAreKeyedAndUniform)
 {
   RandomStream a(1, 2, 3), b(1, 2, 3), c(1, 2, 4);
