@@ -136,14 +136,27 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs)
 {
   pairs.clear();
-  const std::size_t n = links.size();
-  if (n < 2)
+  if (links.size() < 2)
   {
     return true;
   }
   const int nThreads = resolveThreadCount(threads);
-  const double halfGap = 0.5 * minimumGap;
+  const Layout grid = chooseCells(links.size(), boundLinks(links, 0.5 * minimumGap, nThreads));
+  collectOversize(grid);
+  sortByCell(grid, nThreads);
+  buildCellArrays(nThreads);
+  if (!collectPairs(links, minimumGap, grid, nThreads, maxPairs))
+  {
+    return false;
+  }
+  mergePairs(nThreads, pairs);
+  return true;
+}
 
+// Phase 1: every link's box, grown by rho + gap/2, its largest edge, and the bounds of all boxes.
+CollisionGrid::Layout CollisionGrid::boundLinks(const std::vector<CapsuleLink>& links, double halfGap, int nThreads)
+{
+  const std::size_t n = links.size();
   boxes_.resize(n);
   edges_.resize(n);
   double ox = HUGE_VAL, oy = HUGE_VAL, oz = HUGE_VAL;
@@ -171,10 +184,16 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     tz = std::max(tz, bx.hi.z);
     edges_[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
   }
-  const Vec3 origin{ ox, oy, oz };
-  const Vec3 top{ tx, ty, tz };
-  const std::vector<double>& edges = edges_;
+  Layout layout;
+  layout.origin = { ox, oy, oz };
+  layout.top = { tx, ty, tz };
+  return layout;
+}
 
+// Phase 2: the cell size and the grid dimensions; which links count as oversize.
+CollisionGrid::Layout CollisionGrid::chooseCells(std::size_t n, const Layout& bounds) const
+{
+  Layout grid = bounds;
   // Cell size: the largest "regular" box edge (§3.3). A few oversize links are tested against
   // everything instead of blowing up the cell size for all.
   // The median only sets the cell size (performance, never the result): a strided sample of
@@ -184,36 +203,35 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   sample.reserve(n / stride + 1);
   for (std::size_t i = 0; i < n; i += stride)
   {
-    sample.push_back(edges[i]);
+    sample.push_back(edges_[i]);
   }
   std::nth_element(sample.begin(), sample.begin() + static_cast<long>(sample.size() / 2), sample.end());
-  const double limit = 2.0 * sample[sample.size() / 2];
+  grid.limit = 2.0 * sample[sample.size() / 2];
   double h = 0.0;
   double hAll = 0.0;
-  std::size_t nOversize = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    hAll = std::max(hAll, edges[i]);
-    if (edges[i] <= limit)
+    hAll = std::max(hAll, edges_[i]);
+    if (edges_[i] <= grid.limit)
     {
-      h = std::max(h, edges[i]);
+      h = std::max(h, edges_[i]);
     }
     else
     {
-      ++nOversize;
+      ++grid.nOversize;
     }
   }
-  if (nOversize * 64 > n)
+  if (grid.nOversize * 64 > n)
   {
     h = hAll;
-    nOversize = 0;
+    grid.nOversize = 0;
   }
   // Margin: floor((c − origin)/h) is rounded, keep neighbours at most one cell apart.
   h = std::max(h, 1e-300) * (1.0 + 1e-9);
   double dims[3];
   for (int d = 0; d < 3; ++d)
   {
-    dims[d] = std::floor((top[d] - origin[d]) / h) + 1.0;
+    dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
   }
   // The linear cell index must fit 32 bits (sort key = cell << 32 | id): coarser cells stay
   // correct, only slower.
@@ -222,25 +240,40 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     h *= 2.0;
     for (int d = 0; d < 3; ++d)
     {
-      dims[d] = std::floor((top[d] - origin[d]) / h) + 1.0;
+      dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
     }
   }
-  const std::int64_t nx = static_cast<std::int64_t>(dims[0]);
-  const std::int64_t ny = static_cast<std::int64_t>(dims[1]);
-  const std::int64_t nz = static_cast<std::int64_t>(dims[2]);
+  grid.h = h;
+  grid.nx = static_cast<std::int64_t>(dims[0]);
+  grid.ny = static_cast<std::int64_t>(dims[1]);
+  grid.nz = static_cast<std::int64_t>(dims[2]);
+  return grid;
+}
 
+// Phase 3: the oversize links, in id order (tested against all links instead of cell neighbours).
+void CollisionGrid::collectOversize(const Layout& grid)
+{
+  const std::size_t n = edges_.size();
   oversize_.clear();
-  for (std::size_t i = 0; nOversize > 0 && i < n; ++i)
+  for (std::size_t i = 0; grid.nOversize > 0 && i < n; ++i)
   {
-    if (edges[i] > limit)
+    if (edges_[i] > grid.limit)
     {
       oversize_.push_back(static_cast<std::uint32_t>(i));
     }
   }
+}
+
+// Phase 4: regular links sorted by (cell, id) into sortKeys_; prevOrder_ keeps the order for the
+// next call.
+void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
+{
+  const std::size_t n = edges_.size();
+  const std::int64_t nn = static_cast<std::int64_t>(n);
   // Links keep their ids between solver steps unless shape control changed a fiber, and move
   // little: visiting them in last step's order makes the key array nearly sorted, and an
   // insertion sort then costs O(N) instead of O(N log N). Any order gives the same sorted result.
-  const bool reuse = prevOrder_.size() == n && nOversize == 0;
+  const bool reuse = prevOrder_.size() == n && grid.nOversize == 0;
   if (!reuse)
   {
     prevOrder_.resize(n);
@@ -255,7 +288,7 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   for (std::int64_t jj = 0; jj < nn; ++jj)
   {
     const std::uint32_t i = prevOrder_[static_cast<std::size_t>(jj)];
-    if (nOversize > 0 && edges[i] > limit)
+    if (grid.nOversize > 0 && edges_[i] > grid.limit)
     {
       sortKeys_[static_cast<std::size_t>(jj)] = kOversizeKey; // sorts last, then dropped
       continue;
@@ -265,12 +298,12 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     for (int d = 0; d < 3; ++d)
     {
       const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
-      c[d] = static_cast<std::int64_t>(std::floor((centre - origin[d]) / h));
+      c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
     }
-    c[0] = std::min(std::max<std::int64_t>(c[0], 0), nx - 1);
-    c[1] = std::min(std::max<std::int64_t>(c[1], 0), ny - 1);
-    c[2] = std::min(std::max<std::int64_t>(c[2], 0), nz - 1);
-    const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + nx * (c[1] + ny * c[2]));
+    c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
+    c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
+    c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
+    const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
     sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
   }
   bool inOrder = false;
@@ -310,7 +343,11 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   {
     prevOrder_.clear(); // no reuse next time
   }
+}
 
+// Phase 5: the sorted link ids, their boxes as float SoA in that order, and the occupied cells.
+void CollisionGrid::buildCellArrays(int nThreads)
+{
   const std::size_t nRegular = sortKeys_.size();
   order_.resize(nRegular);
   for (int d = 0; d < 3; ++d)
@@ -343,7 +380,14 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     }
   }
   cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
+}
 
+// Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
+// (lists emptied) as soon as more than maxPairs pairs exist.
+bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, double minimumGap, const Layout& grid,
+  int nThreads, std::size_t maxPairs)
+{
+  const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
   perThread_.resize(static_cast<std::size_t>(nThreads));
   for (auto& v : perThread_)
@@ -442,9 +486,9 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
         continue; // an omp for cannot break: skip the remaining cells
       }
       const std::uint64_t cell = cellKeys_[static_cast<std::size_t>(ci)];
-      const std::int64_t cx = static_cast<std::int64_t>(cell) % nx;
-      const std::int64_t cy = (static_cast<std::int64_t>(cell) / nx) % ny;
-      const std::int64_t cz = static_cast<std::int64_t>(cell) / (nx * ny);
+      const std::int64_t cx = static_cast<std::int64_t>(cell) % grid.nx;
+      const std::int64_t cy = (static_cast<std::int64_t>(cell) / grid.nx) % grid.ny;
+      const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
       const std::uint32_t begin = cellStart_[static_cast<std::size_t>(ci)];
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
       for (std::uint32_t r = begin; r < end && !publish(false); ++r)
@@ -456,11 +500,11 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
         const std::int64_t x = cx + off[0];
         const std::int64_t y = cy + off[1];
         const std::int64_t z = cz + off[2];
-        if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz)
+        if (x < 0 || y < 0 || z < 0 || x >= grid.nx || y >= grid.ny || z >= grid.nz)
         {
           continue;
         }
-        const std::uint64_t key = static_cast<std::uint64_t>(x + nx * (y + ny * z));
+        const std::uint64_t key = static_cast<std::uint64_t>(x + grid.nx * (y + grid.ny * z));
         // Forward cells have larger keys: search only the tail.
         const auto it = std::lower_bound(cellKeys_.begin() + ci + 1, cellKeys_.end(), key);
         if (it == cellKeys_.end() || *it != key)
@@ -514,7 +558,12 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     }
     return false;
   }
+  return true;
+}
 
+// Phase 7: the per-thread lists, each sorted by (a, b), merged into one.
+void CollisionGrid::mergePairs(int nThreads, std::vector<CapsulePair>& pairs)
+{
   // Each pair is found exactly once, so the sorted list is independent of the schedule: every
   // thread sorts its own part (in parallel), then the parts are merged.
   auto less = [](const CapsulePair& x, const CapsulePair& y) {
@@ -539,7 +588,6 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
     pairs.insert(pairs.end(), v.begin(), v.end());
     std::inplace_merge(pairs.begin(), pairs.begin() + static_cast<long>(mid), pairs.end(), less);
   }
-  return true;
 }
 
 } // namespace fiberpli

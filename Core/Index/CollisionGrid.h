@@ -80,6 +80,26 @@ private:
     Vec3 lo;
     Vec3 hi;
   };
+  /// Where the grid lies and how it is cut (phases 1 and 2).
+  struct Layout
+  {
+    Vec3 origin;               ///< lower corner of all boxes
+    Vec3 top;                  ///< upper corner of all boxes
+    double h = 0.0;            ///< cell edge
+    std::int64_t nx = 0, ny = 0, nz = 0;
+    double limit = 0.0;        ///< a box edge above this makes a link oversize
+    std::size_t nOversize = 0; ///< 0: no link is oversize (limit is then not used)
+  };
+  // The phases of findPairs, in order; each fills the buffers below that the next one reads.
+  Layout boundLinks(const std::vector<CapsuleLink>& links, double halfGap, int nThreads);
+  Layout chooseCells(std::size_t n, const Layout& bounds) const;
+  void collectOversize(const Layout& grid);
+  void sortByCell(const Layout& grid, int nThreads);
+  void buildCellArrays(int nThreads);
+  bool collectPairs(const std::vector<CapsuleLink>& links, double minimumGap, const Layout& grid, int nThreads,
+    std::size_t maxPairs);
+  void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
+
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint64_t> sortKeys_; // (linear cell index << 32) | link id, regular links
   std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
