@@ -38,17 +38,17 @@ public:
 
   ///@{
   /**
-   * Edge of a tissue voxel in µm, 1e-3 to 1e6. Default is 0.4 (as PLISimulation).
+   * Edge of a tissue voxel in µm, > 0 (else an error). Default is 0.4 (as PLISimulation).
    */
-  vtkSetClampMacro(VoxelSize, double, 1e-3, 1e6);
+  vtkSetMacro(VoxelSize, double);
   vtkGetMacro(VoxelSize, double);
   ///@}
 
   ///@{
   /**
-   * Edge of an output pixel in µm, >= VoxelSize, 1e-3 to 1e6. Default is 2.
+   * Edge of an output pixel in µm, >= VoxelSize (else an error). Default is 2.
    */
-  vtkSetClampMacro(PixelSize, double, 1e-3, 1e6);
+  vtkSetMacro(PixelSize, double);
   vtkGetMacro(PixelSize, double);
   ///@}
 

@@ -56,6 +56,12 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
   options.sides = this->NumberOfSides;
   options.capping = this->Capping;
   options.numberOfThreads = this->NumberOfThreads;
+  const std::string optionError = fiberpli::checkTubeOptions(options);
+  if (!optionError.empty())
+  {
+    vtkErrorMacro(<< "FiberTubes: " << optionError);
+    return 0;
+  }
   const fiberpli::TubeMesh mesh = fiberpli::meshTubes(in.model, options, fiberpli::MakeProgress(this, 0.0, 0.8));
   if (mesh.aborted)
   {

@@ -24,9 +24,9 @@ public:
 
   ///@{
   /**
-   * Number of sides of each ring, 3 to 64. Default is 12.
+   * Number of sides of each ring, 3 to 64; other values are an error. Default is 12.
    */
-  vtkSetClampMacro(NumberOfSides, int, 3, 64);
+  vtkSetMacro(NumberOfSides, int);
   vtkGetMacro(NumberOfSides, int);
   ///@}
 

@@ -169,6 +169,20 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
     return 1;
   };
 
+  fiberpli::PliAnalysisOptions options;
+  std::string optionError = fiberpli::inclinationMethodFromCode(this->InclinationMethod, options.method);
+  options.referenceRetardation = this->ReferenceRetardation;
+  options.noiseGain = this->NoiseGain;
+  options.threads = this->NumberOfThreads;
+  if (optionError.empty())
+  {
+    optionError = fiberpli::checkPliAnalysisOptions(options);
+  }
+  if (!optionError.empty())
+  {
+    failure << "PLIAnalysis: " << optionError;
+    return finish(0);
+  }
   if (!input || input->GetNumberOfPoints() == 0)
   {
     return finish(1); // empty input or piece: empty output, no error
@@ -268,11 +282,6 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
                                                                        : fiberpli::TiltConvention::Physical;
   stack.noiseGain = FieldValue(input, "noise_gain", -1.0);
 
-  fiberpli::PliAnalysisOptions options;
-  options.method = static_cast<fiberpli::InclinationMethod>(this->InclinationMethod);
-  options.referenceRetardation = this->ReferenceRetardation;
-  options.noiseGain = this->NoiseGain;
-  options.threads = this->NumberOfThreads;
   options.globalMaxRetardation = [&reduced, outInfo](double local) {
     reduced = true;
     return GlobalMax(local, outInfo);

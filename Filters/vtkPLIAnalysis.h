@@ -46,27 +46,28 @@ public:
   ///@{
   /**
    * How the inclination is computed: 0 Auto (Tilt when at least two `intensity_tilt_v` arrays
-   * with a tilt > 0 exist, else Retardation), 1 Retardation, 2 Tilt. Default is 0 (Auto).
+   * with a tilt > 0 exist, else Retardation), 1 Retardation, 2 Tilt; other values are an error.
+   * Default is 0 (Auto).
    */
-  vtkSetClampMacro(InclinationMethod, int, 0, 2);
+  vtkSetMacro(InclinationMethod, int);
   vtkGetMacro(InclinationMethod, int);
   ///@}
 
   ///@{
   /**
    * Retardation of an in-plane fiber, used by the Retardation method, 0 to 1. 0 = automatic: the
-   * largest retardation of the image (global under MPI). Default is 0.
+   * largest retardation of the image (global under MPI). Outside [0, 1] is an error. Default is 0.
    */
-  vtkSetClampMacro(ReferenceRetardation, double, 0.0, 1.0);
+  vtkSetMacro(ReferenceRetardation, double);
   vtkGetMacro(ReferenceRetardation, double);
   ///@}
 
   ///@{
   /**
    * Camera gain g of the tilt-fit weights; −1 = field data `noise_gain` if present, else 3;
-   * 0 = noise-free data (weights of g = 1). −1 to 1e6. Default is −1.
+   * 0 = noise-free data (weights of g = 1). −1 or 0 to 1e6, other values are an error. Default is −1.
    */
-  vtkSetClampMacro(NoiseGain, double, -1.0, 1e6);
+  vtkSetMacro(NoiseGain, double);
   vtkGetMacro(NoiseGain, double);
   ///@}
 

@@ -35,9 +35,27 @@ vtkStandardNewMacro(vtkPLISimulation);
 
 namespace
 {
-fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
+/// "" when `value` of the switch `name` is 0 or 1, else the message naming both.
+std::string CheckSwitch(const char* name, int value)
 {
-  fiberpli::pli::PLIOptions o;
+  return value == 0 || value == 1 ? std::string()
+                                  : std::string(name) + " is " + std::to_string(value) + ", must be 0 or 1";
+}
+
+/// The Core options of the properties; "" or the error naming the property whose value the Core
+/// options cannot hold (an enumeration code, a switch or a negative Seed).
+std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
+{
+  o = fiberpli::pli::PLIOptions();
+  std::string error = fiberpli::pli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
+  if (error.empty())
+    error = fiberpli::pli::interpolationFromCode(self->GetInterpolation(), o.interpolation);
+  if (error.empty())
+    error = CheckSwitch("TiltedSensor", self->GetTiltedSensor());
+  if (error.empty())
+    error = CheckSwitch("ExportTissue", self->GetExportTissue());
+  if (error.empty() && self->GetSeed() < 0)
+    error = "Seed is " + std::to_string(self->GetSeed()) + ", must be >= 0";
   self->GetVolumeOfInterest(o.volumeOfInterest);
   o.voxelSize = self->GetVoxelSize();
   o.pixelSize = self->GetPixelSize();
@@ -57,20 +75,18 @@ fiberpli::pli::PLIOptions MakeOptions(vtkPLISimulation* self)
   {
     o.tiltAzimuths.push_back(self->GetTiltAzimuth(i));
   }
-  o.tiltConvention = static_cast<fiberpli::pli::TiltConvention>(self->GetTiltConvention());
   o.birefringence = self->GetBirefringence();
   o.absorption = self->GetAbsorption();
   o.seed = static_cast<std::uint64_t>(self->GetSeed());
   o.layers = self->GetLayers() ? self->GetLayers() : "";
   o.backgroundAbsorption = self->GetBackgroundAbsorption();
   o.stepSize = self->GetStepSize();
-  o.interpolation = static_cast<fiberpli::pli::Interp>(self->GetInterpolation());
   o.opticalSigma = self->GetOpticalSigma();
   o.noiseGain = self->GetNoiseGain();
   o.refractiveIndex = self->GetRefractiveIndex();
   o.tiltedSensor = self->GetTiltedSensor() != 0;
   o.numberOfThreads = self->GetNumberOfThreads();
-  return o;
+  return error;
 }
 
 
@@ -170,7 +186,13 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   }
 
-  const fiberpli::pli::PLIOptions options = MakeOptions(this);
+  fiberpli::pli::PLIOptions options;
+  const std::string optionError = MakeOptions(this, options);
+  if (!optionError.empty())
+  {
+    this->PlanError = "PLISimulation: " + optionError;
+    return 1;
+  }
   fiberpli::FiberModel model;
   if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
@@ -322,7 +344,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     vtkWarningMacro(<< in.warning);
   }
-  fiberpli::pli::PLIOptions options = MakeOptions(this);
+  fiberpli::pli::PLIOptions options;
+  MakeOptions(this, options); // its error was reported above (PlanError)
   if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);

@@ -175,10 +175,10 @@ public:
 
   ///@{
   /**
-   * Tilt convention, PHYSICAL (default) or FASTPLI; written to the field data tilt_convention,
+   * Tilt convention, PHYSICAL (default) or FASTPLI (other values are an error); written to the field data tilt_convention,
    * which PLIAnalysis follows.
    */
-  vtkSetClampMacro(TiltConvention, int, PHYSICAL, FASTPLI);
+  vtkSetMacro(TiltConvention, int);
   vtkGetMacro(TiltConvention, int);
   ///@}
 
@@ -190,7 +190,7 @@ public:
    * is no axis), computed by the simulation's own voxeliser. Refused above the memory budget.
    * Default is 0 (port 1 empty).
    */
-  vtkSetClampMacro(ExportTissue, int, 0, 1);
+  vtkSetMacro(ExportTissue, int);
   vtkGetMacro(ExportTissue, int);
   vtkBooleanMacro(ExportTissue, int);
   ///@}
@@ -222,9 +222,9 @@ public:
 
   ///@{
   /**
-   * Seed of the camera noise, 0 to 2147483647. Default is 0.
+   * Seed of the camera noise, 0 to 2147483647 (negative is an error). Default is 0.
    */
-  vtkSetClampMacro(Seed, int, 0, VTK_INT_MAX);
+  vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
   ///@}
 
@@ -256,9 +256,10 @@ public:
 
   ///@{
   /**
-   * Optic-axis interpolation: 0 nearest, 1 linear, 2 spherical linear (Slerp). Default is 2.
+   * Optic-axis interpolation: 0 nearest, 1 linear, 2 spherical linear (Slerp); other values are
+   * an error. Default is 2.
    */
-  vtkSetClampMacro(Interpolation, int, 0, 2);
+  vtkSetMacro(Interpolation, int);
   vtkGetMacro(Interpolation, int);
   ///@}
 
@@ -294,7 +295,7 @@ public:
    * PixelSize on the sensor (docs/pli-simulation.md §4.6). Written to the field data tilted_sensor;
    * PLIAnalysis refuses the tilt fit on such views.
    */
-  vtkSetClampMacro(TiltedSensor, int, 0, 1);
+  vtkSetMacro(TiltedSensor, int);
   vtkGetMacro(TiltedSensor, int);
   vtkBooleanMacro(TiltedSensor, int);
   ///@}

@@ -9,9 +9,41 @@
 namespace fiberpli
 {
 
+std::string inclinationMethodFromCode(int code, InclinationMethod& method)
+{
+  if (code < 0 || code > 2)
+  {
+    std::ostringstream msg;
+    msg << "InclinationMethod is " << code << ", must be 0 (Auto), 1 (Retardation) or 2 (Tilt)";
+    return msg.str();
+  }
+  method = static_cast<InclinationMethod>(code);
+  return {};
+}
+
+std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)
+{
+  std::ostringstream msg;
+  if (!(options.referenceRetardation >= 0.0 && options.referenceRetardation <= 1.0))
+  {
+    msg << "ReferenceRetardation is " << options.referenceRetardation << ", must be in [0, 1] (0 = automatic)";
+  }
+  else if (!(options.noiseGain == -1.0 || (options.noiseGain >= 0.0 && options.noiseGain <= kMaxAnalysisNoiseGain)))
+  {
+    msg << "NoiseGain is " << options.noiseGain << ", must be -1 (from the data) or in [0, " << kMaxAnalysisNoiseGain
+        << "]";
+  }
+  return msg.str();
+}
+
 std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress)
 {
+  const std::string optionError = checkPliAnalysisOptions(options);
+  if (!optionError.empty())
+  {
+    return optionError;
+  }
   bool haveTilts = stack.tilts.size() >= 2 && stack.tilts.size() == stack.tiltViews.size();
   for (std::size_t t = 0; haveTilts && t < stack.tilts.size(); ++t)
   {

@@ -48,6 +48,18 @@ struct PliAnalysisOptions
   std::function<double(double)> globalMaxRetardation;
 };
 
+/// Largest NoiseGain the analysis accepts (the tilt-fit weights 1/(g·I)); real cameras have g of
+/// about 1 to 10. Plugin/PLIAnalysis.xml repeats this range.
+constexpr double kMaxAnalysisNoiseGain = 1e6;
+
+/// InclinationMethod from its property code (0 Auto, 1 Retardation, 2 Tilt): "" or an error naming
+/// the property and the value; any other code is refused, never cast into the enum.
+std::string inclinationMethodFromCode(int code, InclinationMethod& method);
+
+/// "" when ReferenceRetardation is in [0, 1] and NoiseGain is −1 or in [0, kMaxAnalysisNoiseGain];
+/// else the message naming the property and the value. analysePli checks it first.
+std::string checkPliAnalysisOptions(const PliAnalysisOptions& options);
+
 /// Maps on the nx·ny grid (pixels outside the range stay NaN when freshly allocated).
 struct PliAnalysisMaps
 {

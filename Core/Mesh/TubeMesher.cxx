@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace fiberpli
 {
@@ -161,6 +162,17 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
 }
 
 } // namespace
+
+std::string checkTubeOptions(const TubeOptions& options)
+{
+  if (options.sides >= 3 && options.sides <= kMaxTubeSides)
+  {
+    return {};
+  }
+  std::ostringstream m;
+  m << "NumberOfSides is " << options.sides << ", must be in [3, " << kMaxTubeSides << "]";
+  return m.str();
+}
 
 TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const ProgressFn& progress)
 {

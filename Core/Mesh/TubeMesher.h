@@ -12,14 +12,18 @@
 #include "Util/Progress.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace fiberpli
 {
 
+/// Ring sides beyond which a tube looks no rounder, only heavier. Plugin/FiberTubes.xml repeats it.
+constexpr int kMaxTubeSides = 64;
+
 struct TubeOptions
 {
-  int sides = 12;      ///< vertices per ring, >= 3
+  int sides = 12;      ///< vertices per ring, 3 to kMaxTubeSides
   bool capping = true; ///< close the ends (watertight tubes)
   int numberOfThreads = 0;
 };
@@ -36,7 +40,11 @@ struct TubeMesh
   std::size_t numberOfTriangles() const { return triangles.size() / 3; }
 };
 
-/// Meshes every fiber of the model (precondition: validateModel(model) is empty). Fibers are
+/// "" when the options are valid, else the message naming the property (NumberOfSides) and the value.
+std::string checkTubeOptions(const TubeOptions& options);
+
+/// Meshes every fiber of the model (preconditions: validateModel(model) and
+/// checkTubeOptions(options) are empty). Fibers are
 /// meshed in parallel into precomputed slots, so the output does not depend on the thread count.
 TubeMesh meshTubes(const FiberModel& model, const TubeOptions& options, const ProgressFn& progress = {});
 

@@ -95,6 +95,30 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
 }
 } // namespace
 
+std::string interpolationFromCode(int code, Interp& interpolation)
+{
+  if (code < 0 || code > 2)
+  {
+    std::ostringstream m;
+    m << "Interpolation is " << code << ", must be 0 (nearest), 1 (linear) or 2 (Slerp)";
+    return m.str();
+  }
+  interpolation = static_cast<Interp>(code);
+  return {};
+}
+
+std::string tiltConventionFromCode(int code, TiltConvention& convention)
+{
+  if (code < 0 || code > 1)
+  {
+    std::ostringstream m;
+    m << "TiltConvention is " << code << ", must be 0 (physical) or 1 (fastPLI)";
+    return m.str();
+  }
+  convention = static_cast<TiltConvention>(code);
+  return {};
+}
+
 Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
   Status st;

@@ -50,6 +50,11 @@ struct PLIOptions
   int tileSize = 64;
 };
 
+/// The integer codes of the enumeration properties (Plugin/PLISimulation.xml) → the Core enums:
+/// "" or an error naming the property and the value; other codes are refused, never cast.
+std::string interpolationFromCode(int code, Interp& interpolation); ///< 0 nearest, 1 linear, 2 Slerp
+std::string tiltConventionFromCode(int code, TiltConvention& convention); ///< 0 physical, 1 fastPLI
+
 /// What RequestInformation needs, computed without voxelising (§3.1, §5.2).
 struct PLIPlan
 {

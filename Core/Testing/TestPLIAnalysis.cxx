@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 using namespace fiberpli;
@@ -680,4 +681,42 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   EXPECT_NE(analysePli(flat, a, wholeImage(nx, ny), m).find("tilt_angle"), std::string::npos);
   flat.rho = anglesDeg({ 0, 90 });
   EXPECT_NE(analysePli(flat, PliAnalysisOptions{}, wholeImage(nx, ny), m), "");
+}
+
+TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
+{
+  InclinationMethod method = InclinationMethod::Auto;
+  for (int bad : { -1, 3, 1000 })
+  {
+    EXPECT_EQ(inclinationMethodFromCode(bad, method), "InclinationMethod is " + std::to_string(bad) +
+        ", must be 0 (Auto), 1 (Retardation) or 2 (Tilt)");
+    EXPECT_EQ(method, InclinationMethod::Auto);
+  }
+  EXPECT_EQ(inclinationMethodFromCode(2, method), "");
+  EXPECT_EQ(method, InclinationMethod::Tilt);
+
+  PliAnalysisOptions o;
+  EXPECT_EQ(checkPliAnalysisOptions(o), ""); // the defaults: automatic r_ref, gain from the data
+  for (double bad : { -0.25, 1.5, std::nan("") })
+  {
+    o.referenceRetardation = bad;
+    EXPECT_NE(checkPliAnalysisOptions(o).find("ReferenceRetardation is "), std::string::npos) << bad;
+  }
+  o.referenceRetardation = 1.0;
+  EXPECT_EQ(checkPliAnalysisOptions(o), "");
+  for (double bad : { -0.5, -2.0, 2e6, std::nan("") })
+  {
+    o.noiseGain = bad;
+    EXPECT_NE(checkPliAnalysisOptions(o).find("NoiseGain is "), std::string::npos) << bad;
+  }
+  for (double good : { -1.0, 0.0, 3.0, kMaxAnalysisNoiseGain })
+  {
+    o.noiseGain = good;
+    EXPECT_EQ(checkPliAnalysisOptions(o), "") << good;
+  }
+  // analysePli refuses them too, before touching the stack.
+  o.noiseGain = -0.5;
+  PliStack stack;
+  PliAnalysisMaps maps;
+  EXPECT_NE(analysePli(stack, o, PixelRange{ 0, 0, 0, 0 }, maps).find("NoiseGain is -0.5"), std::string::npos);
 }

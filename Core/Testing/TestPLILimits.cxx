@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <string>
 
 using namespace fiberpli;
 using namespace fiberpli::pli;
@@ -229,4 +230,29 @@ TEST(PLILimits, MemoryBudgetIsCheckedPerPiece)
     for (std::int64_t i = quarter.i0; i < quarter.i1; ++i)
       for (int k = 0; k < img.views[0].nrho; ++k)
         ASSERT_EQ(img.views[0].at(i, j, k), full.views[0].at(i, j, k)) << i << " " << j << " " << k;
+}
+
+TEST(PLILimits, EnumerationCodesAreCheckedNotCast)
+{
+  // Interp and TiltConvention are 8-bit enums: a cast of 256 would silently give NN / Physical.
+  Interp interp = Interp::Slerp;
+  for (int bad : { -1, 3, 256 })
+  {
+    EXPECT_EQ(interpolationFromCode(bad, interp), "Interpolation is " + std::to_string(bad) +
+        ", must be 0 (nearest), 1 (linear) or 2 (Slerp)");
+    EXPECT_EQ(interp, Interp::Slerp); // untouched on error
+  }
+  EXPECT_EQ(interpolationFromCode(0, interp), "");
+  EXPECT_EQ(interp, Interp::NN);
+  EXPECT_EQ(interpolationFromCode(1, interp), "");
+  EXPECT_EQ(interp, Interp::Lerp);
+  TiltConvention convention = TiltConvention::Physical;
+  for (int bad : { -1, 2, 256 })
+  {
+    EXPECT_NE(tiltConventionFromCode(bad, convention).find("TiltConvention is " + std::to_string(bad)),
+      std::string::npos);
+    EXPECT_EQ(convention, TiltConvention::Physical);
+  }
+  EXPECT_EQ(tiltConventionFromCode(1, convention), "");
+  EXPECT_EQ(convention, TiltConvention::FastPLI);
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <string>
 #include <utility>
 
 using namespace fiberpli;
@@ -187,4 +188,19 @@ TEST(TubeMesher, OutputIsIndependentOfThreadCountAndCanBeAborted)
   TubeMesh aborted = meshTubes(model, o, [&](double) { return ++calls < 2; });
   EXPECT_TRUE(aborted.aborted);
   EXPECT_EQ(aborted.numberOfTriangles(), 0u);
+}
+
+TEST(TubeMesher, SidesOutsideTheRangeAreNamed)
+{
+  TubeOptions o;
+  for (int bad : { -1, 0, 2, kMaxTubeSides + 1 })
+  {
+    o.sides = bad;
+    EXPECT_EQ(checkTubeOptions(o), "NumberOfSides is " + std::to_string(bad) + ", must be in [3, 64]");
+  }
+  for (int good : { 3, 12, kMaxTubeSides })
+  {
+    o.sides = good;
+    EXPECT_EQ(checkTubeOptions(o), "");
+  }
 }

@@ -128,3 +128,30 @@ TEST(FiberTubes, EmptyInputGivesEmptyOutputWithoutError)
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 0);
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
 }
+
+TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
+{
+  // NumberOfSides used to be clamped to [3, 64] without a word.
+  vtkNew<vtkFiberTubes> tubes;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(tubes);
+  tubes->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
+  const auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    tubes->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 0) << text;
+  };
+  tubes->SetNumberOfSides(2);
+  expectError("NumberOfSides is 2, must be in [3, 64]");
+  tubes->SetNumberOfSides(65);
+  expectError("NumberOfSides is 65");
+  tubes->SetNumberOfSides(-1);
+  expectError("NumberOfSides is -1");
+  tubes->SetNumberOfSides(8);
+  catcher->Clear();
+  tubes->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 2 * 8 + 2); // two rings and two cap centres
+  EXPECT_EQ(tubes->GetOutput()->GetNumberOfCells(), 2 * 8 + 2 * 8); // side quads as triangles, two fans
+}

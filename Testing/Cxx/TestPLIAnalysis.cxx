@@ -621,3 +621,83 @@ TEST(FiberOrientationGroundTruth, InputBoundsEmptyAndBadInput)
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0);
 }
+
+TEST(PLIAnalysis, OutOfRangePropertiesAreNamedNotClamped)
+{
+  // The setters used to clamp silently (InclinationMethod 7 → Tilt, ReferenceRetardation 1.5 → 1,
+  // NoiseGain 2e6 → 1e6); the Core's checks now name the property and the value.
+  vtkNew<vtkPLIAnalysis> f;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(f);
+  f->SetInputData(MakeStack(Equidistant(6), { { 1, 0, 0.1 } }));
+  const auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    f->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0) << text;
+  };
+  const auto expectGood = [&]() {
+    catcher->Clear();
+    f->Update();
+    EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+    ASSERT_EQ(f->GetOutput()->GetNumberOfPoints(), 1);
+    EXPECT_NEAR(Value(f->GetOutput(), "transmittance", 0), 2.0, 1e-12);
+  };
+  expectGood();
+  f->SetInclinationMethod(3);
+  expectError("InclinationMethod is 3");
+  f->SetInclinationMethod(-1);
+  expectError("InclinationMethod is -1");
+  f->SetInclinationMethod(vtkPLIAnalysis::RETARDATION);
+  expectGood();
+  f->SetReferenceRetardation(1.5);
+  expectError("ReferenceRetardation is 1.5");
+  f->SetReferenceRetardation(-0.25);
+  expectError("ReferenceRetardation is -0.25");
+  f->SetReferenceRetardation(std::nan(""));
+  expectError("ReferenceRetardation is nan");
+  f->SetReferenceRetardation(0.5);
+  expectGood();
+  f->SetNoiseGain(-0.5); // neither −1 (from the data) nor a gain
+  expectError("NoiseGain is -0.5");
+  f->SetNoiseGain(2e6);
+  expectError("NoiseGain is 2e+06");
+  f->SetNoiseGain(-1.0);
+  expectGood();
+}
+
+TEST(FiberOrientationGroundTruth, BadSizesAreNamedNotClamped)
+{
+  // VoxelSize and PixelSize used to be clamped to [1e-3, 1e6] without a word.
+  vtkNew<vtkFiberOrientationGroundTruth> f;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(f);
+  f->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
+  f->SetVoxelSize(0.25);
+  f->SetPixelSize(1.0);
+  const auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    f->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 0) << text;
+  };
+  const auto expectGood = [&]() {
+    catcher->Clear();
+    f->Update();
+    EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+    EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 24); // 12 × 2 pixels of [−1, 11] × [−1, 1]
+  };
+  expectGood();
+  f->SetVoxelSize(0.0);
+  expectError("VoxelSize is 0");
+  f->SetVoxelSize(-0.25);
+  expectError("VoxelSize is -0.25");
+  f->SetVoxelSize(0.25);
+  expectGood();
+  f->SetPixelSize(-2.0);
+  expectError("PixelSize is -2");
+  f->SetPixelSize(1e9); // larger than the section: no pixel
+  expectError("PixelSize 1e+09");
+  f->SetPixelSize(1.0);
+  expectGood();
+}

@@ -602,3 +602,56 @@ TEST(PLISimulation, PeriodicCellTilesAVolumeOfInterestLargerThanTheCell)
   vtkSmartPointer<vtkImageData> plain = run(open);
   EXPECT_GT(differing(plain->GetPointData()->GetArray("intensity")), 100);
 }
+
+TEST(PLISimulation, EnumerationsSwitchesAndSeedOutOfRangeAreNamedNotClamped)
+{
+  // The setters used to clamp silently (Interpolation 7 → Slerp, TiltConvention 5 → FastPLI,
+  // Seed -1 → 0); the Core's enum conversion refuses every other code, never casting it (256
+  // would have wrapped to nearest in the 8-bit enum).
+  vtkNew<vtkPLISimulation> sim;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(sim);
+  sim->SetInputData(Slab(30.0, 20.0));
+  SetUpS6(sim);
+  sim->SetVoxelSize(1.0);
+  sim->SetVolumeOfInterest(-10, 10, -10, 10, -30, 30);
+  auto expectError = [&](const std::string& text) {
+    catcher->Clear();
+    sim->Update();
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << "errors: " << catcher->Errors;
+    EXPECT_EQ(sim->GetOutput()->GetNumberOfPoints(), 0) << text;
+  };
+  auto expectGood = [&]() {
+    catcher->Clear();
+    sim->Update();
+    EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+    EXPECT_EQ(sim->GetOutput()->GetNumberOfPoints(), 100);
+  };
+  expectGood();
+  sim->SetInterpolation(3);
+  expectError("Interpolation is 3");
+  sim->SetInterpolation(256);
+  expectError("Interpolation is 256");
+  sim->SetInterpolation(-1);
+  expectError("Interpolation is -1");
+  sim->SetInterpolation(1);
+  expectGood();
+  sim->SetTiltConvention(2);
+  expectError("TiltConvention is 2");
+  sim->SetTiltConvention(-1);
+  expectError("TiltConvention is -1");
+  sim->SetTiltConvention(vtkPLISimulation::FASTPLI);
+  expectGood();
+  sim->SetTiltedSensor(2);
+  expectError("TiltedSensor is 2, must be 0 or 1");
+  sim->SetTiltedSensor(0);
+  expectGood();
+  sim->SetExportTissue(-1);
+  expectError("ExportTissue is -1, must be 0 or 1");
+  sim->SetExportTissue(0);
+  expectGood();
+  sim->SetSeed(-1);
+  expectError("Seed is -1, must be >= 0");
+  sim->SetSeed(7);
+  expectGood();
+}
