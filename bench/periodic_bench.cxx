@@ -7,9 +7,9 @@
 //        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
 //        [--lattice (Seeding Lattice instead of Random)]
 #include "BenchUtil.h"
+#include "CapsuleCells.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
-#include "Util/Random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,28 +31,13 @@ std::vector<double> list(char* s)
   return v;
 }
 
-double pointSegment2(const Vec3& x, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double l2 = dot(ab, ab);
-  double t = l2 > 0.0 ? dot(x - a, ab) / l2 : 0.0;
-  t = std::min(1.0, std::max(0.0, t));
-  return norm2(x - (a + t * ab));
-}
-
 // Fraction of the cell [-L/2, L/2]³ inside any capsule image: every segment is placed with all its
 // 27 lattice translates into a coarse cell list of the cell, then uniform points are tested.
 double periodicFraction(const FiberModel& m, double L, long samples)
 {
-  struct Seg
-  {
-    Vec3 a, b;
-    double r;
-  };
   const double half = 0.5 * L;
   const int nc = std::max(1, static_cast<int>(L / 2.0));
-  const double cell = L / nc;
-  std::vector<std::vector<Seg>> cells(static_cast<std::size_t>(nc * nc * nc));
+  bench::CapsuleCells cells(half, nc, L / nc);
   for (const Fiber& f : m.fibers)
   {
     for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
@@ -71,43 +56,11 @@ double periodicFraction(const FiberModel& m, double L, long samples)
           for (int iz = -1; iz <= 1; ++iz)
           {
             const Vec3 t{ ix * L, iy * L, iz * L };
-            const Seg s{ a + t, b + t, r };
-            int lo[3], hi[3];
-            bool inside = true;
-            for (int d = 0; d < 3; ++d)
-            {
-              lo[d] = std::max(0, static_cast<int>(std::floor((std::min(s.a[d], s.b[d]) - r + half) / cell)));
-              hi[d] = std::min(nc - 1, static_cast<int>(std::floor((std::max(s.a[d], s.b[d]) + r + half) / cell)));
-              inside = inside && lo[d] <= hi[d] && std::max(s.a[d], s.b[d]) + r > -half &&
-                std::min(s.a[d], s.b[d]) - r < half;
-            }
-            if (!inside)
-              continue;
-            for (int z = lo[2]; z <= hi[2]; ++z)
-              for (int y = lo[1]; y <= hi[1]; ++y)
-                for (int x = lo[0]; x <= hi[0]; ++x)
-                  cells[static_cast<std::size_t>(x + nc * (y + nc * z))].push_back(s);
+            cells.add(bench::BenchCapsule{ a + t, b + t, r });
           }
     }
   }
-  RandomStream rng(12345);
-  long hits = 0;
-  for (long i = 0; i < samples; ++i)
-  {
-    const Vec3 p{ rng.uniform(-half, half), rng.uniform(-half, half), rng.uniform(-half, half) };
-    const int x = std::min(nc - 1, static_cast<int>((p.x + half) / cell));
-    const int y = std::min(nc - 1, static_cast<int>((p.y + half) / cell));
-    const int z = std::min(nc - 1, static_cast<int>((p.z + half) / cell));
-    for (const Seg& s : cells[static_cast<std::size_t>(x + nc * (y + nc * z))])
-    {
-      if (pointSegment2(p, s.a, s.b) <= s.r * s.r)
-      {
-        ++hits;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(hits) / static_cast<double>(samples);
+  return cells.hitFraction(samples);
 }
 } // namespace
 

@@ -4,9 +4,10 @@
 //        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
 //        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
 //        [--end-points perpendicular|free|fixed] (solver knobs)
+#include "BenchUtil.h"
+#include "CapsuleCells.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
-#include "Util/Random.h"
 
 #include <sys/resource.h>
 
@@ -56,79 +57,20 @@ double loadAverage()
   return l;
 }
 
-double peakRssMB()
-{
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0; // Linux: kilobytes
-}
-
-// Squared distance of point x to segment [a, b]: an independent check, not the solver's code.
-double pointSegment2(const Vec3& x, const Vec3& a, const Vec3& b)
-{
-  const Vec3 ab = b - a;
-  const double l2 = dot(ab, ab);
-  double t = l2 > 0.0 ? dot(x - a, ab) / l2 : 0.0;
-  t = std::min(1.0, std::max(0.0, t));
-  return norm2(x - (a + t * ab));
-}
-
 // Volume fraction of the central cube (edge e, centred at 0) covered by capsules of radius
 // max(r_i, r_i+1): Monte Carlo with 'samples' uniform points through a coarse cell list.
 double volumeFraction(const FiberModel& m, double e, long samples)
 {
-  struct Seg
-  {
-    Vec3 a, b;
-    double r;
-  };
-  const double half = 0.5 * e;
   const double cell = 2.0;
-  const int nc = static_cast<int>(std::ceil(e / cell));
-  std::vector<std::vector<Seg>> cells(static_cast<std::size_t>(nc * nc * nc));
+  bench::CapsuleCells cells(0.5 * e, static_cast<int>(std::ceil(e / cell)), cell);
   for (const Fiber& f : m.fibers)
   {
     for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
     {
-      const Seg s{ f.points[k], f.points[k + 1], std::max(f.radii[k], f.radii[k + 1]) };
-      int lo[3], hi[3];
-      bool inside = true;
-      for (int d = 0; d < 3; ++d)
-      {
-        const double mn = std::min(s.a[d], s.b[d]) - s.r + half;
-        const double mx = std::max(s.a[d], s.b[d]) + s.r + half;
-        lo[d] = std::max(0, static_cast<int>(std::floor(mn / cell)));
-        hi[d] = std::min(nc - 1, static_cast<int>(std::floor(mx / cell)));
-        inside = inside && lo[d] <= hi[d];
-      }
-      if (!inside)
-      {
-        continue;
-      }
-      for (int z = lo[2]; z <= hi[2]; ++z)
-        for (int y = lo[1]; y <= hi[1]; ++y)
-          for (int x = lo[0]; x <= hi[0]; ++x)
-            cells[static_cast<std::size_t>(x + nc * (y + nc * z))].push_back(s);
+      cells.add(bench::BenchCapsule{ f.points[k], f.points[k + 1], std::max(f.radii[k], f.radii[k + 1]) });
     }
   }
-  RandomStream rng(12345);
-  long hits = 0;
-  for (long i = 0; i < samples; ++i)
-  {
-    const Vec3 p{ rng.uniform(-half, half), rng.uniform(-half, half), rng.uniform(-half, half) };
-    const int x = std::min(nc - 1, static_cast<int>((p.x + half) / cell));
-    const int y = std::min(nc - 1, static_cast<int>((p.y + half) / cell));
-    const int z = std::min(nc - 1, static_cast<int>((p.z + half) / cell));
-    for (const Seg& s : cells[static_cast<std::size_t>(x + nc * (y + nc * z))])
-    {
-      if (pointSegment2(p, s.a, s.b) <= s.r * s.r)
-      {
-        ++hits;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(hits) / static_cast<double>(samples);
+  return cells.hitFraction(samples);
 }
 } // namespace
 
@@ -253,7 +195,7 @@ int main(int argc, char** argv)
       const double phi = volumeFraction(m, edge, samples);
       std::printf("| %s | %d | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
         w->name, w->fibers, t, r.steps, seconds, cpu, w->referenceSeconds,
-        seconds / w->referenceSeconds, load, peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
+        seconds / w->referenceSeconds, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
         m.numberOfLinks(), 100.0 * phi, edge);
       std::fflush(stdout);
     }

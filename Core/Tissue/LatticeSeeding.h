@@ -1,5 +1,5 @@
-/// LatticeSeeding: ordered transverse positions for the fibers of a periodic cube (docs/periodic-
-/// cells.md, "Lattice seeding"). Random seeds braid closed fibers and the solver jams below the
+/// LatticeSeeding: ordered transverse positions for the fibers of a periodic cube
+/// (docs/periodic-cells.md, "Lattice seeding"). Random seeds braid closed fibers and the solver jams below the
 /// dense targets; sites on a lattice commensurate with the cell start the solve near an ordered
 /// packing:
 /// - 1 population: a (slightly anisotropic) triangular lattice in the cross-section;
