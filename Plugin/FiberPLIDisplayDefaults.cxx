@@ -9,6 +9,7 @@
 #include "vtkSMPVRepresentationProxy.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxyManager.h"
+#include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
 #include "vtkSMTransferFunctionProxy.h"
 
@@ -192,6 +193,13 @@ public:
     auto* info = static_cast<vtkSMProxyManager::RegisteredProxyInformation*>(callData);
     if (!info || info->Type != vtkSMProxyManager::RegisteredProxyInformation::PROXY ||
       !info->Proxy || !info->GroupName)
+    {
+      return;
+    }
+    // A state file being loaded brings its displays as they were saved: only new displays get
+    // the starting colouring.
+    vtkSMSessionProxyManager* pxm = info->Proxy->GetSessionProxyManager();
+    if (pxm && pxm->GetInLoadXMLState())
     {
       return;
     }

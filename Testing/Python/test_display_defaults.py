@@ -6,7 +6,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import ErrorCatcher, check, load_plugin  # noqa: E402
+from fiberpli_test import ErrorCatcher, check, load_plugin, option  # noqa: E402
 
 from paraview.simple import *  # noqa: E402,F401,F403
 
@@ -52,7 +52,20 @@ try:
     display = Show(tubes, view)
     ColorBy(display, ("CELLS", "fiber_id"))
     check(list(display.ColorArrayName) == ["CELLS", "fiber_id"], repr(display.ColorArrayName))
+    # A saved state comes back as it was saved, not re-coloured by the defaults (pvpython's
+    # LoadState replaces the session's views and displays by the state's).
+    state = os.path.join(option("-T"), "fiber_id_colouring.pvsm")
+    SaveState(state)
+    LoadState(state)
+    tube_displays = [r for r in GetRepresentations().values()
+                     if r.Input is not None and r.Input.GetXMLName() == "FiberTubes"
+                     and r.Visibility]
+    check(len(tube_displays) >= 1, "state not loaded: no tube display")
+    for r in tube_displays:
+        check(list(r.ColorArrayName) == ["CELLS", "fiber_id"], "loaded state re-coloured: %r" % (
+            list(r.ColorArrayName),))
     print("display defaults: ok")
 finally:
-    Delete(view)
+    for v in list(GetViews()):  # LoadState may have replaced the view created above
+        Delete(v)
     del view
