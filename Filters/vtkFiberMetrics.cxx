@@ -94,6 +94,17 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   {
     return 0;
   }
+  if (this->VolumeFractionMethod != VOXELS && this->VolumeFractionMethod != MONTE_CARLO)
+  {
+    vtkErrorMacro(<< "FiberMetrics: VolumeFractionMethod is " << this->VolumeFractionMethod
+                  << ", must be 0 (Voxels) or 1 (MonteCarlo)");
+    return 0;
+  }
+  if (this->Seed < 0)
+  {
+    vtkErrorMacro(<< "FiberMetrics: Seed is " << this->Seed << ", must be >= 0");
+    return 0;
+  }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* summary = vtkTable::GetData(outputVector, 1);

@@ -59,7 +59,7 @@ public:
    * Voxel edge of the volume fraction (µm), 0 = automatic (an eighth of the smallest radius,
    * coarsened to at most 2e8 voxels). Default is 0.
    */
-  vtkSetClampMacro(VoxelSize, double, 0.0, 1e300);
+  vtkSetMacro(VoxelSize, double); // checked by the Core
   vtkGetMacro(VoxelSize, double);
   ///@}
 
@@ -75,9 +75,9 @@ public:
    * a rigorous bound), 1 MonteCarlo (Samples random points from Seed, volume_fraction_error is the
    * standard error). Default is 0.
    */
-  vtkSetClampMacro(VolumeFractionMethod, int, 0, 1);
+  vtkSetMacro(VolumeFractionMethod, int); // checked at execution
   vtkGetMacro(VolumeFractionMethod, int);
-  vtkSetClampMacro(Samples, int, 1, VTK_INT_MAX);
+  vtkSetMacro(Samples, int); // checked by the Core
   vtkGetMacro(Samples, int);
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);

@@ -86,6 +86,18 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
   {
     return 0;
   }
+  if (this->ColorScheme != HSV_BLACK && this->ColorScheme != RGB)
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: ColorScheme is " << this->ColorScheme
+                  << ", must be 0 (HSV-black) or 1 (RGB)");
+    return 0;
+  }
+  if (this->Mask < MASK_NONE || this->Mask > MASK_TRANSMITTANCE)
+  {
+    vtkErrorMacro(<< "FiberOrientationMap: Mask is " << this->Mask
+                  << ", must be 0 (None), 1 (Retardation) or 2 (Transmittance)");
+    return 0;
+  }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   vtkImageData* legend = vtkImageData::GetData(outputVector, 1);

@@ -37,7 +37,7 @@ public:
   /**
    * Colour scheme: 0 HSV-black, 1 RGB. Default is 0 (HSV-black).
    */
-  vtkSetClampMacro(ColorScheme, int, 0, 1);
+  vtkSetMacro(ColorScheme, int); // checked at execution: out of range is an error
   vtkGetMacro(ColorScheme, int);
   ///@}
 
@@ -53,7 +53,7 @@ public:
    * Background mask: 0 none, 1 by retardation (pixels with retardation < MaskThreshold are black),
    * 2 by transmittance (pixels with transmittance > MaskThreshold are black). Default is 0.
    */
-  vtkSetClampMacro(Mask, int, 0, 2);
+  vtkSetMacro(Mask, int); // checked at execution
   vtkGetMacro(Mask, int);
   ///@}
 
@@ -68,9 +68,9 @@ public:
 
   ///@{
   /**
-   * Width and height of the legend image (output port 1) in pixels, 8 to 4096. Default is 256.
+   * Width and height of the legend image (output port 1) in pixels, 1 to 16384. Default is 256.
    */
-  vtkSetClampMacro(LegendSize, int, 8, 4096);
+  vtkSetMacro(LegendSize, int); // checked by the Core (fomLegend)
   vtkGetMacro(LegendSize, int);
   ///@}
 

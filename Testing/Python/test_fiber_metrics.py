@@ -124,6 +124,17 @@ bad.Box = [-5, 5, -5, 5, -5, 5]
 bad.VoxelSize = 0.1
 check(summary(bad)["fibers"][0] == 9, "pipeline not usable after the error")
 
+# Out-of-range codes typed in Python are errors naming the value, never clamped.
+# (SetElement bypasses the XML domains, as a script calling the VTK setter would.)
+for prop, value, text in (("VolumeFractionMethod", 5, "VolumeFractionMethod is 5"),
+                          ("Seed", -3, "Seed is -3"), ("VoxelSize", -1.0, "VoxelSize -1")):
+    bad = FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5])
+    errors = ErrorCatcher(bad)
+    bad.SMProxy.GetProperty(prop).SetElement(0, value)
+    bad.SMProxy.UpdateVTKObjects()
+    bad.UpdatePipeline()
+    check(text in errors.text(), "%s %s: %r" % (prop, value, errors.text()))
+
 # Empty input: empty outputs, no error.
 empty = FiberMetrics(Input=polydata([]))
 errors = ErrorCatcher(empty)

@@ -80,4 +80,24 @@ bad = FiberOrientationMap(Input=source)
 errors = ErrorCatcher(bad)
 bad.UpdatePipeline()
 check("'inclination' (1 tuples) differ" in errors.text(), "error: %r" % errors.text())
+# Out-of-range codes typed in Python are errors naming the value, never clamped.
+source.GetClientSideObject().SetOutput(image)
+# (SetElement bypasses the XML domains, as a script calling the VTK setter would.)
+def set_raw(proxy, name, value):
+    proxy.SMProxy.GetProperty(name).SetElement(0, value)
+    proxy.SMProxy.UpdateVTKObjects()
+
+
+for prop, value, good, text in (("ColorScheme", 7, 1, "ColorScheme is 7"), ("Mask", -1, 0, "Mask is -1"),
+                                ("LegendSize", 0, 64, "LegendSize 0")):
+    bad = FiberOrientationMap(Input=source)
+    errors = ErrorCatcher(bad)
+    set_raw(bad, prop, value)
+    bad.UpdatePipeline()
+    check(text in errors.text(), "%s %d: %r" % (prop, value, errors.text()))
+    errors.clear()
+    set_raw(bad, prop, good)
+    bad.UpdatePipeline()
+    check(not errors.errors and servermanager.Fetch(bad).GetPointData().GetArray("fom") is not None,
+          "%s: not usable after a good value: %r" % (prop, errors.text()))
 print("FOM mask checks passed")
