@@ -47,15 +47,7 @@ double bruteSpacing(double L, const std::vector<std::vector<LatticeSite>>& sites
 
 CubeOptions latticeCube(int populations, double edge, double phi, std::uint64_t seed)
 {
-  CubeOptions o;
-  o.populations = populations;
-  o.edgeLength = edge;
-  o.periodic = true;
-  o.volumeFraction = phi;
-  o.fiberRadius = 0.8;
-  o.segmentLength = 2.0;
-  o.displacement = 0.3;
-  o.seed = seed;
+  CubeOptions o = fiberpli_test::periodicCube(populations, edge, phi, seed);
   o.seeding = CubeSeeding::Lattice;
   return o;
 }

@@ -16,24 +16,11 @@
 
 using namespace fiberpli;
 using fiberpli_test::monteCarloFraction;
+using fiberpli_test::periodicCube;
 using fiberpli_test::refPeriodicCount;
 
 namespace
 {
-CubeOptions periodicCube(int populations, double edge, double phi, std::uint64_t seed = 3)
-{
-  CubeOptions o;
-  o.populations = populations;
-  o.edgeLength = edge;
-  o.periodic = true;
-  o.volumeFraction = phi;
-  o.fiberRadius = 0.8;
-  o.segmentLength = 2.0;
-  o.displacement = 0.3;
-  o.seed = seed;
-  return o;
-}
-
 void expectClosed(const FiberModel& m, double L)
 {
   for (const Fiber& f : m.fibers)
