@@ -141,10 +141,6 @@ int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, 
 int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  if (!fiberpli::CheckThreads(this, "PLIAnalysis", this->NumberOfThreads))
-  {
-    return 0;
-  }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -177,6 +173,15 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   if (optionError.empty())
   {
     optionError = fiberpli::checkPliAnalysisOptions(options);
+  }
+  if (optionError.empty()) // inside the collective path: a bad value on one rank must not hang the others
+  {
+    optionError = fiberpli::validateThreadCount(this->NumberOfThreads);
+  }
+  const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
+  if (optionError.empty() && !threadWarning.empty())
+  {
+    vtkWarningMacro(<< "PLIAnalysis: " << threadWarning);
   }
   if (!optionError.empty())
   {

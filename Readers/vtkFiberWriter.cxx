@@ -64,8 +64,7 @@ void vtkFiberWriter::WriteData()
   fiberpli::ReadPeriodicCell(input, cell, cellError);
   if (!cellError.empty())
   {
-    vtkErrorMacro(<< "FiberWriter: input field data " << cellError);
-    this->SetErrorCode(vtkErrorCode::UserError);
+    this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
     return;
   }
   const std::string error =
