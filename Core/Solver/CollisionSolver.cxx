@@ -331,10 +331,7 @@ public:
         << " links collide (MinimumGap " << o_.minimumGap << ")";
     if (limit == bound)
     {
-      double rhoMax = 0.0;
-      for (const CapsuleLink& l : links_)
-        rhoMax = std::max(rhoMax, l.rho);
-      msg << ", more than any packing of fibers of radius up to " << rhoMax << " um can have: ";
+      msg << ", more than any packing of fibers of radius up to " << largestRadius(model_) << " um can have: ";
       msg << "the fibers lie (nearly) on top of each other; spread them or lower the radii";
     }
     else
@@ -554,7 +551,7 @@ void prepareClosures(Solver& s)
   for (std::size_t f = 0; f < nf; ++f)
   {
     const Fiber& fib = s.model_.fibers[f];
-    s.closed_[f] = s.active_[f] && fib.size() >= 3 && isClosedFiber(fib, s.o_.periodicCell, s.closure_[f]);
+    s.closed_[f] = s.active_[f] && isClosedFiber(fib, s.o_.periodicCell, s.closure_[f]);
     s.close(f);
   }
 }
@@ -628,17 +625,7 @@ void configure(Solver& s, std::vector<std::string>& warnings)
   }
   s.vMax_ = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.
-  double rMax = 0.0;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    if (s.active_[f])
-    {
-      for (double r : s.model_.fibers[f].radii)
-      {
-        rMax = std::max(rMax, r);
-      }
-    }
-  }
+  const double rMax = largestRadius(s.model_);
   if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
   {
     warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
@@ -700,10 +687,7 @@ std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOpti
         << " copies of a fiber are separated): remove the duplicates";
     return msg.str();
   }
-  double rhoMax = 0.0;
-  for (const Fiber& f : model.fibers)
-    for (double r : f.radii)
-      rhoMax = std::max(rhoMax, r);
+  const double rhoMax = largestRadius(model);
   if (o.minimumGap > kMaxGapRadii * rhoMax)
   {
     msg << "MinimumGap is " << o.minimumGap << ", more than " << kMaxGapRadii
@@ -1008,7 +992,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
     for (std::size_t f = 0; f < model.fibers.size(); ++f)
     {
       Vec3 t;
-      closed[f] = model.fibers[f].size() >= 3 && isClosedFiber(model.fibers[f], cell, t);
+      closed[f] = isClosedFiber(model.fibers[f], cell, t);
     }
     buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr, &closed);
   }
@@ -1034,11 +1018,6 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
     overflow = !grid.findPairs(links, minimumGap, numberOfThreads, pairs, maxPairs);
   }
   return overflow ? maxPairs + 1 : pairs.size();
-}
-
-bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
-{
-  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)
