@@ -15,7 +15,7 @@
 ///   press except those on the progress widget and its abort button (whose window is added to
 ///   its list, see letClicksReachTheButton), so the user can do nothing else meanwhile
 ///   (ParaView 5.12 processes events in pqProgressManager::onProgress the same way);
-/// - the abort() signal asks the running FiberPLI executions to stop (Filters/FiberExecutions.h);
+/// - the abort() signal asks the running FiberPLI executions to stop (Conversion/FiberExecutions.h);
 ///   each stops at its next progress check, and the abort applies to that execution only;
 /// - when the progress ends, the button is disabled again.
 /// With a remote server the filters run in the server process, none is listed here, and nothing

@@ -13,14 +13,14 @@
 #ifndef FiberExecutions_h
 #define FiberExecutions_h
 
-#include "FiberPLIFiltersModule.h" // for export macro
+#include "FiberPLIConversionModule.h" // for export macro
 
 class vtkAlgorithm;
 
 namespace fiberpli
 {
 
-class FIBERPLIFILTERS_EXPORT FiberExecutions
+class FIBERPLICONVERSION_EXPORT FiberExecutions
 {
 public:
   /// An execution of `algorithm` starts / ends (AbortScope calls these; nesting is allowed).
