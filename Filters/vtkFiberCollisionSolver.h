@@ -133,6 +133,7 @@ protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Solves `input` unless the cache holds its solve: 1 solved, 0 error (reported), -1 aborted.
   int Solve(vtkPolyData* input);
