@@ -81,9 +81,8 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
     : 1;
 
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberBundleSource", this->Seed))
   {
-    vtkErrorMacro(<< "FiberBundleSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::BundleOptions options;

@@ -51,9 +51,8 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
     ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
     : 1;
 
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
   {
-    vtkErrorMacro(<< "FiberCubeSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::CubeOptions options;
