@@ -246,11 +246,7 @@ public:
   void startDistribution()
   {
     layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
-    double rhoMax = 0.0;
-    for (const Fiber& f : model_.fibers)
-      for (double r : f.radii)
-        rhoMax = std::max(rhoMax, r);
-    rhoMax = maxOverRanks(*comm_, rhoMax);
+    const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
     // Pairs collide closer than 2·ρmax + gap; the minimum gap probes up to one more median
     // radius (<= ρmax); a relative margin covers the rounding of the distances.
     haloReach_ = (3.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
@@ -452,10 +448,7 @@ public:
         << " links collide (MinimumGap " << o_.minimumGap << ")";
     if (limit == bound)
     {
-      double rhoMax = 0.0;
-      for (const CapsuleLink& l : links_)
-        rhoMax = std::max(rhoMax, l.rho);
-      msg << ", more than any packing of fibers of radius up to " << rhoMax << " um can have: ";
+      msg << ", more than any packing of fibers of radius up to " << largestRadius(model_) << " um can have: ";
       msg << "the fibers lie (nearly) on top of each other; spread them or lower the radii";
     }
     else
@@ -682,7 +675,7 @@ void prepareClosures(Solver& s)
   for (std::size_t f = 0; f < nf; ++f)
   {
     const Fiber& fib = s.model_.fibers[f];
-    s.st_.closed[f] = s.st_.active[f] && fib.size() >= 3 && isClosedFiber(fib, s.o_.periodicCell, s.st_.closure[f]);
+    s.st_.closed[f] = s.st_.active[f] && isClosedFiber(fib, s.o_.periodicCell, s.st_.closure[f]);
     s.close(f);
   }
 }
@@ -760,17 +753,7 @@ void configure(Solver& s, std::vector<std::string>& warnings)
   }
   s.st_.vMax = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.
-  double rMax = 0.0;
-  for (std::size_t f = 0; f < nf; ++f)
-  {
-    if (s.st_.active[f])
-    {
-      for (double r : s.model_.fibers[f].radii)
-      {
-        rMax = std::max(rMax, r);
-      }
-    }
-  }
+  double rMax = largestRadius(s.model_);
   if (s.comm_)
   {
     rMax = maxOverRanks(*s.comm_, rMax);
@@ -836,10 +819,7 @@ std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOpti
         << " copies of a fiber are separated): remove the duplicates";
     return msg.str();
   }
-  double rhoMax = 0.0;
-  for (const Fiber& f : model.fibers)
-    for (double r : f.radii)
-      rhoMax = std::max(rhoMax, r);
+  double rhoMax = largestRadius(model);
   if (comm)
   {
     rhoMax = maxOverRanks(*comm, rhoMax);
@@ -1406,7 +1386,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
     for (std::size_t f = 0; f < model.fibers.size(); ++f)
     {
       Vec3 t;
-      closed[f] = model.fibers[f].size() >= 3 && isClosedFiber(model.fibers[f], cell, t);
+      closed[f] = isClosedFiber(model.fibers[f], cell, t);
     }
     buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr, &closed);
   }
@@ -1432,11 +1412,6 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
     overflow = !grid.findPairs(links, minimumGap, numberOfThreads, pairs, maxPairs);
   }
   return overflow ? maxPairs + 1 : pairs.size();
-}
-
-bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
-{
-  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm)

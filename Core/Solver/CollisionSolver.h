@@ -197,10 +197,6 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
   const PeriodicCell& periodicCell = PeriodicCell{});
 
-/// True when the fiber is closed through the cell: last point − first point is a non-zero lattice
-/// vector (within 1e-5 × the largest edge per axis); closure receives it exactly.
-bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure);
-
 /// Σ π ρ_k² · |link k| over all links (ρ = capsule radius) divided by the cell volume, or without
 /// a cell by the volume of the model's bounding box (points grown by their radii); 0 if empty.
 /// Summed exactly (the same bits for any order or split); comm: over all ranks' fibers (collective).
