@@ -127,6 +127,13 @@ double ListValue(const std::vector<double>& list, int i)
   return i >= 0 && static_cast<std::size_t>(i) < list.size() ? list[static_cast<std::size_t>(i)] : 0.0;
 }
 
+
+/// True when the fibers carry FiberCollisionSolver's field data collisions = 0 (solved).
+bool ClaimsSolved(vtkPolyData* fibers)
+{
+  vtkDataArray* collisions = fibers->GetFieldData()->GetArray("collisions");
+  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -366,7 +373,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   int ok = 1;
   if (wantImage)
   {
-    ok = this->SimulateImage(in.model, options, outputVector->GetInformationObject(0), image);
+    ok = this->SimulateImage(in.model, options, outputVector->GetInformationObject(0), image, ClaimsSolved(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
@@ -377,7 +384,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-  vtkInformation* outInfo, vtkImageData* output)
+  vtkInformation* outInfo, vtkImageData* output, bool claimsSolved)
 {
   int ext[6], whole[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
@@ -412,10 +419,20 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
   }
-  if (!st.warnings.empty())
+  std::vector<std::string> warnings = st.warnings;
+  // Overlapping fibers are what a model straight from a source or a file has before it is solved:
+  // simulating it is a quick look the user chose (the nearest fiber owns a shared voxel), and the
+  // solver or FiberMetrics count its collisions. It matters when the input says it is
+  // collision-free: then something else (layers wider than the fibers, a later edit) overlaps.
+  if (image.fibersOverlap && claimsSolved)
+  {
+    warnings.push_back("fibers overlap although the input is collision-free (its field data collisions is 0): the "
+                       "nearest fiber owns the shared voxels (Layers scaled beyond the fiber radius?)");
+  }
+  if (!warnings.empty())
   {
     std::string text = "PLISimulation:";
-    for (const std::string& w : st.warnings)
+    for (const std::string& w : warnings)
     {
       text += " " + w + ";";
     }

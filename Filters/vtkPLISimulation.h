@@ -351,8 +351,9 @@ private:
   double TissueVolume[6] = { 1, -1, 1, -1, 1, -1 };
 
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.
+  /// claimsSolved: the input says it is collision-free, so overlapping tissue is worth a warning.
   int SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-    vtkInformation* outInfo, vtkImageData* output);
+    vtkInformation* outInfo, vtkImageData* output, bool claimsSolved);
   int VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
     vtkInformation* outInfo, vtkImageData* output);
 

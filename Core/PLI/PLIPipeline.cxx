@@ -292,6 +292,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
     return st;
   }
   image.emptySection = sr.emptySection;
+  image.fibersOverlap = sr.overlap;
   image.voxeliseCpuSeconds = sr.voxeliseCpuSeconds;
   image.propagateCpuSeconds = sr.propagateCpuSeconds;
   image.raySteps = sr.raySteps;
