@@ -329,6 +329,25 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
   return {};
 }
 
+TileReach groundTruthReach(const TruthLattice& lat, const GroundTruthOptions& options, const PixelRange& range)
+{
+  TileReach r;
+  if (range.width() < 1 || range.height() < 1 || lat.n[2] < 1)
+  {
+    return r;
+  }
+  // A voxel bins into pixel i when its centre lies in [i, i + 1) pixels from the origin (§5.2).
+  const double p = lat.pixelSize, h = lat.voxelSize;
+  r.box[0] = lat.origin.x + static_cast<double>(range.i0) * p - h;
+  r.box[1] = lat.origin.x + static_cast<double>(range.i1) * p + h;
+  r.box[2] = lat.origin.y + static_cast<double>(range.j0) * p - h;
+  r.box[3] = lat.origin.y + static_cast<double>(range.j1) * p + h;
+  r.box[4] = lat.origin.z - h;
+  r.box[5] = lat.origin.z + static_cast<double>(lat.n[2] + 1) * h;
+  r.radiusScale = options.radiusScale;
+  return r;
+}
+
 std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi, int nTheta, bool normalise,
   bool perSolidAngle)
 {

@@ -10,6 +10,7 @@
 #include "Analysis/OrientationTensor.h"
 #include "Analysis/PixelRange.h"
 #include "Model/FiberModel.h"
+#include "Model/TileReach.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -67,6 +68,10 @@ std::string truthPixelGrid(const TruthLattice& lattice, std::int64_t& nx, std::i
 std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lattice,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});
+
+/// The fibers the pixels `range` read (docs/pli-simulation.md §6.3): the voxels that bin into
+/// them, every depth, grown by one voxel against rounding, with the options' radius scale.
+TileReach groundTruthReach(const TruthLattice& lattice, const GroundTruthOptions& options, const PixelRange& range);
 
 /// Whole-model orientation histogram (fastPLI orientation.py): every link (φ = atan2(dy, dx),
 /// θ = arccos(dz/|d|), antipode when θ > 90°) counted in nPhi bins over φ ∈ [0°, 360°) × nTheta
