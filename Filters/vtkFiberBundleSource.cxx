@@ -65,9 +65,8 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
     return 1;
   }
 
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberBundleSource", this->Seed))
   {
-    vtkErrorMacro(<< "FiberBundleSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::BundleOptions options;

@@ -29,6 +29,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+#include <string>
 
 class FIBERPLIFILTERS_EXPORT vtkFiberCollisionSolver : public vtkPolyDataAlgorithm
 {
@@ -134,7 +135,8 @@ protected:
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// Solves `input` unless the cache holds its solve: 1 solved, 0 error (reported), -1 aborted.
+  /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
+  /// (reported on every call, computed once), -1 aborted (never cached).
   int Solve(vtkPolyData* input);
 
 private:
@@ -153,6 +155,8 @@ private:
   int MaximumSnapshots = 100;
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
+  /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
+  std::string SolveInto(vtkPolyData* input, Snapshots& cache);
   std::unique_ptr<Snapshots> Cache;
 };
 

@@ -25,9 +25,8 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
 
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
   {
-    vtkErrorMacro(<< "FiberCubeSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::CubeOptions options;

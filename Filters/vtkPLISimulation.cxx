@@ -56,8 +56,8 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
     error = CheckSwitch("TiltedSensor", self->GetTiltedSensor());
   if (error.empty())
     error = CheckSwitch("ExportTissue", self->GetExportTissue());
-  if (error.empty() && self->GetSeed() < 0)
-    error = "Seed is " + std::to_string(self->GetSeed()) + ", must be >= 0";
+  if (error.empty())
+    error = fiberpli::validateSeed(self->GetSeed());
   self->GetVolumeOfInterest(o.volumeOfInterest);
   o.voxelSize = self->GetVoxelSize();
   o.pixelSize = self->GetPixelSize();

@@ -7,12 +7,14 @@
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
  * AbortScope, the first line of every RequestData, makes an abort apply to one execution only.
- * CheckThreads applies the NumberOfThreads rule of Util/Threads.h with VTK messages.
+ * CheckThreads applies the NumberOfThreads rule of Util/Threads.h, CheckSeed the Seed rule of
+ * Util/Random.h, with VTK messages.
  */
 #ifndef FiberProgress_h
 #define FiberProgress_h
 
 #include "Util/Progress.h"
+#include "Util/Random.h"
 #include "Util/Threads.h"
 
 #include <vtkAlgorithm.h>
@@ -79,6 +81,18 @@ inline bool CheckThreads(vtkAlgorithm* algorithm, const char* who, int requested
   if (!warning.empty())
   {
     vtkWarningWithObjectMacro(algorithm, << who << ": " << warning);
+  }
+  return true;
+}
+
+/// Seed rule: false (with an error naming the value) for a negative Seed.
+inline bool CheckSeed(vtkAlgorithm* algorithm, const char* who, long long seed)
+{
+  const std::string error = validateSeed(seed);
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << who << ": " << error);
+    return false;
   }
   return true;
 }
