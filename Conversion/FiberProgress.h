@@ -13,6 +13,7 @@
 #ifndef FiberProgress_h
 #define FiberProgress_h
 
+#include "FiberExecutions.h"
 #include "Util/Progress.h"
 #include "Util/Random.h"
 #include "Util/Threads.h"
@@ -42,16 +43,19 @@ inline ProgressFn MakeProgress(vtkAlgorithm* algorithm, double begin = 0.0, doub
 /// (from a progress observer or the GUI), so every later update of this algorithm, and of every
 /// algorithm downstream (CheckAbort looks upstream), would stop at once and pass empty output on.
 /// The aborted execution itself is still reported to the executive (its output is marked aborted
-/// and is made again by the next update).
+/// and is made again by the next update). While the scope lasts the execution is listed in
+/// FiberExecutions, where the GUI's abort button finds it.
 class AbortScope
 {
 public:
   explicit AbortScope(vtkAlgorithm* algorithm)
     : Algorithm(algorithm)
   {
+    FiberExecutions::Enter(algorithm);
   }
   ~AbortScope()
   {
+    FiberExecutions::Leave(this->Algorithm);
     if (this->Algorithm->GetAbortExecute())
     {
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
