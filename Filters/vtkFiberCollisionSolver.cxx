@@ -22,6 +22,15 @@
 
 vtkStandardNewMacro(vtkFiberCollisionSolver);
 
+namespace
+{
+bool FirstPiece(vtkInformation* outInfo)
+{
+  return !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) ||
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) == 0;
+}
+} // namespace
+
 // The states of one solve at steps 0, Δ, 2Δ, … (at most MaximumSnapshots: when full, every
 // second one is dropped and Δ doubles), then the final state; kept while input and properties
 // are unchanged.
@@ -72,6 +81,17 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+// The solve is not distributed yet: every piece asks for all fibers (piece 0 of 1, as the other
+// filters that need them whole; the same request on every rank, so a piece-making source sees no
+// half-collective update), piece 0 solves them, the other pieces are empty (docs/architecture.md §7).
+int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
@@ -221,7 +241,7 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
-  if (fiberpli::FiberPolyData::IsEmpty(input))
+  if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
   {
     return 1;
   }

@@ -134,6 +134,7 @@ protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
   /// (reported on every call, computed once), -1 aborted (never cached).
