@@ -7,6 +7,7 @@
 #include "FiberProgress.h"
 #include "FiberTileExchange.h"
 #include "Model/VolumeOfInterest.h"
+#include "Section/SectionPlan.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDoubleArray.h>
@@ -29,38 +30,6 @@ namespace
 {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-/// The simulation lattice and image geometry of PLISimulation (docs/pli-simulation.md §3.1, §5.2;
-/// Core/PLI/PLIPipeline.cxx planPLI) for these properties. Returns "" or an error naming the property.
-std::string PlanGrid(const fiberpli::FiberModel& model, const double voiIn[6], double voxel, double pixel,
-  fiberpli::TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny, double origin[3])
-{
-  std::ostringstream m;
-  if (!(voxel > 0.0) || !std::isfinite(voxel))
-  {
-    m << "VoxelSize is " << voxel << ", must be > 0";
-    return m.str();
-  }
-  // The same check as PLISimulation's (Core/Model/VolumeOfInterest.h).
-  double voi[6];
-  const std::string voiError = fiberpli::resolveVolumeOfInterest(voiIn, model, voxel, voi, lattice.n);
-  if (!voiError.empty())
-  {
-    return voiError;
-  }
-  lattice.origin = fiberpli::Vec3{ voi[0], voi[2], voi[4] };
-  lattice.voxelSize = voxel;
-  lattice.pixelSize = pixel;
-  std::string err = fiberpli::truthPixelGrid(lattice, nx, ny);
-  if (err.empty() && (nx < 1 || ny < 1))
-  {
-    m << "PixelSize " << pixel << " is larger than the VolumeOfInterest: no pixel";
-    err = m.str();
-  }
-  origin[0] = voi[0] + 0.5 * pixel;
-  origin[1] = voi[2] + 0.5 * pixel;
-  origin[2] = voi[4] + 0.5 * static_cast<double>(lattice.n[2]) * voxel;
-  return err;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -98,12 +67,12 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
         std::copy(bounds, bounds + 6, this->PlannedVolume);
       }
     }
-    fiberpli::TruthLattice lattice;
-    std::int64_t nx = 0, ny = 0;
+    fiberpli::SectionPlan section;
     if (error.empty() &&
-      PlanGrid(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin).empty())
+      fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, section).empty())
     {
-      extent[1] = static_cast<int>(nx - 1), extent[3] = static_cast<int>(ny - 1), extent[5] = 0;
+      extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
+      std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
     }
   } // errors are reported by RequestData
   const double spacing[3] = { this->PixelSize, this->PixelSize, this->PixelSize };
@@ -148,19 +117,17 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   output->Initialize();
   fiberpli::GroundTruthOptions options;
   options.threads = this->NumberOfThreads;
-  // The grid and this piece's pixels (an empty range when nothing of the image is requested).
-  fiberpli::TruthLattice lattice;
-  std::int64_t nx = 0, ny = 0;
-  double origin[3];
+  // The section and this piece's pixels (an empty range when nothing of the image is requested).
+  fiberpli::SectionPlan section;
   auto plan = [&](const fiberpli::FiberModel& model, fiberpli::PixelRange& range) {
-    const std::string e = PlanGrid(model, this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin);
-    range = fiberpli::PixelRange{ 0, nx, 0, ny };
+    const std::string e = fiberpli::planSection(model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section);
+    range = fiberpli::PixelRange{ 0, section.pixels[0], 0, section.pixels[1] };
     if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     {
       int u[6];
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), u);
-      range = fiberpli::PixelRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(nx, u[1] + 1),
-        std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(ny, u[3] + 1) };
+      range = fiberpli::PixelRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
+        std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
     }
     return e.empty() ? e : "FiberOrientationGroundTruth: " + e;
   };
@@ -170,9 +137,9 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     localError, [&](const fiberpli::TileFibers&, fiberpli::TileReach& reach) {
       fiberpli::PixelRange range;
       const std::string e = plan(fiberpli::FiberModel(), range);
-      if (e.empty() && range.width() > 0 && range.height() > 0)
+      if (e.empty() && range.nx() > 0 && range.ny() > 0)
       {
-        reach = fiberpli::groundTruthReach(lattice, options, range);
+        reach = fiberpli::groundTruthReach(section, options, range);
       }
       return e;
     });
@@ -194,12 +161,13 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
   fiberpli::PixelRange range;
   std::string err = plan(c.model, range);
+  const std::int64_t nx = section.pixels[0];
   if (!err.empty())
   {
     vtkErrorMacro(<< err);
     return 0;
   }
-  if (range.width() <= 0 || range.height() <= 0)
+  if (range.nx() <= 0 || range.ny() <= 0)
   {
     return 1; // nothing of the image requested
   }
@@ -207,7 +175,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     static_cast<int>(range.j1 - 1), 0, 0 };
   fiberpli::GroundTruthMaps maps;
   this->SetProgressText("Fiber orientation ground truth");
-  err = fiberpli::computeGroundTruth(c.model, lattice, options, range, maps, fiberpli::MakeProgress(this));
+  err = fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
   if (err == "cancelled")
   {
     return 1;
@@ -219,7 +187,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
 
   output->SetExtent(ext);
-  output->SetOrigin(origin);
+  output->SetOrigin(section.imageOrigin);
   output->SetSpacing(this->PixelSize, this->PixelSize, this->PixelSize);
   auto addMap = [&](const char* name, const std::vector<double>& map, double scale) {
     vtkNew<vtkDoubleArray> a;

@@ -49,7 +49,7 @@ std::string CheckSwitch(const char* name, int value)
 std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
 {
   o = fiberpli::pli::PLIOptions();
-  std::string error = fiberpli::pli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
+  std::string error = fiberpli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
   if (error.empty())
     error = fiberpli::pli::interpolationFromCode(self->GetInterpolation(), o.interpolation);
   if (error.empty())
@@ -159,7 +159,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   int ext[6];
   if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
   {
-    reach = fiberpli::pli::imageReach(plan, options, fiberpli::pli::PixelRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
+    reach = fiberpli::pli::imageReach(plan, options, fiberpli::PixelRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
   }
   fiberpli::pli::VoxelBox box;
   if (tissue && self->GetExportTissue() && tissueError.empty() &&
@@ -450,7 +450,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   {
     return 1;
   }
-  const fiberpli::pli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
+  const fiberpli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;

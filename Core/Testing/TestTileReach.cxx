@@ -156,9 +156,9 @@ TEST(TileReach, SelectedFibersGiveTheSameTileAndLeaveOutOnlyFarFibers)
   PLIPlan plan;
   ASSERT_TRUE(planPLI(model, o, plan).ok());
   // Tiles of a 2 × 2 split and one of a single pixel row at the edge.
-  const std::vector<pli::PixelRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 }, { 0, 16, 12, 24 }, { 16, 32, 12, 24 },
+  const std::vector<fiberpli::PixelRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 }, { 0, 16, 12, 24 }, { 16, 32, 12, 24 },
     { 0, 32, 23, 24 } };
-  for (const pli::PixelRange& px : tiles)
+  for (const fiberpli::PixelRange& px : tiles)
   {
     const TileReach reach = imageReach(plan, o, px);
     EXPECT_DOUBLE_EQ(reach.radiusScale, 1.2);
@@ -183,7 +183,7 @@ TEST(TileReach, TiltedSensorAndTissueExportPieces)
   o.tiltAngles = { 4.0, 8.0 };
   PLIPlan plan;
   ASSERT_TRUE(planPLI(model, o, plan).ok());
-  const pli::PixelRange px{ 20, 32, 0, 10 };
+  const fiberpli::PixelRange px{ 20, 32, 0, 10 };
   const FiberModel part = selected(model, imageReach(plan, o, px));
   PLIImage whole, tile;
   ASSERT_TRUE(runPLI(model, o, px, whole).ok());
@@ -206,11 +206,8 @@ TEST(TileReach, TiltedSensorAndTissueExportPieces)
 TEST(TileReach, GroundTruthTileFromSelectedFibers)
 {
   const FiberModel model = randomModel(300, 10.0, 17);
-  TruthLattice lat;
-  lat.origin = Vec3{ -8, -6, -2 };
-  lat.voxelSize = 0.25;
-  lat.pixelSize = 1.0;
-  lat.n[0] = 64, lat.n[1] = 48, lat.n[2] = 16;
+  // 16 x 12 pixels of 1 um, 4 x 4 voxel columns of 0.25 um each, 4 um deep.
+  const PixelGrid lat = latticeForPixelGrid(Vec3{ -8, -6, 0 }, 1.0, 16, 12, -2.0, 2.0, 4);
   GroundTruthOptions opt;
   opt.threads = 1;
   for (const fiberpli::PixelRange range :
@@ -238,9 +235,8 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
       }
     EXPECT_GT(tissuePixels, 0) << "no fiber in the tile: not a real comparison";
     // The voxels that bin into the range: centres inside its pixels.
-    const double o[3] = { lat.origin.x, lat.origin.y, lat.origin.z };
     const ColumnRange voxels{ range.i0 * 4, range.i1 * 4, range.j0 * 4, range.j1 * 4 };
-    expectLeftOutAreFar(model, part, o, lat.voxelSize, lat.n[2], voxels, 1.0);
+    expectLeftOutAreFar(model, part, lat.lattice.origin, lat.lattice.voxel, lat.lattice.n[2], voxels, 1.0);
   }
 }
 
@@ -259,7 +255,7 @@ TEST(TileReach, PeriodicTranslatesAgainstEveryTranslate)
   ASSERT_EQ(tileModel(tiled, cell, voi), "");
   PLIPlan plan;
   ASSERT_TRUE(planPLI(tiled, o, plan).ok());
-  const pli::PixelRange px{ 40, 60, 0, 15 };
+  const fiberpli::PixelRange px{ 40, 60, 0, 15 };
   TileReach reach = imageReach(plan, o, px);
   reach.periodic = true;
   reach.cell = cell;
