@@ -464,7 +464,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
       }
       return vtkProgress(f);
     });
-  if (!st.ok())
+  if (!st.error.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
@@ -478,9 +478,9 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     }
     vtkWarningMacro(<< text);
   }
-  if (image.aborted)
+  if (st.aborted)
   {
-    return 1;
+    return 1; // partial results are never passed on
   }
 
   const fiberpli::pli::PLIPlan& plan = image.plan;
@@ -560,12 +560,12 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   this->SetProgressText("Voxelising the tissue");
   fiberpli::pli::TissueVolume tv;
   st = fiberpli::pli::exportTissue(model, plan, options, piece, tv, fiberpli::MakeProgress(this));
-  if (!st.ok())
+  if (!st.error.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
   }
-  if (tv.aborted)
+  if (st.aborted)
   {
     return 1; // aborted: the port stays empty
   }

@@ -293,7 +293,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
   std::vector<Stack> voxelStacks;
   SimResult sr = simulate(model, plan.tissue, plan.lattice, sp, plan.views, cols, voxelStacks, simProgress);
   st.warnings.insert(st.warnings.end(), sr.status.warnings.begin(), sr.status.warnings.end());
-  if (!sr.status.ok())
+  if (!sr.status.error.empty())
   {
     st.error = sr.status.error;
     return st;
@@ -303,9 +303,9 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
   image.propagateCpuSeconds = sr.propagateCpuSeconds;
   image.raySteps = sr.raySteps;
   image.peakTissueBytes = sr.estimatedBytes;
-  if (sr.aborted)
+  if (sr.status.aborted)
   {
-    image.aborted = true;
+    st.aborted = true;
     return st;
   }
 
