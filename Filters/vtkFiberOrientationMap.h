@@ -2,8 +2,11 @@
  * @class   vtkFiberOrientationMap
  * @brief   direction + inclination → RGB fiber orientation map (FOM) and its colour legend
  *
- * Input: vtkImageData with point arrays `direction` and `inclination` (degrees; any numeric type;
- * the sign of the inclination is ignored), e.g. from PLIAnalysis or FiberOrientationGroundTruth.
+ * Input: vtkImageData with a direction and an inclination point array (degrees; any numeric type,
+ * read without a copy when it is a one-component double array; the sign of the inclination is
+ * ignored), e.g. from PLIAnalysis or FiberOrientationGroundTruth. They are the input arrays to
+ * process 0 and 1 (SetInputArrayToProcess; by default the arrays named `direction` and
+ * `inclination`; in ParaView the properties DirectionArray and InclinationArray).
  * Output port 0: the input with the point array `fom` (unsigned char, 3 components) added and set
  * as active scalars; NaN pixels are black. Output port 1: the colour legend, a LegendSize ×
  * LegendSize image of the upper hemisphere seen from +z (centre = fiber along z, rim = in-plane

@@ -2,6 +2,7 @@
 
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
+#include "Solver/Decomposition.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
@@ -83,15 +85,24 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-double medianRadius(const FiberModel& model)
+// Median point radius of the fibers with >= 2 points; distributed (comm): of the owned fibers
+// (owned non-null) of all ranks, exactly the same value.
+double medianRadius(const FiberModel& model, SolverComm* comm = nullptr, const std::vector<char>* owned = nullptr)
 {
   std::vector<double> r;
-  for (const Fiber& f : model.fibers)
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
-    if (f.points.size() >= 2)
+    const Fiber& fib = model.fibers[f];
+    if (fib.points.size() >= 2 && !(owned && !(*owned)[f]))
     {
-      r.insert(r.end(), f.radii.begin(), f.radii.end());
+      r.insert(r.end(), fib.radii.begin(), fib.radii.end());
     }
+  }
+  if (comm)
+  {
+    std::vector<std::int64_t> n{ static_cast<std::int64_t>(r.size()) };
+    comm->sum(n);
+    return globalNthValue(r, n[0] / 2, *comm);
   }
   if (r.empty())
   {
@@ -222,6 +233,99 @@ public:
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
+  // Distributed run (docs/solver.md §13); comm_ null: this process alone, every fiber owned.
+  SolverComm* comm_ = nullptr;
+  std::vector<char> owned_; // per fiber: 1 owned, 0 halo (a partner only)
+  SlabLayout layout_;
+  double haloReach_ = 0.0; // fibers closer than this along the slab axis are exchanged
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0;
+
+  RankFibers rankFibers() { return RankFibers{ model_, st_, owned_ }; }
+
+  // The slabs, the halo reach and every fiber to its owner (the run's first exchange).
+  void startDistribution()
+  {
+    layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
+    const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
+    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes up to one more median
+    // radius (<= ρmax); a relative margin covers the rounding of the distances.
+    haloReach_ = (3.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    RankFibers r = rankFibers();
+    std::vector<int> dest(r.size());
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      dest[f] = layout_.owner(model_.fibers[f]);
+    }
+    redistribute(r, dest, *comm_);
+  }
+  void resetTraffic()
+  {
+    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = 0;
+  }
+
+  // Before a detection: fibers whose slab changed go to their new owner, then every rank gets
+  // the halo of its owned fibers (current positions, so it is complete for this step).
+  void exchangeFibers()
+  {
+    RankFibers r = rankFibers();
+    dropHalo(r);
+    std::vector<int> dest(r.size());
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      dest[f] = layout_.owner(model_.fibers[f]);
+    }
+    migrations_ += redistribute(r, dest, *comm_).fibers;
+    haloBytes_ += addHalo(r, layout_, o_.periodicCell, haloReach_, *comm_).bytes;
+    ++haloExchanges_;
+    std::size_t halo = 0, all = 0;
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      all += model_.fibers[f].size();
+      halo += owned_[f] ? 0 : model_.fibers[f].size();
+    }
+    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
+    peakRankPoints_ = std::max(peakRankPoints_, all);
+  }
+
+  // Collisions and links of the whole model: a pair counts on the rank owning its first link.
+  struct Counts
+  {
+    std::size_t pairs = 0;
+    std::size_t links = 0;
+    bool changed = false;
+  };
+  Counts globalCounts(bool changed) const
+  {
+    if (!comm_)
+    {
+      return { pairs_.size(), links_.size(), changed };
+    }
+    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
+    for (const CapsulePair& p : pairs_)
+      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
+    for (const CapsuleLink& l : links_)
+      v[1] += owned_[l.fiber] ? 1 : 0;
+    comm_->sum(v);
+    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+  }
+
+  double median() { return medianRadius(model_, comm_, comm_ ? &owned_ : nullptr); }
+
+  // Σ π ρ² · link length of the owned fibers of all ranks, the same bits for any split.
+  double fiberVolume()
+  {
+    ExactSum sum;
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+    {
+      const Fiber& fib = model_.fibers[f];
+      for (std::size_t k = 0; owned_[f] && k + 1 < fib.size(); ++k)
+      {
+        const double rho = fib.linkRadius(k);
+        sum.add(M_PI * rho * rho * distance(fib.points[k], fib.points[k + 1]));
+      }
+    }
+    return sum.total(comm_);
+  }
 
   bool periodic() const { return o_.periodicCell.enabled(); }
 
@@ -244,7 +348,7 @@ public:
     for (std::int64_t f = 0; f < nf; ++f)
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
-      if (!st_.active[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -262,12 +366,17 @@ public:
   // The state shape control would leave untouched (used after an abort, where it did not run).
   bool shapeWithinLimits() const
   {
+    const bool ok = localShapeWithinLimits();
+    return comm_ ? !anyRank(*comm_, !ok) : ok;
+  }
+  bool localShapeWithinLimits() const
+  {
     const double lMin = st_.segmentLength * (2.0 / 3.0);
     const double lMax = st_.segmentLength * (4.0 / 3.0);
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      if (!st_.active[f])
+      if (!st_.active[f] || !owned_[f])
       {
         continue;
       }
@@ -292,8 +401,22 @@ public:
   // than their limit (packingPairBound or the memory budget); detectError_ says why.
   bool detect()
   {
+    if (comm_)
+    {
+      exchangeFibers();
+    }
     buildLinks(model_, &st_.active, threads_, links_, &pointOffset_, periodic() ? &st_.closed : nullptr, st_.scale);
-    return findBoundedPairs();
+    const bool found = findBoundedPairs();
+    if (!comm_)
+    {
+      return found;
+    }
+    // Pairs of two halo links move nothing here (their owners find them too).
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                   [this](const CapsulePair& p) { return !owned_[links_[p.a].fiber] && !owned_[links_[p.b].fiber]; }),
+      pairs_.end());
+    detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
+    return detectError_.empty();
   }
 
   bool findBoundedPairs()
@@ -364,7 +487,7 @@ public:
     {
       f = std::min(f, std::max(0.0, p.distance - o_.minimumGap) / (links_[p.a].rho + links_[p.b].rho));
     }
-    return f;
+    return comm_ ? minOverRanks(*comm_, f) : f;
   }
 
   double maxOverlap() const
@@ -374,7 +497,7 @@ public:
     {
       m = std::max(m, links_[p.a].rho + links_[p.b].rho + o_.minimumGap - p.distance);
     }
-    return m;
+    return comm_ ? maxOverRanks(*comm_, m) : m;
   }
 
   // §4.4: pushes in parallel into their own slots, summed serially in pair order, then moved per
@@ -439,7 +562,7 @@ public:
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
       const std::size_t n = fib.points.size();
-      if (!st_.active[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -521,6 +644,13 @@ void prepareFibers(Solver& s, std::vector<std::string>& warnings)
       s.st_.active[f] = 0;
     }
   }
+  if (s.comm_) // the warnings count all ranks
+  {
+    std::vector<std::int64_t> n{ static_cast<std::int64_t>(repeated), static_cast<std::int64_t>(tooShort) };
+    s.comm_->sum(n);
+    repeated = static_cast<std::size_t>(n[0]);
+    tooShort = static_cast<std::size_t>(n[1]);
+  }
   if (repeated > 0)
   {
     warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
@@ -568,7 +698,7 @@ double smallestGap(Solver& s, double probe)
   {
     if (!s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty())
     {
-      return probe;
+      near.clear(); // the cell is too small for this probe: no gap below it is known
     }
   }
   else
@@ -580,13 +710,13 @@ double smallestGap(Solver& s, double probe)
   {
     gap = std::min(gap, p.distance - s.links_[p.a].rho - s.links_[p.b].rho);
   }
-  return gap;
+  return s.comm_ ? minOverRanks(*s.comm_, gap) : gap;
 }
 
 // L̄ (§5.1): 0 = automatic, 2 × median radius (the fastPLI author's choice); < 0 = off.
-double resolveSegmentLength(const FiberModel& model, const CollisionSolverOptions& o)
+double resolveSegmentLength(Solver& s, const CollisionSolverOptions& o)
 {
-  const double l = o.segmentLength == 0.0 ? 2.0 * medianRadius(model) : o.segmentLength;
+  const double l = o.segmentLength == 0.0 ? 2.0 * s.median() : o.segmentLength;
   return l == 0.0 ? -1.0 : l; // no fibers to take a radius from
 }
 
@@ -594,7 +724,7 @@ double resolveSegmentLength(const FiberModel& model, const CollisionSolverOption
 void configure(Solver& s, std::vector<std::string>& warnings)
 {
   const std::size_t nf = s.model_.fibers.size();
-  const double rMedian = medianRadius(s.model_);
+  const double rMedian = s.median();
   double rMin = HUGE_VAL;
   for (std::size_t f = 0; f < nf; ++f)
   {
@@ -605,6 +735,10 @@ void configure(Solver& s, std::vector<std::string>& warnings)
         rMin = std::min(rMin, r);
       }
     }
+  }
+  if (s.comm_)
+  {
+    rMin = minOverRanks(*s.comm_, rMin);
   }
   if (rMin == HUGE_VAL)
   {
@@ -619,7 +753,11 @@ void configure(Solver& s, std::vector<std::string>& warnings)
   }
   s.st_.vMax = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.
-  const double rMax = largestRadius(s.model_);
+  double rMax = largestRadius(s.model_);
+  if (s.comm_)
+  {
+    rMax = maxOverRanks(*s.comm_, rMax);
+  }
   if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
   {
     warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
@@ -670,7 +808,7 @@ std::string checkMemory(const Solver& s)
 // Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
 // kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
 // the colliding pairs grow with the square of the copies or the gap.
-std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o)
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
 {
   std::ostringstream msg;
   const DuplicateStacks d = findDuplicateStacks(model);
@@ -681,7 +819,11 @@ std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOpti
         << " copies of a fiber are separated): remove the duplicates";
     return msg.str();
   }
-  const double rhoMax = largestRadius(model);
+  double rhoMax = largestRadius(model);
+  if (comm)
+  {
+    rhoMax = maxOverRanks(*comm, rhoMax);
+  }
   if (o.minimumGap > kMaxGapRadii * rhoMax)
   {
     msg << "MinimumGap is " << o.minimumGap << ", more than " << kMaxGapRadii
@@ -761,9 +903,10 @@ constexpr int kGrowthStall = 2000;
 
 struct CollisionSolverRun::Impl
 {
-  Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob)
+  Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob, SolverComm* c)
     : model(m), options(o), progress(p), observer(ob), s(m, options, 1)
   {
+    s.comm_ = c;
   }
 
   enum class Phase
@@ -780,7 +923,7 @@ struct CollisionSolverRun::Impl
   ProgressFn progress;
   StepObserver observer;
   Solver s;
-  FiberModel input; // periodic runs: the model before preparation, restored when the cell is too small
+  FiberModel input; // periodic or distributed runs: the model before preparation, restored on an error
   CollisionSolverResult result;
   Phase phase = Phase::Created;
 
@@ -788,7 +931,28 @@ struct CollisionSolverRun::Impl
   bool report(double fraction)
   {
     s.st_.reported = std::max(s.st_.reported, fraction);
-    return reportProgress(progress, s.st_.reported);
+    const bool go = reportProgress(progress, s.st_.reported);
+    return s.comm_ ? !anyRank(*s.comm_, !go) : go; // a stop on one rank stops all
+  }
+  // Errors of one rank reach all (distributed runs restore the input piece).
+  bool fail(std::string error)
+  {
+    if (s.comm_)
+    {
+      error = agreeOnError(*s.comm_, error);
+    }
+    if (error.empty())
+    {
+      return false;
+    }
+    if (s.comm_)
+    {
+      model = input;
+    }
+    result = CollisionSolverResult{};
+    result.error = error;
+    phase = Phase::Failed;
+    return true;
   }
   double stepShareAfter(int steps) const
   {
@@ -797,9 +961,9 @@ struct CollisionSolverRun::Impl
   // The pair limit (or a periodic cell too small for the links) met in the middle of a run.
   void failDetection(const std::string& where)
   {
-    if (s.periodic())
+    if (s.periodic() || s.comm_)
     {
-      model = input; // the cell is too small for the links: keep the input
+      model = input; // the cell is too small for the links, or distributed: keep the input
       result = CollisionSolverResult{};
       result.error = s.detectError_;
     }
@@ -809,6 +973,24 @@ struct CollisionSolverRun::Impl
       result.error = s.detectError_ + where;
     }
     phase = Phase::Failed;
+  }
+  // Distributed: every fiber back to the rank whose input piece held it; this rank's figures.
+  void goHome()
+  {
+    RankFibers fibers = s.rankFibers();
+    dropHalo(fibers);
+    result.rankFibers = fibers.size();
+    redistribute(fibers, s.st_.home, *s.comm_);
+    result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
+    result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
+    result.peakHaloPoints = s.peakHaloPoints_;
+    result.peakRankPoints = s.peakRankPoints_;
+  }
+  std::int64_t sumOverRanks(std::int64_t v)
+  {
+    std::vector<std::int64_t> x{ v };
+    s.comm_->sum(x);
+    return x[0];
   }
   // The result fields that are the state's (also on an error in the middle of a run).
   void takeState()
@@ -823,8 +1005,8 @@ struct CollisionSolverRun::Impl
 };
 
 CollisionSolverRun::CollisionSolverRun(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress, const StepObserver& observer)
-  : impl_(std::make_unique<Impl>(model, options, progress, observer))
+  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+  : impl_(std::make_unique<Impl>(model, options, progress, observer, comm))
 {
 }
 
@@ -841,49 +1023,82 @@ bool CollisionSolverRun::start()
   Solver& s = r.s;
   const CollisionSolverOptions& o = r.options;
   FiberModel& model = r.model;
-  r.phase = Impl::Phase::Failed;
-  r.result.error = validateCollisionSolverOptions(o);
-  if (r.result.error.empty())
+  CollisionSolverState& st = s.st_;
+  std::string error = validateCollisionSolverOptions(o);
+  if (error.empty())
   {
-    r.result.error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
+    error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
   }
-  if (!r.result.error.empty())
+  if (r.fail(error))
   {
     return false;
   }
   s.threads_ = resolveThreadCount(o.numberOfThreads);
+  const std::size_t nf = model.fibers.size();
+  st.points.assign(nf, FiberPointState{});
+  st.active.assign(nf, 1);
+  st.closed.assign(nf, 0);
+  st.closure.assign(nf, Vec3{});
+  st.home.assign(nf, 0);
+  s.owned_.assign(nf, 1);
+  std::int64_t first = 0; // global index of this piece's first fiber: pieces in rank order
+  if (s.comm_)
+  {
+    r.input = model;
+    std::vector<std::int64_t> counts(static_cast<std::size_t>(s.comm_->size()), 0);
+    counts[static_cast<std::size_t>(s.comm_->rank())] = static_cast<std::int64_t>(nf);
+    s.comm_->sum(counts);
+    first = std::accumulate(counts.begin(), counts.begin() + s.comm_->rank(), std::int64_t{ 0 });
+    st.home.assign(nf, s.comm_->rank());
+  }
+  st.global.resize(nf);
+  std::iota(st.global.begin(), st.global.end(), first);
+  if (s.comm_)
+  {
+    s.startDistribution();
+  }
   // Before anything touches the model: a refused run leaves it unchanged.
-  s.st_.segmentLength = resolveSegmentLength(model, o);
-  r.result.error = checkMemory(s);
-  if (r.result.error.empty())
+  st.segmentLength = resolveSegmentLength(s, o);
+  error = checkMemory(s);
+  if (error.empty())
   {
-    r.result.error = checkStacksAndGap(model, o);
+    error = checkStacksAndGap(model, o, s.comm_);
   }
-  if (r.result.error.empty() && !s.periodic())
-  {
-    // Stacks of nearly identical fibers are refused on the input as it came, before the model
-    // changes (the limit is checked again at every step; periodic runs restore the input).
-    buildLinks(model, nullptr, s.threads_, s.links_, nullptr);
-    if (!s.findBoundedPairs())
-    {
-      r.result.error = s.detectError_;
-    }
-  }
-  if (!r.result.error.empty())
+  if (r.fail(error))
   {
     return false;
   }
+  if (!s.periodic())
+  {
+    // Stacks of nearly identical fibers are refused on the input as it came, before the model
+    // changes (the limit is checked again at every step; periodic runs restore the input).
+    if (s.comm_)
+    {
+      s.exchangeFibers();
+    }
+    buildLinks(model, nullptr, s.threads_, s.links_, nullptr);
+    const bool found = s.findBoundedPairs();
+    if (s.comm_)
+    {
+      RankFibers fibers = s.rankFibers();
+      dropHalo(fibers);
+    }
+    if (r.fail(found ? std::string() : s.detectError_))
+    {
+      return false;
+    }
+  }
   // A periodic cell too small for the links is only known once they are built: keep the input.
-  if (s.periodic())
+  if (s.periodic() && !s.comm_)
   {
     r.input = model;
   }
-  CollisionSolverState& st = s.st_;
   prepareFibers(s, st.warnings);
   prepareClosures(s);
   configure(s, st.warnings);
   st.scale = initialScale(o);
-  st.growthTolerance = 0.05 * medianRadius(model);
+  st.growthTolerance = 0.05 * s.median();
+  s.resetTraffic();
   r.phase = Impl::Phase::Running;
   return true;
 }
@@ -913,15 +1128,26 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   {
     r.result.error = validateModel(r.model, nullptr, ShortFibers::Allowed);
   }
-  if (!r.result.error.empty())
+  if (r.fail(r.result.error))
   {
     return r.result.error;
   }
   r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
   r.s.st_ = saved;
-  if (r.s.periodic())
+  if (r.s.st_.global.size() != nf || r.s.st_.home.size() != nf) // a serial state
+  {
+    r.s.st_.global.resize(nf);
+    std::iota(r.s.st_.global.begin(), r.s.st_.global.end(), std::int64_t{ 0 });
+    r.s.st_.home.assign(nf, 0);
+  }
+  r.s.owned_.assign(nf, 1);
+  if (r.s.periodic() || r.s.comm_)
   {
     r.input = r.model;
+  }
+  if (r.s.comm_)
+  {
+    r.s.startDistribution(); // any slabs do: the result does not depend on who owns what
   }
   r.phase = Impl::Phase::Running;
   return {};
@@ -937,13 +1163,15 @@ bool CollisionSolverRun::step()
   Solver& s = r.s;
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
-  st.changed = s.shapeControl();
+  const bool changed = s.shapeControl();
   if (!s.detect())
   {
     r.failDetection(" (at step " + std::to_string(st.steps) + ")");
     return false;
   }
-  const std::size_t count = s.pairs_.size();
+  const Solver::Counts counts = s.globalCounts(changed);
+  st.changed = counts.changed;
+  const std::size_t count = counts.pairs;
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
   // first step (log scale: the last few take most of the steps), never going back.
   if (st.firstCount == static_cast<std::size_t>(-1))
@@ -958,7 +1186,7 @@ bool CollisionSolverRun::step()
   // between its two long phases (shape control and detection; moves), so a stop request waits
   // for at most one phase. Decided by size, not by the clock, so that where a solve stops for a
   // given progress callback is reproducible on any machine and under any load.
-  if (s.links_.size() >= kLinksForMidStepProgress && !r.report(std::max(st.done, 1e-9)))
+  if (counts.links >= kLinksForMidStepProgress && !r.report(std::max(st.done, 1e-9)))
   {
     r.result.aborted = true;
     st.changed = !s.shapeWithinLimits();
@@ -1009,6 +1237,11 @@ bool CollisionSolverRun::step()
     st.warnings.push_back("1000 steps passed without fewer collisions");
   }
   s.separate();
+  if (s.comm_)
+  {
+    RankFibers fibers = s.rankFibers();
+    dropHalo(fibers); // between steps a rank holds its own fibers only
+  }
   ++st.steps;
   ++st.sinceGrowth;
   if (r.observer)
@@ -1065,7 +1298,7 @@ CollisionSolverResult CollisionSolverRun::finish()
   if (st.scale < 1.0)
   {
     // The output has the input radii: count what is left at full size.
-    const double reached = s.periodic() ? cellVolumeFraction(model, o.periodicCell) * st.scale * st.scale : -1.0;
+    const double reached = s.periodic() ? s.fiberVolume() / o.periodicCell.volume() * st.scale * st.scale : -1.0;
     st.scale = 1.0;
     if (!s.detect())
     {
@@ -1081,23 +1314,23 @@ CollisionSolverResult CollisionSolverRun::finish()
       if (reached >= 0.0)
       {
         w << " (volume fraction " << reached << " of the requested "
-          << cellVolumeFraction(model, o.periodicCell) << ")";
+          << s.fiberVolume() / o.periodicCell.volume() << ")";
       }
-      w << " after " << st.steps << " steps; " << s.pairs_.size()
+      w << " after " << st.steps << " steps; " << s.globalCounts(false).pairs
         << " pairs overlap at full size: the target is too dense for these fibers";
       st.warnings.push_back(w.str());
     }
   }
   r.takeState();
-  result.collisions = s.pairs_.size();
+  result.collisions = s.globalCounts(false).pairs;
   result.solved = result.collisions == 0;
   result.shapeOk = !st.changed;
   result.maxOverlap = s.maxOverlap();
   if (s.periodic())
   {
-    result.volumeFraction = cellVolumeFraction(model, o.periodicCell);
+    result.volumeFraction = s.fiberVolume() / o.periodicCell.volume();
   }
-  result.minGapProbe = medianRadius(model);
+  result.minGapProbe = s.median();
   result.minGap = smallestGap(s, result.minGapProbe);
   if (!result.solved && !result.aborted)
   {
@@ -1115,6 +1348,10 @@ CollisionSolverResult CollisionSolverRun::finish()
     w << "); raise MaxSteps, lower the density or the radii";
     result.warnings.push_back(w.str());
   }
+  if (s.comm_)
+  {
+    r.goHome();
+  }
   const std::size_t nf = model.fibers.size();
   result.sourceIndex.resize(nf);
   for (std::size_t f = 0; f < nf; ++f)
@@ -1126,9 +1363,9 @@ CollisionSolverResult CollisionSolverRun::finish()
 }
 
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress, const StepObserver& observer)
+  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
 {
-  CollisionSolverRun run(model, options, progress, observer);
+  CollisionSolverRun run(model, options, progress, observer, comm);
   if (run.start())
   {
     while (run.step())
@@ -1177,23 +1414,44 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   return overflow ? maxPairs + 1 : pairs.size();
 }
 
-double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm)
 {
-  double volume = 0.0;
+  ExactSum sum; // the same bits for any order and split of the fibers
   for (const Fiber& f : model.fibers)
   {
     for (std::size_t k = 0; k + 1 < f.size(); ++k)
     {
       const double rho = f.linkRadius(k);
-      volume += M_PI * rho * rho * distance(f.points[k], f.points[k + 1]);
+      sum.add(M_PI * rho * rho * distance(f.points[k], f.points[k + 1]));
     }
   }
+  const double volume = sum.total(comm);
   if (cell.enabled())
   {
     return volume / cell.volume();
   }
   Vec3 lo, hi;
-  if (!modelBounds(model, true, lo, hi))
+  const bool any = modelBounds(model, true, lo, hi);
+  if (comm)
+  {
+    std::vector<double> m(6, -HUGE_VAL);
+    for (int d = 0; any && d < 3; ++d)
+    {
+      m[static_cast<std::size_t>(d)] = -lo[d];
+      m[static_cast<std::size_t>(3 + d)] = hi[d];
+    }
+    comm->max(m);
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = -m[static_cast<std::size_t>(d)];
+      hi[d] = m[static_cast<std::size_t>(3 + d)];
+    }
+    if (!(m[3] > -HUGE_VAL))
+    {
+      return 0.0;
+    }
+  }
+  else if (!any)
   {
     return 0.0;
   }

@@ -740,9 +740,9 @@ TEST(CollisionSolver, SmallSegmentLengthIsCheckedAgainstTheMemoryBudget)
 // by a fresh run object, ends exactly where the uninterrupted solveCollisions ends.
 TEST(CollisionSolver, ResumedRunEqualsUninterruptedRun)
 {
-  const FiberModel in = paperCube(2, 150, 3);
+  const FiberModel in = paperCube(2, 80, 3);
   CollisionSolverOptions o;
-  o.maxSteps = 120;
+  o.maxSteps = 70;
   o.minCurvatureRadius = 4.0;
   o.drag = 0.3; // velocities are part of the state
   FiberModel reference = in;
