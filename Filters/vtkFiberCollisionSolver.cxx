@@ -1,8 +1,10 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "Checkpoint/SolverCheckpoint.h"
 #include "Solver/CollisionSolver.h"
 #include "Util/MemoryBudget.h"
 
@@ -208,7 +210,9 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
-  cache.result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
+  const fiberpli::CheckpointOptions checkpoint{ this->CheckpointFile, this->CheckpointInterval,
+    this->ResumeFromCheckpoint };
+  cache.result = fiberpli::solveWithCheckpoints(model, options, checkpoint, fiberpli::MakeProgress(this), observer);
   if (!cache.result.error.empty())
   {
     return "FiberCollisionSolver: " + cache.result.error;
@@ -234,7 +238,17 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // Under MPI all ranks fail together (FiberCollective.h): a failed solve (e.g. an unwritable
+  // checkpoint) on piece 0 must not leave the other ranks waiting downstream.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberCollisionSolver",
+    [&] { return this->ExecutePiece(inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberCollisionSolver::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
@@ -323,4 +337,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
   os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";
+  os << indent << "CheckpointFile: " << this->CheckpointFile << "\n";
+  os << indent << "CheckpointInterval: " << this->CheckpointInterval << "\n";
+  os << indent << "ResumeFromCheckpoint: " << this->ResumeFromCheckpoint << "\n";
 }

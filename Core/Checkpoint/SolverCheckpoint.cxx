@@ -223,6 +223,9 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
       }
       w.u64(static_cast<std::uint64_t>(st.active[f] ? 1 : 0) | (static_cast<std::uint64_t>(st.closed[f] ? 1 : 0) << 1));
       w.vec(st.closure[f]);
+      // Global index and home rank (distributed runs; a serial state may leave them empty).
+      w.u64(static_cast<std::uint64_t>(f < st.global.size() ? st.global[f] : static_cast<std::int64_t>(f)));
+      w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f < st.home.size() ? st.home[f] : 0)));
     }
     for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.scale, st.done, st.reported })
     {
@@ -287,12 +290,14 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   const std::uint64_t fingerprint = r.u64();
   FiberModel m;
   CollisionSolverState st;
-  const std::size_t nf = r.count(8 * 4 + 8 * 3); // id, bundle, count, flags, closure
+  const std::size_t nf = r.count(8 * 6 + 8 * 3); // id, bundle, count, flags, global, home, closure
   m.fibers.resize(nf);
   st.points.resize(nf);
   st.active.resize(nf);
   st.closed.resize(nf);
   st.closure.resize(nf);
+  st.global.resize(nf);
+  st.home.resize(nf);
   for (std::size_t f = 0; f < nf && r.ok(); ++f)
   {
     Fiber& fib = m.fibers[f];
@@ -315,6 +320,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
     st.active[f] = (flags & 1) ? 1 : 0;
     st.closed[f] = (flags & 2) ? 1 : 0;
     st.closure[f] = r.vec();
+    st.global[f] = static_cast<std::int64_t>(r.u64());
+    st.home[f] = static_cast<int>(static_cast<std::int64_t>(r.u64()));
   }
   for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.scale, &st.done, &st.reported })
   {

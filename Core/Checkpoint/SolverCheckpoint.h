@@ -1,4 +1,4 @@
-/// SolverCheckpoint: a collision solve that survives being killed (docs/solver.md §13). Every N
+/// SolverCheckpoint: a collision solve that survives being killed (docs/solver.md §14). Every N
 /// steps the complete state of the run — the model as it is, CollisionSolverState, the options
 /// and a fingerprint of the input — goes to one file, replaced atomically; a run resumed from it
 /// ends bit for bit where the uninterrupted run ends.

@@ -1,4 +1,4 @@
-// Solver checkpoints (docs/solver.md §13): a run stopped after a checkpoint and resumed from the
+// Solver checkpoints (docs/solver.md §14): a run stopped after a checkpoint and resumed from the
 // file ends bit for bit like the uninterrupted run (open cube with drag and curvature; periodic
 // cell with radius growth), the resumed run really starts at the saved step, and a file that does
 // not belong to the run (other options, other input, damaged, not a checkpoint, missing) is an
@@ -59,8 +59,8 @@ FiberModel denseOpenCube()
 {
   CubeOptions o;
   o.populations = 2;
-  o.numberOfFibers = 150;
-  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(150 / 1000.0);
+  o.numberOfFibers = 100;
+  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(100 / 1000.0);
   o.seed = 3;
   return generateCube(o);
 }
@@ -112,11 +112,11 @@ void expectResumeEqualsUninterrupted(const FiberModel& in, const CollisionSolver
 TEST(SolverCheckpoint, ResumedOpenCubeEqualsUninterruptedRun)
 {
   CollisionSolverOptions o;
-  o.maxSteps = 150;
+  o.maxSteps = 90;
   o.minCurvatureRadius = 4.0;
   o.drag = 0.3; // velocities are part of the state
   o.numberOfThreads = 2;
-  expectResumeEqualsUninterrupted(denseOpenCube(), o, 20, 55);
+  expectResumeEqualsUninterrupted(denseOpenCube(), o, 20, 45);
 }
 
 TEST(SolverCheckpoint, ResumedPeriodicGrowthEqualsUninterruptedRun)
