@@ -1,5 +1,7 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberCollective.h"
+#include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
 
@@ -8,6 +10,7 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -15,6 +18,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,6 +48,19 @@ std::string SelectedName(vtkAlgorithm* self, int idx)
 {
   vtkInformation* info = self->GetInputArrayInformation(idx);
   return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+}
+
+/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
+double GlobalMax(double local, vtkInformation* outInfo)
+{
+  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
+  if (!c)
+  {
+    return local;
+  }
+  double global = local;
+  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
+  return global;
 }
 } // namespace
 
@@ -98,6 +115,20 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  // The mask's reference (the largest value) is taken over all pieces of a parallel update:
+  // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
+  bool reduced = false;
+  const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+  if (!reduced)
+  {
+    GlobalMax(-std::numeric_limits<double>::infinity(), outputVector->GetInformationObject(0));
+  }
+  return rc;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
+{
   if (!fiberpli::CheckThreads(this, "FiberOrientationMap", this->NumberOfThreads))
   {
     return 0;
@@ -201,11 +232,18 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
     }
     std::vector<double> valueBuffer;
     const double* v = AsDoubles(values, valueBuffer);
+    const auto kind = static_cast<fiberpli::FomMask>(this->Mask);
+    const double largest = GlobalMax(fiberpli::fomMaskReference(v, count), outputVector->GetInformationObject(0));
+    reduced = true;
+    double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;
     mask->SetName("mask");
     mask->SetNumberOfTuples(static_cast<vtkIdType>(count));
-    err = fiberpli::fomApplyMask(v, count, static_cast<fiberpli::FomMask>(this->Mask), this->MaskThreshold,
-      fom->GetPointer(0), mask->GetPointer(0));
+    err = fiberpli::fomMaskThreshold(kind, this->MaskThreshold, largest, threshold);
+    if (err.empty())
+    {
+      err = fiberpli::fomApplyMask(v, count, kind, threshold, fom->GetPointer(0), mask->GetPointer(0));
+    }
     if (!err.empty())
     {
       vtkErrorMacro(<< "FiberOrientationMap: MaskThreshold " << this->MaskThreshold << ": " << err);
@@ -213,6 +251,7 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
       return 0;
     }
     output->GetPointData()->AddArray(mask);
+    fiberpli::AddFieldDoubles(output, "mask_threshold", { threshold });
   }
   output->GetPointData()->AddArray(fom);
   output->GetPointData()->SetActiveScalars("fom");

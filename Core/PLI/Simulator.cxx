@@ -40,7 +40,7 @@ ColumnRange grow(const ColumnRange& c, std::int64_t h)
 }
 } // namespace
 
-std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, Interp interp)
+std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& views, Interp interp)
 {
   double th = 0.0;
   for (const View& v : views)
@@ -51,7 +51,21 @@ std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, In
   return interp == Interp::NN ? 0 : 1;
 }
 
-double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+ColumnRange linkRegion(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views, const ColumnRange& cols)
+{
+  const std::int64_t halo = tiltHalo(lat, views, par.interp);
+  // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
+  ColumnRange region = grow(cols, halo);
+  for (const View& v : views)
+  {
+    const ColumnRange r = grow(RayMarcher(lat, par, v, LabelProps()).midPlaneColumns(cols), halo);
+    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
+      std::max(region.j1, r.j1) };
+  }
+  return region;
+}
+
+double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
   const ColumnRange& cols)
 {
   const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
@@ -68,7 +82,7 @@ double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const s
   return threads * tile + outBytes;
 }
 
-std::string validateSimulation(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+std::string validateSimulation(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
   const ColumnRange& cols)
 {
   std::ostringstream m;
@@ -111,7 +125,7 @@ std::string validateSimulation(const Lattice& lat, const SimParams& par, const s
   return m.str();
 }
 
-SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattice& lat,
+SimResult simulate(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lat,
   const SimParams& par, const std::vector<View>& views, const ColumnRange& cols,
   std::vector<Stack>& out, const ProgressFn& progress)
 {
@@ -128,17 +142,10 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
   std::vector<RayMarcher> marchers;
   for (const View& v : views)
     marchers.emplace_back(lat, par, v, props);
-  // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
-  ColumnRange region = grow(cols, halo);
-  for (const RayMarcher& rm : marchers)
-  {
-    const ColumnRange r = grow(rm.midPlaneColumns(cols), halo);
-    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
-      std::max(region.j1, r.j1) };
-  }
+  const ColumnRange region = linkRegion(lat, par, views, cols);
   LinkTable table;
-  buildLinkTable(model, spec, lat, region, B, table);
-  res.estimatedBytes += table.links.size() * sizeof(LinkTable::Link);
+  tissueLinkTable(model, spec, lat, region, B, table);
+  res.estimatedBytes += table.links.size() * sizeof(SectionLink);
   if (table.zeroLengthLinks > 0)
     res.status.warnings.push_back(std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
   if (table.unknownBundleFibers > 0)

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Checks the layer rules of docs/architecture.md §2 on every #include of the tree: the Core
 includes no VTK header and nothing from Conversion/Filters/Readers/Plugin; a Core topic includes
-only topics on lower levels of the table in docs/architecture.md §2; Conversion includes neither
-Filters nor Readers; Filters and Readers never include each other; Core/Testing and bench stay
-without VTK and the VTK modules. Usage: check_layers.py <source dir>"""
+only topics on lower levels of the table in docs/architecture.md §2; Core/Section includes only
+Model, Geometry and Util, Core/PLI and Core/Analysis never include each other; Conversion includes
+neither Filters nor Readers; Filters and Readers never include each other; Core/Testing and bench
+stay without VTK and the VTK modules. Usage: check_layers.py <source dir>"""
 import os
 import re
 import sys
@@ -66,6 +67,14 @@ def resolve(rel, bracket, name):
     return ("other",)
 
 
+# Rules by name on top of the levels (docs/architecture.md §2): the Section floor stands on Model,
+# Geometry and Util alone; PLI and Analysis both stand on Section and never include each other.
+TOPIC_RULES = {
+    "Section": ({"Model", "Geometry", "Util"}, "Core/Section may include only Model, Geometry and Util"),
+    "PLI": (set(LEVELS) - {"Analysis"}, "Core/PLI must not include Core/Analysis (both stand on Core/Section)"),
+    "Analysis": (set(LEVELS) - {"PLI"}, "Core/Analysis must not include Core/PLI (both stand on Core/Section)"),
+}
+
 checked = 0
 for folder in ("Core", "Conversion", "Filters", "Readers", "bench", "Testing/Cxx"):
     for dirpath, _, files in os.walk(os.path.join(root, folder)):
@@ -98,6 +107,10 @@ for folder in ("Core", "Conversion", "Filters", "Readers", "bench", "Testing/Cxx
                     elif LEVELS[other] >= LEVELS[topic]:
                         errors.append("%s: Core/%s (level %d) may include only lower levels, not Core/%s (level %d)"
                                       % (where, topic, LEVELS[topic], other, LEVELS[other]))
+                if layer == "core" and target[0] == "core" and target[1] != topic:
+                    rule = TOPIC_RULES.get(topic)
+                    if rule and target[1] not in rule[0]:
+                        errors.append("%s: %s" % (where, rule[1]))
                 if layer == "conversion" and target[0] in ("filters", "readers", "plugin"):
                     errors.append("%s: Conversion includes the higher layer %s" % (where, target[0]))
                 if layer == "filters" and target[0] in ("readers", "plugin"):
