@@ -1,6 +1,5 @@
 #include "vtkFiberCollisionSolver.h"
 
-#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
@@ -238,17 +237,7 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  // Under MPI all ranks fail together (FiberCollective.h): a failed solve (e.g. an unwritable
-  // checkpoint) on piece 0 must not leave the other ranks waiting downstream.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberCollisionSolver",
-    [&] { return this->ExecutePiece(inputVector, outputVector); });
-}
-
-//------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);

@@ -136,7 +136,7 @@ public:
    * Checkpoint file of the solve (docs/solver.md §14): the complete state of the run, written
    * atomically every CheckpointInterval steps, read by ResumeFromCheckpoint. Under MPI the ranks
    * that solve write it (the solve runs on piece 0; ranks solving the same model write the same
-   * bytes) and an error reaches every rank. Default empty.
+   * bytes). Default empty.
    */
   vtkSetStdStringFromCharMacro(CheckpointFile);
   vtkGetCharFromStdStringMacro(CheckpointFile);
@@ -191,7 +191,6 @@ private:
   int CheckpointInterval = 0;
   bool ResumeFromCheckpoint = false;
 
-  int ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).

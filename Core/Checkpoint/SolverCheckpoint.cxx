@@ -373,9 +373,46 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   return {};
 }
 
-CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
-  const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer)
+std::string checkpointPath(const std::string& path, const SolverComm* comm)
 {
+  if (!comm || comm->size() < 2)
+  {
+    return path;
+  }
+  return path + "." + std::to_string(comm->rank()) + "-of-" + std::to_string(comm->size());
+}
+
+namespace
+{
+// Collective: "" when no rank failed, else (on every rank) its own error, or the lowest failing
+// rank's error named as such.
+std::string agree(SolverComm* comm, const std::string& local)
+{
+  if (!comm || comm->size() < 2)
+  {
+    return local;
+  }
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(comm->size()), std::vector<char>(local.begin(), local.end()));
+  const std::vector<std::vector<char>> got = comm->exchange(send);
+  if (!local.empty())
+  {
+    return local;
+  }
+  for (std::size_t r = 0; r < got.size(); ++r)
+  {
+    if (!got[r].empty())
+    {
+      return "rank " + std::to_string(r) + " failed: " + std::string(got[r].begin(), got[r].end());
+    }
+  }
+  return {};
+}
+} // namespace
+
+CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
+  const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+{
+  // Every rank decides these alike (same properties everywhere), so none waits in agree() alone.
   CollisionSolverResult failed;
   if (checkpoint.interval < 0)
   {
@@ -384,13 +421,14 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   }
   if (checkpoint.interval == 0 && !checkpoint.resume)
   {
-    return solveCollisions(model, options, progress, observer);
+    return solveCollisions(model, options, progress, observer, comm);
   }
   if (checkpoint.path.empty())
   {
     failed.error = "CheckpointFile is empty, but checkpoints are asked for (CheckpointInterval or resume)";
     return failed;
   }
+  const std::string path = checkpointPath(checkpoint.path, comm);
   const std::uint64_t fingerprint = modelFingerprint(model);
   // A resumed run works on the file's model and hands it over at the end, so that a failed
   // resume leaves the caller's model unchanged.
@@ -398,20 +436,20 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   CollisionSolverState saved;
   if (checkpoint.resume)
   {
-    failed.error = readSolverCheckpoint(checkpoint.path, options, fingerprint, resumed, saved);
+    failed.error = agree(comm, readSolverCheckpoint(path, options, fingerprint, resumed, saved));
     if (!failed.error.empty())
     {
       return failed;
     }
   }
   FiberModel& work = checkpoint.resume ? resumed : model;
-  CollisionSolverRun run(work, options, progress, observer);
+  CollisionSolverRun run(work, options, progress, observer, comm);
   if (checkpoint.resume)
   {
     const std::string problem = run.resume(saved);
     if (!problem.empty())
     {
-      failed.error = named(checkpoint.path, "does not fit: " + problem);
+      failed.error = named(path, "does not fit: " + problem);
       return failed;
     }
   }
@@ -426,7 +464,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     const CollisionSolverState& st = run.state();
     if (checkpoint.interval > 0 && st.steps % checkpoint.interval == 0)
     {
-      const std::string problem = writeSolverCheckpoint(checkpoint.path, work, st, options, fingerprint);
+      const std::string problem = agree(comm, writeSolverCheckpoint(path, work, st, options, fingerprint));
       if (!problem.empty())
       {
         result = run.finish();

@@ -6,6 +6,7 @@
 
 #include "Model/FiberModel.h"
 #include "Solver/CollisionSolver.h"
+#include "Solver/SolverComm.h"
 
 #include <cstdint>
 #include <string>
@@ -37,11 +38,18 @@ struct CheckpointOptions
   bool resume = false; ///< start from the file (it must exist) instead of from the model
 };
 
+/// The file a rank writes: `path` itself without comm (or with one rank), else
+/// "<path>.<rank>-of-<ranks>", one file per rank (its owned fibers and their state).
+std::string checkpointPath(const std::string& path, const SolverComm* comm);
+
 /// solveCollisions with checkpoints: with resume the model is replaced by the file's (checked
 /// against options and the given model's fingerprint) and the run continues from its state.
 /// A checkpoint that cannot be read or written is result.error (naming the file); the model is
-/// then unchanged (read) or in the state of the failed write's step (write).
+/// then unchanged (read) or in the state of the failed write's step (write). With comm
+/// (distributed, collective) every rank writes and reads its own file (checkpointPath) and the
+/// ranks agree after every read and write: an error on one rank is an error on all.
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
-  const CheckpointOptions& checkpoint, const ProgressFn& progress = {}, const StepObserver& observer = {});
+  const CheckpointOptions& checkpoint, const ProgressFn& progress = {}, const StepObserver& observer = {},
+  SolverComm* comm = nullptr);
 
 } // namespace fiberpli

@@ -5,6 +5,7 @@
 // error naming the file and what differs.
 #include "Checkpoint/SolverCheckpoint.h"
 #include "PeriodicReference.h"
+#include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace fiberpli;
@@ -197,4 +199,62 @@ TEST(SolverCheckpoint, AnUnwritableCheckpointStopsTheSolveNamingTheFile)
   EXPECT_NE(r.error.find("at step 10"), std::string::npos) << r.error;
   EXPECT_NE(solveWithCheckpoints(m, o, { "", 10, false }).error.find("CheckpointFile is empty"), std::string::npos);
   EXPECT_NE(solveWithCheckpoints(m, o, { path, -1, false }).error.find("CheckpointInterval is -1"), std::string::npos);
+}
+
+// Distributed (threads as ranks): one file per rank; a run stopped after a checkpoint and resumed
+// on 2 ranks gives the serial result; a checkpoint one rank cannot write fails both ranks.
+TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
+{
+  const FiberModel whole = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.numberOfThreads = 1;
+  FiberModel serial = whole;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_TRUE(s.error.empty()) << s.error;
+  ASSERT_GT(s.steps, 45);
+
+  TempFile file;
+  const auto piece = [&](int r) {
+    FiberModel m;
+    for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
+      m.fibers.push_back(whole.fibers[f]);
+    return m;
+  };
+  std::vector<FiberModel> out(2);
+  std::vector<CollisionSolverResult> results(2);
+  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    int last = 0;
+    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 45; },
+      [&](int step, const FiberModel&) { last = step; }, &comm);
+    FiberModel again = piece(comm.rank());
+    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(again, o, { file.path, 20, true }, {}, {}, &comm);
+    out[static_cast<std::size_t>(comm.rank())] = std::move(again);
+  });
+  for (int r = 0; r < 2; ++r)
+  {
+    const std::string own = checkpointPath(file.path, nullptr) + "." + std::to_string(r) + "-of-2";
+    EXPECT_EQ(checkpointPath(file.path, nullptr), file.path);
+    EXPECT_EQ(std::remove(own.c_str()), 0) << "no file " << own;
+    ASSERT_EQ(results[r].error, "");
+    EXPECT_EQ(results[r].steps, s.steps);
+  }
+  FiberModel joined = out[0];
+  joined.fibers.insert(joined.fibers.end(), out[1].fibers.begin(), out[1].fibers.end());
+  EXPECT_TRUE(bitwiseEqual(joined, serial));
+
+  // Rank 1's file cannot be written (a directory is in its place): both ranks fail at step 20.
+  const std::string blocked = file.path + ".1-of-2";
+  ASSERT_EQ(::mkdir(blocked.c_str(), 0700), 0);
+  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(m, o, { file.path, 20, false }, {}, {}, &comm);
+  });
+  ::rmdir(blocked.c_str());
+  std::remove((file.path + ".0-of-2").c_str());
+  EXPECT_NE(results[1].error.find(blocked), std::string::npos) << results[1].error;
+  EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
+  EXPECT_NE(results[0].error.find("at step 20"), std::string::npos) << results[0].error;
 }
