@@ -1,5 +1,6 @@
 #include "vtkFiberBundleSource.h"
 
+#include "FiberCollective.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
@@ -50,24 +51,38 @@ int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+// Every piece makes its own fibers (docs/tissue-models.md §9).
+int vtkFiberBundleSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberBundleSource::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
+{
+  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberBundleSource",
+    [&] { return this->ExecutePiece(inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
 
-  // It has an input port, so it runs on every rank: only piece 0 makes fibers (docs/architecture.md §7).
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
+  if (!fiberpli::CheckSeed(this, "FiberBundleSource", this->Seed))
   {
-    return 1;
-  }
-
-  if (this->Seed < 0)
-  {
-    vtkErrorMacro(<< "FiberBundleSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::BundleOptions options;
@@ -151,27 +166,28 @@ int vtkFiberBundleSource::RequestData(vtkInformation*, vtkInformationVector** in
   const std::vector<fiberpli::Vec3>* path = this->Shape == TRAJECTORY ? &trajectory : nullptr;
   const std::vector<double>* sigma = hasScale ? &scale : nullptr;
 
-  const std::string invalid = fiberpli::validateBundleOptions(options, path, sigma);
+  const std::string invalid = fiberpli::validateBundleOptions(options, path, sigma, pieces);
   if (!invalid.empty())
   {
     vtkErrorMacro(<< "FiberBundleSource: " << invalid);
     return 0;
   }
   const std::string warning = fiberpli::bundleWarnings(options, path, sigma);
-  if (!warning.empty())
+  if (!warning.empty() && piece == 0) // once, not once per rank
   {
     vtkWarningMacro(<< "FiberBundleSource: " << warning);
   }
 
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this);
   progress(0.0);
-  const fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma);
+  const fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma, piece, pieces);
   if (!progress(0.8))
   {
     return 1; // aborted: no partial model is passed on
   }
   fiberpli::FiberPolyData::FromModel(model, output);
 
+  // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
   this->UpdateProgress(1.0);
   return 1;

@@ -20,8 +20,9 @@
  *   Ranvier on by default.
  * Units µm and degrees. Invalid properties or a bad trajectory (fewer than 2 points, repeated
  * consecutive points, NaN) give an error naming the property or the point and an empty output;
- * a bend where inner fibers would fold over gives one warning. The output is made on piece 0 only
- * (empty on other pieces of a distributed run). The same properties give the same fibers.
+ * a bend where inner fibers would fold over gives one warning. Pieces (docs/tissue-models.md §9): piece p of P
+ * holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers in output order (global fiber ids,
+ * field data on every piece), so under MPI every rank lays only its own fibers. The same properties give the same fibers.
  */
 #ifndef vtkFiberBundleSource_h
 #define vtkFiberBundleSource_h
@@ -194,10 +195,12 @@ protected:
   vtkFiberBundleSource();
   ~vtkFiberBundleSource() override = default;
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  int ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector);
   vtkFiberBundleSource(const vtkFiberBundleSource&) = delete;
   void operator=(const vtkFiberBundleSource&) = delete;
 

@@ -22,6 +22,15 @@
 
 vtkStandardNewMacro(vtkFiberCollisionSolver);
 
+namespace
+{
+bool FirstPiece(vtkInformation* outInfo)
+{
+  return !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) ||
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) == 0;
+}
+} // namespace
+
 // The states of one solve at steps 0, Δ, 2Δ, … (at most MaximumSnapshots: when full, every
 // second one is dropped and Δ doubles), then the final state; kept while input and properties
 // are unchanged.
@@ -33,6 +42,9 @@ struct vtkFiberCollisionSolver::Snapshots
   std::vector<int> steps;                   // the solver step of each entry of models
   fiberpli::CollisionSolverResult result;
   fiberpli::FiberConversion input;
+  fiberpli::PeriodicCell cell; // the input's periodic_cell (off without one)
+  bool periodic = false;
+  std::string error; // non-empty: this input and these properties cannot be solved
 };
 
 //------------------------------------------------------------------------------
@@ -73,44 +85,76 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
 }
 
 //------------------------------------------------------------------------------
+// The solve is not distributed yet: every piece asks for all fibers (piece 0 of 1, as the other
+// filters that need them whole; the same request on every rank, so a piece-making source sees no
+// half-collective update), piece 0 solves them, the other pieces are empty (docs/architecture.md §7).
+int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
 {
-  if (this->Cache && this->Cache->inputTime == input->GetMTime() && this->Cache->filterTime == this->GetMTime())
+  if (!this->Cache || this->Cache->inputTime != input->GetMTime() || this->Cache->filterTime != this->GetMTime())
   {
-    return 1;
+    auto cache = std::make_unique<Snapshots>();
+    cache->inputTime = input->GetMTime();
+    cache->filterTime = this->GetMTime();
+    cache->error = this->SolveInto(input, *cache);
+    this->Cache.reset();
+    if (cache->result.aborted)
+    {
+      return -1; // partial results are never passed on, nor kept
+    }
+    this->Cache = std::move(cache);
   }
-  this->Cache.reset();
-  if (!fiberpli::CheckThreads(this, "FiberCollisionSolver", this->NumberOfThreads))
+  if (!this->Cache->error.empty())
   {
+    vtkErrorMacro(<< this->Cache->error);
     return 0;
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& cache)
+{
+  const std::string threads = fiberpli::validateThreadCount(this->NumberOfThreads);
+  if (!threads.empty())
+  {
+    return "FiberCollisionSolver: " + threads;
+  }
+  const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
+  if (!threadWarning.empty())
+  {
+    vtkWarningMacro(<< "FiberCollisionSolver: " << threadWarning);
   }
   if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
   {
-    vtkErrorMacro(<< "FiberCollisionSolver: TimeStepInterval is " << this->TimeStepInterval
-                  << " and MaximumSnapshots " << this->MaximumSnapshots << ", must be >= 1 and >= 2");
-    return 0;
+    return "FiberCollisionSolver: TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
+      " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2";
   }
-  auto cache = std::make_unique<Snapshots>();
-  cache->inputTime = input->GetMTime();
-  cache->filterTime = this->GetMTime();
-  cache->input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
-  if (!cache->input.ok())
+  cache.input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
+  if (!cache.input.ok())
   {
-    vtkErrorMacro(<< cache->input.error);
-    return 0;
+    return cache.input.error;
   }
-  if (!cache->input.warning.empty())
+  if (!cache.input.warning.empty())
   {
-    vtkWarningMacro(<< cache->input.warning);
+    vtkWarningMacro(<< cache.input.warning);
   }
 
   fiberpli::CollisionSolverOptions options;
   std::string cellError;
-  if (!fiberpli::ReadPeriodicCell(input, options.periodicCell, cellError) && !cellError.empty())
+  cache.periodic = fiberpli::ReadPeriodicCell(input, cache.cell, cellError);
+  if (!cache.periodic && !cellError.empty())
   {
-    vtkErrorMacro(<< "FiberCollisionSolver: input field data " << cellError);
-    return 0;
+    return "FiberCollisionSolver: input field data " + cellError;
   }
+  options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
@@ -119,7 +163,7 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
   options.minimumGap = this->MinimumGap;
   options.numberOfThreads = this->NumberOfThreads;
 
-  fiberpli::FiberModel model = cache->input.model;
+  fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;
   int interval = this->TimeStepInterval;
   if (this->IterationsAsTime)
@@ -132,64 +176,61 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
         std::to_string(model.numberOfPoints()) + " points");
     if (!problem.empty())
     {
-      vtkErrorMacro(<< "FiberCollisionSolver: " << problem << "; lower MaximumSnapshots");
-      return 0;
+      return "FiberCollisionSolver: " + problem + "; lower MaximumSnapshots";
     }
-    cache->models.push_back(model);
-    cache->steps.push_back(0);
+    cache.models.push_back(model);
+    cache.steps.push_back(0);
     const std::size_t maxSnapshots = static_cast<std::size_t>(this->MaximumSnapshots);
     observer = [&cache, &interval, maxSnapshots](int step, const fiberpli::FiberModel& current) {
       if (step % interval != 0)
       {
         return;
       }
-      if (cache->models.size() == maxSnapshots) // full: keep steps 0, 2Δ, 4Δ, … and double Δ
+      if (cache.models.size() == maxSnapshots) // full: keep steps 0, 2Δ, 4Δ, … and double Δ
       {
         std::size_t kept = 0;
-        for (std::size_t i = 0; i < cache->models.size(); i += 2, ++kept)
+        for (std::size_t i = 0; i < cache.models.size(); i += 2, ++kept)
         {
-          cache->models[kept] = std::move(cache->models[i]);
-          cache->steps[kept] = cache->steps[i];
+          cache.models[kept] = std::move(cache.models[i]);
+          cache.steps[kept] = cache.steps[i];
         }
-        cache->models.resize(kept);
-        cache->steps.resize(kept);
+        cache.models.resize(kept);
+        cache.steps.resize(kept);
         interval *= 2;
         if (step % interval != 0)
         {
           return;
         }
       }
-      cache->models.push_back(current);
-      cache->steps.push_back(step);
+      cache.models.push_back(current);
+      cache.steps.push_back(step);
     };
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
-  cache->result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
-  if (!cache->result.error.empty())
+  cache.result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
+  if (!cache.result.error.empty())
   {
-    vtkErrorMacro(<< "FiberCollisionSolver: " << cache->result.error);
-    return 0;
+    return "FiberCollisionSolver: " + cache.result.error;
   }
-  if (cache->result.aborted)
+  if (cache.result.aborted)
   {
-    return -1; // partial results are never passed on
+    return {};
   }
   // One warning per kind; an unsolved model is among them, naming the collisions left.
-  for (const std::string& w : cache->result.warnings)
+  for (const std::string& w : cache.result.warnings)
   {
     vtkWarningMacro(<< "FiberCollisionSolver: " << w);
   }
   // The final state replaces a snapshot of its own step (taken before the last shape control).
-  if (!cache->steps.empty() && cache->steps.back() == cache->result.steps)
+  if (!cache.steps.empty() && cache.steps.back() == cache.result.steps)
   {
-    cache->models.pop_back();
-    cache->steps.pop_back();
+    cache.models.pop_back();
+    cache.steps.pop_back();
   }
-  cache->models.push_back(std::move(model));
-  cache->steps.push_back(cache->result.steps);
-  this->Cache = std::move(cache);
-  return 1;
+  cache.models.push_back(std::move(model));
+  cache.steps.push_back(cache.result.steps);
+  return {};
 }
 
 //------------------------------------------------------------------------------
@@ -200,7 +241,7 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
-  if (fiberpli::FiberPolyData::IsEmpty(input))
+  if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
   {
     return 1;
   }
@@ -241,9 +282,7 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
   }
 
-  fiberpli::PeriodicCell cell;
-  std::string cellError;
-  const bool periodic = fiberpli::ReadPeriodicCell(input, cell, cellError);
+  const fiberpli::PeriodicCell& cell = this->Cache->cell;
   const std::size_t collisions = final ? r.collisions
                                        : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
   fiberpli::AddFieldInt(output, "steps", shownStep);
@@ -255,7 +294,7 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
   }
   fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
-  if (periodic)
+  if (this->Cache->periodic)
   {
     fiberpli::AddPeriodicCell(output, cell);
   }

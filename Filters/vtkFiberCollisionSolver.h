@@ -15,8 +15,9 @@
  * still comes, with a warning naming the collisions left.
  * Periodic input (field data `periodic_cell`, e.g. from FiberCubeSource with Periodic on):
  * distances by the minimum-image convention, fibers closed through the cell stay closed, and the
- * output carries `periodic_cell`. `volume_fraction`: fiber volume Σ π ρ² · link length over the
- * periodic cell's volume, or without a cell over the model's bounding box. The result is identical for any NumberOfThreads.
+ * output carries `periodic_cell`. `volume_fraction` is nominal: the links' cylinder volume
+ * Σ π ρ² · link length (overlaps not subtracted) over the periodic cell's volume, or without a cell
+ * over the model's bounding box; FiberMetrics measures the covered fraction (docs/metrics.md §3). The result is identical for any NumberOfThreads.
  * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …, and the
  * step the solve ended at, at most MaximumSnapshots of them) so that ParaView's animation shows
  * the fibers separating; the solve runs once, when the pipeline information is updated, and is
@@ -29,6 +30,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+#include <string>
 
 class FIBERPLIFILTERS_EXPORT vtkFiberCollisionSolver : public vtkPolyDataAlgorithm
 {
@@ -133,8 +135,10 @@ protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// Solves `input` unless the cache holds its solve: 1 solved, 0 error (reported), -1 aborted.
+  /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
+  /// (reported on every call, computed once), -1 aborted (never cached).
   int Solve(vtkPolyData* input);
 
 private:
@@ -153,6 +157,8 @@ private:
   int MaximumSnapshots = 100;
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
+  /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
+  std::string SolveInto(vtkPolyData* input, Snapshots& cache);
   std::unique_ptr<Snapshots> Cache;
 };
 

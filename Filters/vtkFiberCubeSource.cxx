@@ -1,13 +1,16 @@
 #include "vtkFiberCubeSource.h"
 
-#include "FiberProgress.h"
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
+#include "FiberProgress.h"
 #include "FiberPolyData.h"
 #include "Tissue/CubeGenerator.h"
 
+#include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
 vtkStandardNewMacro(vtkFiberCubeSource);
 
@@ -20,14 +23,36 @@ vtkFiberCubeSource::vtkFiberCubeSource()
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+// Every piece makes its own fibers (docs/tissue-models.md §9), so VTK executes it for any piece.
+int vtkFiberCubeSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberCubeSource::RequestData(vtkInformation* request, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberCubeSource",
+    [&] { return this->ExecutePiece(outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
 
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
   {
-    vtkErrorMacro(<< "FiberCubeSource: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   fiberpli::CubeOptions options;
@@ -43,7 +68,7 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   options.periodic = this->Periodic;
   options.volumeFraction = this->VolumeFraction;
   options.seeding = static_cast<fiberpli::CubeSeeding>(this->Seeding);
-  const std::string invalid = fiberpli::validateCubeOptions(options);
+  const std::string invalid = fiberpli::validateCubeOptions(options, pieces);
   if (!invalid.empty())
   {
     vtkErrorMacro(<< "FiberCubeSource: " << invalid);
@@ -51,10 +76,11 @@ int vtkFiberCubeSource::RequestData(vtkInformation*, vtkInformationVector**, vtk
   }
 
   this->UpdateProgress(0.0);
-  const fiberpli::FiberModel model = fiberpli::generateCube(options);
+  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces);
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(model, output);
 
+  // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
   if (this->Periodic)
   {

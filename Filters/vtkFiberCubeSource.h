@@ -10,8 +10,10 @@
  * cell: every fiber spans exactly one period along its axis and is closed through the faces (its
  * last point is its first point shifted by EdgeLength; points unwrapped), and the cell goes to
  * field data `periodic_cell` (xmin xmax ymin ymax zmin zmax) for the solver and the writers.
- * Identical properties give identical output. Invalid properties give an error naming the property and an empty output. In a
- * distributed run the fibers are produced on piece 0 only.
+ * Identical properties give identical output. Invalid properties give an error naming the property and an empty output.
+ * Pieces (docs/tissue-models.md §9): piece p of P holds the contiguous range [N·p/P, N·(p+1)/P) of
+ * the N fibers (global fiber ids, field data on every piece), so under MPI every rank makes only
+ * its own fibers and the pieces in rank order are the serial output for any P.
  */
 #ifndef vtkFiberCubeSource_h
 #define vtkFiberCubeSource_h
@@ -132,9 +134,12 @@ public:
 protected:
   vtkFiberCubeSource();
   ~vtkFiberCubeSource() override = default;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  int ExecutePiece(vtkInformationVector* outputVector);
+
   vtkFiberCubeSource(const vtkFiberCubeSource&) = delete;
   void operator=(const vtkFiberCubeSource&) = delete;
 

@@ -100,9 +100,8 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
                   << ", must be 0 (Voxels) or 1 (MonteCarlo)");
     return 0;
   }
-  if (this->Seed < 0)
+  if (!fiberpli::CheckSeed(this, "FiberMetrics", this->Seed))
   {
-    vtkErrorMacro(<< "FiberMetrics: Seed is " << this->Seed << ", must be >= 0");
     return 0;
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);

@@ -4,6 +4,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Model/VolumeOfInterest.h"
+#include "Section/SectionPlan.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDoubleArray.h>
@@ -26,38 +27,6 @@ namespace
 {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-/// The simulation lattice and image geometry of PLISimulation (docs/pli-simulation.md §3.1, §5.2;
-/// Core/PLI/PLIPipeline.cxx planPLI) for these properties. Returns "" or an error naming the property.
-std::string PlanGrid(const fiberpli::FiberModel& model, const double voiIn[6], double voxel, double pixel,
-  fiberpli::TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny, double origin[3])
-{
-  std::ostringstream m;
-  if (!(voxel > 0.0) || !std::isfinite(voxel))
-  {
-    m << "VoxelSize is " << voxel << ", must be > 0";
-    return m.str();
-  }
-  // The same check as PLISimulation's (Core/Model/VolumeOfInterest.h).
-  double voi[6];
-  const std::string voiError = fiberpli::resolveVolumeOfInterest(voiIn, model, voxel, voi, lattice.n);
-  if (!voiError.empty())
-  {
-    return voiError;
-  }
-  lattice.origin = fiberpli::Vec3{ voi[0], voi[2], voi[4] };
-  lattice.voxelSize = voxel;
-  lattice.pixelSize = pixel;
-  std::string err = fiberpli::truthPixelGrid(lattice, nx, ny);
-  if (err.empty() && (nx < 1 || ny < 1))
-  {
-    m << "PixelSize " << pixel << " is larger than the VolumeOfInterest: no pixel";
-    err = m.str();
-  }
-  origin[0] = voi[0] + 0.5 * pixel;
-  origin[1] = voi[2] + 0.5 * pixel;
-  origin[2] = voi[4] + 0.5 * static_cast<double>(lattice.n[2]) * voxel;
-  return err;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -94,8 +63,7 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
     {
       c = fiberpli::FiberPolyData::ToModel(input, "FiberOrientationGroundTruth");
     }
-    fiberpli::TruthLattice lattice;
-    std::int64_t nx = 0, ny = 0;
+    fiberpli::SectionPlan section;
     std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
     fiberpli::Vec3 lo, hi;
     if (sentinel && c.ok() && fiberpli::modelBounds(c.model, true, lo, hi))
@@ -103,9 +71,10 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
       const double bounds[6] = { lo.x, hi.x, lo.y, hi.y, lo.z, hi.z };
       std::copy(bounds, bounds + 6, this->PlannedVolume);
     }
-    if (c.ok() && PlanGrid(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin).empty())
+    if (c.ok() && fiberpli::planSection(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section).empty())
     {
-      extent[1] = static_cast<int>(nx - 1), extent[3] = static_cast<int>(ny - 1), extent[5] = 0;
+      extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
+      std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
     }
   } // errors are reported by RequestData
   const double spacing[3] = { this->PixelSize, this->PixelSize, this->PixelSize };
@@ -152,10 +121,9 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationV
   {
     vtkWarningMacro(<< c.warning);
   }
-  fiberpli::TruthLattice lattice;
-  std::int64_t nx = 0, ny = 0;
-  double origin[3];
-  std::string err = PlanGrid(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, lattice, nx, ny, origin);
+  fiberpli::SectionPlan section;
+  std::string err = fiberpli::planSection(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section);
+  const std::int64_t nx = section.pixels[0], ny = section.pixels[1];
   if (!err.empty())
   {
     vtkErrorMacro(<< "FiberOrientationGroundTruth: " << err);
@@ -181,7 +149,7 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationV
   options.threads = this->NumberOfThreads;
   fiberpli::GroundTruthMaps maps;
   this->SetProgressText("Fiber orientation ground truth");
-  err = fiberpli::computeGroundTruth(c.model, lattice, options, range, maps, fiberpli::MakeProgress(this));
+  err = fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
   if (err == "cancelled")
   {
     return 1;
@@ -193,7 +161,7 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationV
   }
 
   output->SetExtent(ext);
-  output->SetOrigin(origin);
+  output->SetOrigin(section.imageOrigin);
   output->SetSpacing(this->PixelSize, this->PixelSize, this->PixelSize);
   auto addMap = [&](const char* name, const std::vector<double>& map, double scale) {
     vtkNew<vtkDoubleArray> a;

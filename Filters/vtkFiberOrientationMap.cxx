@@ -1,5 +1,7 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberCollective.h"
+#include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
 
@@ -8,6 +10,7 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -15,21 +18,49 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <cstring>
+#include <limits>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkFiberOrientationMap);
 
 namespace
 {
-/// The values of a one-component point array as doubles.
-std::vector<double> ToDoubles(vtkDataArray* a)
+/// The first component of every tuple of `a` as doubles: the array's own memory when it is a
+/// one-component double array, else a copy in `buffer`.
+const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
 {
-  std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
+  auto* d = vtkDoubleArray::SafeDownCast(a);
+  if (d && d->GetNumberOfComponents() == 1)
+  {
+    return d->GetPointer(0);
+  }
+  buffer.resize(static_cast<std::size_t>(a->GetNumberOfTuples()));
   for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
   {
-    v[static_cast<std::size_t>(k)] = a->GetComponent(k, 0);
+    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k, 0);
   }
-  return v;
+  return buffer.data();
+}
+
+/// The name of input array `idx` as set by SetInputArrayToProcess ("" when it is not set by name).
+std::string SelectedName(vtkAlgorithm* self, int idx)
+{
+  vtkInformation* info = self->GetInputArrayInformation(idx);
+  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+}
+
+/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
+double GlobalMax(double local, vtkInformation* outInfo)
+{
+  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
+  if (!c)
+  {
+    return local;
+  }
+  double global = local;
+  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
+  return global;
 }
 } // namespace
 
@@ -38,6 +69,8 @@ std::vector<double> ToDoubles(vtkDataArray* a)
 vtkFiberOrientationMap::vtkFiberOrientationMap()
 {
   this->SetNumberOfOutputPorts(2);
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "direction");
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "inclination");
 }
 
 //------------------------------------------------------------------------------
@@ -82,6 +115,20 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  // The mask's reference (the largest value) is taken over all pieces of a parallel update:
+  // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
+  bool reduced = false;
+  const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+  if (!reduced)
+  {
+    GlobalMax(-std::numeric_limits<double>::infinity(), outputVector->GetInformationObject(0));
+  }
+  return rc;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
+{
   if (!fiberpli::CheckThreads(this, "FiberOrientationMap", this->NumberOfThreads))
   {
     return 0;
@@ -128,32 +175,36 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
   {
     return 1; // empty input or piece: empty map, no error
   }
-  vtkDataArray* direction = input->GetPointData()->GetArray("direction");
-  vtkDataArray* inclination = input->GetPointData()->GetArray("inclination");
+  vtkDataArray* direction = this->GetInputArrayToProcess(0, input);
+  vtkDataArray* inclination = this->GetInputArrayToProcess(1, input);
   if (!direction || !inclination)
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the input has no point array '" << (direction ? "inclination" : "direction")
+    vtkErrorMacro(<< "FiberOrientationMap: the input has no point array '" << SelectedName(this, direction ? 1 : 0)
                   << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
     output->Initialize();
     return 0;
   }
-  if (inclination->GetNumberOfTuples() != direction->GetNumberOfTuples())
+  if (inclination->GetNumberOfTuples() != direction->GetNumberOfTuples() ||
+    direction->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the point arrays 'direction' (" << direction->GetNumberOfTuples()
-                  << " tuples) and 'inclination' (" << inclination->GetNumberOfTuples()
-                  << " tuples) differ in length");
+    vtkErrorMacro(<< "FiberOrientationMap: the point arrays '" << direction->GetName() << "' ("
+                  << direction->GetNumberOfTuples() << " tuples) and '" << inclination->GetName() << "' ("
+                  << inclination->GetNumberOfTuples() << " tuples) differ in length or from the "
+                  << input->GetNumberOfPoints() << " points");
     output->Initialize();
     return 0;
   }
   output->ShallowCopy(input);
-  const std::vector<double> d = ToDoubles(direction);
-  const std::vector<double> i = ToDoubles(inclination);
+  std::vector<double> directionBuffer, inclinationBuffer;
+  const double* d = AsDoubles(direction, directionBuffer);
+  const double* i = AsDoubles(inclination, inclinationBuffer);
+  const auto count = static_cast<std::size_t>(direction->GetNumberOfTuples());
   vtkNew<vtkUnsignedCharArray> fom;
   fom->SetName("fom");
   fom->SetNumberOfComponents(3);
-  fom->SetNumberOfTuples(static_cast<vtkIdType>(d.size()));
+  fom->SetNumberOfTuples(static_cast<vtkIdType>(count));
   this->UpdateProgress(0.0);
-  err = fiberpli::fomMap(d.data(), i.data(), d.size(), scheme, this->NumberOfThreads, fom->GetPointer(0));
+  err = fiberpli::fomMap(d, i, count, scheme, this->NumberOfThreads, fom->GetPointer(0));
   if (!err.empty())
   {
     vtkErrorMacro(<< "FiberOrientationMap: " << err);
@@ -174,16 +225,25 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
     if (values->GetNumberOfTuples() != direction->GetNumberOfTuples())
     {
       vtkErrorMacro(<< "FiberOrientationMap: the Mask array '" << name << "' has " << values->GetNumberOfTuples()
-                    << " tuples, 'direction' has " << direction->GetNumberOfTuples() << " (they must match)");
+                    << " tuples, '" << direction->GetName() << "' has " << direction->GetNumberOfTuples()
+                    << " (they must match)");
       output->Initialize();
       return 0;
     }
-    const std::vector<double> v = ToDoubles(values);
+    std::vector<double> valueBuffer;
+    const double* v = AsDoubles(values, valueBuffer);
+    const auto kind = static_cast<fiberpli::FomMask>(this->Mask);
+    const double largest = GlobalMax(fiberpli::fomMaskReference(v, count), outputVector->GetInformationObject(0));
+    reduced = true;
+    double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;
     mask->SetName("mask");
-    mask->SetNumberOfTuples(static_cast<vtkIdType>(d.size()));
-    err = fiberpli::fomApplyMask(v.data(), v.size(), static_cast<fiberpli::FomMask>(this->Mask), this->MaskThreshold,
-      fom->GetPointer(0), mask->GetPointer(0));
+    mask->SetNumberOfTuples(static_cast<vtkIdType>(count));
+    err = fiberpli::fomMaskThreshold(kind, this->MaskThreshold, largest, threshold);
+    if (err.empty())
+    {
+      err = fiberpli::fomApplyMask(v, count, kind, threshold, fom->GetPointer(0), mask->GetPointer(0));
+    }
     if (!err.empty())
     {
       vtkErrorMacro(<< "FiberOrientationMap: MaskThreshold " << this->MaskThreshold << ": " << err);
@@ -191,6 +251,7 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
       return 0;
     }
     output->GetPointData()->AddArray(mask);
+    fiberpli::AddFieldDoubles(output, "mask_threshold", { threshold });
   }
   output->GetPointData()->AddArray(fom);
   output->GetPointData()->SetActiveScalars("fom");

@@ -138,32 +138,31 @@ int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, 
 }
 
 //------------------------------------------------------------------------------
-int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
-  vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  output->Initialize();
-
   // Exactly one AllReduce per call on every rank, whatever path this rank takes, then one
   // agreement on the error state (FiberCollective.h): all ranks fail together or none does.
   bool reduced = false;
-  std::ostringstream failure; // this rank's error
-  auto finish = [&](int rc) {
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLIAnalysis", [&] {
+    const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
     if (!reduced)
     {
       GlobalMax(0.0, outInfo);
     }
-    const std::string error = fiberpli::FiberCollective::AgreeOnError(outInfo, "PLIAnalysis", rc ? "" : failure.str());
-    if (!error.empty())
-    {
-      output->Initialize();
-      vtkErrorMacro(<< error);
-      return 0;
-    }
-    return 1;
-  };
+    return rc;
+  });
+}
+
+//------------------------------------------------------------------------------
+int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  output->Initialize();
 
   fiberpli::PliAnalysisOptions options;
   std::string optionError = fiberpli::inclinationMethodFromCode(this->InclinationMethod, options.method);
@@ -185,12 +184,12 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (!optionError.empty())
   {
-    failure << "PLIAnalysis: " << optionError;
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: " << optionError);
+    return 0;
   }
   if (!input || input->GetNumberOfPoints() == 0)
   {
-    return finish(1); // empty input or piece: empty output, no error
+    return 1; // empty input or piece: empty output, no error
   }
   int inExt[6], ext[6];
   input->GetExtent(inExt);
@@ -202,15 +201,15 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (inExt[5] != inExt[4])
   {
-    failure << "PLIAnalysis: the input has " << inExt[5] - inExt[4] + 1
-                  << " slices along z; expected one slice (the PLISimulation image)";
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: the input has " << inExt[5] - inExt[4] + 1
+                  << " slices along z; expected one slice (the PLISimulation image)");
+    return 0;
   }
   vtkDataArray* intensity = input->GetPointData()->GetArray("intensity");
   if (!intensity)
   {
-    failure << "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)";
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
+    return 0;
   }
   const int n = intensity->GetNumberOfComponents();
   std::vector<double> rho;
@@ -230,14 +229,14 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   }
   if (rho.size() < 3)
   {
-    failure << "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed";
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed");
+    return 0;
   }
   if (static_cast<std::size_t>(n) != rho.size())
   {
-    failure << "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
-                  << rho.size() << " angles; they must be equal";
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
+                  << rho.size() << " angles; they must be equal");
+    return 0;
   }
 
   fiberpli::PliStack stack;
@@ -256,9 +255,9 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
     }
     if (a->GetNumberOfComponents() != n)
     {
-      failure << "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
-                    << " components, 'intensity' has " << n << "; they must be equal";
-      return finish(0);
+      vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
+                    << " components, 'intensity' has " << n << "; they must be equal");
+      return 0;
     }
     buffers.emplace_back();
     stack.tilts.push_back(AsDoubles(a, buffers.back()));
@@ -266,8 +265,8 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const std::string tiltError = ReadTiltViews(input, stack.tilts.size(), stack.tiltViews);
   if (!tiltError.empty())
   {
-    failure << "PLIAnalysis: " << tiltError;
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: " << tiltError);
+    return 0;
   }
   // Views on the tilted sensor's grid are not pixel-aligned with the untilted view: a pixel's
   // tilted intensities would belong to other points of the section, so the tilt fit is refused.
@@ -275,10 +274,10 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   {
     if (this->InclinationMethod == TILT)
     {
-      failure << "PLIAnalysis: InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
+      vtkErrorMacro(<< "PLIAnalysis: InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
                  "but these are on the tilted sensor's grid (field data tilted_sensor = 1): simulate with "
-                 "TiltedSensor off, or use InclinationMethod Retardation";
-      return finish(0);
+                 "TiltedSensor off, or use InclinationMethod Retardation");
+      return 0;
     }
     stack.tilts.clear(); // Auto: the retardation method, from the untilted view alone
     stack.tiltViews.clear();
@@ -298,12 +297,12 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   const std::string err = fiberpli::analysePli(stack, options, range, maps, fiberpli::MakeProgress(this));
   if (err == "cancelled")
   {
-    return finish(1); // partial results are never passed on
+    return 1; // partial results are never passed on
   }
   if (!err.empty())
   {
-    failure << "PLIAnalysis: " << err;
-    return finish(0);
+    vtkErrorMacro(<< "PLIAnalysis: " << err);
+    return 0;
   }
 
   output->SetExtent(ext);
@@ -350,7 +349,7 @@ int vtkPLIAnalysis::RequestData(vtkInformation*, vtkInformationVector** inputVec
   fiberpli::AddFieldDoubles(output, "reference_retardation", { maps.referenceRetardation });
   fiberpli::AddFieldInt(output, "inclination_method", static_cast<int>(maps.method));
   this->UpdateProgress(1.0);
-  return finish(1);
+  return 1;
 }
 
 //------------------------------------------------------------------------------

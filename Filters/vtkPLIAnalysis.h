@@ -84,6 +84,9 @@ protected:
   ~vtkPLIAnalysis() override = default;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// This rank's analysis (errors reported with vtkErrorMacro, 0 returned); `reduced` is set when
+  /// it took part in the reduction of the reference retardation.
+  int ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced);
 
 private:
   vtkPLIAnalysis(const vtkPLIAnalysis&) = delete;

@@ -47,15 +47,15 @@ std::string CheckSwitch(const char* name, int value)
 std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
 {
   o = fiberpli::pli::PLIOptions();
-  std::string error = fiberpli::pli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
+  std::string error = fiberpli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
   if (error.empty())
     error = fiberpli::pli::interpolationFromCode(self->GetInterpolation(), o.interpolation);
   if (error.empty())
     error = CheckSwitch("TiltedSensor", self->GetTiltedSensor());
   if (error.empty())
     error = CheckSwitch("ExportTissue", self->GetExportTissue());
-  if (error.empty() && self->GetSeed() < 0)
-    error = "Seed is " + std::to_string(self->GetSeed()) + ", must be >= 0";
+  if (error.empty())
+    error = fiberpli::validateSeed(self->GetSeed());
   self->GetVolumeOfInterest(o.volumeOfInterest);
   o.voxelSize = self->GetVoxelSize();
   o.pixelSize = self->GetPixelSize();
@@ -393,7 +393,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   {
     return 1;
   }
-  const fiberpli::pli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
+  const fiberpli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;

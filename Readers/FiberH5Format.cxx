@@ -257,27 +257,12 @@ struct FiberDataset
   std::string bundleName, fiberName;
   hsize_t points;
 };
-} // namespace
 
-bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
+/// The group of the open `file` to read: `requested` when it names a group of the file; with
+/// `requested` empty, the one group holding bundles (root included), or the root when none does.
+/// Several such groups are an error listing them.
+std::string bundleGroup(const Handle& file, const std::string& path, const std::string& requested, std::string& group)
 {
-  QuietHdf5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
-  {
-    return false;
-  }
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  return file.ok() && !bundleGroupsOf(file.get()).empty();
-}
-
-std::string FiberH5Format::BundleGroup(const std::string& path, const std::string& requested, std::string& group)
-{
-  QuietHdf5 quiet;
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (!file.ok())
-  {
-    return path + ": cannot open the HDF5 file";
-  }
   if (!requested.empty())
   {
     // Only hard links, as everywhere in the reader: H5Gopen2 would follow soft and external links.
@@ -310,6 +295,18 @@ std::string FiberH5Format::BundleGroup(const std::string& path, const std::strin
   group = groups.empty() ? "/" : groups.front();
   return {};
 }
+} // namespace
+
+bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
+{
+  QuietHdf5 quiet;
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+  {
+    return false;
+  }
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  return file.ok() && !bundleGroupsOf(file.get()).empty();
+}
 
 std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model,
   PeriodicCell* cell)
@@ -328,7 +325,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   hsize_t fileSize = 0;
   H5Fget_filesize(file.get(), &fileSize);
   std::string groupPath;
-  const std::string groupError = BundleGroup(path, requestedGroup, groupPath);
+  const std::string groupError = bundleGroup(file, path, requestedGroup, groupPath);
   if (!groupError.empty())
   {
     return groupError;

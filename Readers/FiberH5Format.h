@@ -27,12 +27,9 @@ public:
   /// holds bundles: a group "0" with a dataset "0" of shape (n, 4).
   static bool LooksLikeFiberH5(const std::string& path);
 
-  /// The group to read: `requested` when it names a group of the file; with `requested` empty, the
-  /// one group holding bundles (root included), or the root when none does. Several such groups
-  /// are an error listing them.
-  static std::string BundleGroup(const std::string& path, const std::string& requested, std::string& group);
-
-  /// Reads the bundles of `group` ("" = found by BundleGroup) of `path` into `model`; returns an
+  /// Reads the bundles of `group` of `path` into `model` (`group` "" = the one group holding
+  /// bundles, root included, or the root when none does; several such groups are an error listing
+  /// them); returns an
   /// empty string or an error naming the file and the group/dataset. Below the group only hard
   /// links are followed (soft and external links are errors), bundle group names must be
   /// 0 .. INT_MAX, and the total of the declared points (a dataset hard-linked n times counts n

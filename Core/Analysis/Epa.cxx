@@ -1,4 +1,5 @@
 #include "Analysis/Epa.h"
+#include "Analysis/ForEachPixel.h"
 
 #include <cmath>
 #include <limits>

@@ -4,7 +4,7 @@
 /// closed-form fast path of §2.2. Angles in radians.
 #pragma once
 
-#include "Analysis/PixelRange.h"
+#include "Section/PixelGrid.h"
 #include "Util/Progress.h"
 
 #include <cstdint>

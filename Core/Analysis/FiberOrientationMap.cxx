@@ -3,6 +3,7 @@
 #include "Util/Threads.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace fiberpli
@@ -133,6 +134,35 @@ std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, doub
       tissue[p] = keep ? 1 : 0;
     }
   }
+  return {};
+}
+
+double fomMaskReference(const double* values, std::size_t n)
+{
+  double largest = -std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    if (std::isfinite(values[p]) && values[p] > largest)
+    {
+      largest = values[p];
+    }
+  }
+  return largest;
+}
+
+std::string fomMaskThreshold(FomMask mask, double fraction, double largest, double& threshold)
+{
+  if (!(fraction >= 0.0 && fraction <= 1.0)) // also refuses NaN
+  {
+    return "the fraction must be in [0, 1] (of the image's largest " +
+      std::string(mask == FomMask::Transmittance ? "transmittance" : "retardation") + ")";
+  }
+  if (!std::isfinite(largest))
+  {
+    threshold = 0.0; // no finite value anywhere: every pixel is background whatever the threshold
+    return {};
+  }
+  threshold = mask == FomMask::Transmittance ? (1.0 - fraction) * largest : fraction * largest;
   return {};
 }
 

@@ -58,6 +58,17 @@ enum class FomMask
 std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold, std::uint8_t* rgb,
   std::uint8_t* tissue);
 
+/// Largest finite value of values[0..n) (−∞ when there is none): what a mask threshold is a
+/// fraction of (docs/pli-analysis.md §4).
+double fomMaskReference(const double* values, std::size_t n);
+
+/// The absolute threshold for fomApplyMask from `fraction` in [0, 1] of the image's largest value
+/// `largest` (fomMaskReference, over all pieces of a split image): Retardation treats pixels below
+/// fraction·largest as background, Transmittance those above (1 − fraction)·largest, i.e. within
+/// `fraction` of the brightest (unattenuated) light. Without any finite value (largest −∞) the
+/// threshold is 0: every pixel is NaN and so background anyway. Error for a fraction outside [0, 1].
+std::string fomMaskThreshold(FomMask mask, double fraction, double largest, double& threshold);
+
 /// Legend (docs/pli-analysis.md §4): a size × size image (x fastest, row 0 at the bottom = y −1, as vtkImageData) of the
 /// upper hemisphere seen from +z. Pixel centre (x, y) in [−1, 1]² inside the unit disc gets
 /// d = atan2(y, x) folded into [0°, 180°) and i = asin(√(1 − x² − y²)); pixels outside the disc

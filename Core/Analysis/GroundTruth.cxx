@@ -1,5 +1,6 @@
 #include "Analysis/GroundTruth.h"
 
+#include "Section/LinkTable.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -14,140 +15,37 @@ namespace fiberpli
 namespace
 {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr std::uint32_t kNoOwner = std::numeric_limits<std::uint32_t>::max();
 
-struct Link
+/// Link-table bins of 16 × 16 voxel columns: a pixel row looks only at the links near it.
+constexpr std::int64_t kBinSize = 16;
+
+/// One voxel column of a pixel row's owner buffer (z slowest: index (k·wy + y)·wx + x).
+struct OwnerColumn
 {
-  Vec3 p, ax;          // start and Q − P
-  double l2, rP, rQ;   // |ax|², radii
-  Vec3 lo, hi;         // AABB grown by S·max(rP, rQ)
-  Vec3 axis;           // unit(Q − P)
-  std::int64_t g;      // global link index: bundle order, fiber order, link order
+  double* d2;
+  std::uint32_t* owner;
+  std::int64_t stride; ///< wx·wy, one z step
+  std::uint32_t g;
+
+  bool skip(std::int64_t) const { return false; }
+  void cover(std::int64_t k, double d2k, double)
+  {
+    const std::size_t v = static_cast<std::size_t>(k * stride);
+    if (ownerWins(d2k, g, d2[v], owner[v] == kNoOwner ? 0 : owner[v]))
+    {
+      d2[v] = d2k;
+      owner[v] = g;
+    }
+  }
 };
-
-// docs/pli-simulation.md §5.2: the one integer function shared with the simulator.
-std::int64_t pixelOf(std::int64_t voxel, double scale)
-{
-  return static_cast<std::int64_t>(std::floor((static_cast<double>(voxel) + 0.5) * scale));
-}
-
-// Voxel indices [v0, v1) whose pixel lies in [p0, p1): contiguous because pixelOf is monotonic.
-void voxelSpan(std::int64_t nVox, double scale, std::int64_t p0, std::int64_t p1, std::int64_t& v0, std::int64_t& v1)
-{
-  v0 = nVox;
-  v1 = nVox;
-  for (std::int64_t v = 0; v < nVox; ++v)
-  {
-    const std::int64_t p = pixelOf(v, scale);
-    if (p >= p0 && v0 == nVox)
-    {
-      v0 = v;
-    }
-    if (p >= p1)
-    {
-      v1 = v;
-      break;
-    }
-  }
-  v1 = std::max(v0, v1);
-}
-
-std::vector<Link> collectLinks(const FiberModel& model, double scaleS)
-{
-  std::vector<std::size_t> order(model.fibers.size());
-  for (std::size_t f = 0; f < order.size(); ++f)
-  {
-    order[f] = f;
-  }
-  std::stable_sort(order.begin(), order.end(),
-    [&](std::size_t a, std::size_t b) { return model.fibers[a].bundle < model.fibers[b].bundle; });
-  std::vector<Link> links;
-  std::int64_t g = 0;
-  for (std::size_t f : order)
-  {
-    const Fiber& fib = model.fibers[f];
-    for (std::size_t k = 0; k + 1 < fib.size(); ++k, ++g)
-    {
-      Link L;
-      L.p = fib.points[k];
-      L.ax = fib.points[k + 1] - fib.points[k];
-      L.l2 = norm2(L.ax);
-      if (L.l2 == 0.0)
-      {
-        continue; // no axis to own a voxel (§3.3 skips zero-length links)
-      }
-      L.rP = fib.radii[k];
-      L.rQ = fib.radii[k + 1];
-      const double grow = scaleS * std::max(L.rP, L.rQ);
-      const Vec3& q = fib.points[k + 1];
-      L.lo = { std::min(L.p.x, q.x) - grow, std::min(L.p.y, q.y) - grow, std::min(L.p.z, q.z) - grow };
-      L.hi = { std::max(L.p.x, q.x) + grow, std::max(L.p.y, q.y) + grow, std::max(L.p.z, q.z) + grow };
-      L.axis = L.ax / std::sqrt(L.l2);
-      L.g = g;
-      links.push_back(L);
-    }
-  }
-  return links;
-}
-
-// Index range [a, b) of voxel centres origin + (i + ½)·h inside [lo, hi], clipped to [c0, c1).
-void centresIn(double lo, double hi, double origin, double h, std::int64_t c0, std::int64_t c1, std::int64_t& a,
-  std::int64_t& b)
-{
-  const double fa = std::ceil((lo - origin) / h - 0.5);
-  const double fb = std::floor((hi - origin) / h - 0.5) + 1.0;
-  a = static_cast<std::int64_t>(std::max(static_cast<double>(c0), std::min(static_cast<double>(c1), fa)));
-  b = static_cast<std::int64_t>(std::max(static_cast<double>(a), std::min(static_cast<double>(c1), fb)));
-}
 } // namespace
 
-TruthLattice latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx, std::int64_t ny,
-  double zMin, double zMax, int samplesPerPixel)
-{
-  TruthLattice l;
-  const int s = samplesPerPixel < 1 ? 1 : samplesPerPixel;
-  l.origin = { corner.x, corner.y, zMin };
-  l.pixelSize = pixelSize;
-  l.voxelSize = pixelSize / s;
-  l.n[0] = nx * s;
-  l.n[1] = ny * s;
-  l.n[2] = std::max<std::int64_t>(1, std::llround((zMax - zMin) / l.voxelSize));
-  return l;
-}
-
-std::string truthPixelGrid(const TruthLattice& l, std::int64_t& nx, std::int64_t& ny)
-{
-  std::ostringstream msg;
-  if (!std::isfinite(l.voxelSize) || l.voxelSize <= 0.0)
-  {
-    msg << "VoxelSize is " << l.voxelSize << ", must be > 0";
-  }
-  else if (!std::isfinite(l.pixelSize) || l.pixelSize < l.voxelSize)
-  {
-    msg << "PixelSize is " << l.pixelSize << ", must be >= VoxelSize " << l.voxelSize;
-  }
-  else if (l.n[0] < 0 || l.n[1] < 0 || l.n[2] < 0)
-  {
-    msg << "voxel counts " << l.n[0] << " x " << l.n[1] << " x " << l.n[2] << " must be >= 0";
-  }
-  else if (!isFinite(l.origin))
-  {
-    msg << "lattice origin is not finite";
-  }
-  if (!msg.str().empty())
-  {
-    return msg.str();
-  }
-  const double scale = l.voxelSize / l.pixelSize;
-  nx = std::llround(static_cast<double>(l.n[0]) * scale);
-  ny = std::llround(static_cast<double>(l.n[1]) * scale);
-  return {};
-}
-
-std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
+std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps, const ProgressFn& progress)
 {
   std::int64_t nx = 0, ny = 0;
-  std::string err = truthPixelGrid(lat, nx, ny);
+  std::string err = checkPixelGrid(grid, nx, ny);
   if (!err.empty())
   {
     return err;
@@ -174,12 +72,17 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
   {
     return err;
   }
-  const double scale = lat.voxelSize / lat.pixelSize;
-  std::int64_t vx0, vx1;
-  voxelSpan(lat.n[0], scale, range.i0, range.i1, vx0, vx1);
+  const SectionLattice& lat = grid.lattice;
+  const double scale = grid.scale();
   const std::int64_t nz = lat.n[2];
+  // The voxel columns of the range (empty when the range is).
+  ColumnRange cols{ 0, 0, 0, 0 };
+  if (range.nx() > 0 && range.ny() > 0)
+  {
+    cols = voxelColumnsOf(grid, range);
+  }
   // One pixel row's voxels are held at once per thread.
-  const double rowVoxels = static_cast<double>(vx1 - vx0) * std::ceil(1.0 / scale + 1.0) * static_cast<double>(nz);
+  const double rowVoxels = static_cast<double>(cols.nx()) * std::ceil(1.0 / scale + 1.0) * static_cast<double>(nz);
   if (rowVoxels > 2147483647.0)
   {
     std::ostringstream msg;
@@ -196,13 +99,15 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
     linkCount += f.size() > 1 ? f.size() - 1 : 0;
   }
   // Five maps (and the histograms) of the whole grid, a copy of the range's maps in the caller's
-  // output, per thread one pixel row of voxel owners (distance + link pointer), and the links.
+  // output, per thread one pixel row of voxel owners (distance + link id), and the links (with
+  // their axes and at least one bin entry each).
   const double pixelBytes = static_cast<double>(nx) * static_cast<double>(ny) * (5.0 + static_cast<double>(nHist)) * 8.0;
   const double bytes = pixelBytes + 5.0 * 8.0 * static_cast<double>(range.count()) +
-    static_cast<double>(nThreads) * rowVoxels * 16.0 + static_cast<double>(linkCount) * sizeof(Link);
+    static_cast<double>(nThreads) * rowVoxels * 12.0 +
+    static_cast<double>(linkCount) * (sizeof(SectionLink) + sizeof(Vec3) + sizeof(std::uint32_t));
   std::ostringstream what;
-  what << "the ground truth of " << nx << " x " << ny << " pixels (PixelSize " << lat.pixelSize << ", VoxelSize "
-       << lat.voxelSize << ", " << nz << " voxels deep)";
+  what << "the ground truth of " << nx << " x " << ny << " pixels (PixelSize " << grid.pixelSize << ", VoxelSize "
+       << lat.voxel << ", " << nz << " voxels deep)";
   err = checkMemoryBudget(bytes, what.str());
   if (!err.empty())
   {
@@ -216,21 +121,30 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
     v->resize(npx, kNaN);
   }
   maps.histogram.assign(npx * nHist, 0.0);
+  if (range.count() <= 0)
+  {
+    return {};
+  }
 
-  std::vector<Link> links = collectLinks(model, options.radiusScale);
-  // Sorted by the bottom of their box, a row stops scanning at the first link above it. Ownership
-  // does not depend on the scan order: it is the total order (d², then g) of §3.3.
-  std::sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.lo.y < b.lo.y; });
+  // Every bundle is a slot, all of the same scale S: the links in the simulation's order g.
+  const std::vector<int> slots = bundlesOf(model);
+  LinkTable table;
+  buildLinkTable(model, slots, std::vector<double>(slots.size(), options.radiusScale),
+    options.maxRadius ? RadiusModel::Max : RadiusModel::Linear, lat, cols, kBinSize, table);
+  std::vector<Vec3> axis(table.links.size());
+  for (std::size_t g = 0; g < axis.size(); ++g)
+  {
+    axis[g] = normalized(table.links[g].q - table.links[g].p);
+  }
   // Voxel columns of every pixel column, the same for every row.
-  std::vector<std::int64_t> spanX(static_cast<std::size_t>(2 * range.width()));
+  std::vector<std::int64_t> spanX(static_cast<std::size_t>(2 * range.nx()));
   for (std::int64_t i = range.i0; i < range.i1; ++i)
   {
-    voxelSpan(lat.n[0], scale, i, i + 1, spanX[static_cast<std::size_t>(2 * (i - range.i0))],
+    voxelsOfPixel(i, scale, lat.n[0], spanX[static_cast<std::size_t>(2 * (i - range.i0))],
       spanX[static_cast<std::size_t>(2 * (i - range.i0) + 1)]);
   }
-  const double S2 = options.radiusScale * options.radiusScale;
-  const double h = lat.voxelSize;
-  const std::int64_t rows = range.height();
+  const std::int64_t vx0 = cols.i0, vx1 = cols.i1;
+  const std::int64_t rows = range.ny();
   const std::int64_t block = std::max<std::int64_t>(1, rows / 50);
 
   for (std::int64_t jb = range.j0; jb < range.j1; jb += block)
@@ -240,53 +154,20 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
     for (std::int64_t j = jb; j < je; ++j)
     {
       std::int64_t vy0, vy1;
-      voxelSpan(lat.n[1], scale, j, j + 1, vy0, vy1);
+      voxelsOfPixel(j, scale, lat.n[1], vy0, vy1);
       const std::int64_t wx = vx1 - vx0, wy = vy1 - vy0;
       const std::size_t nVox = static_cast<std::size_t>(wx * wy * nz);
       std::vector<double> bestD2(nVox, std::numeric_limits<double>::infinity());
-      std::vector<const Link*> owner(nVox, nullptr);
-      const double y0 = lat.origin.y + static_cast<double>(vy0) * h, y1 = lat.origin.y + static_cast<double>(vy1) * h;
-      const double x0 = lat.origin.x + static_cast<double>(vx0) * h, x1 = lat.origin.x + static_cast<double>(vx1) * h;
-      for (const Link& L : links)
+      std::vector<std::uint32_t> owner(nVox, kNoOwner);
+      const ColumnRange row{ vx0, vx1, vy0, vy1 };
+      std::vector<std::uint32_t> cand;
+      candidateLinks(table, row, cand);
+      for (const std::uint32_t g : cand)
       {
-        if (L.lo.y > y1)
-        {
-          break; // every later link starts above this row
-        }
-        if (L.hi.y < y0 || L.hi.x < x0 || L.lo.x > x1)
-        {
-          continue;
-        }
-        std::int64_t ia, ib, ja, jbb, ka, kb;
-        centresIn(L.lo.x, L.hi.x, lat.origin.x, h, vx0, vx1, ia, ib);
-        centresIn(L.lo.y, L.hi.y, lat.origin.y, h, vy0, vy1, ja, jbb);
-        centresIn(L.lo.z, L.hi.z, lat.origin.z, h, 0, nz, ka, kb);
-        for (std::int64_t k = ka; k < kb; ++k)
-        {
-          for (std::int64_t jj = ja; jj < jbb; ++jj)
-          {
-            for (std::int64_t i = ia; i < ib; ++i)
-            {
-              const Vec3 c{ lat.origin.x + (static_cast<double>(i) + 0.5) * h,
-                lat.origin.y + (static_cast<double>(jj) + 0.5) * h, lat.origin.z + (static_cast<double>(k) + 0.5) * h };
-              double t = dot(c - L.p, L.ax) / L.l2;
-              t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-              const double r = options.maxRadius ? std::max(L.rP, L.rQ) : (1.0 - t) * L.rP + t * L.rQ;
-              const double d2 = norm2(c - (L.p + t * L.ax));
-              if (d2 > S2 * r * r)
-              {
-                continue;
-              }
-              const std::size_t v = static_cast<std::size_t>(((k * wy) + (jj - vy0)) * wx + (i - vx0));
-              // §3.3 total order: smaller d², then the larger global link index wins the tie.
-              if (d2 < bestD2[v] || (d2 == bestD2[v] && owner[v] && L.g > owner[v]->g))
-              {
-                bestD2[v] = d2;
-                owner[v] = &L;
-              }
-            }
-          }
-        }
+        forEachCoveredVoxel(table, g, row, nz, [&](std::int64_t i, std::int64_t jj) {
+          const std::size_t v = static_cast<std::size_t>((jj - vy0) * wx + (i - vx0));
+          return OwnerColumn{ bestD2.data() + v, owner.data() + v, wx * wy, g };
+        });
       }
       TruthAccumulator acc(options.nPhi, options.nAlpha);
       for (std::int64_t i = range.i0; i < range.i1; ++i)
@@ -300,10 +181,10 @@ std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lat,
           {
             for (std::int64_t iv = ia; iv < ib; ++iv)
             {
-              const Link* o = owner[static_cast<std::size_t>(((k * wy) + (jj - vy0)) * wx + (iv - vx0))];
-              if (o)
+              const std::uint32_t o = owner[static_cast<std::size_t>(((k * wy) + (jj - vy0)) * wx + (iv - vx0))];
+              if (o != kNoOwner)
               {
-                acc.addTissue(o->axis);
+                acc.addTissue(axis[o]);
               }
               else
               {

@@ -1,15 +1,16 @@
 /// GroundTruth: orientation ground truth of a fiber model on the pixel grid of a simulated
 /// section (docs/pli-analysis.md §5). Voxel centres of the simulation lattice get the fiber axis
-/// unit(Q − P) of the link that owns them (nearest capsule axis, docs/pli-simulation.md §3.3: key
-/// (d², g), ties to the larger global link index g, label > 0 iff d² <= S²·r² with the Linear
-/// radius taper); voxels bin into pixels as in docs/pli-simulation.md §5.2 (voxel i → pixel
-/// floor((i + ½)·VoxelSize/PixelSize), all z), and each pixel summarises its voxels with
-/// TruthAccumulator (tensor mean axis, anisotropy, tissue fraction, histogram).
+/// unit(Q − P) of the link that owns them by the one ownership rule of the simulation
+/// (Section/LinkTable.h, docs/pli-simulation.md §3.3, in the same voxel units: the owner of every
+/// voxel is the voxeliser's); voxels bin into pixels by the mapping of Section/PixelGrid.h
+/// (docs/pli-simulation.md §5.2, all z), and each pixel summarises its voxels with TruthAccumulator
+/// (tensor mean axis, anisotropy, tissue fraction, histogram).
 #pragma once
 
 #include "Analysis/OrientationTensor.h"
-#include "Analysis/PixelRange.h"
 #include "Model/FiberModel.h"
+#include "Section/PixelGrid.h"
+#include "Section/SectionPlan.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -18,22 +19,6 @@
 
 namespace fiberpli
 {
-
-/// The voxel lattice of the simulation (docs/pli-simulation.md §3.1) and its CCD pixel size (§5.2).
-struct TruthLattice
-{
-  Vec3 origin;                    ///< µm, lower corner of voxel (0, 0, 0)
-  double voxelSize = 1.0;         ///< µm
-  std::int64_t n[3] = { 0, 0, 0 }; ///< voxels along x, y, z
-  double pixelSize = 1.0;         ///< µm, >= voxelSize
-};
-
-/// A lattice whose pixels are exactly the nx × ny grid with lower corner `corner` (x, y) and the
-/// given pixel size, sampled by samplesPerPixel² voxel columns per pixel over z ∈ [zMin, zMax]
-/// (nz = max(1, round((zMax − zMin)/voxel)) voxels). For the ground truth of a grid that does not
-/// come from PLISimulation.
-TruthLattice latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx, std::int64_t ny,
-  double zMin, double zMax, int samplesPerPixel);
 
 struct GroundTruthOptions
 {
@@ -54,17 +39,14 @@ struct GroundTruthMaps
   std::vector<double> histogram; ///< nPhi·nAlpha values per pixel, pixel-major; empty unless requested
 };
 
-/// Pixel-grid size of a lattice (§5.2): n_px = round(n_vox·scale). Returns "" or an error naming
-/// the bad field (voxel or pixel size, negative counts, PixelSize < VoxelSize).
-std::string truthPixelGrid(const TruthLattice& lattice, std::int64_t& nx, std::int64_t& ny);
-
-/// Ground truth of the pixels in `range` (pixel indices of the truthPixelGrid). The maps are
+/// Ground truth of the pixels in `range` (pixel indices of checkPixelGrid, Section/PixelGrid.h; the
+/// grid of a PLISimulation comes from planSection, Section/SectionPlan.h). The maps are
 /// resized to the whole grid; pixels outside the range keep their values (NaN / 0 when new).
 /// Result is bit-identical for any thread count. Returns "" on success, the error (invalid
 /// model: the validateModel message; bad lattice/options/range; more than 2^31 voxels in one
 /// pixel row; more memory than the budget of Util/MemoryBudget.h, checked before allocating), or
 /// "cancelled" when progress asked to stop.
-std::string computeGroundTruth(const FiberModel& model, const TruthLattice& lattice,
+std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});
 

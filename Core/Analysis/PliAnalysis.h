@@ -4,7 +4,7 @@
 #pragma once
 
 #include "Analysis/Epa.h"
-#include "Analysis/PixelRange.h"
+#include "Section/PixelGrid.h"
 #include "Analysis/TiltFit.h"
 #include "Util/Progress.h"
 

@@ -5,7 +5,7 @@
 /// (t_rel 0.457); at Δn −0.004 (t_rel 1.83) the inversion is ambiguous. The sign of α is unknown.
 #pragma once
 
-#include "Analysis/PixelRange.h"
+#include "Section/PixelGrid.h"
 
 #include <cstdint>
 #include <string>

@@ -1,4 +1,5 @@
 #include "Analysis/TiltFit.h"
+#include "Analysis/ForEachPixel.h"
 
 #include "Analysis/Axis.h"
 #include "Util/Angles.h"

@@ -6,7 +6,8 @@
 #pragma once
 
 #include "Analysis/Epa.h"
-#include "Analysis/PixelRange.h"
+#include "Section/PixelGrid.h"
+#include "Section/TiltConvention.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -15,14 +16,6 @@
 
 namespace fiberpli
 {
-
-/// How the simulation rotated the optic axis into the beam frame (docs/pli-simulation.md §4.3);
-/// the values are those of the field data `tilt_convention`.
-enum class TiltConvention
-{
-  Physical = 0, ///< v_b = Rᵀ·v
-  FastPLI = 1   ///< v_b = R·v (fastPLI's simulator and ROFL)
-};
 
 /// One tilted view: in-tissue tilt θ_t (field data tilt_angles) and tilt azimuth φ_t (field data
 /// tilt_directions, the direction the beam leans to, counter-clockwise from +x), radians.

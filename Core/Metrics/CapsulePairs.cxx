@@ -103,10 +103,11 @@ public:
 
   std::int64_t index(const std::array<std::int64_t, 3>& c) const { return (c[2] * n_[1] + c[1]) * n_[0] + c[0]; }
 
-  /// The distinct cells around c (itself included), wrapped in a periodic cell.
-  std::vector<std::int64_t> neighbours(const std::array<std::int64_t, 3>& c) const
+  /// The distinct cells around c (itself included), wrapped in a periodic cell, written into
+  /// `cells` in ascending order (no allocation: this runs once per capsule); returns their count.
+  std::size_t neighbours(const std::array<std::int64_t, 3>& c, std::array<std::int64_t, 27>& cells) const
   {
-    std::vector<std::int64_t> cells;
+    std::size_t count = 0;
     for (std::int64_t dz = -1; dz <= 1; ++dz)
     {
       for (std::int64_t dy = -1; dy <= 1; ++dy)
@@ -125,14 +126,14 @@ public:
           }
           if (inside)
           {
-            cells.push_back(index(k));
+            cells[count++] = index(k);
           }
         }
       }
     }
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-    return cells;
+    std::sort(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(count));
+    return static_cast<std::size_t>(
+      std::unique(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(count)) - cells.begin());
   }
 
   template <class F>
@@ -183,7 +184,8 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
   pass.complete = hash.single();
   const auto compare = [&](std::size_t i, std::size_t j, std::int64_t& collisions, double& minGap) {
     const Capsule &p = caps[i], &q = caps[j];
-    const Vec3 shift = minimumImageShift(mid[i], mid[j], cell);
+    // The lattice vector that brings q's midpoint nearest to p's (zero without a cell).
+    const Vec3 shift = cell.enabled() ? cell.imageShift(mid[j] - mid[i]) : Vec3{};
     // Lower bound on the gap from the midpoints: skip pairs that can change neither result.
     const double bound = distance(mid[i], mid[j] + shift) - reach[i] - reach[j];
     if ((bound >= 0.0 && bound >= minGap) || chainNeighbours(p, q, set))
@@ -210,9 +212,11 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
       {
         continue;
       }
-      for (std::int64_t cellIndex : hash.neighbours(hash.coords(mid[pi])))
+      std::array<std::int64_t, 27> cells;
+      const std::size_t count = hash.neighbours(hash.coords(mid[pi]), cells);
+      for (std::size_t k = 0; k < count; ++k)
       {
-        hash.forEachIn(cellIndex, [&](std::size_t j) {
+        hash.forEachIn(cells[k], [&](std::size_t j) {
           if (j > pi && !isOversize(j))
           {
             compare(pi, j, collisions, minGap);

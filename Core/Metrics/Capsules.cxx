@@ -29,29 +29,10 @@ CapsuleSet makeCapsules(const FiberModel& model, const PeriodicCell& cell)
     }
     set.fiberLength.push_back(arc);
     set.links.push_back(fiber.size() > 1 ? fiber.size() - 1 : 0);
-    char isClosed = 0;
     Vec3 closure;
-    if (fiber.size() > 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure))
-    {
-      isClosed = 1;
-    }
-    set.closed.push_back(isClosed);
+    set.closed.push_back(isClosedFiber(fiber, cell, closure) ? 1 : 0);
   }
   return set;
-}
-
-Vec3 minimumImageShift(const Vec3& p, const Vec3& q, const PeriodicCell& cell)
-{
-  Vec3 shift;
-  if (cell.enabled())
-  {
-    const Vec3 size = cell.edge();
-    for (int i = 0; i < 3; ++i)
-    {
-      shift[i] = size[i] * std::round((p[i] - q[i]) / size[i]);
-    }
-  }
-  return shift;
 }
 
 double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)

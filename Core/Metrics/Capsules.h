@@ -34,11 +34,8 @@ struct CapsuleSet
 };
 
 /// Flattens the model; in a periodic cell a fiber whose end is its start shifted by a lattice
-/// vector (closesThroughCell) is a closed loop, so its first and last links are neighbours.
+/// vector (isClosedFiber) is a closed loop, so its first and last links are neighbours.
 CapsuleSet makeCapsules(const FiberModel& model, const PeriodicCell& cell);
-
-/// The lattice vector to add to `q` to bring it nearest to `p` (minimum image); zero without a cell.
-Vec3 minimumImageShift(const Vec3& p, const Vec3& q, const PeriodicCell& cell);
 
 /// Distance of point p to segment [a, b] (a zero-length segment is the point a).
 double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b);

@@ -53,6 +53,27 @@ bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi)
   return any;
 }
 
+double largestRadius(const FiberModel& model)
+{
+  double largest = 0.0;
+  for (const Fiber& f : model.fibers)
+  {
+    if (f.size() >= 2)
+    {
+      for (double r : f.radii)
+      {
+        largest = std::max(largest, r);
+      }
+    }
+  }
+  return largest;
+}
+
+bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
+{
+  return fiber.size() >= 3 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
+}
+
 std::string validateModel(const FiberModel& model, std::size_t* badFiber, ShortFibers shortFibers)
 {
   for (std::size_t fi = 0; fi < model.fibers.size(); ++fi)

@@ -3,6 +3,7 @@
 /// Every fiber carries its fiber id and the bundle (population) it belongs to.
 #pragma once
 
+#include "Geometry/PeriodicCell.h"
 #include "Geometry/Vec3.h"
 
 #include <cstddef>
@@ -37,6 +38,14 @@ struct FiberModel
 /// Axis-aligned bounds of all points, enlarged by each point's radius when withRadii is true.
 /// Returns false for a model without points.
 bool modelBounds(const FiberModel& model, bool withRadii, Vec3& lo, Vec3& hi);
+
+/// Largest radius of the fibers that have links (>= 2 points); 0 for a model without links.
+double largestRadius(const FiberModel& model);
+
+/// True when the fiber is a closed loop through the cell: it has >= 3 points (a loop needs two
+/// distinct links) and last point − first point is a non-zero lattice vector (closesThroughCell);
+/// closure receives that vector exactly. The one closure rule of the solver and the metrics.
+bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure);
 
 /// Whether validateModel accepts fibers of fewer than 2 points. The data contract refuses them;
 /// the collision solver takes them and copies them through unchanged (they have no link).

@@ -113,38 +113,6 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
   return st;
 }
 
-std::int64_t pixelOfVoxel(std::int64_t i, double scale)
-{
-  return static_cast<std::int64_t>(std::floor((static_cast<double>(i) + 0.5) * scale));
-}
-
-std::int64_t pixelCount(std::int64_t nVoxels, double scale)
-{
-  return static_cast<std::int64_t>(std::llround(static_cast<double>(nVoxels) * scale));
-}
-
-void voxelsOfPixel(std::int64_t p, double scale, std::int64_t nVox, std::int64_t& first, std::int64_t& last)
-{
-  const std::int64_t npx = pixelCount(nVox, scale);
-  first = last = 0;
-  if (p < 0 || p >= npx)
-    return;
-  // Start a little before the analytic bound and walk: the integer function decides.
-  std::int64_t i = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(static_cast<double>(p) / scale)) - 2);
-  while (i > 0 && pixelOfVoxel(i - 1, scale) >= p)
-    --i;
-  while (i < nVox && pixelOfVoxel(i, scale) < p)
-    ++i;
-  first = i;
-  while (i < nVox && pixelOfVoxel(i, scale) == p)
-    ++i;
-  last = i;
-  // Voxels mapped past the last pixel are dropped.
-  if (p == npx - 1)
-    while (last > first && pixelOfVoxel(last - 1, scale) >= npx)
-      --last;
-}
-
 Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scale, const PixelRange& px, Stack& out)
 {
   Status st;

@@ -32,14 +32,8 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n);
 Status blurStack(const Stack& in, std::int64_t nGlobalX, std::int64_t nGlobalY, double sigmaVox,
   const ColumnRange& range, Stack& out);
 
-/// Pixel of voxel index i for scale = VoxelSize/PixelSize: floor((i + ½)·scale) (§5.2).
-std::int64_t pixelOfVoxel(std::int64_t i, double scale);
-/// Number of pixels for n voxels: round(n·scale).
-std::int64_t pixelCount(std::int64_t nVoxels, double scale);
-/// Voxels [first, last) that bin into pixel p (empty past the image).
-void voxelsOfPixel(std::int64_t p, double scale, std::int64_t nVoxels, std::int64_t& first, std::int64_t& last);
-
-/// Mean of the voxels of each pixel in `pixels` (§5.2); `in` must cover those voxels.
+/// Mean of the voxels of each pixel in `pixels` (§5.2, the mapping of Section/PixelGrid.h); `in`
+/// must cover those voxels.
 Status binStack(const Stack& in, std::int64_t nVoxX, std::int64_t nVoxY, double scale,
   const PixelRange& pixels, Stack& out);
 

@@ -1,6 +1,5 @@
 #include "PLI/PLIPipeline.h"
 
-#include "Model/VolumeOfInterest.h"
 #include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
@@ -107,27 +106,14 @@ std::string interpolationFromCode(int code, Interp& interpolation)
   return {};
 }
 
-std::string tiltConventionFromCode(int code, TiltConvention& convention)
-{
-  if (code < 0 || code > 1)
-  {
-    std::ostringstream m;
-    m << "TiltConvention is " << code << ", must be 0 (physical) or 1 (fastPLI)";
-    return m.str();
-  }
-  convention = static_cast<TiltConvention>(code);
-  return {};
-}
-
 Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
   Status st;
   plan = PLIPlan();
   std::ostringstream m;
-  if (!(o.voxelSize > 0.0) || !std::isfinite(o.voxelSize))
-    m << "VoxelSize is " << o.voxelSize << ", must be > 0";
-  else if (!(o.pixelSize >= o.voxelSize) || !std::isfinite(o.pixelSize))
-    m << "PixelSize is " << o.pixelSize << ", must be >= VoxelSize (" << o.voxelSize << ")";
+  const std::string sizeError = checkSectionSizes(o.voxelSize, o.pixelSize);
+  if (!sizeError.empty())
+    m << sizeError;
   else if (!(o.wavelength > 0.0) || !std::isfinite(o.wavelength))
     m << "Wavelength is " << o.wavelength << ", must be > 0";
   else if (!(o.lightIntensity >= 0.0 && o.lightIntensity <= kMaxLightIntensity))
@@ -152,13 +138,9 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     st.error = m.str();
     return st;
   }
-  double voi[6];
-  st.error = resolveVolumeOfInterest(o.volumeOfInterest, model, o.voxelSize, voi, plan.lattice.n);
+  st.error = planSection(model, o.volumeOfInterest, o.voxelSize, o.pixelSize, plan);
   if (!st.ok())
     return st;
-  for (int a = 0; a < 3; ++a)
-    plan.lattice.origin[a] = voi[2 * a];
-  plan.lattice.voxel = o.voxelSize;
 
   std::vector<int> bundles;
   for (const Fiber& f : model.fibers)
@@ -190,19 +172,6 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   for (double r : rotDeg)
     plan.rho.push_back(r * kDeg);
 
-  const double scale = o.voxelSize / o.pixelSize;
-  plan.pixels[0] = pixelCount(plan.lattice.n[0], scale);
-  plan.pixels[1] = pixelCount(plan.lattice.n[1], scale);
-  if (plan.pixels[0] < 1 || plan.pixels[1] < 1)
-  {
-    m << "PixelSize " << o.pixelSize << " is larger than the VolumeOfInterest: no pixel";
-    st.error = m.str();
-    return st;
-  }
-  plan.thickness = static_cast<double>(plan.lattice.n[2]) * o.voxelSize;
-  plan.imageOrigin[0] = voi[0] + 0.5 * o.pixelSize;
-  plan.imageOrigin[1] = voi[2] + 0.5 * o.pixelSize;
-  plan.imageOrigin[2] = voi[4] + 0.5 * plan.thickness;
   // The kernel reaches 4σ: wider than the image it only averages the mirrored image with itself,
   // at a cost (and weight vector) growing with σ without bound.
   const double widestSide = static_cast<double>(std::max(plan.pixels[0], plan.pixels[1]));
@@ -234,23 +203,18 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 namespace
 {
 // Voxel columns that bin into px, grown by R and clipped to the voxel image.
-ColumnRange binnedVoxels(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px, std::int64_t R)
+ColumnRange binnedVoxels(const PLIPlan& plan, const PixelRange& px, std::int64_t R)
 {
-  const double scale = o.voxelSize / o.pixelSize;
-  std::int64_t a, b, c, d, tmp;
-  voxelsOfPixel(px.i0, scale, plan.lattice.n[0], a, tmp);
-  voxelsOfPixel(px.i1 - 1, scale, plan.lattice.n[0], tmp, b);
-  voxelsOfPixel(px.j0, scale, plan.lattice.n[1], c, tmp);
-  voxelsOfPixel(px.j1 - 1, scale, plan.lattice.n[1], tmp, d);
+  const ColumnRange v = voxelColumnsOf(plan, px);
   // The mirror at the global edge only reads inside [0, n); clipping keeps that exact.
-  return ColumnRange{ std::max<std::int64_t>(0, a - R), std::min(plan.lattice.n[0], b + R),
-    std::max<std::int64_t>(0, c - R), std::min(plan.lattice.n[1], d + R) };
+  return ColumnRange{ std::max<std::int64_t>(0, v.i0 - R), std::min(plan.lattice.n[0], v.i1 + R),
+    std::max<std::int64_t>(0, v.j0 - R), std::min(plan.lattice.n[1], v.j1 + R) };
 }
 } // namespace
 
-ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
+ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions&, const PixelRange& px)
 {
-  return binnedVoxels(plan, o, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
+  return binnedVoxels(plan, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
 }
 
 double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
@@ -339,9 +303,9 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const double scale = o.voxelSize / o.pixelSize;
+  const double scale = plan.scale();
   // Blur only the voxels that bin into the pixels (the halo was simulated for the kernel).
-  const ColumnRange needed = binnedVoxels(plan, o, px, 0);
+  const ColumnRange needed = binnedVoxels(plan, px, 0);
   for (std::size_t v = 0; v < voxelStacks.size(); ++v)
   {
     Stack blurred, pix;

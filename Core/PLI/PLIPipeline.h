@@ -6,6 +6,7 @@
 
 #include "Model/FiberModel.h"
 #include "PLI/PLITypes.h"
+#include "Section/SectionPlan.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -50,23 +51,20 @@ struct PLIOptions
   int tileSize = 64;
 };
 
-/// The integer codes of the enumeration properties (Plugin/PLISimulation.xml) → the Core enums:
-/// "" or an error naming the property and the value; other codes are refused, never cast.
+/// The integer code of the Interpolation property (Plugin/PLISimulation.xml) → the Core enum:
+/// "" or an error naming the property and the value; other codes are refused, never cast. (The
+/// TiltConvention code: Section/TiltConvention.h.)
 std::string interpolationFromCode(int code, Interp& interpolation); ///< 0 nearest, 1 linear, 2 Slerp
-std::string tiltConventionFromCode(int code, TiltConvention& convention); ///< 0 physical, 1 fastPLI
 
-/// What RequestInformation needs, computed without voxelising (§3.1, §5.2).
-struct PLIPlan
+/// What RequestInformation needs, computed without voxelising: the section (lattice, pixel grid,
+/// image geometry: §3.1, §5.2, planned by Section/SectionPlan.h), the tissue and the views.
+struct PLIPlan : SectionPlan
 {
-  Lattice lattice;
   TissueSpec tissue;
   std::vector<View> views;          ///< untilted, then every tilt angle × every azimuth (angle-major)
   std::vector<double> tiltDeg, azimuthDeg; ///< per tilted view: in-tissue θ_t and φ_t, degrees
   std::vector<double> rho;          ///< radians
   std::vector<double> rhoDeg;       ///< the same in degrees, exactly as given (field data)
-  std::int64_t pixels[2] = { 0, 0 }; ///< whole image n_px × n_py
-  double imageOrigin[3] = { 0, 0, 0 };
-  double thickness = 0.0;           ///< n_z·VoxelSize, µm
   double tiltInTissue = 0.0;        ///< largest θ_t, radians (0 = untilted only)
   double sigmaVox = 0.0;            ///< blur σ in voxels
   std::size_t bytesPerVoxel = 0;    ///< tile buffer bytes per voxel (§3.4)

@@ -1,6 +1,12 @@
-/// PLITypes: the value types shared by the 3D-PLI simulation (docs/pli-simulation.md §7.2). Units: µm,
-/// nm for the wavelength, 1/mm for absorption, radians inside Core.
+/// PLITypes: the value types shared by the 3D-PLI simulation (docs/pli-simulation.md §7.2); the
+/// lattice, the pixel and column ranges, the radius taper and the tilt convention are those of
+/// Core/Section. Units: µm, nm for the wavelength, 1/mm for absorption, radians inside Core.
 #pragma once
+
+#include "Section/LinkTable.h"
+#include "Section/PixelGrid.h"
+#include "Section/SectionLattice.h"
+#include "Section/TiltConvention.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -29,26 +35,12 @@ struct Layer
   AxisModel model = AxisModel::Parallel;
 };
 
-/// Local radius of a link (§3.3): Linear taper (fastPLI) or the collision capsule radius max(rP, rQ).
-enum class RadiusModel : std::uint8_t
-{
-  Linear,
-  Max
-};
-
 /// Optic-axis interpolation (§4.5).
 enum class Interp : std::uint8_t
 {
   NN,
   Lerp,
   Slerp
-};
-
-/// How a tissue vector is seen by the tilted beam (§4.3): Physical v_b = Rᵀv, FastPLI v_b = Rv.
-enum class TiltConvention : std::uint8_t
-{
-  Physical,
-  FastPLI
 };
 
 /// Ray step lengths (§4.4).
@@ -80,14 +72,6 @@ struct TissueSpec
   int slotOf(int bundleId) const;
 };
 
-/// Voxel lattice (§3.1): voxel (i,j,k) is [i,i+1)×[j,j+1)×[k,k+1) in voxel units from origin (µm).
-struct Lattice
-{
-  double origin[3] = { 0.0, 0.0, 0.0 };
-  double voxel = 1.0;
-  std::int64_t n[3] = { 0, 0, 0 };
-};
-
 /// One view (§4.3): in-tissue tilt θ_t and tilt azimuth φ_t, radians. (0, 0) = untilted.
 /// stretch: 1 = the image registered onto the sample's pixel grid (every ray crosses the section's
 /// mid-plane at its column centre); s > 1 = the tilted sensor (§4.6): the ray of sensor column m
@@ -114,15 +98,6 @@ struct SimParams
   int tile = 64;            ///< B of the column tiles (§3.5)
   int threads = 0;          ///< 0 = all cores
 };
-
-/// Half-open range of global voxel columns [i0,i1)×[j0,j1), or of pixels for PixelRange.
-struct ColumnRange
-{
-  std::int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-  std::int64_t nx() const { return i1 - i0; }
-  std::int64_t ny() const { return j1 - j0; }
-};
-using PixelRange = ColumnRange;
 
 /// Image stack of one view: value of column/pixel (x0 + i, y0 + j) and rotation k at
 /// data[(j·nx + i)·nrho + k] (x fastest, §4.4).

@@ -35,7 +35,7 @@ std::int64_t RayMarcher::lateralReach(std::int64_t nz, double theta)
   return theta == 0.0 ? 0 : static_cast<std::int64_t>(std::ceil(0.5 * static_cast<double>(nz) * std::tan(theta)));
 }
 
-RayMarcher::RayMarcher(const Lattice& lattice, const SimParams& params, const View& view, const LabelProps& props)
+RayMarcher::RayMarcher(const SectionLattice& lattice, const SimParams& params, const View& view, const LabelProps& props)
   : lat_(lattice), par_(params), props_(props)
 {
   const double th = view.theta, ph = view.phi;

@@ -27,13 +27,13 @@ struct LabelProps
 class RayMarcher
 {
 public:
-  RayMarcher(const Lattice& lattice, const SimParams& params, const View& view, const LabelProps& props);
+  RayMarcher(const SectionLattice& lattice, const SimParams& params, const View& view, const LabelProps& props);
 
   /// Lateral reach of the ray around its column centre, voxels (ceil((n_z/2)·tan θ_t)).
   static std::int64_t lateralReach(std::int64_t nz, double theta);
   std::int64_t numberOfSteps() const { return static_cast<std::int64_t>(len_.size()); }
 
-  /// Lattice position (voxel units, lateral) where the ray of column (i, j) crosses the section's
+  /// SectionLattice position (voxel units, lateral) where the ray of column (i, j) crosses the section's
   /// mid-plane: the column centre, or on the tilted sensor its stretched image (View::stretch).
   void midPlanePoint(std::int64_t i, std::int64_t j, double out[2]) const;
 
@@ -46,7 +46,7 @@ public:
   void march(const TissueBlock& block, std::int64_t i, std::int64_t j, const ColumnRange& clamp, double* out) const;
 
 private:
-  Lattice lat_;
+  SectionLattice lat_;
   SimParams par_;
   LabelProps props_;
   bool tilted_ = false;

@@ -40,7 +40,7 @@ ColumnRange grow(const ColumnRange& c, std::int64_t h)
 }
 } // namespace
 
-std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, Interp interp)
+std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& views, Interp interp)
 {
   double th = 0.0;
   for (const View& v : views)
@@ -51,7 +51,7 @@ std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, In
   return interp == Interp::NN ? 0 : 1;
 }
 
-double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
   const ColumnRange& cols)
 {
   const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
@@ -68,7 +68,7 @@ double estimateSimulationBytes(const Lattice& lat, const SimParams& par, const s
   return threads * tile + outBytes;
 }
 
-std::string validateSimulation(const Lattice& lat, const SimParams& par, const std::vector<View>& views,
+std::string validateSimulation(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
   const ColumnRange& cols)
 {
   std::ostringstream m;
@@ -111,7 +111,7 @@ std::string validateSimulation(const Lattice& lat, const SimParams& par, const s
   return m.str();
 }
 
-SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattice& lat,
+SimResult simulate(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lat,
   const SimParams& par, const std::vector<View>& views, const ColumnRange& cols,
   std::vector<Stack>& out, const ProgressFn& progress)
 {
@@ -137,8 +137,8 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattic
       std::max(region.j1, r.j1) };
   }
   LinkTable table;
-  buildLinkTable(model, spec, lat, region, B, table);
-  res.estimatedBytes += table.links.size() * sizeof(LinkTable::Link);
+  tissueLinkTable(model, spec, lat, region, B, table);
+  res.estimatedBytes += table.links.size() * sizeof(SectionLink);
   if (table.zeroLengthLinks > 0)
     res.status.warnings.push_back(std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
   if (table.unknownBundleFibers > 0)

@@ -32,22 +32,22 @@ struct SimResult
 };
 
 /// Tilt halo of §3.5 for these views: ceil((n_z/2)·tan θ_max) + 2 (0/1 for untilted views).
-std::int64_t tiltHalo(const Lattice& lattice, const std::vector<View>& views, Interp interp);
+std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& views, Interp interp);
 
 /// Memory estimate (bytes) of simulate() for these arguments, without allocating.
-double estimateSimulationBytes(const Lattice& lattice, const SimParams& params,
+double estimateSimulationBytes(const SectionLattice& lattice, const SimParams& params,
   const std::vector<View>& views, const ColumnRange& cols);
 
 /// Empty string when lattice/params/views/cols can be simulated, else a message naming the option
 /// (also when estimateSimulationBytes exceeds the memory budget, Util/MemoryBudget.h).
-std::string validateSimulation(const Lattice& lattice, const SimParams& params,
+std::string validateSimulation(const SectionLattice& lattice, const SimParams& params,
   const std::vector<View>& views, const ColumnRange& cols);
 
 /// Voxel-resolution intensities I_v(i, j, k) for the columns `cols` (global voxel indices; they may
 /// lie outside [0, n) laterally) and every view: out[v] covers cols, nrho = params.rho.size().
 /// Each column is computed by the same operations for any thread count, tile size or split, so
 /// results are bitwise identical. progress is called between tile batches.
-SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Lattice& lattice,
+SimResult simulate(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
   const SimParams& params, const std::vector<View>& views, const ColumnRange& cols,
   std::vector<Stack>& out, const ProgressFn& progress = {});
 

@@ -17,7 +17,7 @@ Status tissueBox(const PLIPlan& plan, const double box[6], VoxelBox& out)
 {
   Status st;
   out = VoxelBox();
-  const Lattice& lat = plan.lattice;
+  const SectionLattice& lat = plan.lattice;
   const bool whole = box[0] > box[1] && box[2] > box[3] && box[4] > box[5];
   const char* axisName[3] = { "x", "y", "z" };
   for (int a = 0; a < 3; ++a)
@@ -97,7 +97,7 @@ Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptio
   const std::int64_t B = tileSide(options);
   const ColumnRange cols{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] };
   LinkTable table;
-  buildLinkTable(model, plan.tissue, plan.lattice, cols, B, table);
+  tissueLinkTable(model, plan.tissue, plan.lattice, cols, B, table);
   const std::size_t n = static_cast<std::size_t>(box.count());
   out.label.resize(n);
   out.axis.resize(3 * n);

@@ -1,7 +1,7 @@
 /// TissueExport: the voxelised tissue of a sub-volume as whole arrays (label and optic axis per
 /// voxel), for looking at what a simulation sees. It runs exactly the simulation's column code
-/// (buildLinkTable + voxeliseBlock of Voxeliser.h) on the columns of the box, so every voxel equals
-/// the one the rays read; there is no second voxeliser.
+/// (tissueLinkTable + voxeliseBlock of Voxeliser.h) on the columns of the box, so every voxel
+/// equals the one the rays read; there is no second voxeliser.
 #pragma once
 
 #include "Model/FiberModel.h"

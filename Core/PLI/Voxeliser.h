@@ -5,6 +5,7 @@
 
 #include "Model/FiberModel.h"
 #include "PLI/PLITypes.h"
+#include "Section/LinkTable.h"
 
 #include <cstdint>
 #include <vector>
@@ -14,28 +15,10 @@ namespace fiberpli
 namespace pli
 {
 
-/// All links that can reach a lateral region, in the global order g of §3.3 (bundle slot, fiber
-/// index, link index), in voxel units, with a 2-D bin grid over (x, y) for candidate look-up.
-struct LinkTable
-{
-  struct Link
-  {
-    Vec3 p, q;          ///< voxel units
-    double rp = 0, rq = 0;
-    std::int32_t slot = 0;
-    std::int32_t fiber = 0; ///< index in FiberModel::fibers
-  };
-  std::vector<Link> links;
-  std::vector<double> maxScale; ///< S of §3.3 per bundle slot
-  std::int64_t binSize = 64, bx0 = 0, by0 = 0, nbx = 0, nby = 0;
-  std::vector<std::vector<std::uint32_t>> bins;
-  int zeroLengthLinks = 0;
-  int unknownBundleFibers = 0;
-};
-
-/// Collects the links whose grown bounding box meets the columns `region` (global voxel indices)
-/// and the slab z ∈ [0, n_z). Fibers of bundles without a slot in spec are skipped and counted.
-void buildLinkTable(const FiberModel& model, const TissueSpec& spec, const Lattice& lattice,
+/// The link table of the tissue (Section/LinkTable.h) for the columns `region`: the slots are the
+/// bundles of spec (fibers of other bundles are skipped and counted), S of a slot its largest layer
+/// scale (§3.3), the radius taper spec.radius.
+void tissueLinkTable(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
   const ColumnRange& region, std::int64_t binSize, LinkTable& table);
 
 /// Voxel data of the columns `cols` × [0, n_z) (global indices), z fastest in memory.
@@ -70,8 +53,8 @@ struct VoxeliseStats
   std::int64_t labelled = 0;   ///< voxels with label > 0 in the block
 };
 
-/// Fills `block` (already reset to its columns) from the candidate links: ownership by the total
-/// order (d2, larger g wins ties) of §3.3, then the optic axes (p: link direction, r: from the axis
+/// Fills `block` (already reset to its columns) from the candidate links: ownership by the rule of
+/// Section/LinkTable.h (§3.3), then the optic axes (p: link direction, r: from the axis
 /// to the voxel centre, b: none). With LateralOutside::Background, voxels outside the lateral
 /// lattice stay label 0. The result does not depend on the block split or the link order.
 /// `reach`, when given, lists per depth k the largest lateral distance (voxels) outside `core`
@@ -82,11 +65,11 @@ struct HaloShape
   ColumnRange core;
   std::vector<std::int64_t> reach;
 };
-void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const Lattice& lattice,
+void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const SectionLattice& lattice,
   LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats, const HaloShape* shape = nullptr);
 
 /// Convenience for tests and field export: links for `cols`, then voxeliseBlock.
-VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const Lattice& lattice,
+VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
   const ColumnRange& cols, TissueBlock& block, LateralOutside lateral = LateralOutside::SampleFibers);
 
 } // namespace pli

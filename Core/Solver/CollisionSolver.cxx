@@ -2,6 +2,7 @@
 
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
+#include "Solver/Decomposition.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -9,6 +10,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
@@ -82,15 +85,24 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-double medianRadius(const FiberModel& model)
+// Median point radius of the fibers with >= 2 points; distributed (comm): of the owned fibers
+// (owned non-null) of all ranks, exactly the same value.
+double medianRadius(const FiberModel& model, SolverComm* comm = nullptr, const std::vector<char>* owned = nullptr)
 {
   std::vector<double> r;
-  for (const Fiber& f : model.fibers)
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
-    if (f.points.size() >= 2)
+    const Fiber& fib = model.fibers[f];
+    if (fib.points.size() >= 2 && !(owned && !(*owned)[f]))
     {
-      r.insert(r.end(), f.radii.begin(), f.radii.end());
+      r.insert(r.end(), fib.radii.begin(), fib.radii.end());
     }
+  }
+  if (comm)
+  {
+    std::vector<std::int64_t> n{ static_cast<std::int64_t>(r.size()) };
+    comm->sum(n);
+    return globalNthValue(r, n[0] / 2, *comm);
   }
   if (r.empty())
   {
@@ -212,32 +224,118 @@ public:
   FiberModel& model_;
   const CollisionSolverOptions& o_;
   int threads_;
-  double segmentLength_ = -1.0;
-  double vMax_ = 0.0;
-  std::vector<FiberPointState> state_;
-  std::vector<char> active_; // fiber has >= 2 distinct points: solved
+  CollisionSolverState st_; // what a step hands to the next (header); the rest is rebuilt per step
   std::vector<CapsuleLink> links_;
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
   std::vector<PairPush> push_;
   std::vector<Vec3> force_;
   CollisionGrid grid_;
-  // Periodic cell [ours]: fibers closed through it, their closure vector, the image-aware detector.
-  std::vector<char> closed_;
-  std::vector<Vec3> closure_;
-  PeriodicPairs periodic_;
+  PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
-  double scale_ = 1.0; // capsule radii relative to the fibers' radii (radius growth)
+  // Distributed run (docs/solver.md §13); comm_ null: this process alone, every fiber owned.
+  SolverComm* comm_ = nullptr;
+  std::vector<char> owned_; // per fiber: 1 owned, 0 halo (a partner only)
+  SlabLayout layout_;
+  double haloReach_ = 0.0; // fibers closer than this along the slab axis are exchanged
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0;
+
+  RankFibers rankFibers() { return RankFibers{ model_, st_, owned_ }; }
+
+  // The slabs, the halo reach and every fiber to its owner (the run's first exchange).
+  void startDistribution()
+  {
+    layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
+    const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
+    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes up to one more median
+    // radius (<= ρmax); a relative margin covers the rounding of the distances.
+    haloReach_ = (3.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    RankFibers r = rankFibers();
+    std::vector<int> dest(r.size());
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      dest[f] = layout_.owner(model_.fibers[f]);
+    }
+    redistribute(r, dest, *comm_);
+  }
+  void resetTraffic()
+  {
+    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = 0;
+  }
+
+  // Before a detection: fibers whose slab changed go to their new owner, then every rank gets
+  // the halo of its owned fibers (current positions, so it is complete for this step).
+  void exchangeFibers()
+  {
+    RankFibers r = rankFibers();
+    dropHalo(r);
+    std::vector<int> dest(r.size());
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      dest[f] = layout_.owner(model_.fibers[f]);
+    }
+    migrations_ += redistribute(r, dest, *comm_).fibers;
+    haloBytes_ += addHalo(r, layout_, o_.periodicCell, haloReach_, *comm_).bytes;
+    ++haloExchanges_;
+    std::size_t halo = 0, all = 0;
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      all += model_.fibers[f].size();
+      halo += owned_[f] ? 0 : model_.fibers[f].size();
+    }
+    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
+    peakRankPoints_ = std::max(peakRankPoints_, all);
+  }
+
+  // Collisions and links of the whole model: a pair counts on the rank owning its first link.
+  struct Counts
+  {
+    std::size_t pairs = 0;
+    std::size_t links = 0;
+    bool changed = false;
+  };
+  Counts globalCounts(bool changed) const
+  {
+    if (!comm_)
+    {
+      return { pairs_.size(), links_.size(), changed };
+    }
+    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
+    for (const CapsulePair& p : pairs_)
+      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
+    for (const CapsuleLink& l : links_)
+      v[1] += owned_[l.fiber] ? 1 : 0;
+    comm_->sum(v);
+    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+  }
+
+  double median() { return medianRadius(model_, comm_, comm_ ? &owned_ : nullptr); }
+
+  // Σ π ρ² · link length of the owned fibers of all ranks, the same bits for any split.
+  double fiberVolume()
+  {
+    ExactSum sum;
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+    {
+      const Fiber& fib = model_.fibers[f];
+      for (std::size_t k = 0; owned_[f] && k + 1 < fib.size(); ++k)
+      {
+        const double rho = fib.linkRadius(k);
+        sum.add(M_PI * rho * rho * distance(fib.points[k], fib.points[k + 1]));
+      }
+    }
+    return sum.total(comm_);
+  }
 
   bool periodic() const { return o_.periodicCell.enabled(); }
 
   // The last point of a closed fiber is its first point shifted by the closure, exactly.
   void close(std::size_t f)
   {
-    if (periodic() && closed_[f])
+    if (periodic() && st_.closed[f])
     {
       Fiber& fib = model_.fibers[f];
-      fib.points.back() = fib.points.front() + closure_[f];
+      fib.points.back() = fib.points.front() + st_.closure[f];
     }
   }
 
@@ -250,15 +348,15 @@ public:
     for (std::int64_t f = 0; f < nf; ++f)
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
-      if (!active_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
       {
         continue;
       }
-      FiberPointState& st = state_[static_cast<std::size_t>(f)];
-      const bool closed = periodic() && closed_[static_cast<std::size_t>(f)];
-      const Vec3* closure = closed ? &closure_[static_cast<std::size_t>(f)] : nullptr;
-      bool c = controlSegmentLength(fib, st, segmentLength_, closed ? 3 : 2);
-      c = controlCurvature(fib, o_.minCurvatureRadius, vMax_, o_.endPoints, closure) || c;
+      FiberPointState& st = st_.points[static_cast<std::size_t>(f)];
+      const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
+      const Vec3* closure = closed ? &st_.closure[static_cast<std::size_t>(f)] : nullptr;
+      bool c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2);
+      c = controlCurvature(fib, o_.minCurvatureRadius, st_.vMax, o_.endPoints, closure) || c;
       close(static_cast<std::size_t>(f));
       changed |= c ? 1 : 0;
     }
@@ -268,21 +366,26 @@ public:
   // The state shape control would leave untouched (used after an abort, where it did not run).
   bool shapeWithinLimits() const
   {
-    const double lMin = segmentLength_ * (2.0 / 3.0);
-    const double lMax = segmentLength_ * (4.0 / 3.0);
+    const bool ok = localShapeWithinLimits();
+    return comm_ ? !anyRank(*comm_, !ok) : ok;
+  }
+  bool localShapeWithinLimits() const
+  {
+    const double lMin = st_.segmentLength * (2.0 / 3.0);
+    const double lMax = st_.segmentLength * (4.0 / 3.0);
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      if (!active_[f])
+      if (!st_.active[f] || !owned_[f])
       {
         continue;
       }
-      const bool closed = periodic() && closed_[f];
-      if (!curvatureOk(fib, o_.minCurvatureRadius, closed ? &closure_[f] : nullptr))
+      const bool closed = periodic() && st_.closed[f];
+      if (!curvatureOk(fib, o_.minCurvatureRadius, closed ? &st_.closure[f] : nullptr))
       {
         return false;
       }
-      for (std::size_t i = 0; segmentLength_ > 0.0 && i + 1 < fib.size(); ++i)
+      for (std::size_t i = 0; st_.segmentLength > 0.0 && i + 1 < fib.size(); ++i)
       {
         const double len = distance(fib.points[i], fib.points[i + 1]);
         if (len > lMax || (len < lMin && fib.size() > 2))
@@ -298,8 +401,22 @@ public:
   // than their limit (packingPairBound or the memory budget); detectError_ says why.
   bool detect()
   {
-    buildLinks(model_, &active_, threads_, links_, &pointOffset_, periodic() ? &closed_ : nullptr, scale_);
-    return findBoundedPairs();
+    if (comm_)
+    {
+      exchangeFibers();
+    }
+    buildLinks(model_, &st_.active, threads_, links_, &pointOffset_, periodic() ? &st_.closed : nullptr, st_.scale);
+    const bool found = findBoundedPairs();
+    if (!comm_)
+    {
+      return found;
+    }
+    // Pairs of two halo links move nothing here (their owners find them too).
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
+                   [this](const CapsulePair& p) { return !owned_[links_[p.a].fiber] && !owned_[links_[p.b].fiber]; }),
+      pairs_.end());
+    detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
+    return detectError_.empty();
   }
 
   bool findBoundedPairs()
@@ -331,10 +448,7 @@ public:
         << " links collide (MinimumGap " << o_.minimumGap << ")";
     if (limit == bound)
     {
-      double rhoMax = 0.0;
-      for (const CapsuleLink& l : links_)
-        rhoMax = std::max(rhoMax, l.rho);
-      msg << ", more than any packing of fibers of radius up to " << rhoMax << " um can have: ";
+      msg << ", more than any packing of fibers of radius up to " << largestRadius(model_) << " um can have: ";
       msg << "the fibers lie (nearly) on top of each other; spread them or lower the radii";
     }
     else
@@ -354,7 +468,7 @@ public:
     if (l.k > 0)
       return base + l.k - 1;
     const std::size_t n = model_.fibers[l.fiber].size();
-    return periodic() && closed_[l.fiber] ? base + n - 2 : SIZE_MAX;
+    return periodic() && st_.closed[l.fiber] ? base + n - 2 : SIZE_MAX;
   }
   std::size_t outerAfter(const CapsuleLink& l) const
   {
@@ -362,7 +476,7 @@ public:
     const std::size_t n = model_.fibers[l.fiber].size();
     if (l.k + 2 < n)
       return base + l.k + 2;
-    return periodic() && closed_[l.fiber] ? base + 1 : SIZE_MAX;
+    return periodic() && st_.closed[l.fiber] ? base + 1 : SIZE_MAX;
   }
 
   // Largest factor s <= 1 with δ >= s·(ρa + ρb) + g for every colliding pair.
@@ -373,7 +487,7 @@ public:
     {
       f = std::min(f, std::max(0.0, p.distance - o_.minimumGap) / (links_[p.a].rho + links_[p.b].rho));
     }
-    return f;
+    return comm_ ? minOverRanks(*comm_, f) : f;
   }
 
   double maxOverlap() const
@@ -383,7 +497,7 @@ public:
     {
       m = std::max(m, links_[p.a].rho + links_[p.b].rho + o_.minimumGap - p.distance);
     }
-    return m;
+    return comm_ ? maxOverRanks(*comm_, m) : m;
   }
 
   // §4.4: pushes in parallel into their own slots, summed serially in pair order, then moved per
@@ -441,20 +555,20 @@ public:
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
-    const double vMax = vMax_;
+    const double vMax = st_.vMax;
     const EndPointRule rule = o_.endPoints;
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::int64_t f = 0; f < nf; ++f)
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
       const std::size_t n = fib.points.size();
-      if (!active_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
       {
         continue;
       }
-      std::vector<Vec3>& vel = state_[static_cast<std::size_t>(f)].velocity;
+      std::vector<Vec3>& vel = st_.points[static_cast<std::size_t>(f)].velocity;
       Vec3* force = force_.data() + pointOffset_[static_cast<std::size_t>(f)];
-      const bool closed = periodic() && closed_[static_cast<std::size_t>(f)];
+      const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
       if (closed)
       {
         // First and last point are one point: both get the sum of their pushes.
@@ -492,14 +606,14 @@ public:
 void prepareFibers(Solver& s, std::vector<std::string>& warnings)
 {
   const std::size_t nf = s.model_.fibers.size();
-  s.state_.resize(nf);
-  s.active_.assign(nf, 1);
+  s.st_.points.resize(nf);
+  s.st_.active.assign(nf, 1);
   std::size_t repeated = 0;
   std::size_t tooShort = 0;
   for (std::size_t f = 0; f < nf; ++f)
   {
     Fiber& fib = s.model_.fibers[f];
-    FiberPointState& st = s.state_[f];
+    FiberPointState& st = s.st_.points[f];
     st.source.resize(fib.points.size());
     for (std::size_t i = 0; i < fib.points.size(); ++i)
     {
@@ -527,8 +641,15 @@ void prepareFibers(Solver& s, std::vector<std::string>& warnings)
     if (degenerate)
     {
       ++tooShort;
-      s.active_[f] = 0;
+      s.st_.active[f] = 0;
     }
+  }
+  if (s.comm_) // the warnings count all ranks
+  {
+    std::vector<std::int64_t> n{ static_cast<std::int64_t>(repeated), static_cast<std::int64_t>(tooShort) };
+    s.comm_->sum(n);
+    repeated = static_cast<std::size_t>(n[0]);
+    tooShort = static_cast<std::size_t>(n[1]);
   }
   if (repeated > 0)
   {
@@ -545,8 +666,8 @@ void prepareFibers(Solver& s, std::vector<std::string>& warnings)
 void prepareClosures(Solver& s)
 {
   const std::size_t nf = s.model_.fibers.size();
-  s.closed_.assign(nf, 0);
-  s.closure_.assign(nf, Vec3{});
+  s.st_.closed.assign(nf, 0);
+  s.st_.closure.assign(nf, Vec3{});
   if (!s.periodic())
   {
     return;
@@ -554,7 +675,7 @@ void prepareClosures(Solver& s)
   for (std::size_t f = 0; f < nf; ++f)
   {
     const Fiber& fib = s.model_.fibers[f];
-    s.closed_[f] = s.active_[f] && fib.size() >= 3 && isClosedFiber(fib, s.o_.periodicCell, s.closure_[f]);
+    s.st_.closed[f] = s.st_.active[f] && isClosedFiber(fib, s.o_.periodicCell, s.st_.closure[f]);
     s.close(f);
   }
 }
@@ -577,7 +698,7 @@ double smallestGap(Solver& s, double probe)
   {
     if (!s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty())
     {
-      return probe;
+      near.clear(); // the cell is too small for this probe: no gap below it is known
     }
   }
   else
@@ -589,13 +710,13 @@ double smallestGap(Solver& s, double probe)
   {
     gap = std::min(gap, p.distance - s.links_[p.a].rho - s.links_[p.b].rho);
   }
-  return gap;
+  return s.comm_ ? minOverRanks(*s.comm_, gap) : gap;
 }
 
 // L̄ (§5.1): 0 = automatic, 2 × median radius (the fastPLI author's choice); < 0 = off.
-double resolveSegmentLength(const FiberModel& model, const CollisionSolverOptions& o)
+double resolveSegmentLength(Solver& s, const CollisionSolverOptions& o)
 {
-  const double l = o.segmentLength == 0.0 ? 2.0 * medianRadius(model) : o.segmentLength;
+  const double l = o.segmentLength == 0.0 ? 2.0 * s.median() : o.segmentLength;
   return l == 0.0 ? -1.0 : l; // no fibers to take a radius from
 }
 
@@ -603,17 +724,21 @@ double resolveSegmentLength(const FiberModel& model, const CollisionSolverOption
 void configure(Solver& s, std::vector<std::string>& warnings)
 {
   const std::size_t nf = s.model_.fibers.size();
-  const double rMedian = medianRadius(s.model_);
+  const double rMedian = s.median();
   double rMin = HUGE_VAL;
   for (std::size_t f = 0; f < nf; ++f)
   {
-    if (s.active_[f])
+    if (s.st_.active[f])
     {
       for (double r : s.model_.fibers[f].radii)
       {
         rMin = std::min(rMin, r);
       }
     }
+  }
+  if (s.comm_)
+  {
+    rMin = minOverRanks(*s.comm_, rMin);
   }
   if (rMin == HUGE_VAL)
   {
@@ -626,18 +751,12 @@ void configure(Solver& s, std::vector<std::string>& warnings)
       ": every fiber moves at most " + std::to_string(s.o_.maxDisplacement) +
       " x this radius per step (slow)");
   }
-  s.vMax_ = s.o_.maxDisplacement * rMin;
+  s.st_.vMax = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.
-  double rMax = 0.0;
-  for (std::size_t f = 0; f < nf; ++f)
+  double rMax = largestRadius(s.model_);
+  if (s.comm_)
   {
-    if (s.active_[f])
-    {
-      for (double r : s.model_.fibers[f].radii)
-      {
-        rMax = std::max(rMax, r);
-      }
-    }
+    rMax = maxOverRanks(*s.comm_, rMax);
   }
   if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
   {
@@ -645,15 +764,15 @@ void configure(Solver& s, std::vector<std::string>& warnings)
       " is below the largest radius " + std::to_string(rMax) +
       ": a tube bent that tightly intersects itself on the inside");
   }
-  if (s.segmentLength_ > 0.0 && s.o_.minCurvatureRadius > 0.0 &&
-    s.o_.minCurvatureRadius < s.segmentLength_ / std::sqrt(3.0))
+  if (s.st_.segmentLength > 0.0 && s.o_.minCurvatureRadius > 0.0 &&
+    s.o_.minCurvatureRadius < s.st_.segmentLength / std::sqrt(3.0))
   {
     warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
       " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
   }
-  if (s.segmentLength_ > 0.0 && s.segmentLength_ < 0.25 * rMedian)
+  if (s.st_.segmentLength > 0.0 && s.st_.segmentLength < 0.25 * rMedian)
   {
-    warnings.push_back("SegmentLength " + std::to_string(s.segmentLength_) +
+    warnings.push_back("SegmentLength " + std::to_string(s.st_.segmentLength) +
       " is below 1/4 of the median radius: many points, slow and memory hungry");
   }
 }
@@ -672,15 +791,15 @@ std::string checkMemory(const Solver& s)
     }
     points += static_cast<double>(f.size());
   }
-  const double estimate = s.segmentLength_ > 0.0 ? points + length / (s.segmentLength_ * (2.0 / 3.0)) : points;
+  const double estimate = s.st_.segmentLength > 0.0 ? points + length / (s.st_.segmentLength * (2.0 / 3.0)) : points;
   // Colliding pairs per link at the start of a dense run: a partner fiber crosses a link's reach
   // of ~4 radii with 1 + 4ρ/L̄ of its links; 2 partners per link at the paper's density (measured:
   // 5 pairs per link at L̄ = 2.5ρ, 40 at L̄ = ρ/8).
-  const double meanLink = s.segmentLength_ > 0.0 ? s.segmentLength_ : length / std::max(1.0, points);
+  const double meanLink = s.st_.segmentLength > 0.0 ? s.st_.segmentLength : length / std::max(1.0, points);
   const double pairsPerLink = meanLink > 0.0 ? 2.0 * (1.0 + 4.0 * medianRadius(s.model_) / meanLink) : 2.0;
   const double bytes = estimate * (bytesPerPoint() + pairsPerLink * bytesPerPair());
   std::ostringstream what;
-  what << "SegmentLength " << s.segmentLength_ << " with a total fiber length of " << length
+  what << "SegmentLength " << s.st_.segmentLength << " with a total fiber length of " << length
        << " (up to " << estimate << " points)";
   const std::string problem = checkMemoryBudget(bytes, what.str());
   return problem.empty() ? problem : problem + "; raise SegmentLength";
@@ -689,7 +808,7 @@ std::string checkMemory(const Solver& s)
 // Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
 // kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
 // the colliding pairs grow with the square of the copies or the gap.
-std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o)
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
 {
   std::ostringstream msg;
   const DuplicateStacks d = findDuplicateStacks(model);
@@ -700,10 +819,11 @@ std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOpti
         << " copies of a fiber are separated): remove the duplicates";
     return msg.str();
   }
-  double rhoMax = 0.0;
-  for (const Fiber& f : model.fibers)
-    for (double r : f.radii)
-      rhoMax = std::max(rhoMax, r);
+  double rhoMax = largestRadius(model);
+  if (comm)
+  {
+    rhoMax = maxOverRanks(*comm, rhoMax);
+  }
   if (o.minimumGap > kMaxGapRadii * rhoMax)
   {
     msg << "MinimumGap is " << o.minimumGap << ", more than " << kMaxGapRadii
@@ -773,180 +893,418 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   return msg.str();
 }
 
-CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& o,
-  const ProgressFn& progress, const StepObserver& observer)
+namespace
 {
-  CollisionSolverResult result;
-  result.error = validateCollisionSolverOptions(o);
-  if (result.error.empty())
-  {
-    result.error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
-  }
-  if (!result.error.empty())
-  {
-    return result;
-  }
-  const int threads = resolveThreadCount(o.numberOfThreads);
-  Solver s(model, o, threads);
+// [ours] Radius growth per step while the deepest overlap is below 5 % of the median radius, and
+// the move steps without growth after which growth gives up.
+constexpr double kGrowth = 0.002;
+constexpr int kGrowthStall = 2000;
+} // namespace
 
-  const std::size_t nf = model.fibers.size();
-  // Before anything touches the model: a refused run leaves it unchanged.
-  s.segmentLength_ = resolveSegmentLength(model, o);
-  result.error = checkMemory(s);
-  if (result.error.empty())
+struct CollisionSolverRun::Impl
+{
+  Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob, SolverComm* c)
+    : model(m), options(o), progress(p), observer(ob), s(m, options, 1)
   {
-    result.error = checkStacksAndGap(model, o);
+    s.comm_ = c;
   }
-  if (result.error.empty() && !s.periodic())
+
+  enum class Phase
+  {
+    Created, ///< start() or resume() not called yet
+    Running, ///< step() goes on
+    Ended,   ///< the loop stopped: finish() makes the result
+    Failed,  ///< result.error is set and final
+    Finished ///< finish() made the result
+  };
+
+  FiberModel& model;
+  const CollisionSolverOptions options;
+  ProgressFn progress;
+  StepObserver observer;
+  Solver s;
+  FiberModel input; // periodic or distributed runs: the model before preparation, restored on an error
+  CollisionSolverResult result;
+  Phase phase = Phase::Created;
+
+  // The callback never sees progress go back.
+  bool report(double fraction)
+  {
+    s.st_.reported = std::max(s.st_.reported, fraction);
+    const bool go = reportProgress(progress, s.st_.reported);
+    return s.comm_ ? !anyRank(*s.comm_, !go) : go; // a stop on one rank stops all
+  }
+  // Errors of one rank reach all (distributed runs restore the input piece).
+  bool fail(std::string error)
+  {
+    if (s.comm_)
+    {
+      error = agreeOnError(*s.comm_, error);
+    }
+    if (error.empty())
+    {
+      return false;
+    }
+    if (s.comm_)
+    {
+      model = input;
+    }
+    result = CollisionSolverResult{};
+    result.error = error;
+    phase = Phase::Failed;
+    return true;
+  }
+  double stepShareAfter(int steps) const
+  {
+    return options.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / options.maxSteps) : 1.0;
+  }
+  // The pair limit (or a periodic cell too small for the links) met in the middle of a run.
+  void failDetection(const std::string& where)
+  {
+    if (s.periodic() || s.comm_)
+    {
+      model = input; // the cell is too small for the links, or distributed: keep the input
+      result = CollisionSolverResult{};
+      result.error = s.detectError_;
+    }
+    else // the model is in this step's state
+    {
+      takeState();
+      result.error = s.detectError_ + where;
+    }
+    phase = Phase::Failed;
+  }
+  // Distributed: every fiber back to the rank whose input piece held it; this rank's figures.
+  void goHome()
+  {
+    RankFibers fibers = s.rankFibers();
+    dropHalo(fibers);
+    result.rankFibers = fibers.size();
+    redistribute(fibers, s.st_.home, *s.comm_);
+    result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
+    result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
+    result.peakHaloPoints = s.peakHaloPoints_;
+    result.peakRankPoints = s.peakRankPoints_;
+  }
+  std::int64_t sumOverRanks(std::int64_t v)
+  {
+    std::vector<std::int64_t> x{ v };
+    s.comm_->sum(x);
+    return x[0];
+  }
+  // The result fields that are the state's (also on an error in the middle of a run).
+  void takeState()
+  {
+    const CollisionSolverState& st = s.st_;
+    result.steps = st.steps;
+    result.segmentLength = st.segmentLength;
+    result.bestCollisions = st.bestCollisions;
+    result.bestStep = st.bestStep;
+    result.warnings = st.warnings;
+  }
+};
+
+CollisionSolverRun::CollisionSolverRun(FiberModel& model, const CollisionSolverOptions& options,
+  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+  : impl_(std::make_unique<Impl>(model, options, progress, observer, comm))
+{
+}
+
+CollisionSolverRun::~CollisionSolverRun() = default;
+
+const CollisionSolverState& CollisionSolverRun::state() const
+{
+  return impl_->s.st_;
+}
+
+bool CollisionSolverRun::start()
+{
+  Impl& r = *impl_;
+  Solver& s = r.s;
+  const CollisionSolverOptions& o = r.options;
+  FiberModel& model = r.model;
+  CollisionSolverState& st = s.st_;
+  std::string error = validateCollisionSolverOptions(o);
+  if (error.empty())
+  {
+    error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
+  }
+  if (r.fail(error))
+  {
+    return false;
+  }
+  s.threads_ = resolveThreadCount(o.numberOfThreads);
+  const std::size_t nf = model.fibers.size();
+  st.points.assign(nf, FiberPointState{});
+  st.active.assign(nf, 1);
+  st.closed.assign(nf, 0);
+  st.closure.assign(nf, Vec3{});
+  st.home.assign(nf, 0);
+  s.owned_.assign(nf, 1);
+  std::int64_t first = 0; // global index of this piece's first fiber: pieces in rank order
+  if (s.comm_)
+  {
+    r.input = model;
+    std::vector<std::int64_t> counts(static_cast<std::size_t>(s.comm_->size()), 0);
+    counts[static_cast<std::size_t>(s.comm_->rank())] = static_cast<std::int64_t>(nf);
+    s.comm_->sum(counts);
+    first = std::accumulate(counts.begin(), counts.begin() + s.comm_->rank(), std::int64_t{ 0 });
+    st.home.assign(nf, s.comm_->rank());
+  }
+  st.global.resize(nf);
+  std::iota(st.global.begin(), st.global.end(), first);
+  if (s.comm_)
+  {
+    s.startDistribution();
+  }
+  // Before anything touches the model: a refused run leaves it unchanged.
+  st.segmentLength = resolveSegmentLength(s, o);
+  error = checkMemory(s);
+  if (error.empty())
+  {
+    error = checkStacksAndGap(model, o, s.comm_);
+  }
+  if (r.fail(error))
+  {
+    return false;
+  }
+  if (!s.periodic())
   {
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
-    buildLinks(model, nullptr, threads, s.links_, nullptr);
-    if (!s.findBoundedPairs())
+    if (s.comm_)
     {
-      result.error = s.detectError_;
+      s.exchangeFibers();
     }
-  }
-  if (!result.error.empty())
-  {
-    return result;
+    buildLinks(model, nullptr, s.threads_, s.links_, nullptr);
+    const bool found = s.findBoundedPairs();
+    if (s.comm_)
+    {
+      RankFibers fibers = s.rankFibers();
+      dropHalo(fibers);
+    }
+    if (r.fail(found ? std::string() : s.detectError_))
+    {
+      return false;
+    }
   }
   // A periodic cell too small for the links is only known once they are built: keep the input.
-  const FiberModel input = s.periodic() ? model : FiberModel{};
-  prepareFibers(s, result.warnings);
-  prepareClosures(s);
-  configure(s, result.warnings);
-  result.segmentLength = s.segmentLength_;
-  s.scale_ = initialScale(o);
-  // Growth per step while the deepest overlap is below 5 % of the median radius (at this size).
-  const double growth = 0.002;
-  const double growthTolerance = 0.05 * medianRadius(model);
-  int sinceGrowth = 0;    // move steps since the last growth event
-  constexpr int kGrowthStall = 2000;
-
-  bool changed = false;
-  double done = 0.0;     // progress estimate so far
-  double reported = 0.0; // what the callback last saw: never goes back
-  const auto report = [&](double fraction) {
-    reported = std::max(reported, fraction);
-    return reportProgress(progress, reported);
-  };
-  const auto stepShareAfter = [&o](int steps) {
-    return o.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / o.maxSteps) : 1.0;
-  };
-  std::size_t firstCount = static_cast<std::size_t>(-1); // collisions at the first detection
-  bool first = true;
-  int sinceImprovement = 0;
-  bool warnedStall = false;
-  while (true)
+  if (s.periodic() && !s.comm_)
   {
-    changed = s.shapeControl();
-    if (!s.detect())
+    r.input = model;
+  }
+  prepareFibers(s, st.warnings);
+  prepareClosures(s);
+  configure(s, st.warnings);
+  st.scale = initialScale(o);
+  st.growthTolerance = 0.05 * s.median();
+  s.resetTraffic();
+  r.phase = Impl::Phase::Running;
+  return true;
+}
+
+std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
+{
+  Impl& r = *impl_;
+  r.phase = Impl::Phase::Failed;
+  r.result.error = validateCollisionSolverOptions(r.options);
+  const std::size_t nf = r.model.fibers.size();
+  if (r.result.error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
+    saved.closed.size() != nf || saved.closure.size() != nf))
+  {
+    r.result.error = "the saved solver state is for " + std::to_string(saved.points.size()) +
+      " fibers, the model has " + std::to_string(nf);
+  }
+  for (std::size_t f = 0; r.result.error.empty() && f < nf; ++f)
+  {
+    const std::size_t n = r.model.fibers[f].size();
+    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
     {
-      if (s.periodic())
-      {
-        model = input;
-        result = CollisionSolverResult{};
-        result.error = s.detectError_;
-      }
-      else // the pair limit, met in the middle of a run: the model is in this step's state
-      {
-        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
-      }
-      return result;
+      r.result.error = "the saved solver state of fiber " + std::to_string(f) + " has " +
+        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
     }
-    const std::size_t count = s.pairs_.size();
-    // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
-    // first step (log scale: the last few take most of the steps), never going back.
-    if (firstCount == static_cast<std::size_t>(-1))
+  }
+  if (r.result.error.empty())
+  {
+    r.result.error = validateModel(r.model, nullptr, ShortFibers::Allowed);
+  }
+  if (r.fail(r.result.error))
+  {
+    return r.result.error;
+  }
+  r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
+  r.s.st_ = saved;
+  if (r.s.st_.global.size() != nf || r.s.st_.home.size() != nf) // a serial state
+  {
+    r.s.st_.global.resize(nf);
+    std::iota(r.s.st_.global.begin(), r.s.st_.global.end(), std::int64_t{ 0 });
+    r.s.st_.home.assign(nf, 0);
+  }
+  r.s.owned_.assign(nf, 1);
+  if (r.s.periodic() || r.s.comm_)
+  {
+    r.input = r.model;
+  }
+  if (r.s.comm_)
+  {
+    r.s.startDistribution(); // any slabs do: the result does not depend on who owns what
+  }
+  r.phase = Impl::Phase::Running;
+  return {};
+}
+
+bool CollisionSolverRun::step()
+{
+  Impl& r = *impl_;
+  if (r.phase != Impl::Phase::Running)
+  {
+    return false;
+  }
+  Solver& s = r.s;
+  CollisionSolverState& st = s.st_;
+  const CollisionSolverOptions& o = r.options;
+  const bool changed = s.shapeControl();
+  if (!s.detect())
+  {
+    r.failDetection(" (at step " + std::to_string(st.steps) + ")");
+    return false;
+  }
+  const Solver::Counts counts = s.globalCounts(changed);
+  st.changed = counts.changed;
+  const std::size_t count = counts.pairs;
+  // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
+  // first step (log scale: the last few take most of the steps), never going back.
+  if (st.firstCount == static_cast<std::size_t>(-1))
+  {
+    st.firstCount = count;
+  }
+  const double stepShare = r.stepShareAfter(st.steps);
+  const double resolved = st.firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /
+      std::log1p(static_cast<double>(st.firstCount)) : 1.0;
+  st.done = std::max(st.done, std::min(0.99, std::max(stepShare, resolved)));
+  // A step of a large model takes long (~0.1 s per 1e5 links): then abort is also checked
+  // between its two long phases (shape control and detection; moves), so a stop request waits
+  // for at most one phase. Decided by size, not by the clock, so that where a solve stops for a
+  // given progress callback is reproducible on any machine and under any load.
+  if (counts.links >= kLinksForMidStepProgress && !r.report(std::max(st.done, 1e-9)))
+  {
+    r.result.aborted = true;
+    st.changed = !s.shapeWithinLimits();
+    r.phase = Impl::Phase::Ended;
+    return false;
+  }
+  const bool growing = st.scale < 1.0; // count is at the size before any growth below
+  if (growing && s.maxOverlap() <= st.growthTolerance * st.scale)
+  {
+    // [ours] Overlaps shallow at this size: grow for the next step.
+    st.scale = std::min(1.0, st.scale + kGrowth);
+    st.sinceGrowth = 0;
+    st.sinceImprovement = 0;
+    st.first = true;
+  }
+  const auto end = [&r]() {
+    r.phase = Impl::Phase::Ended;
+    return false;
+  };
+  if (st.scale < 1.0 && st.sinceGrowth >= kGrowthStall)
+  {
+    return end();
+  }
+  if (st.first || count < st.bestCollisions)
+  {
+    st.bestCollisions = count;
+    st.bestStep = st.steps;
+    st.sinceImprovement = 0;
+    st.first = false;
+  }
+  else
+  {
+    ++st.sinceImprovement;
+  }
+  if ((count == 0 && !st.changed && !growing) || st.steps >= o.maxSteps)
+  {
+    return end();
+  }
+  if (o.stallSteps > 0 && st.sinceImprovement >= o.stallSteps)
+  {
+    st.warnings.push_back("stopped after " + std::to_string(st.sinceImprovement) +
+      " steps without fewer collisions (StallSteps)");
+    return end();
+  }
+  if (!st.warnedStall && st.sinceImprovement >= 1000)
+  {
+    st.warnedStall = true;
+    st.warnings.push_back("1000 steps passed without fewer collisions");
+  }
+  s.separate();
+  if (s.comm_)
+  {
+    RankFibers fibers = s.rankFibers();
+    dropHalo(fibers); // between steps a rank holds its own fibers only
+  }
+  ++st.steps;
+  ++st.sinceGrowth;
+  if (r.observer)
+  {
+    r.observer(st.steps, r.model);
+  }
+  if (!r.report(std::max(st.done, r.stepShareAfter(st.steps))))
+  {
+    r.result.aborted = true;
+    if (!s.detect()) // collisions must describe the geometry that is returned
     {
-      firstCount = count;
+      s.detectError_ += " (at step " + std::to_string(st.steps) + ")";
+      r.takeState();
+      r.result.error = s.detectError_;
+      r.phase = Impl::Phase::Failed;
+      return false;
     }
-    const double stepShare = stepShareAfter(result.steps);
-    const double resolved = firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /
-        std::log1p(static_cast<double>(firstCount)) : 1.0;
-    done = std::max(done, std::min(0.99, std::max(stepShare, resolved)));
-    // A step of a large model takes long (~0.1 s per 1e5 links): then abort is also checked
-    // between its two long phases (shape control and detection; moves), so a stop request waits
-    // for at most one phase. Decided by size, not by the clock, so that where a solve stops for a
-    // given progress callback is reproducible on any machine and under any load.
-    if (s.links_.size() >= kLinksForMidStepProgress && !report(std::max(done, 1e-9)))
+    st.changed = !s.shapeWithinLimits();
+    return end();
+  }
+  return true;
+}
+
+CollisionSolverResult CollisionSolverRun::finish()
+{
+  Impl& r = *impl_;
+  if (r.phase == Impl::Phase::Created)
+  {
+    r.result.error = "the solver run was not started";
+    r.phase = Impl::Phase::Failed;
+  }
+  if (r.phase == Impl::Phase::Running) // step() was not driven to the end: finish where it is
+  {
+    if (!r.s.detect())
     {
-      result.aborted = true;
-      changed = !s.shapeWithinLimits();
-      break;
-    }
-    const bool growing = s.scale_ < 1.0; // count is at the size before any growth below
-    if (growing && s.maxOverlap() <= growthTolerance * s.scale_)
-    {
-      // [ours] Overlaps shallow at this size: grow for the next step.
-      s.scale_ = std::min(1.0, s.scale_ + growth);
-      sinceGrowth = 0;
-      sinceImprovement = 0;
-      first = true;
-    }
-    if (s.scale_ < 1.0 && sinceGrowth >= kGrowthStall)
-    {
-      break;
-    }
-    if (first || count < result.bestCollisions)
-    {
-      result.bestCollisions = count;
-      result.bestStep = result.steps;
-      sinceImprovement = 0;
-      first = false;
+      r.failDetection(" (at step " + std::to_string(r.s.st_.steps) + ")");
     }
     else
     {
-      ++sinceImprovement;
-    }
-    if (count == 0 && !changed && !growing)
-    {
-      break;
-    }
-    if (result.steps >= o.maxSteps)
-    {
-      break;
-    }
-    if (o.stallSteps > 0 && sinceImprovement >= o.stallSteps)
-    {
-      result.warnings.push_back("stopped after " + std::to_string(sinceImprovement) +
-        " steps without fewer collisions (StallSteps)");
-      break;
-    }
-    if (!warnedStall && sinceImprovement >= 1000)
-    {
-      warnedStall = true;
-      result.warnings.push_back("1000 steps passed without fewer collisions");
-    }
-    s.separate();
-    ++result.steps;
-    ++sinceGrowth;
-    if (observer)
-    {
-      observer(result.steps, model);
-    }
-    if (!report(std::max(done, stepShareAfter(result.steps))))
-    {
-      result.aborted = true;
-      if (!s.detect()) // collisions must describe the geometry that is returned
-      {
-        result.error = s.detectError_ + " (at step " + std::to_string(result.steps) + ")";
-        return result;
-      }
-      changed = !s.shapeWithinLimits();
-      break;
+      r.s.st_.changed = !r.s.shapeWithinLimits();
+      r.phase = Impl::Phase::Ended;
     }
   }
-  result.radiusScale = s.scale_;
-  if (s.scale_ < 1.0)
+  if (r.phase == Impl::Phase::Failed || r.phase == Impl::Phase::Finished)
+  {
+    return r.result;
+  }
+  Solver& s = r.s;
+  CollisionSolverState& st = s.st_;
+  const CollisionSolverOptions& o = r.options;
+  FiberModel& model = r.model;
+  CollisionSolverResult& result = r.result;
+  result.radiusScale = st.scale;
+  if (st.scale < 1.0)
   {
     // The output has the input radii: count what is left at full size.
-    const double reached = s.periodic() ? cellVolumeFraction(model, o.periodicCell) * s.scale_ * s.scale_ : -1.0;
-    s.scale_ = 1.0;
+    const double reached = s.periodic() ? s.fiberVolume() / o.periodicCell.volume() * st.scale * st.scale : -1.0;
+    st.scale = 1.0;
     if (!s.detect())
     {
-      result.error = s.detectError_ + " (at full radius after step " + std::to_string(result.steps) + ")";
+      r.takeState();
+      result.error = s.detectError_ + " (at full radius after step " + std::to_string(st.steps) + ")";
+      r.phase = Impl::Phase::Failed;
       return result;
     }
     if (!result.aborted)
@@ -956,22 +1314,23 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
       if (reached >= 0.0)
       {
         w << " (volume fraction " << reached << " of the requested "
-          << cellVolumeFraction(model, o.periodicCell) << ")";
+          << s.fiberVolume() / o.periodicCell.volume() << ")";
       }
-      w << " after " << result.steps << " steps; " << s.pairs_.size()
+      w << " after " << st.steps << " steps; " << s.globalCounts(false).pairs
         << " pairs overlap at full size: the target is too dense for these fibers";
-      result.warnings.push_back(w.str());
+      st.warnings.push_back(w.str());
     }
   }
-  result.collisions = s.pairs_.size();
+  r.takeState();
+  result.collisions = s.globalCounts(false).pairs;
   result.solved = result.collisions == 0;
-  result.shapeOk = !changed;
+  result.shapeOk = !st.changed;
   result.maxOverlap = s.maxOverlap();
   if (s.periodic())
   {
-    result.volumeFraction = cellVolumeFraction(model, o.periodicCell);
+    result.volumeFraction = s.fiberVolume() / o.periodicCell.volume();
   }
-  result.minGapProbe = medianRadius(model);
+  result.minGapProbe = s.median();
   result.minGap = smallestGap(s, result.minGapProbe);
   if (!result.solved && !result.aborted)
   {
@@ -989,12 +1348,31 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
     w << "); raise MaxSteps, lower the density or the radii";
     result.warnings.push_back(w.str());
   }
+  if (s.comm_)
+  {
+    r.goHome();
+  }
+  const std::size_t nf = model.fibers.size();
   result.sourceIndex.resize(nf);
   for (std::size_t f = 0; f < nf; ++f)
   {
-    result.sourceIndex[f] = std::move(s.state_[f].source);
+    result.sourceIndex[f] = st.points[f].source; // the state stays whole (a checkpoint may follow)
   }
+  r.phase = Impl::Phase::Finished;
   return result;
+}
+
+CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
+  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+{
+  CollisionSolverRun run(model, options, progress, observer, comm);
+  if (run.start())
+  {
+    while (run.step())
+    {
+    }
+  }
+  return run.finish();
 }
 
 std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads,
@@ -1008,7 +1386,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
     for (std::size_t f = 0; f < model.fibers.size(); ++f)
     {
       Vec3 t;
-      closed[f] = model.fibers[f].size() >= 3 && isClosedFiber(model.fibers[f], cell, t);
+      closed[f] = isClosedFiber(model.fibers[f], cell, t);
     }
     buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr, &closed);
   }
@@ -1036,28 +1414,44 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   return overflow ? maxPairs + 1 : pairs.size();
 }
 
-bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm)
 {
-  return fiber.size() >= 2 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
-}
-
-double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell)
-{
-  double volume = 0.0;
+  ExactSum sum; // the same bits for any order and split of the fibers
   for (const Fiber& f : model.fibers)
   {
     for (std::size_t k = 0; k + 1 < f.size(); ++k)
     {
       const double rho = f.linkRadius(k);
-      volume += M_PI * rho * rho * distance(f.points[k], f.points[k + 1]);
+      sum.add(M_PI * rho * rho * distance(f.points[k], f.points[k + 1]));
     }
   }
+  const double volume = sum.total(comm);
   if (cell.enabled())
   {
     return volume / cell.volume();
   }
   Vec3 lo, hi;
-  if (!modelBounds(model, true, lo, hi))
+  const bool any = modelBounds(model, true, lo, hi);
+  if (comm)
+  {
+    std::vector<double> m(6, -HUGE_VAL);
+    for (int d = 0; any && d < 3; ++d)
+    {
+      m[static_cast<std::size_t>(d)] = -lo[d];
+      m[static_cast<std::size_t>(3 + d)] = hi[d];
+    }
+    comm->max(m);
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = -m[static_cast<std::size_t>(d)];
+      hi[d] = m[static_cast<std::size_t>(3 + d)];
+    }
+    if (!(m[3] > -HUGE_VAL))
+    {
+      return 0.0;
+    }
+  }
+  else if (!any)
   {
     return 0.0;
   }

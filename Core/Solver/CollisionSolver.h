@@ -6,10 +6,12 @@
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 #include "Solver/ShapeControl.h"
+#include "Solver/SolverComm.h"
 #include "Util/Progress.h"
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,15 +90,87 @@ struct CollisionSolverResult
   double minGap = 0.0;
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   std::vector<std::string> warnings; ///< recoverable oddities, one message each, with counts
+  // Distributed runs (docs/solver.md §13; 0 otherwise): this rank's share and traffic.
+  std::size_t rankFibers = 0;     ///< fibers this rank owned at the end (before they went home)
+  std::size_t peakRankPoints = 0; ///< most points (owned + halo) this rank held in a step
+  std::size_t peakHaloPoints = 0; ///< most halo points it held in a step
+  double haloBytesPerStep = 0.0;  ///< bytes it sent as halo per step, mean
+  std::size_t migrations = 0;     ///< fibers that changed rank during the solve (all ranks)
   /// Non-empty: nothing was done and the model is unchanged; or, only when the colliding pairs
   /// outgrew their limit in the middle of a run (the message says at which step), the model is in
   /// that step's state and must not be used.
   std::string error;
 };
 
-/// Called after every move step with the step number (1, 2, …) and the current model, from the
-/// calling thread (e.g. to expose iterations as time steps).
+/// Called after every move step with the step number (1, 2, …) and the current model (in a
+/// distributed run the fibers this rank owns now), from the calling thread (e.g. to expose
+/// iterations as time steps).
 using StepObserver = std::function<void(int step, const FiberModel& model)>;
+
+/// Everything a run hands from one step to the next besides the model (docs/solver.md §6.1):
+/// the model and this state are a complete checkpoint (resume them with the same options and
+/// the run goes on bit for bit as if uninterrupted). Per-fiber vectors are in model order.
+struct CollisionSolverState
+{
+  // Per fiber.
+  std::vector<FiberPointState> points; ///< velocity and source index of every point
+  std::vector<char> active;            ///< >= 2 distinct points: solved (else copied through)
+  std::vector<char> closed;            ///< [ours] closed through the periodic cell ...
+  std::vector<Vec3> closure;           ///< ... by this lattice vector (last point = first + closure)
+  std::vector<std::int64_t> global;    ///< index in the whole model (distributed runs; else 0, 1, …)
+  std::vector<int> home;               ///< rank whose input piece held it (distributed runs; else 0)
+  // Fixed when the run starts.
+  double segmentLength = -1.0;  ///< L̄ in use (µm, < 0 = no split/merge)
+  double vMax = 0.0;            ///< largest move of a point per step (µm)
+  double growthTolerance = 0.0; ///< radius growth: deepest overlap (µm at full size) that lets it grow
+  // Changed by the steps.
+  int steps = 0;                     ///< move steps done
+  double scale = 1.0;                ///< capsule radii relative to the fibers' radii (radius growth)
+  int sinceGrowth = 0;               ///< move steps since the last growth
+  int sinceImprovement = 0;          ///< detections since the best collision count last fell
+  bool first = true;                 ///< the next detection sets the best count unconditionally
+  bool warnedStall = false;          ///< the 1000-steps-without-progress warning was given
+  std::size_t firstCount = static_cast<std::size_t>(-1); ///< collisions at the first detection
+  std::size_t bestCollisions = 0;    ///< smallest collision count seen ...
+  int bestStep = 0;                  ///< ... and its step
+  bool changed = false;              ///< the last shape control changed a fiber
+  double done = 0.0;                 ///< progress estimate ...
+  double reported = 0.0;             ///< ... and what the callback last saw (never goes back)
+  std::vector<std::string> warnings; ///< so far
+};
+
+/// One solve driven step by step (solveCollisions is start, step until false, finish). Between
+/// steps the caller may save state() with the model (checkpoint) and later resume() from them.
+class CollisionSolverRun
+{
+public:
+  /// The run works on `model` in place; progress and observer as for solveCollisions.
+  /// comm (optional): distributed over its ranks (docs/solver.md §13), model = this rank's piece.
+  CollisionSolverRun(FiberModel& model, const CollisionSolverOptions& options,
+    const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
+  ~CollisionSolverRun();
+  CollisionSolverRun(const CollisionSolverRun&) = delete;
+  CollisionSolverRun& operator=(const CollisionSolverRun&) = delete;
+
+  /// Checks options and model and prepares the fibers. False: finish() returns the error, the
+  /// model is unchanged.
+  bool start();
+  /// Instead of start(): continue from a state saved with the model now in the run (same
+  /// options). Returns "" or an error naming what does not match (then finish() returns it).
+  std::string resume(const CollisionSolverState& saved);
+  /// One iteration (§6): shape control, detection, the stop rules, one move. False when the run
+  /// has ended (solved, MaxSteps, StallSteps, abort or error): then call finish().
+  bool step();
+  /// The result (§9): final detection at full size, min gap, warnings. Called before step()
+  /// returned false, it ends the run where it is (like an abort, without setting `aborted`).
+  CollisionSolverResult finish();
+  /// The state after the last step (valid after start() or resume()).
+  const CollisionSolverState& state() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// Solves the model in place (docs/solver.md §6): fibers keep count, order, id and bundle;
 /// first and last points stay first and last. Fibers with fewer than 2 points (after removing
@@ -107,8 +181,14 @@ using StepObserver = std::function<void(int step, const FiberModel& model)>;
 /// packingPairBound (Index/CollisionGrid.h) and what the budget allows; stacks of identical fibers
 /// and gaps that make every link collide are refused with a message saying so (counting the exact
 /// copies). Never throws, never prints.
+///
+/// Distributed (comm non-null, collective, docs/solver.md §13): `model` is this rank's piece of
+/// the whole model (the pieces in rank order are the whole model in its order). Every rank
+/// returns its piece's fibers solved, and the same result fields (sourceIndex: of its piece) and
+/// the same error; together the pieces are bit for bit what the serial solve of the whole model
+/// gives, for any rank count and thread count. A stop requested on one rank stops all.
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress = {}, const StepObserver& observer = {});
+  const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
 
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
@@ -117,13 +197,10 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
   const PeriodicCell& periodicCell = PeriodicCell{});
 
-/// True when the fiber is closed through the cell: last point − first point is a non-zero lattice
-/// vector (within 1e-5 × the largest edge per axis); closure receives it exactly.
-bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure);
-
 /// Σ π ρ_k² · |link k| over all links (ρ = capsule radius) divided by the cell volume, or without
 /// a cell by the volume of the model's bounding box (points grown by their radii); 0 if empty.
-double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell);
+/// Summed exactly (the same bits for any order or split); comm: over all ranks' fibers (collective).
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm = nullptr);
 
 /// Empty when the options are usable, else a message naming the option and its value.
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& options);

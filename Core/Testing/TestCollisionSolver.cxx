@@ -735,3 +735,52 @@ TEST(CollisionSolver, SmallSegmentLengthIsCheckedAgainstTheMemoryBudget)
   unsetenv("FIBERPLI_MEMORY_LIMIT");
   EXPECT_LT(peakRssBytes(), 200e6);
 }
+
+// A run driven step by step, saved after 40 steps (model + state, as a checkpoint) and resumed
+// by a fresh run object, ends exactly where the uninterrupted solveCollisions ends.
+TEST(CollisionSolver, ResumedRunEqualsUninterruptedRun)
+{
+  const FiberModel in = paperCube(2, 80, 3);
+  CollisionSolverOptions o;
+  o.maxSteps = 70;
+  o.minCurvatureRadius = 4.0;
+  o.drag = 0.3; // velocities are part of the state
+  FiberModel reference = in;
+  const CollisionSolverResult r1 = solveCollisions(reference, o);
+  ASSERT_TRUE(r1.error.empty()) << r1.error;
+  ASSERT_GT(r1.steps, 40);
+
+  FiberModel m = in;
+  CollisionSolverState saved;
+  FiberModel savedModel;
+  {
+    CollisionSolverRun run(m, o);
+    ASSERT_TRUE(run.start());
+    while (run.state().steps < 40 && run.step())
+    {
+    }
+    ASSERT_EQ(run.state().steps, 40);
+    saved = run.state();
+    savedModel = m;
+  } // the first run is gone: nothing but model and state carries over
+  CollisionSolverRun resumed(savedModel, o);
+  ASSERT_EQ(resumed.resume(saved), "");
+  while (resumed.step())
+  {
+  }
+  const CollisionSolverResult r2 = resumed.finish();
+  EXPECT_TRUE(bitwiseEqual(savedModel, reference));
+  EXPECT_EQ(r2.steps, r1.steps);
+  EXPECT_EQ(r2.collisions, r1.collisions);
+  EXPECT_EQ(r2.bestCollisions, r1.bestCollisions);
+  EXPECT_EQ(r2.bestStep, r1.bestStep);
+  EXPECT_EQ(r2.sourceIndex, r1.sourceIndex);
+  EXPECT_EQ(r2.warnings, r1.warnings);
+
+  // A state that does not belong to the model is refused by name.
+  FiberModel other = paperCube(1, 10, 4);
+  CollisionSolverRun wrong(other, o);
+  EXPECT_NE(wrong.resume(saved).find("fibers"), std::string::npos);
+  EXPECT_FALSE(wrong.step());
+  EXPECT_FALSE(wrong.finish().error.empty());
+}

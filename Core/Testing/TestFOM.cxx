@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace fiberpli;
@@ -188,4 +189,31 @@ TEST(FOM, MaskBlackensBackgroundByRetardationOrTransmittance)
   std::vector<std::uint8_t> rgb(3);
   EXPECT_FALSE(fomApplyMask(nullptr, 1, FomMask::Retardation, 0.1, rgb.data(), nullptr).empty());
   EXPECT_FALSE(fomApplyMask(retardation, 1, FomMask::Retardation, std::nan(""), rgb.data(), nullptr).empty());
+}
+
+TEST(FOM, MaskThresholdIsAFractionOfTheLargestValue)
+{
+  // The reference ignores NaN and infinities; none finite gives -inf.
+  const double values[5] = { 0.2, std::nan(""), 0.8, std::numeric_limits<double>::infinity(), 0.5 };
+  EXPECT_EQ(fomMaskReference(values, 5), 0.8);
+  const double none[2] = { std::nan(""), -std::numeric_limits<double>::infinity() };
+  EXPECT_EQ(fomMaskReference(none, 2), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(fomMaskReference(nullptr, 0), -std::numeric_limits<double>::infinity());
+  double t = -1.0;
+  // Retardation: below f·L is background; transmittance: above (1 − f)·L.
+  ASSERT_TRUE(fomMaskThreshold(FomMask::Retardation, 0.25, 0.8, t).empty());
+  EXPECT_DOUBLE_EQ(t, 0.2);
+  ASSERT_TRUE(fomMaskThreshold(FomMask::Transmittance, 0.25, 13000.0, t).empty());
+  EXPECT_DOUBLE_EQ(t, 9750.0);
+  // The ends: 0 masks only what is exactly background-like, 1 everything but the extreme.
+  ASSERT_TRUE(fomMaskThreshold(FomMask::Transmittance, 0.0, 13000.0, t).empty());
+  EXPECT_EQ(t, 13000.0);
+  ASSERT_TRUE(fomMaskThreshold(FomMask::Retardation, 1.0, 0.8, t).empty());
+  EXPECT_EQ(t, 0.8);
+  ASSERT_TRUE(fomMaskThreshold(FomMask::Transmittance, 0.5, -std::numeric_limits<double>::infinity(), t).empty());
+  EXPECT_EQ(t, 0.0);
+  for (double bad : { -0.01, 1.01, std::nan("") })
+  {
+    EXPECT_FALSE(fomMaskThreshold(FomMask::Retardation, bad, 0.8, t).empty()) << bad;
+  }
 }

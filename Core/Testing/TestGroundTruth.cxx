@@ -140,12 +140,14 @@ TEST(GroundTruth, UniformSlabS6)
   const Vec3 u = axisFromAngles(30 * kDeg, 20 * kDeg);
   FiberModel m;
   m.fibers.push_back(straight(-2000.0 * u, 2000.0 * u, 1000.0));
-  TruthLattice lat;
-  lat.origin = { -10, -10, -30 };
-  lat.voxelSize = 1;
-  lat.n[0] = 20;
-  lat.n[1] = 20;
-  lat.n[2] = 60;
+  PixelGrid lat;
+  lat.lattice.origin[0] = -10;
+  lat.lattice.origin[1] = -10;
+  lat.lattice.origin[2] = -30;
+  lat.lattice.voxel = 1;
+  lat.lattice.n[0] = 20;
+  lat.lattice.n[1] = 20;
+  lat.lattice.n[2] = 60;
   lat.pixelSize = 2;
   GroundTruthMaps maps;
   GroundTruthOptions o;
@@ -175,10 +177,10 @@ TEST(GroundTruth, VerticalFiberS8a)
   {
     FiberModel m;
     m.fibers.push_back(reversed ? straight({ 1, 3, 7 }, { 1, 3, 0 }, 2) : straight({ 1, 3, 0 }, { 1, 3, 7 }, 2));
-    TruthLattice lat;
-    lat.n[0] = 3;
-    lat.n[1] = 5;
-    lat.n[2] = 7;
+    PixelGrid lat;
+    lat.lattice.n[0] = 3;
+    lat.lattice.n[1] = 5;
+    lat.lattice.n[2] = 7;
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;
@@ -218,9 +220,9 @@ TEST(GroundTruth, PartialCoverageFraction)
 {
   FiberModel m;
   m.fibers.push_back(straight({ -5, 2, 5 }, { 9, 2, 5 }, 1.2));
-  const TruthLattice lat = latticeForPixelGrid({ 0, 0, 0 }, 2.0, 2, 2, 0.0, 10.0, 2);
-  EXPECT_EQ(lat.voxelSize, 1.0);
-  EXPECT_EQ(lat.n[2], 10);
+  const PixelGrid lat = latticeForPixelGrid({ 0, 0, 0 }, 2.0, 2, 2, 0.0, 10.0, 2);
+  EXPECT_EQ(lat.lattice.voxel, 1.0);
+  EXPECT_EQ(lat.lattice.n[2], 10);
   GroundTruthMaps maps;
   ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(2, 2), maps), "");
   for (std::size_t p = 0; p < 4; ++p)
@@ -247,10 +249,10 @@ TEST(GroundTruth, TiesGoToTheLaterLinkInBundleOrder)
     FiberModel m;
     m.fibers.push_back(straight({ -5, 2, 1.5 }, { 9, 2, 1.5 }, 1.0, swap ? 1 : 0)); // along x
     m.fibers.push_back(straight({ 2, -5, 1.5 }, { 2, 9, 1.5 }, 1.0, swap ? 0 : 1)); // along y
-    TruthLattice lat;
-    lat.n[0] = 4;
-    lat.n[1] = 4;
-    lat.n[2] = 3;
+    PixelGrid lat;
+    lat.lattice.n[0] = 4;
+    lat.lattice.n[1] = 4;
+    lat.lattice.n[2] = 3;
     GroundTruthMaps maps;
     ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(4, 4), maps), "");
     // Column (1, 1), centres (1.5, 1.5, z): both axes at distance √(0.25 + (z − 1.5)²).
@@ -269,7 +271,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   co.fiberRadius = 1.0;
   co.seed = 5;
   const FiberModel m = generateCube(co);
-  const TruthLattice lat = latticeForPixelGrid({ -10, -10, 0 }, 2.0, 10, 10, -4.0, 4.0, 2);
+  const PixelGrid lat = latticeForPixelGrid({ -10, -10, 0 }, 2.0, 10, 10, -4.0, 4.0, 2);
   GroundTruthOptions o1, o2;
   o1.threads = 1;
   o2.threads = 2;
@@ -306,7 +308,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
     }
   }
   // Bad input is reported, naming the problem.
-  TruthLattice bad = lat;
+  PixelGrid bad = lat;
   bad.pixelSize = 0.5;
   EXPECT_NE(computeGroundTruth(m, bad, o1, wholeImage(10, 10), part).find("PixelSize"), std::string::npos);
   FiberModel broken = m;

@@ -37,7 +37,7 @@ double peakRssBytes()
 
 TEST(GroundTruthMemory, HistogramsOnlyWhenAsked)
 {
-  const TruthLattice lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 8, 8, 0.0, 1.0, 1);
+  const PixelGrid lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 8, 8, 0.0, 1.0, 1);
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 1;
@@ -52,7 +52,7 @@ TEST(GroundTruthMemory, HistogramsOnlyWhenAsked)
 TEST(GroundTruthMemory, SizeFollowsTheMemoryBudget)
 {
   fiberpli::testing::MemoryLimitGuard limit("1M");
-  const TruthLattice lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 500, 500, 0.0, 1.0, 1);
+  const PixelGrid lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 500, 500, 0.0, 1.0, 1);
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 1;
@@ -70,7 +70,7 @@ TEST(GroundTruthMemory, LargeGridInBoundedMemory)
   if (pid == 0)
   {
     const double before = peakRssBytes();
-    const TruthLattice lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 1500, 1500, 0.0, 1.0, 1);
+    const PixelGrid lat = latticeForPixelGrid({ 0, 0, 0 }, 1.0, 1500, 1500, 0.0, 1.0, 1);
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;

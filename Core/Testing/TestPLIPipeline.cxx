@@ -125,7 +125,7 @@ TEST(PLIPipeline, S7RadialMyelinColumns)
   m.fibers.push_back(line({ 0, 0, 0 }, { 1, 0, 0 }, 1000, 10));
   TissueSpec spec;
   ASSERT_TRUE(makeTissueSpec("1 0.004 0 r", { 0 }, 0, 0, 0, spec).ok());
-  Lattice lat;
+  SectionLattice lat;
   lat.origin[0] = 0;
   lat.origin[1] = -12;
   lat.origin[2] = -12;

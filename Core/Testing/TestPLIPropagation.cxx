@@ -24,9 +24,9 @@ SimParams params(int N = 6)
   return p;
 }
 
-Lattice voxels(std::int64_t nz, double voxel = 60.0)
+SectionLattice voxels(std::int64_t nz, double voxel = 60.0)
 {
-  Lattice l;
+  SectionLattice l;
   l.voxel = voxel;
   l.n[0] = 1;
   l.n[1] = 1;

@@ -47,7 +47,7 @@ PLIOptions slabOptions()
 PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, InclinationMethod method)
 {
   PLIImage img;
-  const Status st = runPLI(m, o, pli::PixelRange{}, img);
+  const Status st = runPLI(m, o, fiberpli::PixelRange{}, img);
   EXPECT_TRUE(st.ok()) << st.error;
   PliStack s;
   s.nx = img.plan.pixels[0];
@@ -59,7 +59,7 @@ PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, Inc
     s.tilts.push_back(img.views[v].data.data());
     s.tiltViews.push_back(TiltView{ img.plan.tiltDeg[v - 1] * kDeg, img.plan.azimuthDeg[v - 1] * kDeg });
   }
-  s.convention = o.tiltConvention == pli::TiltConvention::FastPLI ? fiberpli::TiltConvention::FastPLI
+  s.convention = o.tiltConvention == fiberpli::TiltConvention::FastPLI ? fiberpli::TiltConvention::FastPLI
                                                                    : fiberpli::TiltConvention::Physical;
   s.noiseGain = 0.0;
   PliAnalysisOptions a;
@@ -96,8 +96,8 @@ TEST(PLISetUp, ArbitraryPolarizerAnglesGiveTheFiberDirection)
   a.rotationAngles = { 0, 15, 50, 100, 170 };
   b.rotationAngles = { 170, 50, 0, 100, 15 };
   PLIImage ia, ib;
-  ASSERT_TRUE(runPLI(slab(37, 20), a, pli::PixelRange{}, ia).ok());
-  ASSERT_TRUE(runPLI(slab(37, 20), b, pli::PixelRange{}, ib).ok());
+  ASSERT_TRUE(runPLI(slab(37, 20), a, fiberpli::PixelRange{}, ia).ok());
+  ASSERT_TRUE(runPLI(slab(37, 20), b, fiberpli::PixelRange{}, ib).ok());
   const int perm[5] = { 4, 2, 0, 3, 1 }; // b[k] = a[perm[k]]
   for (int k = 0; k < 5; ++k)
     EXPECT_EQ(ib.views[0].at(3, 4, k), ia.views[0].at(3, 4, perm[k]));
@@ -117,7 +117,7 @@ TEST(PLISetUp, TiltFitReturnsTheInclinationForAnyTiltSet)
     { { 3.9, 8 }, { 45, 135, 225, 315 } },
   };
   for (const Case& c : cases)
-    for (auto conv : { pli::TiltConvention::Physical, pli::TiltConvention::FastPLI })
+    for (auto conv : { fiberpli::TiltConvention::Physical, fiberpli::TiltConvention::FastPLI })
       for (double incl : { -50.0, 20.0, 65.0 })
       {
         PLIOptions o = slabOptions();

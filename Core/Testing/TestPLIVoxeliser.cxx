@@ -15,9 +15,9 @@ using namespace plitest;
 
 namespace
 {
-Lattice box(double x, double y, double z)
+SectionLattice box(double x, double y, double z)
 {
-  Lattice l;
+  SectionLattice l;
   l.voxel = 1.0;
   l.n[0] = static_cast<std::int64_t>(x);
   l.n[1] = static_cast<std::int64_t>(y);
@@ -46,7 +46,7 @@ FiberModel fiber(Vec3 a, Vec3 b, double r)
 
 TEST(PLIVoxeliser, S8aThinFiberRows)
 {
-  const Lattice lat = box(3, 5, 7);
+  const SectionLattice lat = box(3, 5, 7);
   TissueBlock b;
   voxelise(fiber({ 1, 3, 0 }, { 1, 3, 7 }, 2), spec({ { 1, 0, 0, AxisModel::Parallel } }), lat, { 0, 3, 0, 5 }, b);
   const int expected[3][5] = { { 0, 1, 1, 1, 1 }, { 0, 1, 1, 1, 1 }, { 0, 0, 1, 1, 0 } };
@@ -68,7 +68,7 @@ TEST(PLIVoxeliser, S8aThinFiberRows)
 
 TEST(PLIVoxeliser, S8bRadialAxes)
 {
-  const Lattice lat = box(15, 15, 15);
+  const SectionLattice lat = box(15, 15, 15);
   TissueBlock b;
   voxelise(fiber({ 0, 2.5, -5000 }, { 0, 2.5, 5000 }, 10), spec({ { 1, 0.004, 1, AxisModel::Radial } }), lat,
     { 0, 15, 0, 15 }, b);
@@ -97,7 +97,7 @@ TEST(PLIVoxeliser, S8bRadialAxes)
 
 TEST(PLIVoxeliser, S8cThreeLayers)
 {
-  const Lattice lat = box(15, 15, 15);
+  const SectionLattice lat = box(15, 15, 15);
   TissueBlock b;
   voxelise(fiber({ 0, 2.5, -5000 }, { 0, 2.5, 5000 }, 10),
     spec({ { 0.3, -0.004, 1, AxisModel::Parallel }, { 0.6, 0, 1, AxisModel::Background },
@@ -141,7 +141,7 @@ TEST(PLIVoxeliser, S8dOrderAndSplitIndependence)
   s.bundleIds = { 0, 1 };
   s.layers = { { { 0.5, 0, 1, AxisModel::Background }, { 1, 0.004, 1, AxisModel::Radial } },
     { { 1, -0.002, 1, AxisModel::Parallel } } };
-  const Lattice lat = box(14, 14, 10);
+  const SectionLattice lat = box(14, 14, 10);
   TissueBlock whole;
   const VoxeliseStats st = voxelise(m, s, lat, { 0, 14, 0, 14 }, whole);
   EXPECT_TRUE(st.overlap);
@@ -167,7 +167,7 @@ TEST(PLIVoxeliser, S8dOrderAndSplitIndependence)
 
 TEST(PLIVoxeliser, LateralBackgroundLeavesOutsideEmpty)
 {
-  const Lattice lat = box(4, 4, 4);
+  const SectionLattice lat = box(4, 4, 4);
   TissueBlock b;
   voxelise(fiber({ -100, 2, 2 }, { 100, 2, 2 }, 1.5), spec({ { 1, -0.001, 0, AxisModel::Parallel } }), lat,
     { -3, 7, 0, 4 }, b, LateralOutside::Background);

@@ -1,5 +1,6 @@
 #include "Tissue/BundleGenerator.h"
 
+#include "Model/FiberPieces.h"
 #include "Tissue/BundleShapes.h"
 
 #include <algorithm>
@@ -37,18 +38,48 @@ RanvierOptions ranvierOf(const BundleOptions& o)
   return r;
 }
 
-// Appends the fibers of `members` (indices into cs) laid along path as bundle `bundle`.
-void addBundle(FiberModel& model, const Path& path, std::vector<CrossSectionFiber>& cs,
-  const std::vector<std::size_t>& members, int bundle, const BundleOptions& o)
+// The fibers of one bundle in output order: `members` (indices into cs) laid along path.
+struct Bundle
+{
+  const Path* path;
+  std::vector<CrossSectionFiber>* cs;
+  std::vector<std::size_t> members;
+  int bundle;
+};
+
+// Lays the fibers of the bundles (in order: global fiber index = position in that order) that
+// fall into `range`; the others only take part in the cross-sections (seeds, radii, splits).
+FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& range, const BundleOptions& o)
 {
   const RanvierOptions ranvier = ranvierOf(o);
-  for (std::size_t idx : members)
+  FiberModel model;
+  model.fibers.reserve(range.size());
+  std::size_t next = 0;
+  for (const Bundle& b : bundles)
   {
-    Fiber f = layFiber(path.trajectory, path.frames, cs[idx], ranvier, o.displacement);
-    f.id = static_cast<std::int64_t>(model.fibers.size());
-    f.bundle = bundle;
-    model.fibers.push_back(std::move(f));
+    for (std::size_t idx : b.members)
+    {
+      if (next >= range.begin && next < range.end)
+      {
+        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement);
+        f.id = static_cast<std::int64_t>(next);
+        f.bundle = b.bundle;
+        model.fibers.push_back(std::move(f));
+      }
+      ++next;
+    }
   }
+  return model;
+}
+
+FiberModel layBundles(const std::vector<Bundle>& bundles, int piece, int pieces, const BundleOptions& o)
+{
+  std::size_t total = 0;
+  for (const Bundle& b : bundles)
+  {
+    total += b.members.size();
+  }
+  return layBundles(bundles, pieceRange(total, piece, pieces), o);
 }
 
 std::vector<std::size_t> allOf(const std::vector<CrossSectionFiber>& cs)
@@ -107,12 +138,11 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
 }
 
 FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* trajectory,
-  const std::vector<double>* trajectoryScale)
+  const std::vector<double>* trajectoryScale, int piece, int pieces)
 {
-  FiberModel model;
-  if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
+  if (!validateBundleOptions(o, trajectory, trajectoryScale, pieces).empty())
   {
-    return model;
+    return FiberModel{};
   }
   const double H = 0.5 * o.length;
   const double omega = o.crossingAngle * kDegree;
@@ -125,18 +155,19 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
         ? makePath(straightPath(H, 0.0), nullptr, o.segmentLength)
         : makePath(*trajectory, trajectoryScale, o.segmentLength);
       std::vector<CrossSectionFiber> cs = makeCrossSection(o, 0);
-      addBundle(model, path, cs, allOf(cs), 0, o);
-      break;
+      return layBundles({ { &path, &cs, allOf(cs), 0 } }, piece, pieces, o);
     }
     case BundleShape::Crossing:
     {
+      Path path[2];
+      std::vector<CrossSectionFiber> cs[2];
       for (int b = 0; b < 2; ++b)
       {
-        const Path path = makePath(straightPath(H, b * omega), nullptr, o.segmentLength);
-        std::vector<CrossSectionFiber> cs = makeCrossSection(o, static_cast<std::uint64_t>(b));
-        addBundle(model, path, cs, allOf(cs), b, o);
+        path[b] = makePath(straightPath(H, b * omega), nullptr, o.segmentLength);
+        cs[b] = makeCrossSection(o, static_cast<std::uint64_t>(b));
       }
-      break;
+      return layBundles({ { &path[0], &cs[0], allOf(cs[0]), 0 }, { &path[1], &cs[1], allOf(cs[1]), 1 } }, piece,
+        pieces, o);
     }
     case BundleShape::YShape:
     {
@@ -149,11 +180,9 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
         (cs[j].seed.x < 0.0 ? left : right).push_back(j);
       }
       const double step = 0.25 * o.segmentLength;
-      addBundle(model, makePath(yBranchPath(H, omega, yTurnRadius(o), true, step), nullptr, o.segmentLength),
-        cs, left, 0, o);
-      addBundle(model, makePath(yBranchPath(H, omega, yTurnRadius(o), false, step), nullptr, o.segmentLength),
-        cs, right, 1, o);
-      break;
+      const Path leftPath = makePath(yBranchPath(H, omega, yTurnRadius(o), true, step), nullptr, o.segmentLength);
+      const Path rightPath = makePath(yBranchPath(H, omega, yTurnRadius(o), false, step), nullptr, o.segmentLength);
+      return layBundles({ { &leftPath, &cs, left, 0 }, { &rightPath, &cs, right, 1 } }, piece, pieces, o);
     }
     case BundleShape::Chiasm:
     {
@@ -161,28 +190,23 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
       std::vector<std::size_t> crossing[2];
       std::vector<std::size_t> uncrossed[2];
       Path straight[2];
-      for (int side = 0; side < 2; ++side)
+      Path side[2];
+      for (int s = 0; s < 2; ++s)
       {
-        const Vec3 d = chiasmDirection(omega, side == 1);
-        straight[side] = makePath({ -H * d, H * d }, nullptr, o.segmentLength);
-        cs[side] = makeCrossSection(o, static_cast<std::uint64_t>(side));
-        splitChiasmNerve(cs[side], straight[side], chiasmLateralNormal(omega, side == 1), o.uncrossedFraction,
-          crossing[side], uncrossed[side]);
+        const Vec3 d = chiasmDirection(omega, s == 1);
+        straight[s] = makePath({ -H * d, H * d }, nullptr, o.segmentLength);
+        cs[s] = makeCrossSection(o, static_cast<std::uint64_t>(s));
+        splitChiasmNerve(cs[s], straight[s], chiasmLateralNormal(omega, s == 1), o.uncrossedFraction, crossing[s],
+          uncrossed[s]);
+        side[s] = makePath(
+          chiasmSidePath(H, omega, chiasmTurnRadius(o), s == 1, 0.25 * o.segmentLength), nullptr, o.segmentLength);
       }
-      for (int side = 0; side < 2; ++side)
-      {
-        addBundle(model, straight[side], cs[side], crossing[side], side, o);
-      }
-      for (int side = 0; side < 2; ++side)
-      {
-        const Path sidePath = makePath(
-          chiasmSidePath(H, omega, chiasmTurnRadius(o), side == 1, 0.25 * o.segmentLength), nullptr, o.segmentLength);
-        addBundle(model, sidePath, cs[side], uncrossed[side], 2 + side, o);
-      }
-      break;
+      return layBundles({ { &straight[0], &cs[0], crossing[0], 0 }, { &straight[1], &cs[1], crossing[1], 1 },
+                          { &side[0], &cs[0], uncrossed[0], 2 }, { &side[1], &cs[1], uncrossed[1], 3 } },
+        piece, pieces, o);
     }
   }
-  return model;
+  return FiberModel{};
 }
 
 std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* trajectory,

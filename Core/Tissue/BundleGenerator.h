@@ -41,10 +41,13 @@ Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& fr
 /// All paths are resampled by arc length at SegmentLength (resampleTrajectory). Fiber ids are
 /// 0..N−1 in output order (bundle by bundle). Randomness: see makeCrossSection (cross-section index,
 /// seed index) — same options → bit-identical model. Returns an empty model when
-/// validateBundleOptions(options, trajectory, trajectoryScale) is not empty (call it first to get
-/// the message).
+/// validateBundleOptions(options, trajectory, trajectoryScale, pieces) is not empty (call it first
+/// to get the message).
+/// Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece, pieces) of that order
+/// are laid, with their global ids; every piece draws all cross-sections (seeds, radii: small), the
+/// points only of its own fibers.
 FiberModel generateBundle(const BundleOptions& options, const std::vector<Vec3>* trajectory,
-  const std::vector<double>* trajectoryScale = nullptr);
+  const std::vector<double>* trajectoryScale = nullptr, int piece = 0, int pieces = 1);
 
 /// Non-fatal problems of valid options, docs/tissue-models.md §2 "Corners": a (resampled) trajectory
 /// whose smallest radius of curvature is below BundleRadius·max σ, where inner fibers fold over.

@@ -4,8 +4,10 @@
 #include "Tissue/Trajectory.h"
 #include "Util/MemoryBudget.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace fiberpli
 {
@@ -67,7 +69,7 @@ double effectiveRanvierSpacing(const BundleOptions& o)
 }
 
 std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3>* trajectory,
-  const std::vector<double>* trajectoryScale)
+  const std::vector<double>* trajectoryScale, int pieces)
 {
   std::ostringstream msg;
   const double ranvier = effectiveRanvierSpacing(o);
@@ -164,7 +166,9 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   const double perFiber = pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
   // Fibers alone first (a tiny FiberSpacing), then with their points.
   const std::string fiberProblem = checkMemoryBudget(fiberModelBytes(fibers, 2.0 * fibers), "the fibers");
-  const std::string pointProblem = checkMemoryBudget(fiberModelBytes(fibers, fibers * perFiber), "the points");
+  const double share = 1.0 / std::max(1, pieces);
+  const std::string pointProblem = checkMemoryBudget(fiberModelBytes(share * fibers, share * fibers * perFiber),
+    pieces > 1 ? "the points of one piece of " + std::to_string(pieces) : std::string("the points"));
   if (!fiberProblem.empty())
   {
     msg << "BundleRadius " << o.bundleRadius << " with FiberSpacing " << o.fiberSpacing

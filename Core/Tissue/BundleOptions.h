@@ -59,8 +59,9 @@ double effectiveRanvierSpacing(const BundleOptions& options);
 /// (YShape, Chiasm); UncrossedFraction outside [0, 1]; with Ranvier on: RanvierDepth outside [0, 1),
 /// RanvierLength <= 0 or 2·RanvierLength > RanvierSpacing; Trajectory without a polyline or a bad
 /// polyline (validateTrajectory); more fibers or points than the memory budget allows
-/// (Util/MemoryBudget.h, with fiberModelBytes).
+/// (Util/MemoryBudget.h, with fiberModelBytes; the points of one piece of `pieces`, the
+/// cross-sections of all fibers, which every piece draws).
 std::string validateBundleOptions(const BundleOptions& options, const std::vector<Vec3>* trajectory = nullptr,
-  const std::vector<double>* trajectoryScale = nullptr);
+  const std::vector<double>* trajectoryScale = nullptr, int pieces = 1);
 
 } // namespace fiberpli

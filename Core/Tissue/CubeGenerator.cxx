@@ -1,5 +1,6 @@
 #include "Tissue/CubeGenerator.h"
 
+#include "Model/FiberPieces.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
@@ -74,19 +75,66 @@ Fiber makeFiber(const CubeOptions& o, int k, int j)
   f.radii.assign(static_cast<std::size_t>(n), r);
   return f;
 }
-// Lattice seeding: moves fiber j of population k from its drawn transverse position (the first two
-// draws of its stream) to a lattice site, jittered. The sites are shuffled by the stream
-// (seed, 3 + k, 0), fiber j takes the j-th and draws its jitter from (seed, 3 + k, 1 + j): keys
-// 3..5 are not fiber streams (those have key1 = population 0..2).
-void placeOnLattice(const CubeOptions& o, std::vector<std::vector<Fiber>>& byPopulation)
+// The radius makeFiber(o, k, j) gives, without building the points: the same draws, the points'
+// skipped (2 transverse, 3 per drawn point).
+double cubeFiberRadius(const CubeOptions& o, int k, int j)
 {
-  std::vector<int> counts;
-  for (const auto& population : byPopulation)
-    counts.push_back(static_cast<int>(population.size()));
+  if (!(o.radiusSpread > 0.0))
+  {
+    return o.fiberRadius;
+  }
+  const int n = pointsPerFiber(o);
+  RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  const int skipped = 2 + 3 * (o.periodic ? n - 1 : n);
+  for (int i = 0; i < skipped; ++i)
+  {
+    rng.next();
+  }
+  return drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
+}
+
+// Fibers per population. With a volume fraction: fibers in turn over the populations (0, 1, 2,
+// 0, …) while adding one brings the volume closer to the target (each fiber's straight length is
+// one period L); only their radii are drawn, so every piece can count them all cheaply.
+std::vector<int> populationCounts(const CubeOptions& o)
+{
+  std::vector<int> counts(static_cast<std::size_t>(o.populations), 0);
+  if (!(o.volumeFraction > 0.0))
+  {
+    for (int k = 0; k < o.populations; ++k)
+    {
+      counts[static_cast<std::size_t>(k)] = cubePopulationSize(o, k);
+    }
+    return counts;
+  }
+  const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength;
+  const double bound = fiberCountEstimate(o);
+  double volume = 0.0;
+  for (int i = 0; i < bound; ++i)
+  {
+    const int k = i % o.populations;
+    const double r = cubeFiberRadius(o, k, i / o.populations);
+    const double v = M_PI * r * r * o.edgeLength;
+    if (volume + 0.5 * v > target)
+    {
+      break;
+    }
+    volume += v;
+    ++counts[static_cast<std::size_t>(k)];
+  }
+  return counts;
+}
+
+// Lattice seeding: the sites of every population, shuffled by the stream (seed, 3 + k, 0) (keys
+// 3..5 are not fiber streams: those have key1 = population 0..2). Fiber j of population k takes
+// the j-th site.
+std::vector<std::vector<LatticeSite>> shuffledSites(const CubeOptions& o, const std::vector<int>& counts,
+  double& spacing)
+{
   const PeriodicLattice lattice = periodicLattice(o.edgeLength, counts);
-  const double half = 0.5 * o.edgeLength;
-  const double room = std::max(0.0, 0.5 * lattice.spacing - o.fiberRadius);
-  for (std::size_t k = 0; k < byPopulation.size(); ++k)
+  spacing = lattice.spacing;
+  std::vector<std::vector<LatticeSite>> all;
+  for (std::size_t k = 0; k < counts.size(); ++k)
   {
     std::vector<LatticeSite> sites = lattice.sites[k];
     RandomStream shuffle(o.seed, 3 + k, 0);
@@ -95,24 +143,33 @@ void placeOnLattice(const CubeOptions& o, std::vector<std::vector<Fiber>>& byPop
       const auto pick = static_cast<std::size_t>(shuffle.uniform() * static_cast<double>(i));
       std::swap(sites[i - 1], sites[std::min(pick, i - 1)]);
     }
-    const int other1 = static_cast<int>(k + 1) % 3;
-    const int other2 = static_cast<int>(k + 2) % 3;
-    for (std::size_t j = 0; j < byPopulation[k].size(); ++j)
-    {
-      RandomStream drawn(o.seed, k, j);
-      const double t1 = drawn.uniform(-half, half);
-      const double t2 = drawn.uniform(-half, half);
-      RandomStream jitter(o.seed, 3 + k, 1 + j);
-      const double u1 = jitter.uniform();
-      const Seed2D offset = randomSeedInDisc(u1, jitter.uniform(), room);
-      const double shift1 = sites[j].t1 + offset.x - t1;
-      const double shift2 = sites[j].t2 + offset.y - t2;
-      for (Vec3& p : byPopulation[k][j].points)
-      {
-        p[other1] += shift1;
-        p[other2] += shift2;
-      }
-    }
+    all.push_back(std::move(sites));
+  }
+  return all;
+}
+
+// Moves fiber j of population k from its drawn transverse position (the first two draws of its
+// stream) to its site, jittered uniformly in the disc of radius max(0, spacing/2 − r) by the
+// stream (seed, 3 + k, 1 + j).
+void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const LatticeSite& site, double spacing,
+  Fiber& f)
+{
+  const double half = 0.5 * o.edgeLength;
+  const double room = std::max(0.0, 0.5 * spacing - o.fiberRadius);
+  const int other1 = static_cast<int>(k + 1) % 3;
+  const int other2 = static_cast<int>(k + 2) % 3;
+  RandomStream drawn(o.seed, k, j);
+  const double t1 = drawn.uniform(-half, half);
+  const double t2 = drawn.uniform(-half, half);
+  RandomStream jitter(o.seed, 3 + k, 1 + j);
+  const double u1 = jitter.uniform();
+  const Seed2D offset = randomSeedInDisc(u1, jitter.uniform(), room);
+  const double shift1 = site.t1 + offset.x - t1;
+  const double shift2 = site.t2 + offset.y - t2;
+  for (Vec3& p : f.points)
+  {
+    p[other1] += shift1;
+    p[other2] += shift2;
   }
 }
 } // namespace
@@ -123,7 +180,7 @@ PeriodicCell cubeCell(const CubeOptions& o)
   return PeriodicCell{ { -half, -half, -half }, { half, half, half } };
 }
 
-std::string validateCubeOptions(const CubeOptions& o)
+std::string validateCubeOptions(const CubeOptions& o, int pieces)
 {
   std::ostringstream msg;
   const std::string radius = validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
@@ -178,10 +235,16 @@ std::string validateCubeOptions(const CubeOptions& o)
   {
     const double fibers = fiberCountEstimate(o);
     const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
+    const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
     what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
-         << " and SegmentLength " << o.segmentLength << " (" << points << " points)";
-    const std::string problem = checkMemoryBudget(fiberModelBytes(fibers, points), what.str());
+         << " and SegmentLength " << o.segmentLength << " (" << points << " points";
+    if (pieces > 1)
+    {
+      what << ", a share of 1/" << pieces << " per piece";
+    }
+    what << ")";
+    const std::string problem = checkMemoryBudget(fiberModelBytes(share * fibers, share * points), what.str());
     if (!problem.empty())
     {
       msg << problem << "; it would need too many points";
@@ -195,53 +258,38 @@ int cubePopulationSize(const CubeOptions& o, int k)
   return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
 }
 
-FiberModel generateCube(const CubeOptions& o)
+FiberModel generateCube(const CubeOptions& o, int piece, int pieces)
 {
-  std::vector<std::vector<Fiber>> byPopulation(static_cast<std::size_t>(o.populations));
-  if (o.volumeFraction > 0.0)
+  const std::vector<int> counts = populationCounts(o);
+  std::size_t total = 0;
+  for (int c : counts)
   {
-    // Fibers in turn over the populations while adding one brings the volume closer to the
-    // target (each fiber's straight length is one period L).
-    const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength;
-    const double bound = fiberCountEstimate(o);
-    double volume = 0.0;
-    for (int i = 0; i < bound; ++i)
-    {
-      const int k = i % o.populations;
-      Fiber f = makeFiber(o, k, i / o.populations);
-      const double v = M_PI * f.radii[0] * f.radii[0] * o.edgeLength;
-      if (volume + 0.5 * v > target)
-      {
-        break;
-      }
-      volume += v;
-      byPopulation[static_cast<std::size_t>(k)].push_back(std::move(f));
-    }
+    total += static_cast<std::size_t>(c);
   }
-  else
-  {
-    for (int k = 0; k < o.populations; ++k)
-    {
-      const int count = cubePopulationSize(o, k);
-      for (int j = 0; j < count; ++j)
-      {
-        byPopulation[static_cast<std::size_t>(k)].push_back(makeFiber(o, k, j));
-      }
-    }
-  }
-  if (o.seeding == CubeSeeding::Lattice)
-  {
-    placeOnLattice(o, byPopulation);
-  }
+  const FiberRange range = pieceRange(total, piece, pieces);
+  double spacing = 0.0;
+  const std::vector<std::vector<LatticeSite>> sites =
+    o.seeding == CubeSeeding::Lattice ? shuffledSites(o, counts, spacing) : std::vector<std::vector<LatticeSite>>{};
   FiberModel model;
-  std::int64_t nextId = 0;
-  for (auto& population : byPopulation)
+  model.fibers.reserve(range.size());
+  // Global order: population by population, fiber j of population k at first(k) + j.
+  std::size_t first = 0;
+  for (std::size_t k = 0; k < counts.size(); ++k)
   {
-    for (Fiber& f : population)
+    const std::size_t count = static_cast<std::size_t>(counts[k]);
+    const std::size_t from = std::max(range.begin, first) - first;
+    const std::size_t to = std::min(range.end, first + count);
+    for (std::size_t j = from; first + j < to; ++j)
     {
-      f.id = nextId++;
+      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j));
+      if (!sites.empty())
+      {
+        placeOnSite(o, k, j, sites[k][j], spacing, f);
+      }
+      f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));
     }
+    first += count;
   }
   return model;
 }

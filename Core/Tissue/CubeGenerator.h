@@ -49,8 +49,9 @@ struct CubeOptions
 /// The cell of a periodic cube: [-L/2, L/2]³.
 PeriodicCell cubeCell(const CubeOptions& options);
 
-/// Empty string when the options are usable, else a message naming the option and its value.
-std::string validateCubeOptions(const CubeOptions& options);
+/// Empty string when the options are usable, else a message naming the option and its value. The
+/// memory guard checks one piece of `pieces` (its share of the fibers and points).
+std::string validateCubeOptions(const CubeOptions& options, int pieces = 1);
 
 /// Number of fibers of population k (0-based) when options.numberOfFibers are split (with
 /// volumeFraction > 0 the counts come from the radii drawn, see generateCube).
@@ -60,7 +61,10 @@ int cubePopulationSize(const CubeOptions& options, int k);
 /// k come from the stream (seed, k, j): transverse position (2), displacements point by point, then
 /// (only with radiusSpread > 0) the radius. With volumeFraction > 0, fibers j = 0, 1, … are added to the
 /// populations in turn (0, 1, 2, 0, …) while the fiber volume stays closest to the target.
-/// Precondition: validateCubeOptions(options) is empty.
-FiberModel generateCube(const CubeOptions& options);
+/// Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece, pieces) are built, with
+/// their global ids; the counts (and with volumeFraction the radii of all fibers) are drawn by every
+/// piece, the points only for the piece's own fibers, so a piece holds its share of the memory.
+/// Precondition: validateCubeOptions(options, pieces) is empty.
+FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1);
 
 } // namespace fiberpli

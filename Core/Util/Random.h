@@ -6,9 +6,17 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace fiberpli
 {
+
+/// Empty when `seed` is a usable Seed property (>= 0: it becomes the unsigned stream seed), else the
+/// message naming it. The one Seed rule of every source and filter with randomness.
+inline std::string validateSeed(long long seed)
+{
+  return seed < 0 ? "Seed is " + std::to_string(seed) + ", must be >= 0" : std::string();
+}
 
 inline std::uint64_t splitMix64(std::uint64_t& state)
 {

@@ -3,6 +3,7 @@
 // every model (small) solved by FiberCollisionSolver without overlaps (independent counter).
 #include "ErrorCatcher.h"
 #include "IndependentOverlap.h"
+#include "PieceCheck.h"
 #include "vtkFiberBundleSource.h"
 #include "vtkFiberCollisionSolver.h"
 
@@ -244,14 +245,15 @@ TEST(FiberBundleSource, SameSeedSameFibersOtherSeedOtherFibers)
   EXPECT_EQ(Field(b->GetOutput(), "seed"), 4.0);
 }
 
-TEST(FiberBundleSource, OnlyPieceZeroHasFibers)
+TEST(FiberBundleSource, PiecesMakeTheWholeModel)
 {
   vtkNew<vtkFiberBundleSource> src;
   Small(src, vtkFiberBundleSource::CROSSING);
-  src->UpdatePiece(1, 2, 0);
-  EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
-  src->UpdatePiece(0, 2, 0);
-  EXPECT_GT(src->GetOutput()->GetNumberOfLines(), 0);
+  src->SetSeed(9);
+  fiberpli_test::ExpectPiecesMakeTheWhole(src, 5);
+  src->SetShape(vtkFiberBundleSource::TRAJECTORY);
+  src->SetInputData(Polyline({ { -10, 0, 0 }, { 0, 2, 0 }, { 10, 0, 1 } }));
+  fiberpli_test::ExpectPiecesMakeTheWhole(src, 5);
 }
 
 TEST(FiberBundleSource, BadInputIsAClearErrorAndRecoverable)

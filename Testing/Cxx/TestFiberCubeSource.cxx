@@ -1,5 +1,6 @@
-// FiberCubeSource through VTK: counts, arrays, reproducibility, bad properties.
+// FiberCubeSource through VTK: counts, arrays, reproducibility, pieces, bad properties.
 #include "ErrorCatcher.h"
+#include "PieceCheck.h"
 #include "vtkFiberCubeSource.h"
 
 #include <vtkCellData.h>
@@ -68,6 +69,26 @@ TEST(FiberCubeSource, SameSeedSameOutput)
     ASSERT_EQ(p[1], q[1]);
     ASSERT_EQ(p[2], q[2]);
   }
+}
+
+TEST(FiberCubeSource, PiecesMakeTheWholeModel)
+{
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPopulations(3);
+  cube->SetNumberOfFibers(17);
+  cube->SetEdgeLength(20.0);
+  cube->SetSeed(12);
+  fiberpli_test::ExpectPiecesMakeTheWhole(cube, 5);
+  cube->SetPeriodic(true); // periodic_cell on every piece
+  cube->SetVolumeFraction(0.25);
+  cube->SetRadiusSpread(0.2);
+  cube->SetRadiusDistribution(1);
+  fiberpli_test::ExpectPiecesMakeTheWhole(cube, 5);
+  cube->SetVolumeFraction(0.0); // 3 fibers in 8 pieces: piece 1 is empty but has the cell
+  cube->SetNumberOfFibers(3);
+  cube->UpdatePiece(1, 8, 0);
+  EXPECT_EQ(cube->GetOutput()->GetNumberOfLines(), 0);
+  EXPECT_NE(cube->GetOutput()->GetFieldData()->GetArray("periodic_cell"), nullptr);
 }
 
 TEST(FiberCubeSource, BadPropertiesAreNamedAndRecoverable)

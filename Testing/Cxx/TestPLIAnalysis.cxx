@@ -9,6 +9,7 @@
 #include "vtkPLISimulation.h"
 
 #include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
@@ -523,6 +524,59 @@ TEST(FiberOrientationMap, LegendPortAndBadInput)
   EXPECT_LT(at(32, 63, 0), 40);
   EXPECT_GT(at(32, 63, 1), 150);
   EXPECT_GT(at(32, 63, 2), 150);
+}
+
+// The input arrays are chosen with SetInputArrayToProcess: other names and other numeric types
+// give the same colours as the default direction/inclination doubles.
+TEST(FiberOrientationMap, InputArraysAreSelectedByName)
+{
+  const std::vector<std::pair<double, double>> in = { { 0, 0 }, { 30, 0 }, { 90, 30 }, { 30, 60 }, { 150, -45 } };
+  vtkNew<vtkFiberOrientationMap> reference;
+  reference->SetInputData(AngleImage(in));
+  reference->Update();
+  auto* expected = vtkUnsignedCharArray::SafeDownCast(reference->GetOutput()->GetPointData()->GetArray("fom"));
+  ASSERT_NE(expected, nullptr);
+
+  auto img = AngleImage({ { 45, 45 } }); // decoy arrays under the default names
+  img->SetExtent(0, static_cast<int>(in.size()) - 1, 0, 0, 0, 0);
+  vtkNew<vtkFloatArray> d, i;
+  d->SetName("my_direction");
+  i->SetName("my_inclination");
+  vtkNew<vtkDoubleArray> decoyD, decoyI;
+  decoyD->SetName("direction");
+  decoyI->SetName("inclination");
+  for (const auto& p : in)
+  {
+    d->InsertNextValue(static_cast<float>(p.first));
+    i->InsertNextValue(static_cast<float>(p.second));
+    decoyD->InsertNextValue(0.0);
+    decoyI->InsertNextValue(90.0);
+  }
+  img->GetPointData()->AddArray(d);
+  img->GetPointData()->AddArray(i);
+  img->GetPointData()->AddArray(decoyD);
+  img->GetPointData()->AddArray(decoyI);
+  vtkNew<vtkFiberOrientationMap> f;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(f);
+  f->SetInputData(img);
+  f->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "my_direction");
+  f->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "my_inclination");
+  f->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  auto* fom = vtkUnsignedCharArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("fom"));
+  ASSERT_NE(fom, nullptr);
+  ASSERT_EQ(fom->GetNumberOfTuples(), expected->GetNumberOfTuples());
+  for (vtkIdType k = 0; k < 3 * fom->GetNumberOfTuples(); ++k)
+  {
+    EXPECT_EQ(fom->GetValue(k), expected->GetValue(k)) << "value " << k;
+  }
+
+  // A selected array that is not there is an error naming it.
+  catcher->Clear();
+  f->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "no_such_array");
+  f->Update();
+  EXPECT_NE(catcher->Errors.find("'no_such_array'"), std::string::npos) << catcher->Errors;
 }
 
 TEST(FiberOrientationGroundTruth, StraightFibers)

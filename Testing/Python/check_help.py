@@ -5,7 +5,7 @@ Plugin/*.xml, that its page exists, is valid UTF-8, declares charset utf-8 withi
 bytes (where Qt's QTextCodec::codecForHtml looks; without it the help browser decodes Latin-1 and
 "µm" shows as "Âµm"), and contains the non-ASCII characters of the proxy's documentation.
 
-    check_help.py <Plugin dir> <FiberPLI.qch>"""
+    check_help.py <XML dir: build/Plugin/xml> <FiberPLI.qch>"""
 import glob
 import os
 import re

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Checks the layer rules of docs/architecture.md §2 on every #include of the tree: the Core
-includes no VTK header and nothing from Filters/Readers/Plugin; a Core topic includes only topics
-on lower levels of the table in docs/architecture.md §2; Filters never includes Readers;
-Core/Testing and bench stay without VTK and the VTK modules. Usage: check_layers.py <source dir>"""
+includes no VTK header and nothing from Conversion/Filters/Readers/Plugin; a Core topic includes
+only topics on lower levels of the table in docs/architecture.md §2; Core/Section includes only
+Model, Geometry and Util, Core/PLI and Core/Analysis never include each other; Conversion includes
+neither Filters nor Readers; Filters and Readers never include each other; Core/Testing and bench
+stay without VTK and the VTK modules. Usage: check_layers.py <source dir>"""
 import os
 import re
 import sys
@@ -36,13 +38,13 @@ def layer_of_file(rel):
     parts = rel.split("/")
     if parts[0] == "Core" and len(parts) > 2:
         return ("core-testing", None) if parts[1] == "Testing" else ("core", parts[1])
-    return {"Filters": ("filters", None), "Readers": ("readers", None), "bench": ("bench", None),
+    return {"Conversion": ("conversion", None), "Filters": ("filters", None), "Readers": ("readers", None), "bench": ("bench", None),
             "Testing": ("testing", None)}.get(parts[0], (None, None))
 
 
 def resolve(rel, bracket, name):
-    """What an include refers to: ('vtk',), ('core', topic), ('filters',), ('readers',),
-    ('plugin',), ('local',) or ('other',)."""
+    """What an include refers to: ('vtk',), ('core', topic), ('conversion',), ('filters',),
+    ('readers',), ('plugin',), ('local',) or ('other',)."""
     base = os.path.basename(name)
     if name.startswith("Plugin/"):
         return ("plugin",)
@@ -51,11 +53,13 @@ def resolve(rel, bracket, name):
         return ("core", first)
     if bracket == '"' and os.path.exists(os.path.join(root, os.path.dirname(rel), name)):
         return ("local",)
+    if base == "FiberPLIConversionModule.h":
+        return ("conversion",)
     if base == "FiberPLIFiltersModule.h":
         return ("filters",)
     if base == "FiberPLIReadersModule.h":
         return ("readers",)
-    for folder, kind in (("Filters", "filters"), ("Readers", "readers")):
+    for folder, kind in (("Conversion", "conversion"), ("Filters", "filters"), ("Readers", "readers")):
         if os.path.exists(os.path.join(root, folder, name)):
             return (kind,)
     if base.lower().startswith("vtk"):
@@ -63,8 +67,16 @@ def resolve(rel, bracket, name):
     return ("other",)
 
 
+# Rules by name on top of the levels (docs/architecture.md §2): the Section floor stands on Model,
+# Geometry and Util alone; PLI and Analysis both stand on Section and never include each other.
+TOPIC_RULES = {
+    "Section": ({"Model", "Geometry", "Util"}, "Core/Section may include only Model, Geometry and Util"),
+    "PLI": (set(LEVELS) - {"Analysis"}, "Core/PLI must not include Core/Analysis (both stand on Core/Section)"),
+    "Analysis": (set(LEVELS) - {"PLI"}, "Core/Analysis must not include Core/PLI (both stand on Core/Section)"),
+}
+
 checked = 0
-for folder in ("Core", "Filters", "Readers", "bench", "Testing/Cxx"):
+for folder in ("Core", "Conversion", "Filters", "Readers", "bench", "Testing/Cxx"):
     for dirpath, _, files in os.walk(os.path.join(root, folder)):
         for f in sorted(files):
             if not f.endswith(SOURCE_EXT):
@@ -86,7 +98,7 @@ for folder in ("Core", "Filters", "Readers", "bench", "Testing/Cxx"):
                 if layer in ("core", "core-testing", "bench"):
                     if target[0] == "vtk":
                         errors.append("%s: VTK header in %s (the Core and its tests are VTK-free)" % (where, layer))
-                    elif target[0] in ("filters", "readers", "plugin"):
+                    elif target[0] in ("conversion", "filters", "readers", "plugin"):
                         errors.append("%s: %s includes the higher layer %s" % (where, layer, target[0]))
                 if layer == "core" and target[0] == "core" and target[1] != topic:
                     other = target[1]
@@ -95,8 +107,18 @@ for folder in ("Core", "Filters", "Readers", "bench", "Testing/Cxx"):
                     elif LEVELS[other] >= LEVELS[topic]:
                         errors.append("%s: Core/%s (level %d) may include only lower levels, not Core/%s (level %d)"
                                       % (where, topic, LEVELS[topic], other, LEVELS[other]))
+                if layer == "core" and target[0] == "core" and target[1] != topic:
+                    rule = TOPIC_RULES.get(topic)
+                    if rule and target[1] not in rule[0]:
+                        errors.append("%s: %s" % (where, rule[1]))
+                if layer == "conversion" and target[0] in ("filters", "readers", "plugin"):
+                    errors.append("%s: Conversion includes the higher layer %s" % (where, target[0]))
                 if layer == "filters" and target[0] in ("readers", "plugin"):
-                    errors.append("%s: Filters includes the higher layer %s" % (where, target[0]))
+                    errors.append("%s: Filters includes %s (Filters and Readers both stand on Conversion)"
+                                  % (where, target[0]))
+                if layer == "readers" and target[0] in ("filters", "plugin"):
+                    errors.append("%s: Readers includes %s (Filters and Readers both stand on Conversion)"
+                                  % (where, target[0]))
 
 if checked < 50:
     errors.append("only %d source files found under %s: wrong source directory?" % (checked, root))

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Checks the server-manager XML (docs/architecture.md §6 (c)): every proxy and property is documented,
-every command= setter exists in the class header, and every proxy has a pvpython-safe label."""
+every command= setter exists in the class header, and every proxy has a pvpython-safe label.
+
+    check_xml.py <XML dir: build/Plugin/xml, the XML with Plugin/Shared put in> <source dir>"""
 import glob
 import os
 import re
@@ -38,10 +40,11 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
         # Every menu entry has an icon from the plugin's resources (Plugin/Resources/FiberPLI.qrc).
         for menu in proxy.iter("ShowInMenu"):
             icon = menu.get("icon", "")
-            qrc = open(os.path.join(plugin_dir, "Resources", "FiberPLI.qrc"), encoding="utf-8").read()
+            resources = os.path.join(source_dir, "Plugin", "Resources")
+            qrc = open(os.path.join(resources, "FiberPLI.qrc"), encoding="utf-8").read()
             relative = icon[len(":/FiberPLI/"):] if icon.startswith(":/FiberPLI/") else None
             if not relative or "<file>%s</file>" % relative not in qrc or not os.path.exists(
-                    os.path.join(plugin_dir, "Resources", relative)):
+                    os.path.join(resources, relative)):
                 errors.append("%s: %s has no icon from Plugin/Resources (%r)" % (xml_path, name, icon))
         # A parallel-serial writer wraps our writer class in its "Writer" subproxy.
         cls = proxy.get("class")

@@ -38,13 +38,27 @@ def fom(**props):
 
 plain, no_mask = fom()
 check(no_mask is None and all(c != (0, 0, 0) for c in plain), "unmasked FOM %s" % plain)
-for props, keep in (({"Mask": "Retardation", "MaskThreshold": 0.05}, [0, 0, 1, 1]),
-                    ({"Mask": "Transmittance", "MaskThreshold": 10000}, [0, 0, 1, 1]),
-                    ({"Mask": "Transmittance", "MaskThreshold": 12600}, [0, 1, 1, 1])):
+# MaskThreshold is a fraction of the image's largest value (0.9 and 13000 here): retardation below
+# 0.05 * 0.9 = 0.045 is background; transmittance above (1 - 0.2) * 13000 = 10400, or above
+# (1 - 0.03) * 13000 = 12610.
+for props, keep, threshold in (({"Mask": "Retardation", "MaskThreshold": 0.05}, [0, 0, 1, 1], 0.045),
+                               ({"Mask": "Transmittance", "MaskThreshold": 0.2}, [0, 0, 1, 1], 10400.0),
+                               ({"Mask": "Transmittance", "MaskThreshold": 0.03}, [0, 1, 1, 1], 12610.0),
+                               ({"Mask": "Transmittance", "MaskThreshold": 0.0}, [1, 1, 1, 1], 13000.0)):
     rgb, mask = fom(**props)
     check(mask == keep, "%s: mask %s" % (props, mask))
     for p in range(4):
         check(rgb[p] == (plain[p] if keep[p] else (0, 0, 0)), "%s pixel %d: %s" % (props, p, rgb[p]))
+    f = FiberOrientationMap(Input=source, **props)
+    f.UpdatePipeline()
+    used = servermanager.Fetch(f).GetFieldData().GetArray("mask_threshold").GetValue(0)
+    check(abs(used - threshold) < 1e-9 * threshold, "%s: mask_threshold %r" % (props, used))
+
+# A fraction outside [0, 1] is an error naming the value (typed in Python, past the XML range).
+bad = FiberOrientationMap(Input=source, Mask="Transmittance", MaskThreshold=1.5)
+errors = ErrorCatcher(bad)
+bad.UpdatePipeline()
+check("MaskThreshold 1.5" in errors.text() and "[0, 1]" in errors.text(), "error: %r" % errors.text())
 
 # Masking by an array the input lacks is an error naming it.
 lacking = vtkImageData()
@@ -65,7 +79,7 @@ for k in range(4000):
     extra.InsertNextValue(1.0)
 longer.GetPointData().AddArray(extra)
 source.GetClientSideObject().SetOutput(longer)
-bad = FiberOrientationMap(Input=source, Mask="Transmittance", MaskThreshold=10)
+bad = FiberOrientationMap(Input=source, Mask="Transmittance")
 errors = ErrorCatcher(bad)
 bad.UpdatePipeline()
 check("'transmittance' has 4000 tuples, 'direction' has 4" in errors.text(), "error: %r" % errors.text())
@@ -100,4 +114,34 @@ for prop, value, good, text in (("ColorScheme", 7, 1, "ColorScheme is 7"), ("Mas
     bad.UpdatePipeline()
     check(not errors.errors and servermanager.Fetch(bad).GetPointData().GetArray("fom") is not None,
           "%s: not usable after a good value: %r" % (prop, errors.text()))
+# The default MaskThreshold blackens a simulated background and keeps the tissue (default noise).
+# Transmittance: a bundle of radius 10 um along x in a 10 um section twice as wide, the tissue
+# absorbing (20 per mm); pixels with |y| <= 8 see at least 10 um of bundle, those with |y| >= 12
+# none (the blur, OpticalSigma 0.71 um, does not reach 2 um). Retardation needs a signal well above
+# the noise's: a bundle of radius 30 um in the 60 um section usual in 3D-PLI (|y| <= 24 tissue,
+# |y| >= 34 background).
+def masked(kind, radius, voi, absorption):
+    SetActiveSource(None)
+    bundle = FiberBundleSource(BundleRadius=radius, Length=40.0)
+    sim = PLISimulation(Input=bundle, VolumeOfInterest=voi, Absorption=absorption, Seed=3)
+    section = servermanager.Fetch(FiberOrientationMap(Input=PLIAnalysis(Input=sim), Mask=kind))
+    shown = section.GetPointData().GetArray("mask")
+    tissue, background = [], []
+    for p in range(section.GetNumberOfPoints()):
+        y = abs(section.GetPoint(p)[1])
+        if y <= radius - 2 - (4 if radius > 10 else 0):
+            tissue.append(shown.GetValue(p))
+        elif y >= radius + 2 + (2 if radius > 10 else 0):
+            background.append(1 - shown.GetValue(p))
+    check(len(tissue) > 90 and len(background) > 90, "%s: %d tissue, %d background pixels" % (
+        kind, len(tissue), len(background)))
+    print("%s: %d of %d tissue pixels shown, %d of %d background pixels black" % (
+        kind, sum(tissue), len(tissue), sum(background), len(background)))
+    return sum(tissue) / len(tissue), sum(background) / len(background)
+
+
+shown, black = masked("Transmittance", 10.0, [-16, 16, -20, 20, -5, 5], 20.0)
+check(shown == 1.0 and black == 1.0, "Transmittance: tissue shown %.3f, background black %.3f" % (shown, black))
+shown, black = masked("Retardation", 30.0, [-16, 16, -40, 40, -30, 30], 0.0)
+check(shown == 1.0 and black >= 0.9, "Retardation: tissue shown %.3f, background black %.3f" % (shown, black))
 print("FOM mask checks passed")

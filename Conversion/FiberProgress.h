@@ -7,12 +7,15 @@
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
  * AbortScope, the first line of every RequestData, makes an abort apply to one execution only.
- * CheckThreads applies the NumberOfThreads rule of Util/Threads.h with VTK messages.
+ * CheckThreads applies the NumberOfThreads rule of Util/Threads.h, CheckSeed the Seed rule of
+ * Util/Random.h, with VTK messages.
  */
 #ifndef FiberProgress_h
 #define FiberProgress_h
 
+#include "FiberExecutions.h"
 #include "Util/Progress.h"
+#include "Util/Random.h"
 #include "Util/Threads.h"
 
 #include <vtkAlgorithm.h>
@@ -40,16 +43,19 @@ inline ProgressFn MakeProgress(vtkAlgorithm* algorithm, double begin = 0.0, doub
 /// (from a progress observer or the GUI), so every later update of this algorithm, and of every
 /// algorithm downstream (CheckAbort looks upstream), would stop at once and pass empty output on.
 /// The aborted execution itself is still reported to the executive (its output is marked aborted
-/// and is made again by the next update).
+/// and is made again by the next update). While the scope lasts the execution is listed in
+/// FiberExecutions, where the GUI's abort button finds it.
 class AbortScope
 {
 public:
   explicit AbortScope(vtkAlgorithm* algorithm)
     : Algorithm(algorithm)
   {
+    FiberExecutions::Enter(algorithm);
   }
   ~AbortScope()
   {
+    FiberExecutions::Leave(this->Algorithm);
     if (this->Algorithm->GetAbortExecute())
     {
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
@@ -79,6 +85,18 @@ inline bool CheckThreads(vtkAlgorithm* algorithm, const char* who, int requested
   if (!warning.empty())
   {
     vtkWarningWithObjectMacro(algorithm, << who << ": " << warning);
+  }
+  return true;
+}
+
+/// Seed rule: false (with an error naming the value) for a negative Seed.
+inline bool CheckSeed(vtkAlgorithm* algorithm, const char* who, long long seed)
+{
+  const std::string error = validateSeed(seed);
+  if (!error.empty())
+  {
+    vtkErrorWithObjectMacro(algorithm, << who << ": " << error);
+    return false;
   }
   return true;
 }

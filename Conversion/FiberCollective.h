@@ -18,7 +18,7 @@
 #ifndef FiberCollective_h
 #define FiberCollective_h
 
-#include "FiberPLIFiltersModule.h" // for export macro
+#include "FiberPLIConversionModule.h" // for export macro
 
 #include <functional>
 #include <string>
@@ -31,7 +31,7 @@ class vtkMultiProcessController;
 namespace fiberpli
 {
 
-class FIBERPLIFILTERS_EXPORT FiberCollective
+class FIBERPLICONVERSION_EXPORT FiberCollective
 {
 public:
   /// The global controller when `info` (an output, or for a writer the input, information) belongs

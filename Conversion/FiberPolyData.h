@@ -16,7 +16,7 @@
 #ifndef FiberPolyData_h
 #define FiberPolyData_h
 
-#include "FiberPLIFiltersModule.h" // for export macro
+#include "FiberPLIConversionModule.h" // for export macro
 #include "Model/FiberModel.h"
 
 #include <string>
@@ -39,7 +39,7 @@ struct FiberConversion
   bool ok() const { return error.empty(); }
 };
 
-class FIBERPLIFILTERS_EXPORT FiberPolyData
+class FIBERPLICONVERSION_EXPORT FiberPolyData
 {
 public:
   /// Converts and validates fiber polydata (see the class documentation). `who` prefixes messages.

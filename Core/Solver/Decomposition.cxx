@@ -1,0 +1,399 @@
+#include "Solver/Decomposition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+namespace fiberpli
+{
+
+namespace
+{
+// Byte records of fibers: plain copies of the values, read back in the order written.
+class Writer
+{
+public:
+  explicit Writer(std::vector<char>& out) : out_(out) {}
+  template <class T> void put(const T& v) { raw(&v, sizeof(T)); }
+  template <class T> void putVector(const std::vector<T>& v)
+  {
+    put<std::uint64_t>(v.size());
+    raw(v.data(), v.size() * sizeof(T));
+  }
+
+private:
+  void raw(const void* p, std::size_t n)
+  {
+    const std::size_t at = out_.size();
+    out_.resize(at + n);
+    if (n > 0)
+      std::memcpy(out_.data() + at, p, n);
+  }
+  std::vector<char>& out_;
+};
+
+class Reader
+{
+public:
+  explicit Reader(const std::vector<char>& in) : in_(in) {}
+  bool done() const { return at_ >= in_.size(); }
+  template <class T> T get()
+  {
+    T v;
+    std::memcpy(&v, in_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  template <class T> void getVector(std::vector<T>& v)
+  {
+    v.resize(get<std::uint64_t>());
+    if (!v.empty())
+      std::memcpy(v.data(), in_.data() + at_, v.size() * sizeof(T));
+    at_ += v.size() * sizeof(T);
+  }
+
+private:
+  const std::vector<char>& in_;
+  std::size_t at_ = 0;
+};
+
+// One fiber; the point state only for owned fibers (a halo fiber is a partner only).
+void writeFiber(Writer& w, const RankFibers& r, std::size_t f, bool owned)
+{
+  const CollisionSolverState& st = r.state;
+  const Fiber& fib = r.model.fibers[f];
+  w.put<std::int64_t>(st.global[f]);
+  w.put<std::int32_t>(st.home[f]);
+  w.put<std::int64_t>(fib.id);
+  w.put<std::int32_t>(fib.bundle);
+  w.put<char>(st.active[f]);
+  w.put<char>(st.closed[f]);
+  w.put<Vec3>(st.closure[f]);
+  w.putVector(fib.points);
+  w.putVector(fib.radii);
+  w.put<char>(owned ? 1 : 0);
+  if (owned)
+  {
+    w.putVector(st.points[f].velocity);
+    w.putVector(st.points[f].source);
+  }
+}
+
+void readFiber(Reader& rd, RankFibers& r)
+{
+  CollisionSolverState& st = r.state;
+  Fiber fib;
+  st.global.push_back(rd.get<std::int64_t>());
+  st.home.push_back(rd.get<std::int32_t>());
+  fib.id = rd.get<std::int64_t>();
+  fib.bundle = rd.get<std::int32_t>();
+  st.active.push_back(rd.get<char>());
+  st.closed.push_back(rd.get<char>());
+  st.closure.push_back(rd.get<Vec3>());
+  rd.getVector(fib.points);
+  rd.getVector(fib.radii);
+  const char owned = rd.get<char>();
+  FiberPointState ps;
+  if (owned)
+  {
+    rd.getVector(ps.velocity);
+    rd.getVector(ps.source);
+  }
+  r.owned.push_back(owned);
+  st.points.push_back(std::move(ps));
+  r.model.fibers.push_back(std::move(fib));
+}
+
+// Keeps the fibers with keep[f] and sorts everything by global index.
+void keepAndSort(RankFibers& r, const std::vector<char>& keep)
+{
+  CollisionSolverState& st = r.state;
+  std::vector<std::size_t> order;
+  for (std::size_t f = 0; f < r.size(); ++f)
+    if (keep[f])
+      order.push_back(f);
+  std::sort(order.begin(), order.end(), [&st](std::size_t a, std::size_t b) { return st.global[a] < st.global[b]; });
+  const auto permute = [&order](auto& v) {
+    std::remove_reference_t<decltype(v)> out;
+    out.reserve(order.size());
+    for (std::size_t i : order)
+      out.push_back(std::move(v[i]));
+    v = std::move(out);
+  };
+  permute(r.model.fibers);
+  permute(st.points);
+  permute(st.active);
+  permute(st.closed);
+  permute(st.closure);
+  permute(st.global);
+  permute(st.home);
+  permute(r.owned);
+}
+
+// Extent [lo, hi] of a fiber's points along an axis.
+void extent(const Fiber& f, int axis, double& lo, double& hi)
+{
+  lo = HUGE_VAL;
+  hi = -HUGE_VAL;
+  for (const Vec3& p : f.points)
+  {
+    lo = std::min(lo, p[axis]);
+    hi = std::max(hi, p[axis]);
+  }
+}
+
+// Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
+// integer k with a − reach + kP <= d and b + reach + kP >= c.
+bool within(double a, double b, double c, double d, double reach, double period)
+{
+  if (period <= 0.0)
+  {
+    return a - reach <= d && b + reach >= c;
+  }
+  return std::floor((d - a + reach) / period) >= std::ceil((c - b - reach) / period);
+}
+
+TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to,
+  const std::vector<char>& keep, bool owned, SolverComm& comm)
+{
+  TrafficCount t;
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+  for (std::size_t q = 0; q < to.size(); ++q)
+  {
+    Writer w(out[q]);
+    for (std::size_t f : to[q])
+      writeFiber(w, r, f, owned);
+    t.fibers += to[q].size();
+    t.bytes += out[q].size();
+  }
+  keepAndSort(r, keep); // before the received fibers are appended: they are kept
+  const std::vector<std::vector<char>> in = comm.exchange(out);
+  for (const std::vector<char>& buffer : in)
+  {
+    Reader rd(buffer);
+    while (!rd.done())
+      readFiber(rd, r);
+  }
+  keepAndSort(r, std::vector<char>(r.size(), 1));
+  return t;
+}
+} // namespace
+
+SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm)
+{
+  SlabLayout s;
+  s.ranks_ = comm.size();
+  s.periodic_ = cell.enabled();
+  Vec3 lo, hi;
+  if (s.periodic_)
+  {
+    lo = cell.lo;
+    hi = cell.hi;
+  }
+  else
+  {
+    std::vector<double> m(6, -HUGE_VAL); // −lo, hi per axis
+    Vec3 l, h;
+    if (modelBounds(local, false, l, h))
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        m[d] = -l[d];
+        m[3 + d] = h[d];
+      }
+    }
+    comm.max(m);
+    for (int d = 0; d < 3; ++d)
+    {
+      lo[d] = -m[d];
+      hi[d] = m[3 + d];
+    }
+  }
+  for (int d = 1; d < 3; ++d)
+    if (hi[d] - lo[d] > hi[s.axis_] - lo[s.axis_])
+      s.axis_ = d;
+  s.lo_ = lo[s.axis_];
+  s.hi_ = hi[s.axis_];
+  return s;
+}
+
+int SlabLayout::owner(const Fiber& f) const
+{
+  if (f.points.empty() || ranks_ == 1 || !(hi_ > lo_))
+  {
+    return 0;
+  }
+  double a, b;
+  extent(f, axis_, a, b);
+  double t = (0.5 * (a + b) - lo_) / (hi_ - lo_);
+  if (periodic_)
+  {
+    t -= std::floor(t);
+  }
+  const double slab = std::floor(t * ranks_);
+  return slab < 0.0 ? 0 : slab >= ranks_ ? ranks_ - 1 : static_cast<int>(slab);
+}
+
+TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverComm& comm)
+{
+  std::vector<std::vector<std::size_t>> to(static_cast<std::size_t>(comm.size()));
+  std::vector<char> keep(r.size(), 1);
+  for (std::size_t f = 0; f < r.size(); ++f)
+  {
+    if (dest[f] != comm.rank())
+    {
+      to[static_cast<std::size_t>(dest[f])].push_back(f);
+      keep[f] = 0;
+    }
+  }
+  return send(r, to, keep, true, comm);
+}
+
+void dropHalo(RankFibers& r)
+{
+  keepAndSort(r, r.owned);
+}
+
+TrafficCount addHalo(RankFibers& r, const SlabLayout& layout, const PeriodicCell& cell, double reach, SolverComm& comm)
+{
+  const int axis = layout.axis();
+  const std::size_t nr = static_cast<std::size_t>(comm.size());
+  const std::size_t me = static_cast<std::size_t>(comm.rank());
+  // Every rank's extent of its owned fibers (−lo, hi; empty: −∞, −∞).
+  std::vector<double> ext(2 * nr, -HUGE_VAL);
+  std::vector<double> lo(r.size()), hi(r.size());
+  for (std::size_t f = 0; f < r.size(); ++f)
+  {
+    extent(r.model.fibers[f], axis, lo[f], hi[f]);
+    if (r.owned[f] && !r.model.fibers[f].points.empty())
+    {
+      ext[2 * me] = std::max(ext[2 * me], -lo[f]);
+      ext[2 * me + 1] = std::max(ext[2 * me + 1], hi[f]);
+    }
+  }
+  comm.max(ext);
+  const double period = cell.enabled() ? cell.edge()[axis] : 0.0;
+  std::vector<std::vector<std::size_t>> to(nr);
+  for (std::size_t f = 0; f < r.size(); ++f)
+  {
+    if (!r.owned[f] || !r.state.active[f])
+      continue;
+    for (std::size_t q = 0; q < nr; ++q)
+    {
+      if (q != me && ext[2 * q + 1] > -HUGE_VAL && within(lo[f], hi[f], -ext[2 * q], ext[2 * q + 1], reach, period))
+        to[q].push_back(f);
+    }
+  }
+  return send(r, to, std::vector<char>(r.size(), 1), false, comm);
+}
+
+std::string agreeOnError(SolverComm& comm, const std::string& localError)
+{
+  std::vector<std::int64_t> failed(static_cast<std::size_t>(comm.size()), 0);
+  failed[static_cast<std::size_t>(comm.rank())] = localError.empty() ? 0 : 1;
+  comm.sum(failed);
+  const auto first = std::find(failed.begin(), failed.end(), 1);
+  if (first == failed.end())
+  {
+    return {};
+  }
+  const std::size_t who = static_cast<std::size_t>(first - failed.begin());
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+  if (who == static_cast<std::size_t>(comm.rank()))
+  {
+    for (std::vector<char>& b : out)
+      b.assign(localError.begin(), localError.end());
+  }
+  const std::vector<std::vector<char>> in = comm.exchange(out);
+  return std::string(in[who].begin(), in[who].end());
+}
+
+bool anyRank(SolverComm& comm, bool value)
+{
+  std::vector<std::int64_t> v{ value ? 1 : 0 };
+  comm.sum(v);
+  return v[0] > 0;
+}
+
+double maxOverRanks(SolverComm& comm, double value)
+{
+  std::vector<double> v{ value };
+  comm.max(v);
+  return v[0];
+}
+
+double minOverRanks(SolverComm& comm, double value)
+{
+  return -maxOverRanks(comm, -value);
+}
+
+void ExactSum::add(double term)
+{
+  double q = std::nearbyint(std::ldexp(term, 32)); // an integer below 2^96: three exact digits
+  for (std::uint64_t& limb : limbs_)
+  {
+    const double digit = std::fmod(q, 4294967296.0);
+    limb += static_cast<std::uint64_t>(digit);
+    q = std::ldexp(q - digit, -32);
+  }
+}
+
+double ExactSum::total(SolverComm* comm) const
+{
+  std::vector<std::int64_t> limbs(3);
+  std::uint64_t carry = 0;
+  for (std::size_t i = 0; i < 3; ++i) // carried into 32-bit digits: a rank sum cannot overflow
+  {
+    const std::uint64_t v = limbs_[i] + carry;
+    limbs[i] = static_cast<std::int64_t>(v & 0xffffffffu);
+    carry = v >> 32;
+  }
+  limbs[2] += static_cast<std::int64_t>(carry << 32);
+  if (comm)
+  {
+    comm->sum(limbs);
+  }
+  std::uint64_t d[3];
+  carry = 0;
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    const std::uint64_t v = static_cast<std::uint64_t>(limbs[i]) + carry;
+    d[i] = i < 2 ? (v & 0xffffffffu) : v;
+    carry = v >> 32;
+  }
+  return std::ldexp(static_cast<double>(d[2]), 32) + static_cast<double>(d[1]) +
+    std::ldexp(static_cast<double>(d[0]), -32);
+}
+
+double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverComm& comm)
+{
+  std::vector<std::int64_t> n{ static_cast<std::int64_t>(local.size()) };
+  comm.sum(n);
+  if (n[0] == 0)
+  {
+    return 0.0;
+  }
+  // Non-negative doubles sort like their bit patterns: find the smallest pattern v with more
+  // than k values <= v.
+  std::vector<std::uint64_t> bits(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i)
+    std::memcpy(&bits[i], &local[i], sizeof(double));
+  std::uint64_t lo = 0, hi = 0x7ff0000000000000ull; // +inf
+  while (lo < hi)
+  {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    std::vector<std::int64_t> c{ static_cast<std::int64_t>(std::count_if(bits.begin(), bits.end(),
+      [mid](std::uint64_t b) { return b <= mid; })) };
+    comm.sum(c);
+    if (c[0] > k)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  double v;
+  std::memcpy(&v, &lo, sizeof(double));
+  return v;
+}
+
+} // namespace fiberpli

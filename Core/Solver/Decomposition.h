@@ -1,0 +1,97 @@
+/// Decomposition: how the distributed collision solver splits the fibers over its ranks
+/// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
+/// run) holds the fiber's reference point, the middle of its extent along that axis (in a
+/// periodic cell wrapped into the cell). Every rank keeps its owned fibers and, per step, a halo
+/// of the other ranks' fibers that can touch them, all in global fiber order; fibers travel
+/// between ranks as byte records through SolverComm::exchange.
+#pragma once
+
+#include "Geometry/PeriodicCell.h"
+#include "Model/FiberModel.h"
+#include "Solver/CollisionSolver.h"
+#include "Solver/SolverComm.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// The rank's fibers (model), what the solver keeps per fiber (state: parallel vectors, global
+/// order) and which of them it owns (owned: 1 = owned, 0 = halo, a partner whose pushes are
+/// discarded; halo fibers carry no point state).
+struct RankFibers
+{
+  FiberModel& model;
+  CollisionSolverState& state;
+  std::vector<char>& owned;
+  std::size_t size() const { return model.fibers.size(); }
+};
+
+/// Slabs along one axis: of the periodic cell, else of the bounds of every rank's points.
+class SlabLayout
+{
+public:
+  /// Collective: the longest axis of the cell, or of the global bounds of all ranks' points.
+  static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
+  /// Rank that owns the fiber (0 for a fiber without points).
+  int owner(const Fiber& f) const;
+  int axis() const { return axis_; }
+
+private:
+  int axis_ = 0;
+  double lo_ = 0.0, hi_ = 0.0;
+  int ranks_ = 1;
+  bool periodic_ = false;
+};
+
+/// What a redistribution moved (this rank's share).
+struct TrafficCount
+{
+  std::size_t fibers = 0; ///< fibers sent to other ranks
+  std::size_t bytes = 0;  ///< bytes sent to other ranks
+};
+
+/// Sends every fiber whose destination (dest(index), a rank) is another rank there, receives the
+/// fibers others send here, keeps global order. Collective.
+TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
+
+/// Drops the halo fibers.
+void dropHalo(RankFibers& fibers);
+
+/// Adds to every rank, as halo, the other ranks' solved fibers whose extent along the slab axis
+/// comes within `reach` of the extent of its owned fibers (modulo the cell when periodic). Any
+/// two capsules closer than reach − nothing belong to fibers this way: reach = 2·ρmax + gap makes
+/// the halo complete for every pair that can collide. Collective.
+TrafficCount addHalo(RankFibers& fibers, const SlabLayout& layout, const PeriodicCell& cell, double reach,
+  SolverComm& comm);
+
+/// "" when no rank failed, else the message of the lowest failing rank, on every rank. Collective.
+std::string agreeOnError(SolverComm& comm, const std::string& localError);
+/// Logical or / exact minimum and maximum over all ranks. Collective.
+bool anyRank(SolverComm& comm, bool value);
+double minOverRanks(SolverComm& comm, double value);
+double maxOverRanks(SolverComm& comm, double value);
+
+/// Exactly rounded-once sum of non-negative terms, independent of their order and of how they
+/// are split over ranks: each term is rounded to a multiple of 2^-32 (terms below 2^64), the multiples
+/// summed as integers.
+class ExactSum
+{
+public:
+  void add(double term);
+  /// Collective: the sum over all ranks (same bits on every rank); comm null = this rank only.
+  double total(SolverComm* comm) const;
+
+private:
+  std::uint64_t limbs_[3] = { 0, 0, 0 }; // the fixed-point sum in 32-bit digits (with carries)
+};
+
+/// Value of rank k (0-based, ascending) of all ranks' values (as std::nth_element on the union),
+/// exactly, by bisection on the bit patterns of non-negative doubles; 0 when there are none.
+/// Collective (64 integer sums).
+double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverComm& comm);
+
+} // namespace fiberpli

@@ -1,0 +1,38 @@
+/// SolverComm: what the distributed collision solver needs from its ranks (docs/solver.md §13):
+/// exact reductions and an all-to-all of byte buffers. Pure C++; the VTK build implements it over
+/// vtkMultiProcessController (Filters/FiberSolverComm.h), the tests with threads as ranks. Every
+/// call is collective: all ranks make the same calls in the same order.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace fiberpli
+{
+
+class SolverComm
+{
+public:
+  virtual ~SolverComm() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// Element-wise sum over all ranks, in place (integers: exact, the same on every rank).
+  virtual void sum(std::vector<std::int64_t>& values) = 0;
+  /// Element-wise maximum over all ranks, in place (exact; a minimum is the maximum of −x).
+  virtual void max(std::vector<double>& values) = 0;
+  /// send[r] (size() buffers) goes to rank r; returns what every rank sent to this one, by rank.
+  virtual std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) = 0;
+};
+
+/// One rank: the reductions return their input, exchange returns send.
+class SerialComm final : public SolverComm
+{
+public:
+  int rank() const override { return 0; }
+  int size() const override { return 1; }
+  void sum(std::vector<std::int64_t>&) override {}
+  void max(std::vector<double>&) override {}
+  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override { return send; }
+};
+
+} // namespace fiberpli

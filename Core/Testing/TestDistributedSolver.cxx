@@ -1,0 +1,270 @@
+// The collision solver distributed over ranks (docs/solver.md §13), with threads as ranks
+// (ThreadComm.h): the pieces together must be bit for bit the serial solve of the whole model,
+// for 1, 2 and 3 ranks × 1 and 2 threads, in an open cube and in a periodic cell; with ranks
+// whose region is empty, fibers longer than a rank's region, fibers moving between ranks, and an
+// error or a stop on one rank only.
+#include "Solver/CollisionSolver.h"
+
+#include "PeriodicReference.h"
+#include "ThreadComm.h"
+#include "Tissue/CubeGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+using namespace fiberpli;
+using fiberpli_test::periodicCube;
+using fiberpli_test::runRanks;
+
+namespace
+{
+struct RankRun
+{
+  FiberModel model; // the rank's piece: input, then output
+  CollisionSolverResult result;
+};
+
+// Cuts `whole` into `ranks` pieces in order (sizes: fibers per piece; empty = as even as
+// possible), solves them on thread ranks and returns every rank's piece and result.
+std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolverOptions& o, int ranks,
+  std::vector<std::size_t> sizes = {}, const std::function<ProgressFn(int)>& progress = {})
+{
+  if (sizes.empty())
+  {
+    for (int r = 0; r < ranks; ++r)
+      sizes.push_back(whole.fibers.size() * (r + 1) / ranks - whole.fibers.size() * r / ranks);
+  }
+  std::vector<RankRun> runs(static_cast<std::size_t>(ranks));
+  std::size_t at = 0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    for (std::size_t i = 0; i < sizes[r]; ++i)
+      runs[r].model.fibers.push_back(whole.fibers[at++]);
+  }
+  runRanks(ranks, [&](SolverComm& comm) {
+    RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
+    run.result = solveCollisions(run.model, o, progress ? progress(comm.rank()) : ProgressFn{}, {}, &comm);
+  });
+  return runs;
+}
+
+bool sameFiber(const Fiber& x, const Fiber& y)
+{
+  return x.size() == y.size() && x.id == y.id && x.bundle == y.bundle &&
+    std::memcmp(x.points.data(), y.points.data(), x.size() * sizeof(Vec3)) == 0 &&
+    std::memcmp(x.radii.data(), y.radii.data(), x.size() * sizeof(double)) == 0;
+}
+
+bool sameBits(double a, double b)
+{
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+// Every rank's result equals the serial one, and the pieces in rank order are its model.
+void expectSerial(const std::vector<RankRun>& runs, const FiberModel& serial, const CollisionSolverResult& s,
+  const std::string& what)
+{
+  std::size_t f = 0;
+  for (const RankRun& run : runs)
+  {
+    const CollisionSolverResult& r = run.result;
+    ASSERT_EQ(r.error, s.error) << what;
+    EXPECT_EQ(r.steps, s.steps) << what;
+    EXPECT_EQ(r.collisions, s.collisions) << what;
+    EXPECT_EQ(r.solved, s.solved) << what;
+    EXPECT_EQ(r.shapeOk, s.shapeOk) << what;
+    EXPECT_EQ(r.bestCollisions, s.bestCollisions) << what;
+    EXPECT_EQ(r.bestStep, s.bestStep) << what;
+    EXPECT_TRUE(sameBits(r.maxOverlap, s.maxOverlap)) << what << ": " << r.maxOverlap << " vs " << s.maxOverlap;
+    EXPECT_TRUE(sameBits(r.minGap, s.minGap)) << what << ": " << r.minGap << " vs " << s.minGap;
+    EXPECT_TRUE(sameBits(r.segmentLength, s.segmentLength)) << what;
+    EXPECT_TRUE(sameBits(r.volumeFraction, s.volumeFraction)) << what;
+    EXPECT_TRUE(sameBits(r.radiusScale, s.radiusScale)) << what;
+    EXPECT_EQ(r.warnings, s.warnings) << what;
+    ASSERT_EQ(r.sourceIndex.size(), run.model.fibers.size()) << what;
+    for (std::size_t i = 0; i < run.model.fibers.size(); ++i, ++f)
+    {
+      ASSERT_LT(f, serial.fibers.size()) << what;
+      EXPECT_TRUE(sameFiber(run.model.fibers[i], serial.fibers[f])) << what << ", fiber " << f;
+      EXPECT_EQ(r.sourceIndex[i], s.sourceIndex[f]) << what << ", fiber " << f;
+    }
+  }
+  EXPECT_EQ(f, serial.fibers.size()) << what;
+}
+
+// 1, 2 and 3 ranks × 1 and 2 threads against the serial solve; the ranks really share the work
+// (each owns fibers, halos are exchanged).
+void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o)
+{
+  FiberModel serial = in;
+  o.numberOfThreads = 1;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.steps, 10);
+  for (int ranks : { 1, 2, 3 })
+  {
+    for (int threads : { 1, 2 })
+    {
+      o.numberOfThreads = threads;
+      const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+      const std::string what = std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
+      expectSerial(runs, serial, s, what);
+      std::size_t owned = 0;
+      for (const RankRun& run : runs)
+      {
+        EXPECT_GT(run.result.rankFibers, 0u) << what;
+        EXPECT_EQ(run.result.peakHaloPoints > 0, ranks > 1) << what;
+        owned += run.result.rankFibers;
+      }
+      EXPECT_EQ(owned, in.fibers.size()) << what;
+    }
+  }
+}
+
+FiberModel paperCube(int pops, int n, std::uint64_t seed)
+{
+  CubeOptions c;
+  c.populations = pops;
+  c.numberOfFibers = n;
+  c.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(n / 1000.0); // paper density
+  c.seed = seed;
+  return generateCube(c);
+}
+
+Fiber line(Vec3 a, Vec3 step, int n, double r, std::int64_t id)
+{
+  Fiber f;
+  for (int i = 0; i < n; ++i)
+    f.points.push_back(a + double(i) * step);
+  f.radii.assign(f.points.size(), r);
+  f.id = id;
+  return f;
+}
+} // namespace
+
+TEST(DistributedSolver, OpenCubeBitIdenticalForAnyRanksAndThreads)
+{
+  CollisionSolverOptions o;
+  o.maxSteps = 50;
+  o.minCurvatureRadius = 4.0;
+  o.segmentLength = 0.0; // automatic: the median radius of all ranks
+  o.drag = 0.2;
+  expectAnyRanksAnyThreads(paperCube(2, 100, 5), o);
+}
+
+TEST(DistributedSolver, PeriodicCellBitIdenticalForAnyRanksAndThreads)
+{
+  const CubeOptions c = periodicCube(2, 14.0, 0.45, 8);
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.maxSteps = 50;
+  o.minCurvatureRadius = 4.0;
+  o.initialRadiusScale = 0.95; // radius growth: the deepest overlap of all ranks decides
+  expectAnyRanksAnyThreads(generateCube(c), o);
+}
+
+// Fibers pushed across the slab boundary at x = 0 and through the cell face at x = ±10 change
+// rank; all input comes from rank 0, and every fiber goes back there.
+TEST(DistributedSolver, FibersMigrateAcrossRanksInAPeriodicCell)
+{
+  const double L = 20.0;
+  FiberModel m;
+  const double xs[4] = { 9.3, 9.8, 0.15, 0.7 }; // pairs 0.5 and 0.55 apart, radius 0.8: overlap
+  for (int i = 0; i < 4; ++i)
+    m.fibers.push_back(line({ xs[i], -10.0, 0.3 * i }, { 0, 2.0, 0 }, 11, 0.8, i)); // closed along y
+  CollisionSolverOptions o;
+  o.periodicCell.lo = { -10, -10, -10 };
+  o.periodicCell.hi = { 10, 10, 10 };
+  o.overlapPush = 0.5;
+  o.maxSteps = 400;
+  FiberModel serial = m;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_TRUE(s.solved);
+  // The fiber at 9.8 left through the face (x > 10), the one at 0.15 crossed x = 0.
+  EXPECT_GT(serial.fibers[1].points[0].x, 10.0);
+  EXPECT_LT(serial.fibers[2].points[0].x, 0.0);
+  (void)L;
+  for (int threads : { 1, 2 })
+  {
+    o.numberOfThreads = threads;
+    const std::vector<RankRun> runs = solveOnRanks(m, o, 2, { 4, 0 });
+    expectSerial(runs, serial, s, "2 ranks x " + std::to_string(threads) + " threads");
+    EXPECT_EQ(runs[0].result.migrations, 2u);
+    EXPECT_EQ(runs[1].model.fibers.size(), 0u); // back where they came from
+  }
+}
+
+// Slabs of 6.9 µm over x in [0, 27.6]: rank 2 of 4 owns nothing, and one fiber (x from 0 to 26,
+// its middle at 13 in the slab of rank 1) runs through all four regions, crossing the fibers of
+// both clusters.
+TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
+{
+  FiberModel m;
+  m.fibers.push_back(line({ 0, 0, 0 }, { 2.0, 0, 0 }, 14, 0.8, 0));
+  int id = 1;
+  for (double x : { 1.0, 2.2, 3.4, 4.6, 24.0, 25.2, 26.4, 27.6 })
+    m.fibers.push_back(line({ x, -6.0, 0.4 }, { 0, 2.0, 0 }, 7, 0.8, id++));
+  CollisionSolverOptions o;
+  o.maxSteps = 300;
+  o.minCurvatureRadius = 4.0;
+  FiberModel serial = m;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.steps, 10);
+  for (int ranks : { 3, 4 })
+  {
+    const std::vector<RankRun> runs = solveOnRanks(m, o, ranks);
+    expectSerial(runs, serial, s, std::to_string(ranks) + " ranks");
+    if (ranks == 4)
+    {
+      EXPECT_EQ(runs[1].result.rankFibers, 1u); // the long fiber
+      EXPECT_EQ(runs[2].result.rankFibers, 0u);
+    }
+  }
+}
+
+TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
+{
+  FiberModel m = paperCube(1, 30, 2);
+  m.fibers[20].points[3].y = std::nan(""); // in the piece of rank 2 of 3
+  CollisionSolverOptions o;
+  o.maxSteps = 20;
+  const std::vector<RankRun> runs = solveOnRanks(m, o, 3);
+  std::size_t f = 0;
+  for (const RankRun& run : runs)
+  {
+    EXPECT_NE(run.result.error.find("fiber 0"), std::string::npos) << run.result.error; // rank 2's index
+    EXPECT_EQ(run.result.error, runs[0].result.error);
+    for (const Fiber& fib : run.model.fibers) // every piece unchanged
+    {
+      EXPECT_TRUE(fib.points == m.fibers[f].points || f == 20);
+      ++f;
+    }
+  }
+}
+
+// Rank 1's callback asks to stop at its 6th call (after the 6th move): every rank stops there,
+// as the serial solve with that callback does.
+TEST(DistributedSolver, AStopOnOneRankStopsEveryRankAtTheSameStep)
+{
+  const FiberModel m = paperCube(1, 60, 3);
+  CollisionSolverOptions o;
+  o.maxSteps = 200;
+  const auto stopAtSixthCall = [] {
+    auto calls = std::make_shared<int>(0);
+    return ProgressFn([calls](double) { return ++*calls < 6; });
+  };
+  FiberModel serial = m;
+  const CollisionSolverResult s = solveCollisions(serial, o, stopAtSixthCall());
+  ASSERT_TRUE(s.aborted);
+  ASSERT_EQ(s.steps, 6);
+  const std::vector<RankRun> runs = solveOnRanks(m, o, 3, {}, [&](int rank) {
+    return rank == 1 ? stopAtSixthCall() : ProgressFn{};
+  });
+  expectSerial(runs, serial, s, "stopped on rank 1");
+  for (const RankRun& run : runs)
+    EXPECT_TRUE(run.result.aborted);
+}
