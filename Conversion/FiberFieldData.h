@@ -46,21 +46,28 @@ inline void AddPeriodicCell(vtkDataObject* data, const PeriodicCell& cell)
   AddFieldDoubles(data, "periodic_cell", { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
 }
 
+/// The values of the field `periodic_cell` as they are (false when absent).
+inline bool PeriodicCellValues(vtkDataObject* data, std::vector<double>& values)
+{
+  vtkDataArray* a = data && data->GetFieldData() ? data->GetFieldData()->GetArray("periodic_cell") : nullptr;
+  values.clear();
+  const vtkIdType n = a ? a->GetNumberOfTuples() * a->GetNumberOfComponents() : 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    values.push_back(a->GetComponent(i / a->GetNumberOfComponents(), static_cast<int>(i % a->GetNumberOfComponents())));
+  }
+  return a != nullptr;
+}
+
 /// Reads the field `periodic_cell`: false and an empty error when absent; false and a message
 /// naming the field when it has the wrong size or bad values; true with the cell otherwise.
 inline bool ReadPeriodicCell(vtkDataObject* data, PeriodicCell& cell, std::string& error)
 {
   error.clear();
-  vtkDataArray* a = data && data->GetFieldData() ? data->GetFieldData()->GetArray("periodic_cell") : nullptr;
-  if (!a)
+  std::vector<double> values;
+  if (!PeriodicCellValues(data, values))
   {
     return false;
-  }
-  const vtkIdType n = a->GetNumberOfTuples() * a->GetNumberOfComponents();
-  std::vector<double> values(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    values[static_cast<std::size_t>(i)] = a->GetComponent(i / a->GetNumberOfComponents(), static_cast<int>(i % a->GetNumberOfComponents()));
   }
   error = periodicCellFromBounds(values.data(), values.size(), cell);
   return error.empty();

@@ -1,8 +1,11 @@
 #include "vtkFiberOrientationGroundTruth.h"
 
 #include "Analysis/GroundTruth.h"
+#include "FiberCollective.h"
+#include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "FiberTileExchange.h"
 #include "Model/VolumeOfInterest.h"
 #include "Section/SectionPlan.h"
 
@@ -46,32 +49,27 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  // The image size depends on the fibers' bounds (VolumeOfInterest sentinel), so the fibers are
-  // brought up to date here; RequestUpdateExtent then asks for the same piece 0 of 1.
-  const bool sentinel = fiberpli::isBoundsSentinel(this->VolumeOfInterest);
-  if (sentinel && this->GetNumberOfInputConnections(0) > 0)
-  {
-    fiberpli::FiberPolyData::UpdateAllFibers(this, inputVector[0]->GetInformationObject(0));
-  }
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
   {
-    // An explicit VolumeOfInterest does not need the fibers; the sentinel needs their bounds.
-    fiberpli::FiberConversion c;
-    if (sentinel && input && !fiberpli::FiberPolyData::IsEmpty(input))
+    // An explicit VolumeOfInterest does not need the fibers; the sentinel needs the bounds of the
+    // whole model: the input is brought up to date here with the piece RequestUpdateExtent then
+    // asks for (under MPI the ranks' bounds are reduced).
+    std::string error;
+    std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
+    if (fiberpli::isBoundsSentinel(this->VolumeOfInterest) && this->GetNumberOfInputConnections(0) > 0)
     {
-      c = fiberpli::FiberPolyData::ToModel(input, "FiberOrientationGroundTruth");
+      double bounds[6];
+      error = fiberpli::FiberTileExchange::UpdateBounds(
+        this, inputVector[0]->GetInformationObject(0), "FiberOrientationGroundTruth", bounds);
+      if (bounds[0] <= bounds[1])
+      {
+        std::copy(bounds, bounds + 6, this->PlannedVolume);
+      }
     }
     fiberpli::SectionPlan section;
-    std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
-    fiberpli::Vec3 lo, hi;
-    if (sentinel && c.ok() && fiberpli::modelBounds(c.model, true, lo, hi))
-    {
-      const double bounds[6] = { lo.x, hi.x, lo.y, hi.y, lo.z, hi.z };
-      std::copy(bounds, bounds + 6, this->PlannedVolume);
-    }
-    if (c.ok() && fiberpli::planSection(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section).empty())
+    if (error.empty() &&
+      fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, section).empty())
     {
       extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
       std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
@@ -87,66 +85,94 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector*)
+int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
-  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
+  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
+  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  // Under MPI all ranks fail together (FiberCollective.h).
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberOrientationGroundTruth",
+    [&] { return this->ExecutePiece(inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  std::string localError;
   if (!fiberpli::CheckThreads(this, "FiberOrientationGroundTruth", this->NumberOfThreads))
   {
-    return 0;
+    localError = "FiberOrientationGroundTruth: " + fiberpli::validateThreadCount(this->NumberOfThreads);
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
-  if (!input || fiberpli::FiberPolyData::IsEmpty(input))
-  {
-    return 1;
-  }
-  const fiberpli::FiberConversion c = fiberpli::FiberPolyData::ToModel(input, "FiberOrientationGroundTruth");
+  fiberpli::GroundTruthOptions options;
+  options.threads = this->NumberOfThreads;
+  // The section and this piece's pixels (an empty range when nothing of the image is requested).
+  fiberpli::SectionPlan section;
+  auto plan = [&](const fiberpli::FiberModel& model, fiberpli::PixelRange& range) {
+    const std::string e = fiberpli::planSection(model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section);
+    range = fiberpli::PixelRange{ 0, section.pixels[0], 0, section.pixels[1] };
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    {
+      int u[6];
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), u);
+      range = fiberpli::PixelRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
+        std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
+    }
+    return e.empty() ? e : "FiberOrientationGroundTruth: " + e;
+  };
+  // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
+  // fibers its pixels read, in model order (FiberTileExchange.h).
+  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
+    localError, [&](const fiberpli::TileFibers&, fiberpli::TileReach& reach) {
+      fiberpli::PixelRange range;
+      const std::string e = plan(fiberpli::FiberModel(), range);
+      if (e.empty() && range.nx() > 0 && range.ny() > 0)
+      {
+        reach = fiberpli::groundTruthReach(section, options, range);
+      }
+      return e;
+    });
   if (!c.ok())
   {
-    vtkErrorMacro(<< c.error);
+    if (localError.empty())
+    {
+      vtkErrorMacro(<< c.error);
+    }
     return 0;
   }
   if (!c.warning.empty())
   {
     vtkWarningMacro(<< c.warning);
   }
-  fiberpli::SectionPlan section;
-  std::string err = fiberpli::planSection(c.model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section);
-  const std::int64_t nx = section.pixels[0], ny = section.pixels[1];
+  if (c.emptyInput)
+  {
+    return 1;
+  }
+  fiberpli::PixelRange range;
+  std::string err = plan(c.model, range);
+  const std::int64_t nx = section.pixels[0];
   if (!err.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << err);
+    vtkErrorMacro(<< err);
     return 0;
   }
-  int ext[6] = { 0, static_cast<int>(nx - 1), 0, static_cast<int>(ny - 1), 0, 0 };
-  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
-  {
-    int u[6];
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), u);
-    for (int a = 0; a < 2; ++a)
-    {
-      ext[2 * a] = std::max(ext[2 * a], u[2 * a]);
-      ext[2 * a + 1] = std::min(ext[2 * a + 1], u[2 * a + 1]);
-    }
-  }
-  if (ext[1] < ext[0] || ext[3] < ext[2])
+  if (range.nx() <= 0 || range.ny() <= 0)
   {
     return 1; // nothing of the image requested
   }
-  const fiberpli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
-  fiberpli::GroundTruthOptions options;
-  options.threads = this->NumberOfThreads;
+  int ext[6] = { static_cast<int>(range.i0), static_cast<int>(range.i1 - 1), static_cast<int>(range.j0),
+    static_cast<int>(range.j1 - 1), 0, 0 };
   fiberpli::GroundTruthMaps maps;
   this->SetProgressText("Fiber orientation ground truth");
   err = fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
@@ -183,6 +209,8 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation*, vtkInformationV
   addMap("fraction", maps.fraction, 1.0);
   addMap("anisotropy", maps.anisotropy, 1.0);
   output->GetPointData()->SetActiveScalars("direction");
+  fiberpli::AddFieldDoubles(output, "tile_fibers", { static_cast<double>(c.model.fibers.size()) });
+  fiberpli::AddFieldDoubles(output, "model_fibers", { static_cast<double>(c.modelFibers) });
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -67,6 +67,8 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// This rank's part of RequestData (which makes its outcome collective under MPI).
+  int ExecutePiece(vtkInformationVector**, vtkInformationVector*);
 
 private:
   vtkFiberOrientationGroundTruth(const vtkFiberOrientationGroundTruth&) = delete;

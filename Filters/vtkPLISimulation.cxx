@@ -4,10 +4,12 @@
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "FiberTileExchange.h"
 #include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
 #include "PLI/OptionLimits.h"
 #include "PLI/PLIPipeline.h"
+#include "PLI/PLIReach.h"
 #include "PLI/TissueExport.h"
 
 #include <vtkAlgorithmOutput.h>
@@ -127,6 +129,59 @@ double ListValue(const std::vector<double>& list, int i)
   return i >= 0 && static_cast<std::size_t>(i) < list.size() ? list[static_cast<std::size_t>(i)] : 0.0;
 }
 
+/// The update extent of an output port inside its whole extent (false when nothing is left): a
+/// failed run (e.g. a piece above the memory budget) leaves its update extent in the pipeline;
+/// after the image shrank it may reach beyond the new whole extent.
+bool RequestedExtent(vtkInformation* outInfo, int ext[6])
+{
+  int whole[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  for (int a = 0; a < 6; a += 2)
+  {
+    ext[a] = std::max(ext[a], whole[a]);
+    ext[a + 1] = std::min(ext[a + 1], whole[a + 1]);
+  }
+  return ext[0] <= ext[1] && ext[2] <= ext[3] && ext[4] <= ext[5];
+}
+
+/// What this rank's piece reads (FiberTileExchange.h): the image tile and/or the tissue piece
+/// requested, tiled modulo a periodic cell into the volume of interest as ExecutePiece tiles it.
+std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole, const fiberpli::pli::PLIOptions& options,
+  vtkInformationVector* outputVector, bool image, bool tissue, const std::string& tissueError, fiberpli::TileReach& reach)
+{
+  fiberpli::pli::PLIPlan plan;
+  const fiberpli::pli::Status st = fiberpli::pli::planPLI(fiberpli::FiberModel(), options, plan);
+  if (!st.ok())
+  {
+    return "PLISimulation: " + st.error;
+  }
+  int ext[6];
+  if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
+  {
+    reach = fiberpli::pli::imageReach(plan, options, fiberpli::PixelRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
+  }
+  fiberpli::pli::VoxelBox box;
+  if (tissue && self->GetExportTissue() && tissueError.empty() &&
+    fiberpli::pli::tissueBox(plan, self->GetTissueVolume(), box).ok() &&
+    RequestedExtent(outputVector->GetInformationObject(1), ext))
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      box.lo[a] = std::max<std::int64_t>(box.lo[a], ext[2 * a]);
+      box.hi[a] = std::max(box.lo[a], std::min<std::int64_t>(box.hi[a], static_cast<std::int64_t>(ext[2 * a + 1]) + 1));
+    }
+    reach = fiberpli::unite(reach, fiberpli::pli::tissueReach(plan, box));
+  }
+  if (whole.periodic && whole.cellError.empty())
+  {
+    reach.periodic = true;
+    reach.cell = whole.cell;
+    std::copy(options.volumeOfInterest, options.volumeOfInterest + 6, reach.tiling);
+  }
+  return {};
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -193,35 +248,29 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     this->PlanError = "PLISimulation: " + optionError;
     return 1;
   }
-  fiberpli::FiberModel model;
   if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
-    // The image size depends on the fibers' bounds, which only the input data knows: bring the
-    // input up to date now with the request RequestUpdateExtent makes anyway (piece 0 of 1), so the
-    // later data pass does not execute upstream again.
-    fiberpli::FiberPolyData::UpdateAllFibers(this, inputVector[0]->GetInformationObject(0));
-    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-    if (fiberpli::FiberPolyData::IsEmpty(input))
+    // The image size depends on the bounds of the whole model, which only the input data knows:
+    // the input is brought up to date now with the piece RequestUpdateExtent asks for anyway, so
+    // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced).
+    double bounds[6];
+    const std::string error =
+      fiberpli::FiberTileExchange::UpdateBounds(this, inputVector[0]->GetInformationObject(0), "PLISimulation", bounds);
+    if (!error.empty())
     {
+      this->PlanError = error;
       return 1;
     }
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
-    if (!in.ok())
+    if (!(bounds[0] <= bounds[1]))
     {
-      this->PlanError = in.error;
-      return 1;
+      return 1; // no fiber on any rank
     }
-    model = std::move(in.model);
-    fiberpli::Vec3 lo, hi;
-    if (fiberpli::modelBounds(model, true, lo, hi))
-    {
-      const double resolved[6] = { lo.x, hi.x, lo.y, hi.y, lo.z, hi.z };
-      std::copy(resolved, resolved + 6, this->ResolvedVolume);
-    }
+    std::copy(bounds, bounds + 6, this->ResolvedVolume);
+    std::copy(bounds, bounds + 6, options.volumeOfInterest);
   }
 
   fiberpli::pli::PLIPlan plan;
-  const fiberpli::pli::Status st = fiberpli::pli::planPLI(model, options, plan);
+  const fiberpli::pli::Status st = fiberpli::pli::planPLI(fiberpli::FiberModel(), options, plan);
   if (!st.ok())
   {
     this->PlanError = "PLISimulation: " + st.error;
@@ -262,11 +311,11 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector*)
+int vtkPLISimulation::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
-  // Every pixel may see every fiber (tilted rays, blur halo): each rank needs all of them.
-  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
+  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
+  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
@@ -307,9 +356,14 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
 int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  std::string localError = this->PlanError;
   if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
   {
-    return 0;
+    localError = "PLISimulation: " + fiberpli::validateThreadCount(this->NumberOfThreads);
+  }
+  else if (!localError.empty())
+  {
+    vtkErrorMacro(<< localError);
   }
   const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
   const bool wantImage = port != 1;
@@ -325,44 +379,56 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     tissue->Initialize();
   }
-  if (!this->PlanError.empty())
-  {
-    vtkErrorMacro(<< this->PlanError);
-    return 0;
-  }
-  if (fiberpli::FiberPolyData::IsEmpty(input))
-  {
-    return 1;
-  }
-  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "PLISimulation");
-  if (!in.ok())
-  {
-    vtkErrorMacro(<< in.error);
-    return 0;
-  }
-  if (!in.warning.empty())
-  {
-    vtkWarningMacro(<< in.warning);
-  }
   fiberpli::pli::PLIOptions options;
   MakeOptions(this, options); // its error was reported above (PlanError)
   if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
   {
     std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
   }
-  // A periodic cell (field data periodic_cell) owns its tissue modulo the cell: the volume of
-  // interest is filled with the lattice translates of its fibers, so a larger one tiles the cell.
-  fiberpli::PeriodicCell cell;
-  std::string cellError;
-  if (fiberpli::ReadPeriodicCell(input, cell, cellError))
+  // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
+  // fibers its piece reads, in model order (FiberTileExchange.h).
+  fiberpli::TileReach reach;
+  fiberpli::TileFibers in = fiberpli::FiberTileExchange::Receive(
+    outputVector->GetInformationObject(std::max(port, 0)), input, "PLISimulation", localError,
+    [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
+      options.bundleIds = whole.bundleIds;
+      const std::string e = PieceReach(this, whole, options, outputVector, wantImage, wantTissue, this->TissueError, r);
+      reach = r;
+      return e;
+    });
+  if (!in.ok())
   {
-    cellError = fiberpli::tileModel(in.model, cell, options.volumeOfInterest);
+    if (localError.empty())
+    {
+      vtkErrorMacro(<< in.error);
+    }
+    return 0;
+  }
+  if (!in.warning.empty())
+  {
+    vtkWarningMacro(<< in.warning);
+  }
+  if (in.emptyInput)
+  {
+    return 1;
+  }
+  // The layer table and labels of the whole model, also on a rank that holds some bundles only.
+  options.bundleIds = in.bundleIds;
+  // A periodic cell (field data periodic_cell) owns its tissue modulo the cell: the volume of
+  // interest is filled with the lattice translates of its fibers, so a larger one tiles the cell
+  // (under MPI only the translates this rank's piece reads).
+  std::string cellError = in.cellError;
+  if (in.periodic && cellError.empty())
+  {
+    cellError = fiberpli::tileModel(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
   }
   if (!cellError.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << cellError);
     return 0;
   }
+  this->NumberOfTileFibers = static_cast<double>(in.model.fibers.size());
+  this->NumberOfModelFibers = static_cast<double>(in.modelFibers);
   int ok = 1;
   if (wantImage)
   {
@@ -379,17 +445,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
   vtkInformation* outInfo, vtkImageData* output)
 {
-  int ext[6], whole[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  // A failed run (e.g. a piece above the memory budget) leaves its update extent in the pipeline;
-  // after the image shrank it may reach beyond the new whole extent.
-  for (int a = 0; a < 4; a += 2)
-  {
-    ext[a] = std::max(ext[a], whole[a]);
-    ext[a + 1] = std::min(ext[a + 1], whole[a + 1]);
-  }
-  if (ext[0] > ext[1] || ext[2] > ext[3])
+  int ext[6];
+  if (!RequestedExtent(outInfo, ext))
   {
     return 1;
   }
@@ -460,6 +517,8 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   fiberpli::AddFieldDoubles(output, "voxel_size", { options.voxelSize });
   fiberpli::AddFieldDoubles(output, "pixel_size", { options.pixelSize });
   fiberpli::AddFieldDoubles(output, "light_intensity", { options.lightIntensity });
+  fiberpli::AddFieldDoubles(output, "tile_fibers", { this->NumberOfTileFibers });
+  fiberpli::AddFieldDoubles(output, "model_fibers", { this->NumberOfModelFibers });
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -534,6 +593,8 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   fiberpli::AddFieldDoubles(output, "label_bundle_ids", bundles);
   fiberpli::AddFieldInt(output, "layers_per_bundle", plan.tissue.maxLayers());
   fiberpli::AddFieldDoubles(output, "voxel_size", { voxel });
+  fiberpli::AddFieldDoubles(output, "tile_fibers", { this->NumberOfTileFibers });
+  fiberpli::AddFieldDoubles(output, "model_fibers", { this->NumberOfModelFibers });
   this->UpdateProgress(1.0);
   return 1;
 }

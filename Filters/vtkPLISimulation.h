@@ -361,6 +361,10 @@ private:
   /// The input-bounds volume resolved by RequestInformation: RequestData uses the same one, so the
   /// computed pixels always match WHOLE_EXTENT even if the fibers move later (e.g. a time change).
   double ResolvedVolume[6] = { 1, -1, 1, -1, 1, -1 };
+  /// Fibers this piece was computed from (periodic translates included) and fibers of the whole
+  /// input: field data tile_fibers and model_fibers (docs/pli-simulation.md §6.3).
+  double NumberOfTileFibers = 0.0;
+  double NumberOfModelFibers = 0.0;
 };
 
 #endif

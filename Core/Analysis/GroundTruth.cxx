@@ -1,6 +1,7 @@
 #include "Analysis/GroundTruth.h"
 
 #include "Section/LinkTable.h"
+#include "Section/SectionReach.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -208,6 +209,16 @@ std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
     }
   }
   return {};
+}
+
+TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const PixelRange& range)
+{
+  // The columns computeGroundTruth builds its link table for.
+  if (range.nx() < 1 || range.ny() < 1)
+  {
+    return TileReach();
+  }
+  return columnsReach(grid.lattice, voxelColumnsOf(grid, range), options.radiusScale);
 }
 
 std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi, int nTheta, bool normalise,

@@ -9,6 +9,7 @@
 
 #include "Analysis/OrientationTensor.h"
 #include "Model/FiberModel.h"
+#include "Model/TileReach.h"
 #include "Section/PixelGrid.h"
 #include "Section/SectionPlan.h"
 #include "Util/Progress.h"
@@ -49,6 +50,10 @@ struct GroundTruthMaps
 std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});
+
+/// The fibers the pixels `range` read (docs/pli-simulation.md §6.3): the voxel columns that bin
+/// into them over every depth (Section/SectionReach.h), with the options' radius scale.
+TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const PixelRange& range);
 
 /// Whole-model orientation histogram (fastPLI orientation.py): every link (φ = atan2(dy, dx),
 /// θ = arccos(dz/|d|), antipode when θ > 90°) counted in nPhi bins over φ ∈ [0°, 360°) × nTheta

@@ -4,6 +4,7 @@
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
+#include "Model/TileReach.h"
 
 #include <string>
 
@@ -15,6 +16,15 @@ namespace fiberpli
 /// keep bundle and order (fiber by fiber, translates in x, then y, then z order); the untranslated
 /// fiber keeps its id, a translate gets id + copy · (largest id + 1). Returns an error and leaves
 /// the model unchanged when the copies would exceed the memory budget.
-std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double box[6]);
+/// With `reach` (one MPI tile, TileReach.h) only the translates whose links reach it are made,
+/// in the same order: the part of the whole tiling that the tile reads (their ids are unique but
+/// not those of the whole tiling; the image does not depend on ids).
+std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double box[6],
+  const TileReach* reach = nullptr);
+
+/// Whether one translate that tileModel(…, reach.cell, reach.tiling) makes of `fiber` has a link
+/// reaching reach.box: per link an interval of lattice shifts per axis, intersected with the
+/// tiling's, so the cost does not grow with the number of translates.
+bool periodicTranslateReaches(const Fiber& fiber, const TileReach& reach);
 
 } // namespace fiberpli

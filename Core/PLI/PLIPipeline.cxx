@@ -142,9 +142,10 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   if (!st.ok())
     return st;
 
-  std::vector<int> bundles;
-  for (const Fiber& f : model.fibers)
-    bundles.push_back(f.bundle);
+  std::vector<int> bundles = o.bundleIds;
+  if (bundles.empty())
+    for (const Fiber& f : model.fibers)
+      bundles.push_back(f.bundle);
   Status ts = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue);
   st.warnings = ts.warnings;
   if (!ts.ok())
@@ -235,6 +236,22 @@ double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& o, const PixelR
   return bytes;
 }
 
+SimParams simParams(const PLIPlan& plan, const PLIOptions& o)
+{
+  SimParams sp;
+  sp.wavelengthNm = o.wavelength;
+  sp.lightIntensity = o.lightIntensity;
+  sp.step = o.stepSize;
+  sp.rho = plan.rho;
+  sp.interp = o.interpolation;
+  sp.conv = o.tiltConvention;
+  sp.stepRule = o.stepRule;
+  sp.lateral = o.lateralOutside;
+  sp.tile = o.tileSize;
+  sp.threads = o.numberOfThreads;
+  return sp;
+}
+
 Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
 {
   image = PLIImage();
@@ -268,17 +285,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
     return st;
   }
 
-  SimParams sp;
-  sp.wavelengthNm = o.wavelength;
-  sp.lightIntensity = o.lightIntensity;
-  sp.step = o.stepSize;
-  sp.rho = plan.rho;
-  sp.interp = o.interpolation;
-  sp.conv = o.tiltConvention;
-  sp.stepRule = o.stepRule;
-  sp.lateral = o.lateralOutside;
-  sp.tile = o.tileSize;
-  sp.threads = o.numberOfThreads;
+  const SimParams sp = simParams(plan, o);
   // Progress: propagation is nearly all of the work.
   ProgressFn simProgress;
   if (progress)

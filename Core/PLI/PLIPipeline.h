@@ -43,6 +43,9 @@ struct PLIOptions
   double refractiveIndex = 1.0;
   bool tiltedSensor = false;     ///< tilted views on the tilted sensor's grid (§4.6), not registered
   int numberOfThreads = 0;
+  /// The bundle ids of the whole model when `model` holds only the fibers of one MPI tile (§6.3),
+  /// so that every tile has the same layer table and labels; empty = those of the model.
+  std::vector<int> bundleIds;
   // Core-only switches (§2.1).
   TiltConvention tiltConvention = TiltConvention::Physical;
   StepRule stepRule = StepRule::ExactLength;
@@ -95,6 +98,9 @@ ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& options, cons
 /// Bytes runPLI plans for the pixel range `pixels`: tile buffers and voxel stacks of its columns
 /// (with the blur halo), the blur buffers, and its pixel stacks twice (Core and VTK arrays).
 double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
+
+/// The propagation settings of the options (what runPLI hands to simulate).
+SimParams simParams(const PLIPlan& plan, const PLIOptions& options);
 
 /// Runs the simulation for `pixels` (an empty range = the whole image). status.error set on
 /// invalid options or when the piece exceeds the memory budget; the model must be valid (validateModel).

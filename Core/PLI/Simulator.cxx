@@ -51,6 +51,20 @@ std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& vi
   return interp == Interp::NN ? 0 : 1;
 }
 
+ColumnRange linkRegion(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views, const ColumnRange& cols)
+{
+  const std::int64_t halo = tiltHalo(lat, views, par.interp);
+  // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
+  ColumnRange region = grow(cols, halo);
+  for (const View& v : views)
+  {
+    const ColumnRange r = grow(RayMarcher(lat, par, v, LabelProps()).midPlaneColumns(cols), halo);
+    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
+      std::max(region.j1, r.j1) };
+  }
+  return region;
+}
+
 double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
   const ColumnRange& cols)
 {
@@ -128,14 +142,7 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
   std::vector<RayMarcher> marchers;
   for (const View& v : views)
     marchers.emplace_back(lat, par, v, props);
-  // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
-  ColumnRange region = grow(cols, halo);
-  for (const RayMarcher& rm : marchers)
-  {
-    const ColumnRange r = grow(rm.midPlaneColumns(cols), halo);
-    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
-      std::max(region.j1, r.j1) };
-  }
+  const ColumnRange region = linkRegion(lat, par, views, cols);
   LinkTable table;
   tissueLinkTable(model, spec, lat, region, B, table);
   res.estimatedBytes += table.links.size() * sizeof(SectionLink);

@@ -34,6 +34,12 @@ struct SimResult
 /// Tilt halo of §3.5 for these views: ceil((n_z/2)·tan θ_max) + 2 (0/1 for untilted views).
 std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& views, Interp interp);
 
+/// Voxel columns whose links the rays of `cols` read: the columns and, on the tilted sensor, the
+/// columns of their stretched mid-plane images, grown by the tilt halo (the region of simulate's
+/// link table, and of the fibers an MPI tile receives, PLIReach.h).
+ColumnRange linkRegion(const SectionLattice& lattice, const SimParams& params, const std::vector<View>& views,
+  const ColumnRange& cols);
+
 /// Memory estimate (bytes) of simulate() for these arguments, without allocating.
 double estimateSimulationBytes(const SectionLattice& lattice, const SimParams& params,
   const std::vector<View>& views, const ColumnRange& cols);

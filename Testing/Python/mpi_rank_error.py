@@ -57,6 +57,17 @@ else:
 check(sim.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0, "rank %d: PLISimulation output" % rank)
 check(ana.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0, "rank %d: PLIAnalysis output" % rank)
 
+# (1b) FiberOrientationGroundTruth: the fiber exchange agrees on the bad piece first, so both
+# ranks fail with the message of rank 1 (FiberTileExchange.h).
+truth = FiberOrientationGroundTruth(Input=fibers, VolumeOfInterest=[-5, 5, -3, 3, -2, 2], VoxelSize=0.5,
+                                    PixelSize=1.0, NumberOfThreads=1)
+truth_errors = ErrorCatcher(truth)
+truth.UpdatePipeline()
+text = truth_errors.text()
+check("radius -1" in text and (rank == 1 or "rank 1 failed" in text),
+      "rank %d: FiberOrientationGroundTruth must report rank 1's error: %r" % (rank, text))
+check(truth.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() == 0, "rank %d: truth output" % rank)
+
 # (2) SaveData gathers to rank 0, whose FiberWriter refuses the bad fiber: every rank fails and the
 # existing file stays as it was.
 target = os.path.join(out_dir, "fibers.dat")
@@ -84,6 +95,10 @@ sim_errors.clear()
 ana_errors.clear()
 ana.UpdatePipeline()
 check(not sim_errors.errors and not ana_errors.errors, "rank %d: errors after the fix: %r" % (rank, sim_errors.text() + ana_errors.text()))
+truth_errors.clear()
+truth.UpdatePipeline()
+check(not truth_errors.errors, "rank %d: truth errors after the fix: %r" % (rank, truth_errors.text()))
+check(truth.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() > 0, "rank %d: no truth after the fix" % rank)
 # Each rank holds its part of the 10 x 6 pixel image (pieces share a boundary row).
 points = ana.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
 check(0 < points < 10 * 6, "rank %d: analysis after the fix has %d points" % (rank, points))

@@ -1,0 +1,88 @@
+/**
+ * @class   FiberTileExchange
+ * @brief   the fibers of one MPI tile: each rank's piece of the model goes to the ranks whose tile it reaches
+ *
+ * PLISimulation and FiberOrientationGroundTruth compute their image (and tissue) piece by piece,
+ * one piece per rank (docs/pli-simulation.md §6.3). Instead of asking every rank for the whole
+ * model — which made every rank execute the whole upstream again — they ask the upstream for the
+ * rank's own piece of fibers (RequestPiece). In RequestData every rank says which box its piece
+ * reads (a Core TileReach) and each fiber is sent, through the global vtkMultiProcessController,
+ * to the ranks whose box it reaches (Model/TileReach.h). A rank then holds only the fibers of its
+ * tile, in the order of the whole model (global index = the fibers of the lower pieces + the
+ * local index), so the one ownership rule of the voxels, which depends on that order, gives every
+ * voxel the owner it has in one process: the pieces are bit for bit the crop of the serial result.
+ *
+ * Input that sits on one rank only (a reader that cannot make pieces gives piece 0 the whole
+ * model and empty pieces elsewhere) is spread the same way. Errors on any rank (a bad input
+ * piece, a plan error, the memory budget of the received fibers) are agreed on before anything is
+ * sent, so every rank fails together (FiberCollective.h). Outside a parallel update
+ * (FiberCollective::ControllerFor) the upstream is asked for all fibers and nothing is exchanged.
+ */
+#ifndef FiberTileExchange_h
+#define FiberTileExchange_h
+
+#include "FiberPLIFiltersModule.h" // for export macro
+#include "Geometry/PeriodicCell.h"
+#include "Model/FiberModel.h"
+#include "Model/TileReach.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkInformation;
+class vtkInformationVector;
+class vtkPolyData;
+
+namespace fiberpli
+{
+
+/// The fibers one rank's piece reads and what every rank knows of the whole model.
+struct TileFibers
+{
+  FiberModel model;            ///< the fibers reaching this rank's piece (all of them when serial), in model order
+  std::vector<int> bundleIds;  ///< distinct bundle ids of the whole model, sorted
+  bool periodic = false;       ///< the input carries field data periodic_cell (lowest rank that has it)
+  PeriodicCell cell;           ///< that cell, when cellError is empty
+  std::string cellError;       ///< why periodic_cell is unusable ("" when fine or absent)
+  long long modelFibers = 0;   ///< fibers of the whole model
+  long long pieceFibers = 0;   ///< fibers of this rank's input piece
+  bool distributed = false;    ///< the fibers were exchanged between ranks
+  bool emptyInput = false;     ///< no rank's input piece holds points or cells (empty output, no error)
+  std::string error;           ///< the agreed error: "" on every rank or an error on every rank
+  std::string warning;         ///< this rank's conversion warning (FiberPolyData::ToModel)
+  bool ok() const { return error.empty(); }
+};
+
+class FIBERPLIFILTERS_EXPORT FiberTileExchange
+{
+public:
+  /// What this rank's piece reads, from what every rank knows of the model (`whole`: bundleIds,
+  /// periodic cell; its `model` is not yet filled). Returns "" or an error.
+  using ReachFunction = std::function<std::string(const TileFibers& whole, TileReach& reach)>;
+
+  /// RequestUpdateExtent: the input is asked for this rank's piece (the piece of the requesting
+  /// output port, no ghost levels) in a parallel update, for all fibers (piece 0 of 1) otherwise.
+  static void RequestPiece(vtkInformation* request, vtkInformationVector* outputVector, vtkInformation* inInfo);
+
+  /// RequestInformation of a filter whose image size depends on the fibers' bounds: updates input
+  /// port 0 with the piece RequestPiece will ask for (so the data pass does not execute upstream
+  /// again) and gives the bounds, radii included, of the whole model (min > max when it has no
+  /// point); collective over every rank when the global controller has more than one. Returns
+  /// this rank's conversion error ("" when its piece is usable).
+  static std::string UpdateBounds(vtkAlgorithm* algorithm, vtkInformation* inInfo, const std::string& who,
+    double bounds[6]);
+
+  /// RequestData: converts this rank's input piece and, in a parallel update, exchanges the fibers
+  /// so that this rank receives those reaching reachOf's box. `localError` (this rank's error so
+  /// far, "" when none) takes part in the agreement. Every rank of a parallel update must call it
+  /// once per RequestData, whatever its own state.
+  static TileFibers Receive(vtkInformation* outInfo, vtkPolyData* input, const std::string& who,
+    const std::string& localError, const ReachFunction& reachOf);
+};
+
+} // namespace fiberpli
+
+#endif
+// VTK-HeaderTest-Exclude: FiberTileExchange.h
