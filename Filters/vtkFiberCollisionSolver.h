@@ -30,6 +30,13 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+
+class vtkMultiProcessController;
+namespace fiberpli
+{
+class SolverComm;
+struct CollisionSolverOptions;
+}
 #include <string>
 
 class FIBERPLIFILTERS_EXPORT vtkFiberCollisionSolver : public vtkPolyDataAlgorithm
@@ -131,6 +138,38 @@ public:
   vtkGetMacro(MaximumSnapshots, int);
   ///@}
 
+  ///@{
+  /**
+   * Checkpoint file of the solve (docs/solver.md §14): the complete state of the run, written
+   * atomically every CheckpointInterval steps, read by ResumeFromCheckpoint. Under MPI the ranks
+   * that solve write it (the solve runs on piece 0; ranks solving the same model write the same
+   * bytes). Default empty.
+   */
+  vtkSetStdStringFromCharMacro(CheckpointFile);
+  vtkGetCharFromStdStringMacro(CheckpointFile);
+  ///@}
+
+  ///@{
+  /**
+   * Write the checkpoint after every CheckpointInterval-th step, >= 0; 0 = never (default). A job
+   * killed then loses at most this many steps.
+   */
+  vtkSetMacro(CheckpointInterval, int);
+  vtkGetMacro(CheckpointInterval, int);
+  ///@}
+
+  ///@{
+  /**
+   * Continue from CheckpointFile (which must exist) instead of solving from the input: the result
+   * is bit for bit the one of an uninterrupted run. The file must have been written for the same
+   * input and the same options (NumberOfThreads may differ); else an error names the file and
+   * what differs. Default off.
+   */
+  vtkSetMacro(ResumeFromCheckpoint, bool);
+  vtkGetMacro(ResumeFromCheckpoint, bool);
+  vtkBooleanMacro(ResumeFromCheckpoint, bool);
+  ///@}
+
 protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
@@ -138,8 +177,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
-  /// (reported on every call, computed once), -1 aborted (never cached).
-  int Solve(vtkPolyData* input);
+  /// (reported on every call, computed once), -1 aborted (never cached). comm: `input` is this
+  /// rank's piece of a distributed solve (collective; docs/solver.md §13).
+  int Solve(vtkPolyData* input, fiberpli::SolverComm* comm = nullptr);
 
 private:
   vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
@@ -155,10 +195,21 @@ private:
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
   int MaximumSnapshots = 100;
+  std::string CheckpointFile;
+  int CheckpointInterval = 0;
+  bool ResumeFromCheckpoint = false;
+
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
-  std::string SolveInto(vtkPolyData* input, Snapshots& cache);
+  std::string SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm);
+  /// The checks of this rank's input and properties: "" or the error; fills cache.input and options.
+  std::string CheckInput(vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options);
+  /// The solve itself (after every rank passed CheckInput): "" or the error.
+  std::string RunSolve(Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm);
+  /// The controller of a distributed solve of this request (every rank one piece, IterationsAsTime
+  /// off), else nullptr.
+  vtkMultiProcessController* Distributed(vtkInformation* outInfo) const;
   std::unique_ptr<Snapshots> Cache;
 };
 
