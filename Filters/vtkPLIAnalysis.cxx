@@ -1,6 +1,7 @@
 #include "vtkPLIAnalysis.h"
 
 #include "Analysis/PliAnalysis.h"
+#include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
@@ -14,7 +15,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -76,12 +76,13 @@ std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<
   std::ostringstream msg;
   if (angles.size() != stacks)
   {
-    msg << "field data 'tilt_angles' has " << angles.size() << " values for " << stacks << " tilted views (intensity_tilt_*)";
+    msg << "field data '" << fiberpli::plifield::kTiltAngles << "' has " << angles.size() << " values for " << stacks
+        << " tilted views (" << fiberpli::plifield::kIntensityTiltPrefix << "*)";
   }
   else if (azimuths.size() != stacks)
   {
-    msg << "field data 'tilt_directions' has " << azimuths.size() << " values for " << stacks
-        << " tilted views (intensity_tilt_*)";
+    msg << "field data '" << fiberpli::plifield::kTiltDirections << "' has " << azimuths.size() << " values for "
+        << stacks << " tilted views (" << fiberpli::plifield::kIntensityTiltPrefix << "*)";
   }
   if (!msg.str().empty())
   {
@@ -94,35 +95,7 @@ std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<
   return {};
 }
 
-/// The values of a point array as contiguous doubles (no copy when it already is one).
-const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
-{
-  if (auto* d = vtkDoubleArray::SafeDownCast(a))
-  {
-    return d->GetPointer(0);
-  }
-  const vtkIdType n = a->GetNumberOfValues();
-  buffer.resize(static_cast<std::size_t>(n));
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents()));
-  }
-  return buffer.data();
-}
 
-/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
-/// Every rank calls it exactly once per RequestData (see RequestData), so it cannot deadlock.
-double GlobalMax(double local, vtkInformation* outInfo)
-{
-  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
-  if (!c)
-  {
-    return local;
-  }
-  double global = local;
-  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
-  return global;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -152,7 +125,7 @@ int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** 
     const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
     if (!reduced)
     {
-      GlobalMax(0.0, outInfo);
+      fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);
     }
     return rc;
   });
@@ -210,7 +183,8 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   vtkDataArray* intensity = input->GetPointData()->GetArray(fiberpli::plifield::kIntensity);
   if (!intensity)
   {
-    vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
+    vtkErrorMacro(<< "PLIAnalysis: the input has no point array '" << fiberpli::plifield::kIntensity
+                  << "' (one component per polarizer angle)");
     return 0;
   }
   const int n = intensity->GetNumberOfComponents();
@@ -231,12 +205,14 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   }
   if (rho.size() < 3)
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed");
+    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data '" << fiberpli::plifield::kPolarizerAngles
+                  << "' or the components of '" << fiberpli::plifield::kIntensity << "'); at least 3 are needed");
     return 0;
   }
   if (static_cast<std::size_t>(n) != rho.size())
   {
-    vtkErrorMacro(<< "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
+    vtkErrorMacro(<< "PLIAnalysis: point array '" << fiberpli::plifield::kIntensity << "' has " << n
+                  << " components but field data '" << fiberpli::plifield::kPolarizerAngles << "' has "
                   << rho.size() << " angles; they must be equal");
     return 0;
   }
@@ -246,7 +222,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   stack.ny = inExt[3] - inExt[2] + 1;
   stack.rho = rho;
   std::deque<std::vector<double>> buffers(1); // a deque never moves its elements: pointers stay valid
-  stack.intensity = AsDoubles(intensity, buffers[0]);
+  stack.intensity = fiberpli::AsDoubles(intensity, buffers[0]);
   for (int v = 0;; ++v)
   {
     const std::string name = fiberpli::plifield::intensityTilt(static_cast<std::size_t>(v));
@@ -258,11 +234,11 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     if (a->GetNumberOfComponents() != n)
     {
       vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
-                    << " components, 'intensity' has " << n << "; they must be equal");
+                    << " components, '" << fiberpli::plifield::kIntensity << "' has " << n << "; they must be equal");
       return 0;
     }
     buffers.emplace_back();
-    stack.tilts.push_back(AsDoubles(a, buffers.back()));
+    stack.tilts.push_back(fiberpli::AsDoubles(a, buffers.back()));
   }
   const std::string tiltError = ReadTiltViews(input, stack.tilts.size(), stack.tiltViews);
   if (!tiltError.empty())
@@ -277,8 +253,9 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     if (this->InclinationMethod == TILT)
     {
       vtkErrorMacro(<< "PLIAnalysis: InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
-                 "but these are on the tilted sensor's grid (field data tilted_sensor = 1): simulate with "
-                 "TiltedSensor off, or use InclinationMethod Retardation");
+                       "but these are on the tilted sensor's grid (field data "
+                    << fiberpli::plifield::kTiltedSensor
+                    << " = 1): simulate with TiltedSensor off, or use InclinationMethod Retardation");
       return 0;
     }
     stack.tilts.clear(); // Auto: the retardation method, from the untilted view alone
@@ -290,7 +267,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
 
   options.globalMaxRetardation = [&reduced, outInfo](double local) {
     reduced = true;
-    return GlobalMax(local, outInfo);
+    return fiberpli::FiberCollective::GlobalMax(outInfo, local);
   };
   const fiberpli::PixelRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
 
