@@ -100,6 +100,27 @@ for what, tiles in (("PLISimulation", simTiles), ("FiberOrientationGroundTruth",
         check(any(t[1] == 0 for t in tiles), "%s: no rank has a tile without fibers" % what)
         check(all(t[0][1] >= t[0][0] for t in tiles), "%s: a rank computed no pixel" % what)
 
+# The sources make pieces: no rank generated (or held as input) the whole model.
+cubePieces = [servermanager.Fetch(cube, r).GetNumberOfCells() for r in range(ranks)]
+check(sum(cubePieces) == 60 and (ranks == 1 or max(cubePieces) < 60), "the cube's pieces: %s" % cubePieces)
+
+# The VolumeOfInterest sentinel (input bounds): under MPI the ranks' bounds are reduced when the
+# image is planned; the image equals the one of the explicit volume of the whole model's bounds.
+whole = servermanager.Fetch(cube)
+points = vtk_to_numpy(whole.GetPoints().GetData())
+radius = vtk_to_numpy(whole.GetPointData().GetArray("radius"))
+bounds = [float(v) for a in range(3) for v in ((points[:, a] - radius).min(), (points[:, a] + radius).max())]
+simAuto = PLISimulation(Input=cube, VoxelSize=0.5, PixelSize=1.0, NumberOfRotations=6, TiltAngle=5.5,
+                        Birefringence=-0.004, Seed=4, NoiseGain=3.0, NumberOfThreads=1)
+simBounds = PLISimulation(Input=cube, VolumeOfInterest=bounds, VoxelSize=0.5, PixelSize=1.0, NumberOfRotations=6,
+                          TiltAngle=5.5, Birefringence=-0.004, Seed=4, NoiseGain=3.0, NumberOfThreads=1)
+for proxy in (simAuto, simBounds):
+    proxy.UpdatePipeline()
+check(simAuto.GetDataInformation().GetExtent() == simBounds.GetDataInformation().GetExtent(),
+      "sentinel extent %s, bounds extent %s" % (simAuto.GetDataInformation().GetExtent(),
+                                                simBounds.GetDataInformation().GetExtent()))
+same(gathered(simAuto, IMAGE)[0], gathered(simBounds, IMAGE)[0], "PLISimulation (input bounds)")
+
 # Rank 0 only: the cube written by the parallel writer (it gathers) and read back.
 dat = os.path.join(tmp, "cube_%d.dat" % ranks)
 SaveData(dat, proxy=cube)
