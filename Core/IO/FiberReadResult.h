@@ -1,9 +1,11 @@
 /// FiberReadResult: what every fiber reader of Core/IO returns (docs/api.md §4).
-/// Readers never throw and never print: a failure is an error message that names the file and the
-/// line (text formats) or byte offset (binary formats); on failure the model is empty.
+/// Readers never throw and never print: a failure is the Status error (Util/Status.h), a message
+/// that names the file and the line (text formats) or byte offset (binary formats); on failure the
+/// model is empty.
 #pragma once
 
 #include "Model/FiberModel.h"
+#include "Util/Status.h"
 
 #include <cmath>
 #include <cstddef>
@@ -13,17 +15,14 @@
 namespace fiberpli
 {
 
-struct FiberReadResult
+/// error: empty when the file was read; else "<file> line N: ..." or "<file> byte N: ...".
+struct FiberReadResult : Status
 {
   FiberModel model;
-  /// Empty when the file was read; else "<file> line N: ..." or "<file> byte N: ...".
-  std::string error;
   /// Fibers/streamlines of fewer than 2 points in the file. They are not in the model (the data
   /// contract needs >= 2 points) but keep their place in the fiber id numbering; the VTK side
   /// reports the count as one warning.
   std::size_t droppedFibers = 0;
-
-  bool ok() const { return error.empty(); }
 };
 
 /// A failed read: empty model, the given message.

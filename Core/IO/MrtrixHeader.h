@@ -6,6 +6,8 @@
 /// are ignored. Internal helper, not part of the public API.
 #pragma once
 
+#include "Util/Status.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <istream>
@@ -14,9 +16,9 @@
 namespace fiberpli
 {
 
-struct MrtrixHeader
+/// error: empty when the header is usable.
+struct MrtrixHeader : Status
 {
-  std::string error;              ///< empty when the header is usable
   std::uint64_t fileSize = 0;     ///< bytes from the stream start to its end
   std::uint64_t dataOffset = 0;   ///< `file: . <offset>`, checked to lie in [end of header, fileSize]
   std::size_t valueSize = 0;      ///< 4 or 8

@@ -6,6 +6,8 @@
 /// beside "<name>.tck" for the fiber radii.
 #pragma once
 
+#include "Util/Status.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <istream>
@@ -16,8 +18,9 @@
 namespace fiberpli
 {
 
-/// What readTsf returns. On failure only error is set.
-struct TsfReadResult
+/// What readTsf returns. On failure only error is set: empty when the file was read; else
+/// "<file> line N: ..." or "<file> byte N: ...".
+struct TsfReadResult : Status
 {
   /// Values of every streamline in file order, empty streamlines included (unlike readTck, which
   /// drops streamlines of fewer than 2 points but keeps their position as the fiber id).
@@ -28,10 +31,6 @@ struct TsfReadResult
   std::size_t valueSize = 4;
   /// The header's `timestamp` as written; empty when absent.
   std::string timestamp;
-  /// Empty when the file was read; else "<file> line N: ..." or "<file> byte N: ...".
-  std::string error;
-
-  bool ok() const { return error.empty(); }
   /// Byte offset in the file of value j of streamline i, for messages about a value.
   std::uint64_t byteOffset(std::size_t i, std::size_t j) const
   {

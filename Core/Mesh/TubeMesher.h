@@ -10,6 +10,7 @@
 
 #include "Model/FiberModel.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -28,13 +29,12 @@ struct TubeOptions
   int numberOfThreads = 0;
 };
 
-struct TubeMesh
+struct TubeMesh : Status
 {
   std::vector<double> points;           ///< x, y, z per vertex
   std::vector<float> normals;           ///< unit normal per vertex
   std::vector<std::int64_t> triangles;  ///< 3 vertex indices per triangle, counter-clockwise seen from outside
   std::vector<std::int64_t> triangleFiber; ///< index of the fiber (in model order) of each triangle
-  bool aborted = false;
 
   std::size_t numberOfPoints() const { return points.size() / 3; }
   std::size_t numberOfTriangles() const { return triangles.size() / 3; }

@@ -4,17 +4,17 @@
 
 #include "Metrics/Capsules.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 
 namespace fiberpli
 {
 
-struct PairResult
+struct PairResult : Status
 {
   std::int64_t collisions = 0; ///< pairs with surface gap < 0 (touching is no collision)
   double minGap = 0.0;         ///< smallest |a − b| − r_a − r_b over compared pairs; NaN when none
-  bool aborted = false;
 };
 
 /// Compares every pair of capsules except chain neighbours (chainNeighbours). Collisions are exact;

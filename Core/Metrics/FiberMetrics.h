@@ -9,6 +9,7 @@
 #include "Metrics/VolumeFraction.h"
 #include "Model/FiberModel.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -37,15 +38,14 @@ struct MetricsOptions
   int numberOfThreads = 0;       ///< 0 = all cores
 };
 
-struct MetricsResult
+/// error non-empty: a bad option, naming it and its value.
+struct MetricsResult : Status
 {
   std::size_t fibers = 0, points = 0, links = 0;
   Vec3 regionLo, regionHi;       ///< where the volume fraction was measured
   VolumeFractionResult volume;   ///< fraction NaN when not computed
   PairResult pairs;              ///< collisions −1 / minGap NaN when not computed
   ShapeResult shape;
-  std::string error;             ///< non-empty: a bad option, naming it and its value
-  bool aborted = false;
 };
 
 /// Validates the options (box with zero thickness, non-positive cell, negative voxel size, too many

@@ -4,6 +4,7 @@
 
 #include "Metrics/Capsules.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -11,13 +12,12 @@
 namespace fiberpli
 {
 
-struct VolumeFractionResult
+/// error non-empty: nothing computed (the message names the value).
+struct VolumeFractionResult : Status
 {
   double fraction = 0.0;  ///< voxels whose centre lies inside a capsule / all voxels
   double errorBound = 0.0;///< |fraction − true fraction| <= errorBound (see volumeFraction)
   Vec3 voxel;             ///< voxel edges used (the box divided into whole voxels)
-  std::string error;      ///< non-empty: nothing computed (message names the value)
-  bool aborted = false;
 };
 
 /// The box [lo, hi] is divided into whole voxels of edge about `voxelSize` (each axis rounded so

@@ -8,6 +8,7 @@
 #include "Solver/ShapeControl.h"
 #include "Solver/SolverComm.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstddef>
 #include <functional>
@@ -67,14 +68,16 @@ struct CollisionSolverOptions
   double initialRadiusScale = 0.0;
 };
 
-/// Outcome of solveCollisions (field data of §9).
-struct CollisionSolverResult
+/// Outcome of solveCollisions (field data of §9). error non-empty: nothing was done and the model
+/// is unchanged; or, only when the colliding pairs outgrew their limit in the middle of a run (the
+/// message says at which step), the model is in that step's state and must not be used. warnings:
+/// recoverable oddities, one message each, with counts.
+struct CollisionSolverResult : Status
 {
   int steps = 0;              ///< move phases run
   std::size_t collisions = 0; ///< colliding capsule pairs in the output geometry
   bool solved = false;        ///< collisions == 0
   bool shapeOk = true;        ///< lengths and curvature within limits (last pass changed nothing)
-  bool aborted = false;       ///< progress returned false
   double maxOverlap = 0.0;    ///< max over colliding pairs of ρa + ρb + g − δ (µm), 0 if none
   double segmentLength = 0.0; ///< L̄ used (< 0 = off)
   std::size_t bestCollisions = 0; ///< smallest collision count seen ...
@@ -89,17 +92,12 @@ struct CollisionSolverResult
   /// Smallest surface gap δ − ρa − ρb over all pairs of capsules, at most minGapProbe (µm).
   double minGap = 0.0;
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
-  std::vector<std::string> warnings; ///< recoverable oddities, one message each, with counts
   // Distributed runs (docs/solver.md §13; 0 otherwise): this rank's share and traffic.
   std::size_t rankFibers = 0;     ///< fibers this rank owned at the end (before they went home)
   std::size_t peakRankPoints = 0; ///< most points (owned + halo) this rank held in a step
   std::size_t peakHaloPoints = 0; ///< most halo points it held in a step
   double haloBytesPerStep = 0.0;  ///< bytes it sent as halo per step, mean
   std::size_t migrations = 0;     ///< fibers that changed rank during the solve (all ranks)
-  /// Non-empty: nothing was done and the model is unchanged; or, only when the colliding pairs
-  /// outgrew their limit in the middle of a run (the message says at which step), the model is in
-  /// that step's state and must not be used.
-  std::string error;
 };
 
 /// Called after every move step with the step number (1, 2, …) and the current model (in a
