@@ -1,9 +1,12 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "FiberSolverComm.h"
 #include "Solver/CollisionSolver.h"
+#include "Solver/Decomposition.h"
 #include "Util/MemoryBudget.h"
 
 #include <vtkDoubleArray.h>
@@ -11,6 +14,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
@@ -85,25 +89,48 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
 }
 
 //------------------------------------------------------------------------------
-// The solve is not distributed yet: every piece asks for all fibers (piece 0 of 1, as the other
-// filters that need them whole; the same request on every rank, so a piece-making source sees no
-// half-collective update), piece 0 solves them, the other pieces are empty (docs/architecture.md §7).
-int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector*)
+vtkMultiProcessController* vtkFiberCollisionSolver::Distributed(vtkInformation* outInfo) const
 {
-  fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
+  return this->IterationsAsTime ? nullptr : fiberpli::FiberCollective::ControllerFor(outInfo);
+}
+
+//------------------------------------------------------------------------------
+// Distributed (docs/solver.md §13): every rank asks for its own piece and solves it with the
+// others. Else (one process, or IterationsAsTime, whose snapshots are not distributed) every piece
+// asks for all fibers (piece 0 of 1, as the other filters that need them whole; the same request
+// on every rank, so a piece-making source sees no half-collective update), piece 0 solves them,
+// the other pieces are empty (docs/architecture.md §7).
+int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (!this->Distributed(outInfo))
+  {
+    fiberpli::FiberPolyData::RequestAllFibers(inInfo);
+    return 1;
+  }
+  using SDDP = vtkStreamingDemandDrivenPipeline;
+  inInfo->Set(SDDP::UPDATE_PIECE_NUMBER(), outInfo->Get(SDDP::UPDATE_PIECE_NUMBER()));
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_PIECES(), outInfo->Get(SDDP::UPDATE_NUMBER_OF_PIECES()));
+  inInfo->Set(SDDP::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0); // the solver exchanges its own halo
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
+int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* comm)
 {
-  if (!this->Cache || this->Cache->inputTime != input->GetMTime() || this->Cache->filterTime != this->GetMTime())
+  bool stale = !this->Cache || this->Cache->inputTime != input->GetMTime() || this->Cache->filterTime != this->GetMTime();
+  if (comm)
+  {
+    stale = fiberpli::anyRank(*comm, stale); // a distributed solve is redone by all ranks or none
+  }
+  if (stale)
   {
     auto cache = std::make_unique<Snapshots>();
     cache->inputTime = input->GetMTime();
     cache->filterTime = this->GetMTime();
-    cache->error = this->SolveInto(input, *cache);
+    cache->error = this->SolveInto(input, *cache, comm);
     this->Cache.reset();
     if (cache->result.aborted)
     {
@@ -120,7 +147,49 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input)
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& cache)
+std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm)
+{
+  fiberpli::CollisionSolverOptions options;
+  std::string error = this->CheckInput(input, cache, options);
+  if (comm)
+  {
+    // Every rank solves with the same options: a piece without fibers may lack periodic_cell.
+    std::vector<double> c(7, -HUGE_VAL);
+    c[0] = cache.periodic ? 1.0 : 0.0;
+    for (int d = 0; cache.periodic && d < 3; ++d)
+    {
+      c[static_cast<std::size_t>(1 + d)] = -cache.cell.lo[d];
+      c[static_cast<std::size_t>(4 + d)] = cache.cell.hi[d];
+    }
+    comm->max(c);
+    fiberpli::PeriodicCell agreed;
+    for (int d = 0; d < 3; ++d)
+    {
+      agreed.lo[d] = -c[static_cast<std::size_t>(1 + d)];
+      agreed.hi[d] = c[static_cast<std::size_t>(4 + d)];
+    }
+    if (error.empty() && c[0] > 0.0 && cache.periodic && !(agreed.lo == cache.cell.lo && agreed.hi == cache.cell.hi))
+    {
+      error = "FiberCollisionSolver: the input pieces have different periodic_cell field data";
+    }
+    if (c[0] > 0.0)
+    {
+      cache.periodic = true;
+      cache.cell = agreed;
+      options.periodicCell = agreed;
+    }
+    error = fiberpli::agreeOnError(*comm, error);
+  }
+  if (!error.empty())
+  {
+    return error;
+  }
+  return this->RunSolve(cache, options, comm);
+}
+
+//------------------------------------------------------------------------------
+std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& cache,
+  fiberpli::CollisionSolverOptions& options)
 {
   const std::string threads = fiberpli::validateThreadCount(this->NumberOfThreads);
   if (!threads.empty())
@@ -147,7 +216,6 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
     vtkWarningMacro(<< cache.input.warning);
   }
 
-  fiberpli::CollisionSolverOptions options;
   std::string cellError;
   cache.periodic = fiberpli::ReadPeriodicCell(input, cache.cell, cellError);
   if (!cache.periodic && !cellError.empty())
@@ -162,22 +230,31 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
   options.separationSpeed = this->SeparationSpeed;
   options.minimumGap = this->MinimumGap;
   options.numberOfThreads = this->NumberOfThreads;
+  if (this->IterationsAsTime)
+  {
+    // Snapshots of twice the input's points each (splitting) must fit the memory budget.
+    const double points = static_cast<double>(cache.input.model.numberOfPoints());
+    const double bytes = 2.0 * static_cast<double>(this->MaximumSnapshots) * points * (sizeof(fiberpli::Vec3) + sizeof(double));
+    const std::string problem = fiberpli::checkMemoryBudget(bytes,
+      "MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + " of " +
+        std::to_string(cache.input.model.numberOfPoints()) + " points");
+    if (!problem.empty())
+    {
+      return "FiberCollisionSolver: " + problem + "; lower MaximumSnapshots";
+    }
+  }
+  return {};
+}
 
+//------------------------------------------------------------------------------
+std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::CollisionSolverOptions& options,
+  fiberpli::SolverComm* comm)
+{
   fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;
   int interval = this->TimeStepInterval;
   if (this->IterationsAsTime)
   {
-    // Snapshots of twice the input's points each (splitting) must fit the memory budget.
-    const double bytes = 2.0 * static_cast<double>(this->MaximumSnapshots) *
-      static_cast<double>(model.numberOfPoints()) * (sizeof(fiberpli::Vec3) + sizeof(double));
-    const std::string problem = fiberpli::checkMemoryBudget(bytes,
-      "MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + " of " +
-        std::to_string(model.numberOfPoints()) + " points");
-    if (!problem.empty())
-    {
-      return "FiberCollisionSolver: " + problem + "; lower MaximumSnapshots";
-    }
     cache.models.push_back(model);
     cache.steps.push_back(0);
     const std::size_t maxSnapshots = static_cast<std::size_t>(this->MaximumSnapshots);
@@ -208,7 +285,7 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
-  cache.result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer);
+  cache.result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
     return "FiberCollisionSolver: " + cache.result.error;
@@ -241,12 +318,22 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
-  if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
+  vtkMultiProcessController* controller = this->Distributed(outInfo);
+  std::unique_ptr<fiberpli::FiberSolverComm> comm;
+  if (controller)
+  {
+    comm = std::make_unique<fiberpli::FiberSolverComm>(controller);
+    if (!fiberpli::anyRank(*comm, !fiberpli::FiberPolyData::IsEmpty(input)))
+    {
+      return 1; // no rank has fibers
+    }
+  }
+  else if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
   {
     return 1;
   }
 
-  const int solved = this->Solve(input);
+  const int solved = this->Solve(input, comm.get());
   if (solved != 1)
   {
     return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
@@ -299,11 +386,18 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::AddPeriodicCell(output, cell);
   }
   // Of the periodic cell, else of the model's bounding box.
-  fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell) });
+  fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
   if (final)
   {
     fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
     fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
+  }
+  if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
+  {
+    fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
+    fiberpli::AddFieldDoubles(output, "halo_points", { static_cast<double>(r.peakHaloPoints) });
+    fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
+    fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -30,6 +30,13 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+
+class vtkMultiProcessController;
+namespace fiberpli
+{
+class SolverComm;
+struct CollisionSolverOptions;
+}
 #include <string>
 
 class FIBERPLIFILTERS_EXPORT vtkFiberCollisionSolver : public vtkPolyDataAlgorithm
@@ -138,8 +145,9 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
-  /// (reported on every call, computed once), -1 aborted (never cached).
-  int Solve(vtkPolyData* input);
+  /// (reported on every call, computed once), -1 aborted (never cached). comm: `input` is this
+  /// rank's piece of a distributed solve (collective; docs/solver.md §13).
+  int Solve(vtkPolyData* input, fiberpli::SolverComm* comm = nullptr);
 
 private:
   vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
@@ -158,7 +166,14 @@ private:
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
-  std::string SolveInto(vtkPolyData* input, Snapshots& cache);
+  std::string SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm);
+  /// The checks of this rank's input and properties: "" or the error; fills cache.input and options.
+  std::string CheckInput(vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options);
+  /// The solve itself (after every rank passed CheckInput): "" or the error.
+  std::string RunSolve(Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm);
+  /// The controller of a distributed solve of this request (every rank one piece, IterationsAsTime
+  /// off), else nullptr.
+  vtkMultiProcessController* Distributed(vtkInformation* outInfo) const;
   std::unique_ptr<Snapshots> Cache;
 };
 

@@ -1,6 +1,6 @@
 /// SolverComm: what the distributed collision solver needs from its ranks (docs/solver.md §13):
 /// exact reductions and an all-to-all of byte buffers. Pure C++; the VTK build implements it over
-/// vtkMultiProcessController (Filters/FiberSolverComm.h), the tests with threads as ranks. Every
+/// vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests with threads as ranks. Every
 /// call is collective: all ranks make the same calls in the same order.
 #pragma once
 

@@ -1,6 +1,6 @@
-"""pvbatch under mpiexec -n 2: cube -> solver -> tubes. The source makes the fibers on rank 0 and
-rank 1 sees an empty piece, which every filter turns into an empty output without error; the
-gathered result equals a one-piece run of the same pipeline."""
+"""pvbatch under mpiexec -n 2: cube -> solver -> tubes. The source makes its two pieces, the solver
+solves them together (docs/solver.md §13) and the tubes follow; the gathered result equals a
+one-piece run of the same pipeline."""
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
@@ -18,6 +18,9 @@ solver = FiberCollisionSolver(Input=cube, SegmentLength=2.0, MinCurvatureRadius=
 tubes = FiberTubes(Input=solver, NumberOfSides=6, Capping=1, NumberOfThreads=1)
 tubes.UpdatePipeline()
 parallel = servermanager.Fetch(tubes)
+# Before the one-piece run below re-executes rank 0's source alone: a pipeline update after it
+# would find the distributed solver out of date on rank 0 only.
+solved = servermanager.Fetch(solver).GetFieldData().GetArray("solved").GetValue(0)
 
 # The same pipeline as one piece, computed on rank 0 only (client-side objects).
 single_cube = cube.GetClientSideObject()
@@ -33,7 +36,6 @@ if parallel.GetNumberOfPoints() != serial.GetNumberOfPoints():
 for i in range(0, serial.GetNumberOfPoints(), 97):
     if parallel.GetPoint(i) != serial.GetPoint(i):
         raise RuntimeError("point %d differs" % i)
-solved = servermanager.Fetch(solver).GetFieldData().GetArray("solved").GetValue(0)
 if solved != 1:
     raise RuntimeError("not solved")
 print("mpi_fiber_pipeline passed: %d triangles on 2 ranks" % parallel.GetNumberOfCells())
