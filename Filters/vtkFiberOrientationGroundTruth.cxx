@@ -7,6 +7,7 @@
 #include "FiberProgress.h"
 #include "FiberTileExchange.h"
 #include "Model/VolumeOfInterest.h"
+#include "Section/PLIFields.h"
 #include "Section/SectionPlan.h"
 
 #include <vtkAlgorithmOutput.h>
@@ -35,7 +36,19 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 //------------------------------------------------------------------------------
 // Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.5, PixelSize 2,
 // all threads.
+/// The section of the properties and the planned volume, made by RequestInformation once per change
+/// of either and used by every RequestData.
+struct vtkFiberOrientationGroundTruth::SectionPlanned
+{
+  vtkMTimeType time = 0;
+  double volume[6] = { 1, -1, 1, -1, 1, -1 };
+  fiberpli::SectionPlan section;
+  std::string error; ///< of planSection
+};
+
+//------------------------------------------------------------------------------
 vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth() = default;
+vtkFiberOrientationGroundTruth::~vtkFiberOrientationGroundTruth() = default;
 
 //------------------------------------------------------------------------------
 int vtkFiberOrientationGroundTruth::FillInputPortInformation(int, vtkInformation* info)
@@ -67,9 +80,9 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
         std::copy(bounds, bounds + 6, this->PlannedVolume);
       }
     }
-    fiberpli::SectionPlan section;
-    if (error.empty() &&
-      fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, section).empty())
+    this->PlanSection();
+    const fiberpli::SectionPlan& section = this->Plan->section;
+    if (error.empty() && this->Plan->error.empty())
     {
       extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
       std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
@@ -82,6 +95,21 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, 1);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberOrientationGroundTruth::PlanSection()
+{
+  if (this->Plan && this->Plan->time == this->GetMTime() &&
+    std::equal(this->PlannedVolume, this->PlannedVolume + 6, this->Plan->volume))
+  {
+    return; // planned for these properties and this volume already
+  }
+  auto p = std::make_unique<SectionPlanned>();
+  p->time = this->GetMTime();
+  std::copy(this->PlannedVolume, this->PlannedVolume + 6, p->volume);
+  p->error = fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, p->section);
+  this->Plan = std::move(p);
 }
 
 //------------------------------------------------------------------------------
@@ -117,10 +145,15 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   output->Initialize();
   fiberpli::GroundTruthOptions options;
   options.threads = this->NumberOfThreads;
-  // The section and this piece's pixels (an empty range when nothing of the image is requested).
-  fiberpli::SectionPlan section;
-  auto plan = [&](const fiberpli::FiberModel& model, fiberpli::PixelRange& range) {
-    const std::string e = fiberpli::planSection(model, this->PlannedVolume, this->VoxelSize, this->PixelSize, section);
+  // The section RequestInformation planned and this piece's pixels (an empty range when nothing of
+  // the image is requested).
+  if (!this->Plan)
+  {
+    this->PlanSection(); // a data pass without an information pass
+  }
+  const fiberpli::SectionPlan& section = this->Plan->section;
+  auto pieceRange = [&](fiberpli::PixelRange& range) {
+    const std::string& e = this->Plan->error;
     range = fiberpli::PixelRange{ 0, section.pixels[0], 0, section.pixels[1] };
     if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     {
@@ -136,7 +169,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
     localError, [&](const fiberpli::TileFibers&, fiberpli::TileReach& reach) {
       fiberpli::PixelRange range;
-      const std::string e = plan(fiberpli::FiberModel(), range);
+      const std::string e = pieceRange(range);
       if (e.empty() && range.nx() > 0 && range.ny() > 0)
       {
         reach = fiberpli::groundTruthReach(section, options, range);
@@ -160,7 +193,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     return 1;
   }
   fiberpli::PixelRange range;
-  std::string err = plan(c.model, range);
+  std::string err = pieceRange(range);
   const std::int64_t nx = section.pixels[0];
   if (!err.empty())
   {
@@ -209,8 +242,8 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   addMap("fraction", maps.fraction, 1.0);
   addMap("anisotropy", maps.anisotropy, 1.0);
   output->GetPointData()->SetActiveScalars("direction");
-  fiberpli::AddFieldDoubles(output, "tile_fibers", { static_cast<double>(c.model.fibers.size()) });
-  fiberpli::AddFieldDoubles(output, "model_fibers", { static_cast<double>(c.modelFibers) });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { static_cast<double>(c.model.fibers.size()) });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { static_cast<double>(c.modelFibers) });
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -20,6 +20,8 @@
 #include "FiberPLIFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
+#include <memory> // for the plan
+
 class FIBERPLIFILTERS_EXPORT vtkFiberOrientationGroundTruth : public vtkImageAlgorithm
 {
 public:
@@ -62,7 +64,7 @@ public:
 
 protected:
   vtkFiberOrientationGroundTruth();
-  ~vtkFiberOrientationGroundTruth() override = default;
+  ~vtkFiberOrientationGroundTruth() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -81,6 +83,10 @@ private:
   /// The volume RequestInformation planned the image for (the input bounds when VolumeOfInterest is
   /// the sentinel): RequestData uses the same one, so its pixels always match WHOLE_EXTENT.
   double PlannedVolume[6] = { 1, -1, 1, -1, 1, -1 };
+  /// The section of PlannedVolume and the sizes (Section/SectionPlan.h), planned once per change.
+  struct SectionPlanned;
+  std::unique_ptr<SectionPlanned> Plan;
+  void PlanSection();
 };
 
 #endif

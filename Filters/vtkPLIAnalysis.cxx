@@ -4,6 +4,8 @@
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
+#include "Section/PLIFields.h"
+#include "Section/TiltConvention.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -60,12 +62,12 @@ std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<
   {
     return {};
   }
-  std::vector<double> angles = FieldValues(input, "tilt_angles");
-  std::vector<double> azimuths = FieldValues(input, "tilt_directions");
-  const bool hasAngles = input->GetFieldData() && input->GetFieldData()->GetArray("tilt_angles");
+  std::vector<double> angles = FieldValues(input, fiberpli::plifield::kTiltAngles);
+  std::vector<double> azimuths = FieldValues(input, fiberpli::plifield::kTiltDirections);
+  const bool hasAngles = input->GetFieldData() && input->GetFieldData()->GetArray(fiberpli::plifield::kTiltAngles);
   if (!hasAngles)
   {
-    angles.assign(stacks, FieldValue(input, "tilt_angle", 0.0));
+    angles.assign(stacks, FieldValue(input, fiberpli::plifield::kTiltAngle, 0.0));
   }
   if (azimuths.empty() && stacks == 4)
   {
@@ -205,7 +207,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
                   << " slices along z; expected one slice (the PLISimulation image)");
     return 0;
   }
-  vtkDataArray* intensity = input->GetPointData()->GetArray("intensity");
+  vtkDataArray* intensity = input->GetPointData()->GetArray(fiberpli::plifield::kIntensity);
   if (!intensity)
   {
     vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
@@ -213,7 +215,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   }
   const int n = intensity->GetNumberOfComponents();
   std::vector<double> rho;
-  if (vtkDataArray* angles = input->GetFieldData()->GetArray("polarizer_angles"))
+  if (vtkDataArray* angles = input->GetFieldData()->GetArray(fiberpli::plifield::kPolarizerAngles))
   {
     for (vtkIdType k = 0; k < angles->GetNumberOfValues(); ++k)
     {
@@ -247,7 +249,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   stack.intensity = AsDoubles(intensity, buffers[0]);
   for (int v = 0;; ++v)
   {
-    const std::string name = "intensity_tilt_" + std::to_string(v);
+    const std::string name = fiberpli::plifield::intensityTilt(static_cast<std::size_t>(v));
     vtkDataArray* a = input->GetPointData()->GetArray(name.c_str());
     if (!a)
     {
@@ -270,7 +272,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   }
   // Views on the tilted sensor's grid are not pixel-aligned with the untilted view: a pixel's
   // tilted intensities would belong to other points of the section, so the tilt fit is refused.
-  if (FieldValue(input, "tilted_sensor", 0.0) == 1.0 && !stack.tilts.empty())
+  if (FieldValue(input, fiberpli::plifield::kTiltedSensor, 0.0) == 1.0 && !stack.tilts.empty())
   {
     if (this->InclinationMethod == TILT)
     {
@@ -282,9 +284,9 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     stack.tilts.clear(); // Auto: the retardation method, from the untilted view alone
     stack.tiltViews.clear();
   }
-  stack.convention = FieldValue(input, "tilt_convention", 0.0) == 1.0 ? fiberpli::TiltConvention::FastPLI
+  stack.convention = FieldValue(input, fiberpli::plifield::kTiltConvention, 0.0) == fiberpli::tiltConventionCode(fiberpli::TiltConvention::FastPLI) ? fiberpli::TiltConvention::FastPLI
                                                                        : fiberpli::TiltConvention::Physical;
-  stack.noiseGain = FieldValue(input, "noise_gain", -1.0);
+  stack.noiseGain = FieldValue(input, fiberpli::plifield::kNoiseGain, -1.0);
 
   options.globalMaxRetardation = [&reduced, outInfo](double local) {
     reduced = true;
@@ -346,8 +348,8 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     }
   }
 
-  fiberpli::AddFieldDoubles(output, "reference_retardation", { maps.referenceRetardation });
-  fiberpli::AddFieldInt(output, "inclination_method", static_cast<int>(maps.method));
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kReferenceRetardation, { maps.referenceRetardation });
+  fiberpli::AddFieldInt(output, fiberpli::plifield::kInclinationMethod, static_cast<int>(maps.method));
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -11,6 +11,8 @@
 #include "PLI/PLIPipeline.h"
 #include "PLI/PLIReach.h"
 #include "PLI/TissueExport.h"
+#include "Section/PLIFields.h"
+#include "Section/TiltConvention.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDataObject.h>
@@ -148,14 +150,9 @@ bool RequestedExtent(vtkInformation* outInfo, int ext[6])
 /// What this rank's piece reads (FiberTileExchange.h): the image tile and/or the tissue piece
 /// requested, tiled modulo a periodic cell into the volume of interest as ExecutePiece tiles it.
 std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole, const fiberpli::pli::PLIOptions& options,
-  vtkInformationVector* outputVector, bool image, bool tissue, const std::string& tissueError, fiberpli::TileReach& reach)
+  const fiberpli::pli::PLIPlan& plan, vtkInformationVector* outputVector, bool image, bool tissue,
+  const std::string& tissueError, fiberpli::TileReach& reach)
 {
-  fiberpli::pli::PLIPlan plan;
-  const fiberpli::pli::Status st = fiberpli::pli::planPLI(fiberpli::FiberModel(), options, plan);
-  if (!st.ok())
-  {
-    return "PLISimulation: " + st.error;
-  }
   int ext[6];
   if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
   {
@@ -183,6 +180,18 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
 }
 
 } // namespace
+
+//------------------------------------------------------------------------------
+/// The image part of the plan: made once per change of the properties or of the input's bounds
+/// (sentinel), by RequestInformation, and used by every RequestData.
+struct vtkPLISimulation::ImagePlan
+{
+  vtkMTimeType time = 0;             ///< this->GetMTime() the plan is for
+  fiberpli::pli::PLIOptions options; ///< the properties, VolumeOfInterest resolved for the sentinel
+  fiberpli::pli::PLIPlan plan;       ///< planPLIImage of the options
+  std::string error;                 ///< the options' or the plan's error, reported by RequestData
+  bool noFibers = false;             ///< the sentinel met a model without points: empty output
+};
 
 //------------------------------------------------------------------------------
 vtkPLISimulation::vtkPLISimulation()
@@ -232,7 +241,6 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* tissueInfo = outputVector->GetInformationObject(1);
-  this->PlanError.clear();
   this->TissueError.clear();
   const int empty[6] = { 0, -1, 0, -1, 0, -1 };
   for (vtkInformation* info : { outInfo, tissueInfo })
@@ -241,41 +249,13 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     info->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   }
 
-  fiberpli::pli::PLIOptions options;
-  const std::string optionError = MakeOptions(this, options);
-  if (!optionError.empty())
+  this->PlanImage(inputVector[0]);
+  if (!this->Plan->error.empty() || this->Plan->noFibers)
   {
-    this->PlanError = "PLISimulation: " + optionError;
-    return 1;
+    return 1; // the error is reported by RequestData
   }
-  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
-  {
-    // The image size depends on the bounds of the whole model, which only the input data knows:
-    // the input is brought up to date now with the piece RequestUpdateExtent asks for anyway, so
-    // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced).
-    double bounds[6];
-    const std::string error =
-      fiberpli::FiberTileExchange::UpdateBounds(this, inputVector[0]->GetInformationObject(0), "PLISimulation", bounds);
-    if (!error.empty())
-    {
-      this->PlanError = error;
-      return 1;
-    }
-    if (!(bounds[0] <= bounds[1]))
-    {
-      return 1; // no fiber on any rank
-    }
-    std::copy(bounds, bounds + 6, this->ResolvedVolume);
-    std::copy(bounds, bounds + 6, options.volumeOfInterest);
-  }
-
-  fiberpli::pli::PLIPlan plan;
-  const fiberpli::pli::Status st = fiberpli::pli::planPLI(fiberpli::FiberModel(), options, plan);
-  if (!st.ok())
-  {
-    this->PlanError = "PLISimulation: " + st.error;
-    return 1;
-  }
+  const fiberpli::pli::PLIOptions& options = this->Plan->options;
+  const fiberpli::pli::PLIPlan& plan = this->Plan->plan;
   const int whole[6] = { 0, static_cast<int>(plan.pixels[0] - 1), 0, static_cast<int>(plan.pixels[1] - 1), 0, 0 };
   const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
@@ -308,6 +288,47 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
     tissueInfo->Set(vtkDataObject::ORIGIN(), tissueOrigin, 3);
   }
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
+{
+  fiberpli::pli::PLIOptions options;
+  std::string error = MakeOptions(this, options);
+  error = error.empty() ? error : "PLISimulation: " + error;
+  bool noFibers = false;
+  if (error.empty() && fiberpli::isBoundsSentinel(options.volumeOfInterest))
+  {
+    // The image size depends on the bounds of the whole model, which only the input data knows:
+    // the input is brought up to date now with the piece RequestUpdateExtent asks for anyway, so
+    // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced, so
+    // every rank calls it on every pass, planned already or not).
+    double bounds[6];
+    error = fiberpli::FiberTileExchange::UpdateBounds(this, inputVector->GetInformationObject(0), "PLISimulation", bounds);
+    noFibers = error.empty() && !(bounds[0] <= bounds[1]); // no fiber on any rank
+    if (error.empty() && !noFibers)
+    {
+      std::copy(bounds, bounds + 6, options.volumeOfInterest);
+    }
+  }
+  if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() && !this->Plan->noFibers &&
+    this->Plan->time == this->GetMTime() &&
+    std::equal(options.volumeOfInterest, options.volumeOfInterest + 6, this->Plan->options.volumeOfInterest))
+  {
+    return; // planned for these properties and this volume already
+  }
+  auto p = std::make_unique<ImagePlan>();
+  p->time = this->GetMTime();
+  p->options = options;
+  p->error = error;
+  p->noFibers = noFibers;
+  if (error.empty() && !noFibers)
+  {
+    // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
+    const fiberpli::pli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
+    p->error = st.ok() ? "" : "PLISimulation: " + st.error;
+  }
+  this->Plan = std::move(p);
 }
 
 //------------------------------------------------------------------------------
@@ -356,7 +377,11 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
 int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  std::string localError = this->PlanError;
+  if (!this->Plan)
+  {
+    this->PlanImage(inputVector[0]); // a data pass without an information pass
+  }
+  std::string localError = this->Plan->error;
   if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
   {
     localError = "PLISimulation: " + fiberpli::validateThreadCount(this->NumberOfThreads);
@@ -379,12 +404,12 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     tissue->Initialize();
   }
-  fiberpli::pli::PLIOptions options;
-  MakeOptions(this, options); // its error was reported above (PlanError)
-  if (fiberpli::isBoundsSentinel(options.volumeOfInterest))
-  {
-    std::copy(this->ResolvedVolume, this->ResolvedVolume + 6, options.volumeOfInterest);
-  }
+  // The plan of RequestInformation; the tissue part (layers of the whole model's bundles) is
+  // planned once here, for the fibers' reach under MPI or else for the fibers received.
+  fiberpli::pli::PLIOptions options = this->Plan->options;
+  fiberpli::pli::PLIPlan plan = this->Plan->plan;
+  fiberpli::pli::Status tissueStatus;
+  bool tissuePlanned = false;
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
   // fibers its piece reads, in model order (FiberTileExchange.h).
   fiberpli::TileReach reach;
@@ -392,7 +417,14 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     outputVector->GetInformationObject(std::max(port, 0)), input, "PLISimulation", localError,
     [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
       options.bundleIds = whole.bundleIds;
-      const std::string e = PieceReach(this, whole, options, outputVector, wantImage, wantTissue, this->TissueError, r);
+      tissueStatus = fiberpli::pli::planPLITissue(fiberpli::FiberModel(), options, plan);
+      tissuePlanned = true;
+      if (!tissueStatus.ok())
+      {
+        return "PLISimulation: " + tissueStatus.error;
+      }
+      const std::string e =
+        PieceReach(this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
       reach = r;
       return e;
     });
@@ -408,7 +440,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     vtkWarningMacro(<< in.warning);
   }
-  if (in.emptyInput)
+  if (in.emptyInput || this->Plan->noFibers)
   {
     return 1;
   }
@@ -427,23 +459,41 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     vtkErrorMacro(<< "PLISimulation: " << cellError);
     return 0;
   }
+  if (!tissuePlanned)
+  {
+    tissueStatus = fiberpli::pli::planPLITissue(in.model, options, plan);
+  }
+  else
+  {
+    const std::string w = fiberpli::pli::resolutionWarning(in.model, options);
+    if (!w.empty())
+    {
+      tissueStatus.warnings.push_back(w);
+    }
+  }
+  if (!tissueStatus.ok())
+  {
+    vtkErrorMacro(<< "PLISimulation: " << tissueStatus.error);
+    return 0;
+  }
   this->NumberOfTileFibers = static_cast<double>(in.model.fibers.size());
   this->NumberOfModelFibers = static_cast<double>(in.modelFibers);
   int ok = 1;
   if (wantImage)
   {
-    ok = this->SimulateImage(in.model, options, outputVector->GetInformationObject(0), image);
+    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image);
   }
   if (wantTissue && this->ExportTissue && ok)
   {
-    ok = this->VoxeliseTissue(in.model, options, outputVector->GetInformationObject(1), tissue);
+    ok = this->VoxeliseTissue(in.model, options, plan, outputVector->GetInformationObject(1), tissue);
   }
   return ok;
 }
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-  vtkInformation* outInfo, vtkImageData* output)
+  const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
+  vtkImageData* output)
 {
   int ext[6];
   if (!RequestedExtent(outInfo, ext))
@@ -455,7 +505,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;
   this->SetProgressText("Voxelising and propagating light");
-  const fiberpli::pli::Status st = fiberpli::pli::runPLI(model, options, range, image,
+  fiberpli::pli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
     [&](double f) {
       if (f >= 0.95 && !inOptics)
       {
@@ -469,6 +519,8 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
   }
+  // The plan's warnings first, as one runPLI call (planning and running) reports them.
+  st.warnings.insert(st.warnings.begin(), planWarnings.begin(), planWarnings.end());
   if (!st.warnings.empty())
   {
     std::string text = "PLISimulation:";
@@ -483,7 +535,6 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     return 1;
   }
 
-  const fiberpli::pli::PLIPlan& plan = image.plan;
   const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
   ext[4] = ext[5] = 0;
   output->SetExtent(ext);
@@ -493,7 +544,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   const vtkIdType n = static_cast<vtkIdType>(range.nx() * range.ny());
   for (std::size_t v = 0; v < image.views.size(); ++v)
   {
-    const std::string name = v == 0 ? "intensity" : "intensity_tilt_" + std::to_string(v - 1);
+    const std::string name = v == 0 ? fiberpli::plifield::kIntensity : fiberpli::plifield::intensityTilt(v - 1);
     vtkNew<vtkDoubleArray> a;
     a->SetName(name.c_str());
     a->SetNumberOfComponents(nrho);
@@ -502,43 +553,38 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     std::copy(image.views[v].data.begin(), image.views[v].data.end(), a->GetPointer(0));
     output->GetPointData()->AddArray(a);
   }
-  output->GetPointData()->SetActiveScalars("intensity");
+  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kIntensity);
 
-  fiberpli::AddFieldDoubles(output, "polarizer_angles", plan.rhoDeg);
-  fiberpli::AddFieldDoubles(output, "tilt_angle", { plan.tiltInTissue * 180.0 / M_PI });
-  fiberpli::AddFieldDoubles(output, "tilt_angles", plan.tiltDeg);
-  fiberpli::AddFieldDoubles(output, "tilt_directions", plan.azimuthDeg);
-  fiberpli::AddFieldDoubles(output, "section_thickness", { plan.thickness });
-  fiberpli::AddFieldDoubles(output, "wavelength", { options.wavelength });
-  fiberpli::AddFieldInt(output, "tilt_convention", static_cast<int>(options.tiltConvention));
-  fiberpli::AddFieldInt(output, "tilted_sensor", options.tiltedSensor ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, "noise_gain", { options.noiseGain });
-  fiberpli::AddFieldInt(output, "empty_section", image.emptySection ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, "voxel_size", { options.voxelSize });
-  fiberpli::AddFieldDoubles(output, "pixel_size", { options.pixelSize });
-  fiberpli::AddFieldDoubles(output, "light_intensity", { options.lightIntensity });
-  fiberpli::AddFieldDoubles(output, "tile_fibers", { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, "model_fibers", { this->NumberOfModelFibers });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPolarizerAngles, plan.rhoDeg);
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngle, { plan.tiltInTissue * 180.0 / M_PI });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngles, plan.tiltDeg);
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltDirections, plan.azimuthDeg);
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kSectionThickness, { plan.thickness });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kWavelength, { options.wavelength });
+  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltConvention, fiberpli::tiltConventionCode(options.tiltConvention));
+  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltedSensor, options.tiltedSensor ? 1 : 0);
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kNoiseGain, { options.noiseGain });
+  fiberpli::AddFieldInt(output, fiberpli::plifield::kEmptySection, image.emptySection ? 1 : 0);
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { options.voxelSize });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPixelSize, { options.pixelSize });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLightIntensity, { options.lightIntensity });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
   this->UpdateProgress(1.0);
   return 1;
 }
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-  vtkInformation* outInfo, vtkImageData* output)
+  const fiberpli::pli::PLIPlan& plan, vtkInformation* outInfo, vtkImageData* output)
 {
   if (!this->TissueError.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << this->TissueError);
     return 0;
   }
-  fiberpli::pli::PLIPlan plan;
-  fiberpli::pli::Status st = fiberpli::pli::planPLI(model, options, plan);
   fiberpli::pli::VoxelBox box;
-  if (st.ok())
-  {
-    st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
-  }
+  fiberpli::pli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
   if (!st.ok())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
@@ -577,24 +623,24 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
     plan.lattice.origin[2] + 0.5 * voxel);
   const vtkIdType n = static_cast<vtkIdType>(tv.label.size());
   vtkNew<vtkIntArray> label;
-  label->SetName("label");
+  label->SetName(fiberpli::plifield::kLabel);
   label->SetNumberOfValues(n);
   std::copy(tv.label.begin(), tv.label.end(), label->GetPointer(0));
   vtkNew<vtkFloatArray> axis;
-  axis->SetName("optic_axis");
+  axis->SetName(fiberpli::plifield::kOpticAxis);
   axis->SetNumberOfComponents(3);
   axis->SetNumberOfTuples(n);
   std::copy(tv.axis.begin(), tv.axis.end(), axis->GetPointer(0));
   output->GetPointData()->AddArray(label);
   output->GetPointData()->AddArray(axis);
-  output->GetPointData()->SetActiveScalars("label");
+  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kLabel);
   // What a label means: 1 + b·L + l for layer l of the b-th bundle id; 0 = embedding medium.
   std::vector<double> bundles(plan.tissue.bundleIds.begin(), plan.tissue.bundleIds.end());
-  fiberpli::AddFieldDoubles(output, "label_bundle_ids", bundles);
-  fiberpli::AddFieldInt(output, "layers_per_bundle", plan.tissue.maxLayers());
-  fiberpli::AddFieldDoubles(output, "voxel_size", { voxel });
-  fiberpli::AddFieldDoubles(output, "tile_fibers", { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, "model_fibers", { this->NumberOfModelFibers });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLabelBundleIds, bundles);
+  fiberpli::AddFieldInt(output, fiberpli::plifield::kLayersPerBundle, plan.tissue.maxLayers());
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { voxel });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
+  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -42,7 +42,8 @@
 #include "FiberPLIFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
 
-#include <string> // for PlanError
+#include <memory> // for the plan
+#include <string> // for TissueError
 #include <vector> // for the angle lists
 
 class vtkImageData;
@@ -52,6 +53,7 @@ struct FiberModel;
 namespace pli
 {
 struct PLIOptions;
+struct PLIPlan;
 }
 }
 
@@ -350,17 +352,21 @@ private:
   int ExportTissue = 0;
   double TissueVolume[6] = { 1, -1, 1, -1, 1, -1 };
 
+  /// The image part of the plan (options, section, views: planPLIImage), made by RequestInformation
+  /// once per change of the properties or of the input's bounds (sentinel) and used by every
+  /// RequestData (docs/pli-simulation.md §7.3).
+  struct ImagePlan;
+  std::unique_ptr<ImagePlan> Plan;
+  void PlanImage(vtkInformationVector* inputVector);
+
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.
   int SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-    vtkInformation* outInfo, vtkImageData* output);
+    const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
+    vtkImageData* output);
   int VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-    vtkInformation* outInfo, vtkImageData* output);
+    const fiberpli::pli::PLIPlan& plan, vtkInformation* outInfo, vtkImageData* output);
 
-  std::string PlanError; ///< error found by RequestInformation, reported by RequestData
-  std::string TissueError; ///< the same for the tissue port (bad or oversized TissueVolume)
-  /// The input-bounds volume resolved by RequestInformation: RequestData uses the same one, so the
-  /// computed pixels always match WHOLE_EXTENT even if the fibers move later (e.g. a time change).
-  double ResolvedVolume[6] = { 1, -1, 1, -1, 1, -1 };
+  std::string TissueError; ///< bad or oversized TissueVolume found by RequestInformation, reported by RequestData
   /// Fibers this piece was computed from (periodic translates included) and fibers of the whole
   /// input: field data tile_fibers and model_fibers (docs/pli-simulation.md §6.3).
   double NumberOfTileFibers = 0.0;

@@ -1,6 +1,7 @@
 #include "Analysis/PliAnalysis.h"
 
 #include "Analysis/RetardationInclination.h"
+#include "Section/PLIFields.h"
 
 #include <cmath>
 #include <limits>
@@ -61,7 +62,7 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
     if (stack.tilts.size() != stack.tiltViews.size())
     {
       msg << stack.tilts.size() << " tilted stacks (intensity_tilt_*) for " << stack.tiltViews.size()
-          << " tilted views (tilt_angles / tilt_directions)";
+          << " tilted views (" << plifield::kTiltAngles << " / " << plifield::kTiltDirections << ")";
     }
     else if (stack.tilts.size() < 2)
     {
@@ -78,7 +79,7 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
         }
         if (!(stack.tiltViews[t].theta > 0.0))
         {
-          msg << "tilt_angles[" << t << "] = " << stack.tiltViews[t].theta * 180.0 / M_PI << " deg (needs > 0)";
+          msg << plifield::kTiltAngles << "[" << t << "] = " << stack.tiltViews[t].theta * 180.0 / M_PI << " deg (needs > 0)";
           break;
         }
       }

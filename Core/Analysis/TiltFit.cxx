@@ -1,5 +1,6 @@
 #include "Analysis/TiltFit.h"
 #include "Analysis/ForEachPixel.h"
+#include "Section/PLIFields.h"
 
 #include "Analysis/Axis.h"
 #include "Util/Angles.h"
@@ -110,7 +111,7 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
     const TiltView& t = options.views[v];
     std::ostringstream msg;
     if (!std::isfinite(t.theta) || t.theta <= 0.0 || t.theta >= M_PI / 2)
-      msg << "tilt_angles[" << v << "] is " << t.theta * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
+      msg << plifield::kTiltAngles << "[" << v << "] is " << t.theta * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
     else if (!std::isfinite(t.azimuth))
       msg << "tilt_directions[" << v << "] is " << t.azimuth * 180.0 / M_PI << " deg, must be finite";
     for (std::size_t u = 0; u < v && msg.str().empty(); ++u)
@@ -386,7 +387,7 @@ std::string computeTiltFit(const double* flat, const std::vector<const double*>&
       if (!tilts[t])
       {
         std::ostringstream msg;
-        msg << "intensity_tilt_" << t << " is missing";
+        msg << plifield::intensityTilt(t) << " is missing";
         return msg.str();
       }
     }

@@ -106,7 +106,7 @@ std::string interpolationFromCode(int code, Interp& interpolation)
   return {};
 }
 
-Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
+Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
   Status st;
   plan = PLIPlan();
@@ -142,19 +142,6 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   if (!st.ok())
     return st;
 
-  std::vector<int> bundles = o.bundleIds;
-  if (bundles.empty())
-    for (const Fiber& f : model.fibers)
-      bundles.push_back(f.bundle);
-  Status ts = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue);
-  st.warnings = ts.warnings;
-  if (!ts.ok())
-  {
-    st.error = ts.error;
-    return st;
-  }
-  plan.tissue.radius = o.radiusModel;
-
   plan.views.push_back(View{ 0.0, 0.0 });
   for (double tilt : tiltDeg)
   {
@@ -185,8 +172,28 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   }
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
-
   plan.estimatedBytes = estimatePieceBytes(plan, o, PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
+  return st;
+}
+
+Status planPLITissue(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
+{
+  std::vector<int> bundles = o.bundleIds;
+  if (bundles.empty())
+    for (const Fiber& f : model.fibers)
+      bundles.push_back(f.bundle);
+  Status st = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue);
+  if (!st.ok())
+    return st;
+  plan.tissue.radius = o.radiusModel;
+  const std::string w = resolutionWarning(model, o);
+  if (!w.empty())
+    st.warnings.push_back(w);
+  return st;
+}
+
+std::string resolutionWarning(const FiberModel& model, const PLIOptions& o)
+{
   double rmin = 0.0;
   bool first = true;
   for (const Fiber& f : model.fibers)
@@ -196,9 +203,15 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
       first = false;
     }
   if (!first && o.voxelSize > 0.5 * rmin)
-    st.warnings.push_back("VoxelSize " + std::to_string(o.voxelSize) + " > half the smallest fiber radius " +
-      std::to_string(rmin) + ": layers are not resolved");
-  return st;
+    return "VoxelSize " + std::to_string(o.voxelSize) + " > half the smallest fiber radius " + std::to_string(rmin) +
+      ": layers are not resolved";
+  return {};
+}
+
+Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
+{
+  Status st = planPLIImage(model, o, plan);
+  return st.ok() ? planPLITissue(model, o, plan) : st;
 }
 
 namespace
@@ -254,10 +267,24 @@ SimParams simParams(const PLIPlan& plan, const PLIOptions& o)
 
 Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
 {
-  image = PLIImage();
-  Status st = planPLI(model, o, image.plan);
+  PLIPlan plan;
+  Status st = planPLI(model, o, plan);
   if (!st.ok())
+  {
+    image = PLIImage();
     return st;
+  }
+  Status run = runPLI(model, o, plan, px, image, progress);
+  run.warnings.insert(run.warnings.begin(), st.warnings.begin(), st.warnings.end());
+  return run;
+}
+
+Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planIn, PixelRange px, PLIImage& image,
+  const ProgressFn& progress)
+{
+  image = PLIImage();
+  image.plan = planIn;
+  Status st;
   const PLIPlan& plan = image.plan;
   if (px.nx() <= 0 && px.ny() <= 0 && px.i0 == 0 && px.j0 == 0)
     px = PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] };

@@ -77,7 +77,21 @@ struct PLIPlan : SectionPlan
 /// Validates options (before any allocation) and derives the plan. Errors name the property. The
 /// memory budget is not checked here but by runPLI for the piece it computes (estimatePieceBytes):
 /// the whole image may exceed one process's budget when it is split over MPI ranks.
+/// planPLI = planPLIImage, then planPLITissue (warnings of both).
 Status planPLI(const FiberModel& model, const PLIOptions& options, PLIPlan& plan);
+
+/// The part of the plan the image geometry needs (RequestInformation): the options, the section
+/// (planSection; the model is used only for its bounds when VolumeOfInterest is the sentinel), the
+/// views and polarizer angles, the blur and the memory estimate. Resets the plan.
+Status planPLIImage(const FiberModel& model, const PLIOptions& options, PLIPlan& plan);
+
+/// The part that needs the fibers: the layers of the bundles (options.bundleIds, else the model's;
+/// plan.tissue, §3.2) and the warning when VoxelSize does not resolve the smallest radius. Call
+/// after planPLIImage.
+Status planPLITissue(const FiberModel& model, const PLIOptions& options, PLIPlan& plan);
+
+/// The warning of planPLITissue when VoxelSize > half the model's smallest radius, else "".
+std::string resolutionWarning(const FiberModel& model, const PLIOptions& options);
 
 struct PLIImage
 {
@@ -106,6 +120,11 @@ SimParams simParams(const PLIPlan& plan, const PLIOptions& options);
 /// invalid options or when the piece exceeds the memory budget; the model must be valid (validateModel).
 Status runPLI(const FiberModel& model, const PLIOptions& options, PixelRange pixels, PLIImage& image,
   const ProgressFn& progress = {});
+
+/// The same with the plan planPLI made for this model and these options (the VTK filter plans once
+/// per change of its input or properties and runs every piece and request on that plan).
+Status runPLI(const FiberModel& model, const PLIOptions& options, const PLIPlan& plan, PixelRange pixels,
+  PLIImage& image, const ProgressFn& progress = {});
 
 } // namespace pli
 } // namespace fiberpli
