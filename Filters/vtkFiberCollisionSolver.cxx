@@ -4,6 +4,7 @@
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
+#include "Checkpoint/SolverCheckpoint.h"
 #include "FiberSolverComm.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
@@ -285,7 +286,10 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
-  cache.result = fiberpli::solveCollisions(model, options, fiberpli::MakeProgress(this), observer, comm);
+  const fiberpli::CheckpointOptions checkpoint{ this->CheckpointFile, this->CheckpointInterval,
+    this->ResumeFromCheckpoint };
+  cache.result =
+    fiberpli::solveWithCheckpoints(model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
     return "FiberCollisionSolver: " + cache.result.error;
@@ -417,4 +421,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
   os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";
+  os << indent << "CheckpointFile: " << this->CheckpointFile << "\n";
+  os << indent << "CheckpointInterval: " << this->CheckpointInterval << "\n";
+  os << indent << "ResumeFromCheckpoint: " << this->ResumeFromCheckpoint << "\n";
 }

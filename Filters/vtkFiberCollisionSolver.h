@@ -138,6 +138,38 @@ public:
   vtkGetMacro(MaximumSnapshots, int);
   ///@}
 
+  ///@{
+  /**
+   * Checkpoint file of the solve (docs/solver.md §14): the complete state of the run, written
+   * atomically every CheckpointInterval steps, read by ResumeFromCheckpoint. Under MPI the ranks
+   * that solve write it (the solve runs on piece 0; ranks solving the same model write the same
+   * bytes). Default empty.
+   */
+  vtkSetStdStringFromCharMacro(CheckpointFile);
+  vtkGetCharFromStdStringMacro(CheckpointFile);
+  ///@}
+
+  ///@{
+  /**
+   * Write the checkpoint after every CheckpointInterval-th step, >= 0; 0 = never (default). A job
+   * killed then loses at most this many steps.
+   */
+  vtkSetMacro(CheckpointInterval, int);
+  vtkGetMacro(CheckpointInterval, int);
+  ///@}
+
+  ///@{
+  /**
+   * Continue from CheckpointFile (which must exist) instead of solving from the input: the result
+   * is bit for bit the one of an uninterrupted run. The file must have been written for the same
+   * input and the same options (NumberOfThreads may differ); else an error names the file and
+   * what differs. Default off.
+   */
+  vtkSetMacro(ResumeFromCheckpoint, bool);
+  vtkGetMacro(ResumeFromCheckpoint, bool);
+  vtkBooleanMacro(ResumeFromCheckpoint, bool);
+  ///@}
+
 protected:
   vtkFiberCollisionSolver();
   ~vtkFiberCollisionSolver() override;
@@ -163,6 +195,10 @@ private:
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
   int MaximumSnapshots = 100;
+  std::string CheckpointFile;
+  int CheckpointInterval = 0;
+  bool ResumeFromCheckpoint = false;
+
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).

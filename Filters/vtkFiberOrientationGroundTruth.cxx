@@ -208,14 +208,15 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     static_cast<int>(range.j1 - 1), 0, 0 };
   fiberpli::GroundTruthMaps maps;
   this->SetProgressText("Fiber orientation ground truth");
-  err = fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
-  if (err == "cancelled")
+  const fiberpli::Status status =
+    fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
+  if (status.aborted)
   {
-    return 1;
+    return 1; // partial results are never passed on
   }
-  if (!err.empty())
+  if (!status.ok())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << err);
+    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << status.error);
     return 0;
   }
 

@@ -296,14 +296,14 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
 
   this->SetProgressText("Analysing the polarizer stack");
   fiberpli::PliAnalysisMaps maps;
-  const std::string err = fiberpli::analysePli(stack, options, range, maps, fiberpli::MakeProgress(this));
-  if (err == "cancelled")
+  const fiberpli::Status status = fiberpli::analysePli(stack, options, range, maps, fiberpli::MakeProgress(this));
+  if (status.aborted)
   {
     return 1; // partial results are never passed on
   }
-  if (!err.empty())
+  if (!status.ok())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << err);
+    vtkErrorMacro(<< "PLIAnalysis: " << status.error);
     return 0;
   }
 

@@ -514,7 +514,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
       }
       return vtkProgress(f);
     });
-  if (!st.ok())
+  if (!st.error.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
@@ -530,9 +530,9 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     }
     vtkWarningMacro(<< text);
   }
-  if (image.aborted)
+  if (st.aborted)
   {
-    return 1;
+    return 1; // partial results are never passed on
   }
 
   const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
@@ -606,12 +606,12 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   this->SetProgressText("Voxelising the tissue");
   fiberpli::pli::TissueVolume tv;
   st = fiberpli::pli::exportTissue(model, plan, options, piece, tv, fiberpli::MakeProgress(this));
-  if (!st.ok())
+  if (!st.error.empty())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);
     return 0;
   }
-  if (tv.aborted)
+  if (st.aborted)
   {
     return 1; // aborted: the port stays empty
   }

@@ -187,7 +187,7 @@ EpaPixel epaFromHarmonic(const Harmonic& h)
   return p;
 }
 
-std::string computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
+Status computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
   const std::vector<double>& rho, const PixelRange& range, int threads, EpaMaps& maps,
   const ProgressFn& progress)
 {
@@ -217,7 +217,7 @@ std::string computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
     maps.direction[p] = e.direction;
     maps.retardation[p] = e.retardation;
   });
-  return done ? std::string() : std::string("cancelled");
+  return done ? Status() : Status::stopped();
 }
 
 } // namespace fiberpli

@@ -6,6 +6,7 @@
 
 #include "Section/PixelGrid.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -69,9 +70,9 @@ struct EpaMaps
 /// EPA of a stack: `stack` holds nx·ny pixels (x fastest) of nrho = rho.size() intensities each,
 /// pixel-major (the layout of a VTK point array with nrho components). Computes the pixels in
 /// `range` with `threads` OpenMP threads (0 = all), bit-identical for any thread count.
-/// Returns "" on success, else the reason (bad angles, bad range, null stack); returns
-/// "cancelled" when progress asked to stop (the maps are then incomplete).
-std::string computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
+/// The Status error says why it failed (bad angles, bad range, null stack); aborted: progress
+/// asked to stop (the maps are then incomplete).
+Status computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
   const std::vector<double>& rho, const PixelRange& range, int threads, EpaMaps& maps,
   const ProgressFn& progress = {});
 

@@ -42,7 +42,7 @@ struct OwnerColumn
 };
 } // namespace
 
-std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
+Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps, const ProgressFn& progress)
 {
   std::int64_t nx = 0, ny = 0;
@@ -205,7 +205,7 @@ std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
     }
     if (!reportProgress(progress, static_cast<double>(je - range.j0) / static_cast<double>(rows)))
     {
-      return "cancelled";
+      return Status::stopped();
     }
   }
   return {};

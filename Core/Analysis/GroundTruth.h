@@ -13,6 +13,7 @@
 #include "Section/PixelGrid.h"
 #include "Section/SectionPlan.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -43,11 +44,11 @@ struct GroundTruthMaps
 /// Ground truth of the pixels in `range` (pixel indices of checkPixelGrid, Section/PixelGrid.h; the
 /// grid of a PLISimulation comes from planSection, Section/SectionPlan.h). The maps are
 /// resized to the whole grid; pixels outside the range keep their values (NaN / 0 when new).
-/// Result is bit-identical for any thread count. Returns "" on success, the error (invalid
-/// model: the validateModel message; bad lattice/options/range; more than 2^31 voxels in one
-/// pixel row; more memory than the budget of Util/MemoryBudget.h, checked before allocating), or
-/// "cancelled" when progress asked to stop.
-std::string computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
+/// Result is bit-identical for any thread count. The Status error: invalid model (the
+/// validateModel message); bad lattice/options/range; more than 2^31 voxels in one pixel row;
+/// more memory than the budget of Util/MemoryBudget.h, checked before allocating. aborted:
+/// progress asked to stop.
+Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});
 

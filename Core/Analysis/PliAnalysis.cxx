@@ -37,7 +37,7 @@ std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)
   return msg.str();
 }
 
-std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress)
 {
   const std::string optionError = checkPliAnalysisOptions(options);
@@ -94,14 +94,14 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
   epa.transmittance.swap(maps.transmittance);
   epa.direction.swap(maps.direction);
   epa.retardation.swap(maps.retardation);
-  std::string err = computeEpa(stack.intensity, stack.nx, stack.ny, stack.rho, range, options.threads, epa,
+  Status status = computeEpa(stack.intensity, stack.nx, stack.ny, stack.rho, range, options.threads, epa,
     [&](double f) { return reportProgress(progress, epaShare * f); });
   maps.transmittance.swap(epa.transmittance);
   maps.direction.swap(epa.direction);
   maps.retardation.swap(epa.retardation);
-  if (!err.empty())
+  if (!status.ok())
   {
-    return err;
+    return status;
   }
 
   if (method == InclinationMethod::Retardation)
@@ -121,13 +121,13 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
       rRef = rRef > 0.0 ? rRef : 1.0;
     }
     maps.referenceRetardation = rRef;
-    err = inclinationMapFromRetardation(maps.retardation.data(), stack.nx, stack.ny, range, rRef,
+    const std::string err = inclinationMapFromRetardation(maps.retardation.data(), stack.nx, stack.ny, range, rRef,
       options.threads, maps.inclination);
     if (!err.empty())
     {
       return err;
     }
-    return reportProgress(progress, 1.0) ? std::string() : std::string("cancelled");
+    return reportProgress(progress, 1.0) ? Status() : Status::stopped();
   }
 
   TiltFitOptions to;
@@ -135,11 +135,11 @@ std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options,
   to.convention = stack.convention;
   to.gain = options.noiseGain >= 0.0 ? options.noiseGain : (stack.noiseGain >= 0.0 ? stack.noiseGain : 3.0);
   TiltMaps tm;
-  err = computeTiltFit(stack.intensity, stack.tilts, stack.nx, stack.ny, stack.rho, to, range, options.threads, tm,
+  status = computeTiltFit(stack.intensity, stack.tilts, stack.nx, stack.ny, stack.rho, to, range, options.threads, tm,
     [&](double f) { return reportProgress(progress, epaShare + (1.0 - epaShare) * f); });
-  if (!err.empty())
+  if (!status.ok())
   {
-    return err;
+    return status;
   }
   maps.referenceRetardation = 0.0;
   maps.inclination.swap(tm.inclination);

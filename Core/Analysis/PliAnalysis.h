@@ -7,6 +7,7 @@
 #include "Section/PixelGrid.h"
 #include "Analysis/TiltFit.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <functional>
@@ -72,8 +73,9 @@ struct PliAnalysisMaps
 /// Runs docs/pli-analysis.md §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
 /// direction (consistent with inclinationSigned) and a pixel whose fit has invalid data is NaN
 /// in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few or
-/// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range.
-std::string analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+/// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range; aborted when
+/// progress asked to stop.
+Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress = {});
 
 } // namespace fiberpli

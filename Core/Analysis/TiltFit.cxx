@@ -355,7 +355,7 @@ std::vector<TiltView> fourTiltViews(double theta)
   return { { theta, 0.0 }, { theta, M_PI / 2 }, { theta, M_PI }, { theta, 3 * M_PI / 2 } };
 }
 
-std::string computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
+Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
   const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
 {
@@ -410,7 +410,7 @@ std::string computeTiltFit(const double* flat, const std::vector<const double*>&
     maps.relativeThickness[p] = f.relativeThickness;
     maps.chi2[p] = f.chi2;
   });
-  return done ? std::string() : std::string("cancelled");
+  return done ? Status() : Status::stopped();
 }
 
 } // namespace fiberpli

@@ -9,6 +9,7 @@
 #include "Section/PixelGrid.h"
 #include "Section/TiltConvention.h"
 #include "Util/Progress.h"
+#include "Util/Status.h"
 
 #include <cstdint>
 #include <string>
@@ -88,8 +89,8 @@ struct TiltMaps
 /// Tilt fit of the pixels in range. flat and tilts[v] are stacks of nx·ny pixels with
 /// rho.size() intensities each (pixel-major, x fastest), tilts in the order of options.views.
 /// OpenMP over pixels with `threads` (0 = all); bit-identical for any thread count.
-/// Returns "" on success, an error message, or "cancelled" when progress asked to stop.
-std::string computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
+/// The Status error says why it failed; aborted: progress asked to stop (maps incomplete).
+Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
   const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress = {});
 

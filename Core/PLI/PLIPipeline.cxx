@@ -320,7 +320,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   std::vector<Stack> voxelStacks;
   SimResult sr = simulate(model, plan.tissue, plan.lattice, sp, plan.views, cols, voxelStacks, simProgress);
   st.warnings.insert(st.warnings.end(), sr.status.warnings.begin(), sr.status.warnings.end());
-  if (!sr.status.ok())
+  if (!sr.status.error.empty())
   {
     st.error = sr.status.error;
     return st;
@@ -330,9 +330,9 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   image.propagateCpuSeconds = sr.propagateCpuSeconds;
   image.raySteps = sr.raySteps;
   image.peakTissueBytes = sr.estimatedBytes;
-  if (sr.aborted)
+  if (sr.status.aborted)
   {
-    image.aborted = true;
+    st.aborted = true;
     return st;
   }
 

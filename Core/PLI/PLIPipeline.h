@@ -99,7 +99,6 @@ struct PLIImage
   PixelRange range;                 ///< pixels computed (global pixel indices)
   std::vector<Stack> views;         ///< one pixel stack per view, covering range
   bool emptySection = false;        ///< background only (warning in status)
-  bool aborted = false;
   double voxeliseCpuSeconds = 0.0, propagateCpuSeconds = 0.0, opticsSeconds = 0.0;
   std::int64_t raySteps = 0;
   std::size_t peakTissueBytes = 0;  ///< estimate of the tile buffers + voxel stacks
@@ -117,7 +116,8 @@ double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& options, const 
 SimParams simParams(const PLIPlan& plan, const PLIOptions& options);
 
 /// Runs the simulation for `pixels` (an empty range = the whole image). status.error set on
-/// invalid options or when the piece exceeds the memory budget; the model must be valid (validateModel).
+/// invalid options or when the piece exceeds the memory budget; the model must be valid
+/// (validateModel). status.aborted when progress asked to stop (the image is then incomplete).
 Status runPLI(const FiberModel& model, const PLIOptions& options, PixelRange pixels, PLIImage& image,
   const ProgressFn& progress = {});
 

@@ -7,6 +7,7 @@
 #include "Section/PixelGrid.h"
 #include "Section/SectionLattice.h"
 #include "Section/TiltConvention.h"
+#include "Util/Status.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -131,13 +132,9 @@ struct Stack
   }
 };
 
-/// Outcome of a Core PLI call: error empty = ok; warnings are reported once per call.
-struct Status
-{
-  std::string error;
-  std::vector<std::string> warnings;
-  bool ok() const { return error.empty(); }
-};
+/// Outcome of a Core PLI call: the Core's one Status (Util/Status.h); warnings are reported once
+/// per call.
+using Status = fiberpli::Status;
 
 } // namespace pli
 } // namespace fiberpli

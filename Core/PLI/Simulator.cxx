@@ -189,7 +189,7 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
   {
     if (!reportProgress(progress, static_cast<double>(b0) / static_cast<double>(nt)))
     {
-      res.aborted = true;
+      res.status.aborted = true;
       out.clear();
       return res;
     }

@@ -20,7 +20,7 @@ constexpr std::size_t kTileBytesPerVoxel = 16;
 
 struct SimResult
 {
-  Status status;
+  Status status; ///< error, warnings, and aborted when progress asked to stop (out is then empty)
   bool emptySection = false;   ///< no fiber voxel in the requested columns: background only
   bool overlap = false;        ///< some voxel was reachable by two fibers (nearest won)
   double voxeliseCpuSeconds = 0.0;  ///< summed over threads
@@ -28,7 +28,6 @@ struct SimResult
   std::int64_t voxelsVoxelised = 0; ///< including tile halos
   std::int64_t raySteps = 0;        ///< steps over all views and columns
   std::size_t estimatedBytes = 0;   ///< tile buffers + output stacks + links
-  bool aborted = false;
 };
 
 /// Tilt halo of §3.5 for these views: ceil((n_z/2)·tan θ_max) + 2 (0/1 for untilted views).

@@ -109,7 +109,7 @@ Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptio
     if (!reportProgress(progress, static_cast<double>(t) / static_cast<double>(tilesX * tilesY)))
     {
       out = TissueVolume();
-      out.aborted = true;
+      st.aborted = true; // the arrays are empty
       return st;
     }
     const std::int64_t i0 = cols.i0 + (t % tilesX) * B, j0 = cols.j0 + (t / tilesX) * B;

@@ -40,13 +40,13 @@ struct TissueVolume
   VoxelBox box;
   std::vector<std::int32_t> label; ///< per voxel, x fastest, then y, then z; 0 = embedding medium
   std::vector<float> axis;         ///< 3 per voxel, unit or (0, 0, 0) where there is no axis
-  bool aborted = false;            ///< progress returned false: the arrays are empty
 };
 
 /// Voxelises `box` of the plan (from planPLI) like the simulation. Refuses boxes above the memory
 /// budget (checkMemoryBudget) before allocating. Labels are 1 + b·L + l for layer l of bundle
 /// slot b (plan.tissue: sorted bundle ids, L = maxLayers()). progress is called between column
-/// tiles of options.tileSize; when it returns false the export stops with out.aborted set.
+/// tiles of options.tileSize; when it returns false the export stops (the Status is aborted, the
+/// arrays empty).
 Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box,
   TissueVolume& out, const ProgressFn& progress = {});
 

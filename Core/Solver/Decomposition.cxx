@@ -210,8 +210,23 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
       hi[d] = m[3 + d];
     }
   }
+  // The axis along which the fibers are shortest (least summed extent, exactly over all ranks):
+  // a fiber reaches other slabs, and so halos, mostly along its length.
+  double reach[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    ExactSum sum;
+    for (const Fiber& f : local.fibers)
+    {
+      double a, b;
+      extent(f, d, a, b);
+      if (!f.points.empty())
+        sum.add(b - a);
+    }
+    reach[d] = sum.total(&comm);
+  }
   for (int d = 1; d < 3; ++d)
-    if (hi[d] - lo[d] > hi[s.axis_] - lo[s.axis_])
+    if (reach[d] < reach[s.axis_])
       s.axis_ = d;
   s.lo_ = lo[s.axis_];
   s.hi_ = hi[s.axis_];

@@ -1,6 +1,6 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
 /// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
-/// run) holds the fiber's reference point, the middle of its extent along that axis (in a
+/// run, the one along which the fibers are shortest) holds the fiber's reference point, the middle of its extent along that axis (in a
 /// periodic cell wrapped into the cell). Every rank keeps its owned fibers and, per step, a halo
 /// of the other ranks' fibers that can touch them, all in global fiber order; fibers travel
 /// between ranks as byte records through SolverComm::exchange.
@@ -34,7 +34,8 @@ struct RankFibers
 class SlabLayout
 {
 public:
-  /// Collective: the longest axis of the cell, or of the global bounds of all ranks' points.
+  /// Collective: slabs along the axis in which all ranks' fibers are shortest (least summed
+  /// extent; ties: the lower axis), cutting the cell, or else the global bounds of all points.
   static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
   /// Rank that owns the fiber (0 for a fiber without points).
   int owner(const Fiber& f) const;

@@ -197,16 +197,16 @@ TEST(DistributedSolver, FibersMigrateAcrossRanksInAPeriodicCell)
   }
 }
 
-// Slabs of 6.9 µm over x in [0, 27.6]: rank 2 of 4 owns nothing, and one fiber (x from 0 to 26,
-// its middle at 13 in the slab of rank 1) runs through all four regions, crossing the fibers of
-// both clusters.
+// Slabs of 6.9 µm over x in [0, 27.6] (the fibers are shortest along x): rank 2 of 4 owns
+// nothing, and one fiber (x from 0 to 26, its middle at 13 in the slab of rank 1) runs through
+// all four regions, crossing the fibers of both clusters.
 TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
 {
   FiberModel m;
   m.fibers.push_back(line({ 0, 0, 0 }, { 2.0, 0, 0 }, 14, 0.8, 0));
   int id = 1;
-  for (double x : { 1.0, 2.2, 3.4, 4.6, 24.0, 25.2, 26.4, 27.6 })
-    m.fibers.push_back(line({ x, -6.0, 0.4 }, { 0, 2.0, 0 }, 7, 0.8, id++));
+  for (double x : { 1.0, 2.2, 3.4, 4.6, 24.0, 25.2, 26.4, 27.6 }) // diagonal in y-z: x is the slab axis
+    m.fibers.push_back(line({ x, -6.0, -5.6 }, { 0, 2.0, 2.0 }, 7, 0.8, id++));
   CollisionSolverOptions o;
   o.maxSteps = 300;
   o.minCurvatureRadius = 4.0;

@@ -153,7 +153,7 @@ TEST(GroundTruth, UniformSlabS6)
   GroundTruthOptions o;
   o.threads = 2;
   o.histogram = true;
-  ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(10, 10), maps), "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(10, 10), maps).error, "");
   ASSERT_EQ(maps.nx, 10);
   ASSERT_EQ(maps.ny, 10);
   for (std::size_t p = 0; p < 100; ++p)
@@ -185,7 +185,7 @@ TEST(GroundTruth, VerticalFiberS8a)
     GroundTruthOptions o;
     o.threads = 1;
     o.histogram = true;
-    ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(3, 5), maps), "");
+    ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(3, 5), maps).error, "");
     int count = 0;
     for (int y = 0; y < 5; ++y)
     {
@@ -224,7 +224,7 @@ TEST(GroundTruth, PartialCoverageFraction)
   EXPECT_EQ(lat.lattice.voxel, 1.0);
   EXPECT_EQ(lat.lattice.n[2], 10);
   GroundTruthMaps maps;
-  ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(2, 2), maps), "");
+  ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(2, 2), maps).error, "");
   for (std::size_t p = 0; p < 4; ++p)
   {
     EXPECT_DOUBLE_EQ(maps.fraction[p], 0.1);
@@ -234,7 +234,7 @@ TEST(GroundTruth, PartialCoverageFraction)
   // Radius scale 2 (the outer layer of a layered fiber) also counts: d <= 2.4.
   GroundTruthOptions o;
   o.radiusScale = 2.0;
-  ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(2, 2), maps), "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o, wholeImage(2, 2), maps).error, "");
   // r² = 5.76. y = 0.5 (dy² 2.25): dz² <= 3.51 → z 3.5 … 6.5 (4 voxels); y = 1.5 (dy² 0.25):
   // dz² <= 5.51 → again z 3.5 … 6.5 (2.5² > 5.51). Pixel (0, 0): 2 columns × (4 + 4) of 40.
   EXPECT_DOUBLE_EQ(maps.fraction[0], (4 + 4) * 2 / 40.0);
@@ -254,7 +254,7 @@ TEST(GroundTruth, TiesGoToTheLaterLinkInBundleOrder)
     lat.lattice.n[1] = 4;
     lat.lattice.n[2] = 3;
     GroundTruthMaps maps;
-    ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(4, 4), maps), "");
+    ASSERT_EQ(computeGroundTruth(m, lat, GroundTruthOptions{}, wholeImage(4, 4), maps).error, "");
     // Column (1, 1), centres (1.5, 1.5, z): both axes at distance √(0.25 + (z − 1.5)²).
     const std::size_t p = 1 + 4 * 1;
     EXPECT_NEAR(maps.direction[p] / kDeg, swap ? 0.0 : 90.0, 1e-12) << "swap " << swap;
@@ -277,8 +277,8 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   o2.threads = 2;
   o1.histogram = o2.histogram = true;
   GroundTruthMaps a, b, part;
-  ASSERT_EQ(computeGroundTruth(m, lat, o1, wholeImage(10, 10), a), "");
-  ASSERT_EQ(computeGroundTruth(m, lat, o2, wholeImage(10, 10), b), "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o1, wholeImage(10, 10), a).error, "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o2, wholeImage(10, 10), b).error, "");
   EXPECT_TRUE(sameBits(a.direction, b.direction));
   EXPECT_TRUE(sameBits(a.inclinationSigned, b.inclinationSigned));
   EXPECT_TRUE(sameBits(a.fraction, b.fraction));
@@ -290,7 +290,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   }
   EXPECT_GT(tissuePixels, 50); // the test must look at real tissue
 
-  ASSERT_EQ(computeGroundTruth(m, lat, o2, PixelRange{ 3, 8, 2, 6 }, part), "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o2, PixelRange{ 3, 8, 2, 6 }, part).error, "");
   for (std::int64_t j = 0; j < 10; ++j)
   {
     for (std::int64_t i = 0; i < 10; ++i)
@@ -310,11 +310,11 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   // Bad input is reported, naming the problem.
   PixelGrid bad = lat;
   bad.pixelSize = 0.5;
-  EXPECT_NE(computeGroundTruth(m, bad, o1, wholeImage(10, 10), part).find("PixelSize"), std::string::npos);
+  EXPECT_NE(computeGroundTruth(m, bad, o1, wholeImage(10, 10), part).error.find("PixelSize"), std::string::npos);
   FiberModel broken = m;
   broken.fibers[3].radii[0] = -1;
-  EXPECT_NE(computeGroundTruth(broken, lat, o1, wholeImage(10, 10), part), "");
-  EXPECT_NE(computeGroundTruth(m, lat, o1, PixelRange{ 0, 11, 0, 10 }, part), "");
+  EXPECT_NE(computeGroundTruth(broken, lat, o1, wholeImage(10, 10), part).error, "");
+  EXPECT_NE(computeGroundTruth(m, lat, o1, PixelRange{ 0, 11, 0, 10 }, part).error, "");
 }
 
 // Whole-model histogram (fastPLI orientation.py): links along +x, −x, +y, −z and a 45° link.

@@ -259,8 +259,8 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
   for (int k = 0; k < 6; ++k) stack[4 * 6 + k] = 0.0; // pixel 4: no light (a0 = 0)
 
   EpaMaps one, two, part;
-  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, one), "");
-  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 2, two), "");
+  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, one).error, "");
+  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 2, two).error, "");
   EXPECT_TRUE(sameBits(one.direction, two.direction));
   EXPECT_TRUE(sameBits(one.retardation, two.retardation));
   EXPECT_TRUE(sameBits(one.transmittance, two.transmittance));
@@ -274,7 +274,7 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
   EXPECT_NEAR(one.retardation[10], 0.2, 1e-12);
 
   const PixelRange r{ 2, 5, 1, 4 };
-  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, r, 2, part), "");
+  ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, r, 2, part).error, "");
   for (std::int64_t j = 0; j < ny; ++j)
   {
     for (std::int64_t i = 0; i < nx; ++i)
@@ -291,10 +291,9 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
       }
     }
   }
-  EXPECT_NE(computeEpa(stack.data(), nx, ny, rho, PixelRange{ 0, 8, 0, 5 }, 1, part), "");
+  EXPECT_NE(computeEpa(stack.data(), nx, ny, rho, PixelRange{ 0, 8, 0, 5 }, 1, part).error, "");
   // Cancellation is reported, not ignored.
-  EXPECT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part, [](double) { return false; }),
-    "cancelled");
+  EXPECT_TRUE(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part, [](double) { return false; }).aborted);
 }
 
 // inclination from retardation with r_ref = 0.6579387259 (t_rel 0.4571428571).
@@ -581,8 +580,8 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
   o.gain = 0.0; // noise-free → 1
   const std::vector<const double*> tilts{ stacks[1].data(), stacks[2].data(), stacks[3].data(), stacks[4].data() };
   TiltMaps one, two;
-  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 1, one), "");
-  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 2, two), "");
+  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 1, one).error, "");
+  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 2, two).error, "");
   EXPECT_TRUE(sameBits(one.direction, two.direction));
   EXPECT_TRUE(sameBits(one.inclinationSigned, two.inclinationSigned));
   EXPECT_TRUE(sameBits(one.relativeThickness, two.relativeThickness));
@@ -598,7 +597,7 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
     EXPECT_LE(axisError(one.direction[p], one.inclinationSigned[p], 7.0 * p * kDeg, (-70.0 + 6.0 * p) * kDeg), 1e-6) << p;
   }
   const std::vector<const double*> missing{ stacks[1].data(), nullptr, stacks[3].data(), stacks[4].data() };
-  const std::string e2 = computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two);
+  const std::string e2 = computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two).error;
   EXPECT_NE(e2.find("intensity_tilt_1"), std::string::npos) << e2;
 }
 
@@ -629,7 +628,7 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   PliAnalysisOptions o;
   PliAnalysisMaps m;
   std::vector<double> fractions;
-  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m, [&](double f) { fractions.push_back(f); return true; }), "");
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m, [&](double f) { fractions.push_back(f); return true; }).error, "");
   EXPECT_EQ(m.method, InclinationMethod::Tilt);
   ASSERT_FALSE(fractions.empty());
   EXPECT_EQ(fractions.back(), 1.0);
@@ -646,7 +645,7 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
 
   o.method = InclinationMethod::Retardation;
   o.referenceRetardation = 0.6579387259;
-  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m), "");
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m).error, "");
   EXPECT_EQ(m.method, InclinationMethod::Retardation);
   EXPECT_TRUE(m.inclinationSigned.empty());
   for (std::size_t p = 0; p < 6; ++p)
@@ -662,7 +661,7 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
     EXPECT_NEAR(local, 0.592436, 1e-6);
     return 0.6579387259;
   };
-  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m), "");
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m).error, "");
   EXPECT_EQ(calls, 1);
   EXPECT_NEAR(m.inclination[0] / kDeg, 20.0, 1e-4);
 
@@ -670,17 +669,17 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   PliStack flat = s;
   flat.tilts[2] = nullptr;
   PliAnalysisOptions a;
-  ASSERT_EQ(analysePli(flat, a, wholeImage(nx, ny), m), "");
+  ASSERT_EQ(analysePli(flat, a, wholeImage(nx, ny), m).error, "");
   EXPECT_EQ(m.method, InclinationMethod::Retardation);
   EXPECT_NEAR(m.inclination[0], 0.0, 0.0); // automatic r_ref = the uniform retardation
   a.method = InclinationMethod::Tilt;
-  const std::string err = analysePli(flat, a, wholeImage(nx, ny), m);
+  const std::string err = analysePli(flat, a, wholeImage(nx, ny), m).error;
   EXPECT_NE(err.find("intensity_tilt_2"), std::string::npos) << err;
   flat.tilts = s.tilts;
   flat.tiltViews = fourTiltViews(0.0);
-  EXPECT_NE(analysePli(flat, a, wholeImage(nx, ny), m).find("tilt_angle"), std::string::npos);
+  EXPECT_NE(analysePli(flat, a, wholeImage(nx, ny), m).error.find("tilt_angle"), std::string::npos);
   flat.rho = anglesDeg({ 0, 90 });
-  EXPECT_NE(analysePli(flat, PliAnalysisOptions{}, wholeImage(nx, ny), m), "");
+  EXPECT_NE(analysePli(flat, PliAnalysisOptions{}, wholeImage(nx, ny), m).error, "");
 }
 
 TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
@@ -718,5 +717,5 @@ TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
   o.noiseGain = -0.5;
   PliStack stack;
   PliAnalysisMaps maps;
-  EXPECT_NE(analysePli(stack, o, PixelRange{ 0, 0, 0, 0 }, maps).find("NoiseGain is -0.5"), std::string::npos);
+  EXPECT_NE(analysePli(stack, o, PixelRange{ 0, 0, 0, 0 }, maps).error.find("NoiseGain is -0.5"), std::string::npos);
 }

@@ -66,7 +66,7 @@ PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, Inc
   a.method = method;
   a.threads = 1;
   PliAnalysisMaps maps;
-  EXPECT_EQ(analysePli(s, a, wholeImage(s.nx, s.ny), maps), "");
+  EXPECT_EQ(analysePli(s, a, wholeImage(s.nx, s.ny), maps).error, "");
   return maps;
 }
 
@@ -229,21 +229,21 @@ TEST(PLISetUp, AnalysisRefusesTiltStacksWithoutTheirSetUp)
   a.method = InclinationMethod::Tilt;
   PliAnalysisMaps m;
   // No tilt set-up for the four stacks (an empty tilt_angles list).
-  std::string err = analysePli(s, a, wholeImage(2, 2), m);
+  std::string err = analysePli(s, a, wholeImage(2, 2), m).error;
   EXPECT_NE(err.find("4 tilted stacks"), std::string::npos) << err;
   EXPECT_NE(err.find("tilt_angles"), std::string::npos) << err;
   // Only one tilted view: the fit cannot separate direction, inclination and thickness.
   s.tilts = { I.data() };
   s.tiltViews = { TiltView{ 5 * kDeg, 0 } };
-  err = analysePli(s, a, wholeImage(2, 2), m);
+  err = analysePli(s, a, wholeImage(2, 2), m).error;
   EXPECT_NE(err.find("at least 2"), std::string::npos) << err;
   a.method = InclinationMethod::Auto;
-  EXPECT_EQ(analysePli(s, a, wholeImage(2, 2), m), "");
+  EXPECT_EQ(analysePli(s, a, wholeImage(2, 2), m).error, "");
   EXPECT_EQ(m.method, InclinationMethod::Retardation);
   // Two equal views.
   s.tilts = { I.data(), I.data() };
   s.tiltViews = { TiltView{ 5 * kDeg, 0 }, TiltView{ 5 * kDeg, 2 * M_PI } };
   a.method = InclinationMethod::Tilt;
-  err = analysePli(s, a, wholeImage(2, 2), m);
+  err = analysePli(s, a, wholeImage(2, 2), m).error;
   EXPECT_NE(err.find("are the same"), std::string::npos) << err;
 }

@@ -189,19 +189,21 @@ TEST(PLITissueExport, ReportsProgressAndAborts)
   ASSERT_TRUE(tissueBox(plan, whole, vb).ok());
   std::vector<double> seen;
   TissueVolume tv;
-  ASSERT_TRUE(exportTissue(m, plan, o, vb, tv, [&seen](double f) {
+  const Status done = exportTissue(m, plan, o, vb, tv, [&seen](double f) {
     seen.push_back(f);
     return true;
-  }).ok());
-  EXPECT_FALSE(tv.aborted);
+  });
+  ASSERT_TRUE(done.error.empty());
+  EXPECT_FALSE(done.aborted);
   ASSERT_EQ(seen.size(), 6u * 6u + 1u); // 24 x 24 columns in tiles of 4, then 1
   EXPECT_EQ(seen.front(), 0.0);
   EXPECT_EQ(seen.back(), 1.0);
   for (std::size_t a = 1; a < seen.size(); ++a)
     EXPECT_GT(seen[a], seen[a - 1]);
   int calls = 0;
-  ASSERT_TRUE(exportTissue(m, plan, o, vb, tv, [&calls](double) { return ++calls < 3; }).ok());
-  EXPECT_TRUE(tv.aborted);
+  const Status stopped = exportTissue(m, plan, o, vb, tv, [&calls](double) { return ++calls < 3; });
+  ASSERT_TRUE(stopped.error.empty());
+  EXPECT_TRUE(stopped.aborted);
   EXPECT_EQ(calls, 3);
   EXPECT_TRUE(tv.label.empty());
   EXPECT_TRUE(tv.axis.empty());

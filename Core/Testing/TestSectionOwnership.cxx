@@ -57,7 +57,7 @@ TEST(SectionOwnership, GroundTruthOwnersAreTheVoxelisersOnNearTiesAndSurfaces)
     pli::voxelise(m, spec, lat, { 0, n, 0, n }, block);
 
     GroundTruthMaps maps;
-    ASSERT_EQ(computeGroundTruth(m, grid, GroundTruthOptions{}, wholeImage(n, n), maps), "");
+    ASSERT_EQ(computeGroundTruth(m, grid, GroundTruthOptions{}, wholeImage(n, n), maps).error, "");
 
     for (std::int64_t j = 0; j < n; ++j)
       for (std::int64_t i = 0; i < n; ++i)

@@ -216,8 +216,8 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
     const FiberModel part = selected(model, groundTruthReach(lat, opt, range));
     EXPECT_LT(part.fibers.size(), model.fibers.size());
     GroundTruthMaps a, b;
-    ASSERT_EQ(computeGroundTruth(model, lat, opt, range, a), "");
-    ASSERT_EQ(computeGroundTruth(part, lat, opt, range, b), "");
+    ASSERT_EQ(computeGroundTruth(model, lat, opt, range, a).error, "");
+    ASSERT_EQ(computeGroundTruth(part, lat, opt, range, b).error, "");
     int tissuePixels = 0;
     for (std::int64_t j = range.j0; j < range.j1; ++j)
       for (std::int64_t i = range.i0; i < range.i1; ++i)

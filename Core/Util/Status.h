@@ -6,8 +6,9 @@
 ///   and must not be passed on. An abort is no error: `error` stays empty;
 /// - `warnings`: it succeeded with recoverable oddities, one message per kind, for the caller to
 ///   show once.
-/// A pure check that can neither be stopped nor warn (validate…/check…) returns just the message
-/// that becomes `error` ("" = fine).
+/// An operation that can neither be stopped nor warn (the checks validate…/check…, a few plain
+/// computations) returns just the message that becomes `error` ("" = fine; a Status converts from
+/// it).
 #pragma once
 
 #include <string>
@@ -23,15 +24,20 @@ struct Status
   bool aborted = false;
   std::vector<std::string> warnings;
 
+  Status() = default;
+  /// The outcome of a check: its message ("" = fine) becomes the error.
+  Status(std::string message) // NOLINT(google-explicit-constructor): a check's message is a Status
+    : error(std::move(message))
+  {
+  }
+  Status(const char* message)
+    : error(message)
+  {
+  }
+
   /// Neither failed nor stopped.
   bool ok() const { return error.empty() && !aborted; }
 
-  static Status failure(std::string message)
-  {
-    Status s;
-    s.error = std::move(message);
-    return s;
-  }
   static Status stopped()
   {
     Status s;

@@ -1,0 +1,488 @@
+#include "Checkpoint/SolverCheckpoint.h"
+
+#include "IO/AtomicFile.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace fiberpli
+{
+
+namespace
+{
+// File layout (all little-endian): magic, version, the options as (name, value) pairs, the
+// input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
+// warnings, then the FNV-1a checksum of everything before it.
+const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
+constexpr std::uint32_t kVersion = 1;
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
+constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
+
+void fnv(std::uint64_t& h, const unsigned char* p, std::size_t n)
+{
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    h = (h ^ p[i]) * kFnvPrime;
+  }
+}
+
+std::uint64_t bitsOf(double v)
+{
+  std::uint64_t u;
+  std::memcpy(&u, &v, sizeof u);
+  return u;
+}
+
+double doubleOf(std::uint64_t u)
+{
+  double v;
+  std::memcpy(&v, &u, sizeof v);
+  return v;
+}
+
+// The options that decide the result, by the name the user knows them (the pvpython property
+// where there is one). numberOfThreads is not among them: the result does not depend on it.
+std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOptions& o)
+{
+  const PeriodicCell& c = o.periodicCell;
+  return { { "SegmentLength", o.segmentLength }, { "MinCurvatureRadius", o.minCurvatureRadius },
+    { "MaxSteps", o.maxSteps }, { "SeparationSpeed", o.separationSpeed }, { "overlapPush", o.overlapPush },
+    { "pushSpread", o.pushSpread }, { "maxDisplacement", o.maxDisplacement }, { "drag", o.drag },
+    { "MinimumGap", o.minimumGap }, { "endPoints", static_cast<double>(o.endPoints) },
+    { "stallSteps", o.stallSteps }, { "periodic_cell xmin", c.lo.x }, { "periodic_cell xmax", c.hi.x },
+    { "periodic_cell ymin", c.lo.y }, { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
+    { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale } };
+}
+
+class Writer
+{
+public:
+  explicit Writer(std::ostream& out) : out_(out) {}
+  void bytes(const void* p, std::size_t n)
+  {
+    fnv(hash_, static_cast<const unsigned char*>(p), n);
+    out_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
+  }
+  void u64(std::uint64_t v)
+  {
+    unsigned char b[8];
+    for (int i = 0; i < 8; ++i)
+      b[i] = static_cast<unsigned char>(v >> (8 * i));
+    bytes(b, 8);
+  }
+  void f64(double v) { u64(bitsOf(v)); }
+  void vec(const Vec3& v)
+  {
+    f64(v.x);
+    f64(v.y);
+    f64(v.z);
+  }
+  void text(const std::string& s)
+  {
+    u64(s.size());
+    bytes(s.data(), s.size());
+  }
+  void checksum() { u64(hash_); } // the checksum itself is not hashed: the reader compares before it
+  std::uint64_t hash() const { return hash_; }
+
+private:
+  std::ostream& out_;
+  std::uint64_t hash_ = kFnvOffset;
+};
+
+// Reads with the bytes left in the file known, so that a damaged count never allocates more than
+// the file could hold.
+class Reader
+{
+public:
+  Reader(std::istream& in, std::uint64_t size) : in_(in), left_(size) {}
+  bool ok() const { return ok_; }
+  std::uint64_t left() const { return left_; }
+  void bytes(void* p, std::size_t n)
+  {
+    if (!ok_ || n > left_ || !in_.read(static_cast<char*>(p), static_cast<std::streamsize>(n)))
+    {
+      ok_ = false;
+      std::memset(p, 0, n);
+      return;
+    }
+    left_ -= n;
+    fnv(hash_, static_cast<const unsigned char*>(p), n);
+  }
+  std::uint64_t u64()
+  {
+    unsigned char b[8];
+    bytes(b, 8);
+    std::uint64_t v = 0;
+    for (int i = 0; i < 8; ++i)
+      v |= static_cast<std::uint64_t>(b[i]) << (8 * i);
+    return v;
+  }
+  double f64() { return doubleOf(u64()); }
+  Vec3 vec()
+  {
+    const double x = f64();
+    const double y = f64();
+    return Vec3{ x, y, f64() };
+  }
+  /// A count of items of at least `itemBytes` bytes each that the rest of the file can hold.
+  std::size_t count(std::uint64_t itemBytes)
+  {
+    const std::uint64_t n = u64();
+    if (ok_ && itemBytes > 0 && n > left_ / itemBytes)
+    {
+      ok_ = false;
+    }
+    return ok_ ? static_cast<std::size_t>(n) : 0;
+  }
+  std::string text()
+  {
+    std::string s(count(1), '\0');
+    bytes(&s[0], s.size());
+    return s;
+  }
+  std::uint64_t hash() const { return hash_; }
+
+private:
+  std::istream& in_;
+  std::uint64_t left_;
+  std::uint64_t hash_ = kFnvOffset;
+  bool ok_ = true;
+};
+
+std::string named(const std::string& path, const std::string& what)
+{
+  return "checkpoint file '" + path + "': " + what;
+}
+} // namespace
+
+std::uint64_t modelFingerprint(const FiberModel& model)
+{
+  std::ostringstream sink; // Writer hashes while it writes; a null stream keeps nothing
+  sink.setstate(std::ios::badbit);
+  Writer w(sink);
+  w.u64(model.fibers.size());
+  for (const Fiber& f : model.fibers)
+  {
+    w.u64(static_cast<std::uint64_t>(f.id));
+    w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f.bundle)));
+    w.u64(f.points.size());
+    for (const Vec3& p : f.points)
+      w.vec(p);
+    for (double r : f.radii)
+      w.f64(r);
+  }
+  return w.hash();
+}
+
+std::string writeSolverCheckpoint(const std::string& path, const FiberModel& model,
+  const CollisionSolverState& st, const CollisionSolverOptions& options, std::uint64_t inputFingerprint)
+{
+  const std::size_t nf = model.fibers.size();
+  if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf || st.closure.size() != nf)
+  {
+    return named(path, "the solver state has " + std::to_string(st.points.size()) + " fibers, the model " +
+        std::to_string(nf));
+  }
+  const std::string error = writeFileAtomically(path, [&](std::ostream& out) -> std::string {
+    Writer w(out);
+    w.bytes(kMagic, sizeof kMagic);
+    w.u64(kVersion);
+    const auto list = optionList(options);
+    w.u64(list.size());
+    for (const auto& [name, value] : list)
+    {
+      w.text(name);
+      w.f64(value);
+    }
+    w.u64(inputFingerprint);
+    w.u64(nf);
+    for (std::size_t f = 0; f < nf; ++f)
+    {
+      const Fiber& fib = model.fibers[f];
+      const FiberPointState& ps = st.points[f];
+      if (fib.radii.size() != fib.points.size() || ps.velocity.size() != fib.points.size() ||
+        ps.source.size() != fib.points.size())
+      {
+        return "fiber " + std::to_string(f) + " has points, radii and state of different sizes";
+      }
+      w.u64(static_cast<std::uint64_t>(fib.id));
+      w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(fib.bundle)));
+      w.u64(fib.points.size());
+      for (std::size_t i = 0; i < fib.points.size(); ++i)
+      {
+        w.vec(fib.points[i]);
+        w.f64(fib.radii[i]);
+        w.vec(ps.velocity[i]);
+        w.f64(ps.source[i]);
+      }
+      w.u64(static_cast<std::uint64_t>(st.active[f] ? 1 : 0) | (static_cast<std::uint64_t>(st.closed[f] ? 1 : 0) << 1));
+      w.vec(st.closure[f]);
+      // Global index and home rank (distributed runs; a serial state may leave them empty).
+      w.u64(static_cast<std::uint64_t>(f < st.global.size() ? st.global[f] : static_cast<std::int64_t>(f)));
+      w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f < st.home.size() ? st.home[f] : 0)));
+    }
+    for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.scale, st.done, st.reported })
+    {
+      w.f64(v);
+    }
+    for (long long v : { static_cast<long long>(st.steps), static_cast<long long>(st.sinceGrowth),
+           static_cast<long long>(st.sinceImprovement), static_cast<long long>(st.first),
+           static_cast<long long>(st.warnedStall), static_cast<long long>(st.firstCount),
+           static_cast<long long>(st.bestCollisions), static_cast<long long>(st.bestStep),
+           static_cast<long long>(st.changed) })
+    {
+      w.u64(static_cast<std::uint64_t>(v));
+    }
+    w.u64(st.warnings.size());
+    for (const std::string& text : st.warnings)
+    {
+      w.text(text);
+    }
+    w.checksum();
+    return out ? std::string() : std::string("the write failed");
+  });
+  // writeFileAtomically's message names the file and the system error.
+  return error.empty() ? error : "cannot write the solver checkpoint: " + error;
+}
+
+std::string readSolverCheckpoint(const std::string& path, const CollisionSolverOptions& options,
+  std::uint64_t inputFingerprint, FiberModel& model, CollisionSolverState& state)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+  {
+    return named(path, "cannot be opened (" + std::string(std::strerror(errno)) + ")");
+  }
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size < 0)
+  {
+    return named(path, "cannot be read");
+  }
+  Reader r(in, static_cast<std::uint64_t>(size));
+  char magic[sizeof kMagic];
+  r.bytes(magic, sizeof magic);
+  if (!r.ok() || std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+  {
+    return named(path, "is not a FiberPLI solver checkpoint");
+  }
+  const std::uint64_t version = r.u64();
+  if (version != kVersion)
+  {
+    return named(path, "has version " + std::to_string(version) + ", this FiberPLI reads version " +
+        std::to_string(kVersion));
+  }
+  const auto given = optionList(options);
+  const std::size_t nOptions = r.count(16);
+  std::vector<std::pair<std::string, double>> saved;
+  for (std::size_t i = 0; i < nOptions && r.ok(); ++i)
+  {
+    std::string name = r.text();
+    saved.emplace_back(std::move(name), r.f64());
+  }
+  const std::uint64_t fingerprint = r.u64();
+  FiberModel m;
+  CollisionSolverState st;
+  const std::size_t nf = r.count(8 * 6 + 8 * 3); // id, bundle, count, flags, global, home, closure
+  m.fibers.resize(nf);
+  st.points.resize(nf);
+  st.active.resize(nf);
+  st.closed.resize(nf);
+  st.closure.resize(nf);
+  st.global.resize(nf);
+  st.home.resize(nf);
+  for (std::size_t f = 0; f < nf && r.ok(); ++f)
+  {
+    Fiber& fib = m.fibers[f];
+    FiberPointState& ps = st.points[f];
+    fib.id = static_cast<std::int64_t>(r.u64());
+    fib.bundle = static_cast<int>(static_cast<std::int64_t>(r.u64()));
+    const std::size_t n = r.count(8 * 8);
+    fib.points.resize(n);
+    fib.radii.resize(n);
+    ps.velocity.resize(n);
+    ps.source.resize(n);
+    for (std::size_t i = 0; i < n && r.ok(); ++i)
+    {
+      fib.points[i] = r.vec();
+      fib.radii[i] = r.f64();
+      ps.velocity[i] = r.vec();
+      ps.source[i] = r.f64();
+    }
+    const std::uint64_t flags = r.u64();
+    st.active[f] = (flags & 1) ? 1 : 0;
+    st.closed[f] = (flags & 2) ? 1 : 0;
+    st.closure[f] = r.vec();
+    st.global[f] = static_cast<std::int64_t>(r.u64());
+    st.home[f] = static_cast<int>(static_cast<std::int64_t>(r.u64()));
+  }
+  for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.scale, &st.done, &st.reported })
+  {
+    *v = r.f64();
+  }
+  st.steps = static_cast<int>(r.u64());
+  st.sinceGrowth = static_cast<int>(r.u64());
+  st.sinceImprovement = static_cast<int>(r.u64());
+  st.first = r.u64() != 0;
+  st.warnedStall = r.u64() != 0;
+  st.firstCount = static_cast<std::size_t>(r.u64());
+  st.bestCollisions = static_cast<std::size_t>(r.u64());
+  st.bestStep = static_cast<int>(r.u64());
+  st.changed = r.u64() != 0;
+  const std::size_t nWarnings = r.count(8);
+  for (std::size_t i = 0; i < nWarnings && r.ok(); ++i)
+  {
+    st.warnings.push_back(r.text());
+  }
+  const std::uint64_t computed = r.hash();
+  const std::uint64_t stored = r.u64();
+  if (!r.ok() || stored != computed || r.left() != 0)
+  {
+    return named(path, "is damaged (truncated or changed: its checksum does not match)");
+  }
+  // The file is sound: now whether it belongs to this run.
+  for (const auto& [name, value] : given)
+  {
+    const auto it = std::find_if(saved.begin(), saved.end(), [&](const auto& s) { return s.first == name; });
+    if (it == saved.end() || bitsOf(it->second) != bitsOf(value))
+    {
+      std::ostringstream msg;
+      msg << "was written with other options: " << name << " is ";
+      if (it == saved.end())
+        msg << "missing";
+      else
+        msg << it->second;
+      msg << " there and " << value << " now; resume with the options it was written with";
+      return named(path, msg.str());
+    }
+  }
+  if (fingerprint != inputFingerprint)
+  {
+    return named(path, "was written for another input (fingerprint " + std::to_string(fingerprint) +
+        ", this input has " + std::to_string(inputFingerprint) + "); resume with the input it was written for");
+  }
+  model = std::move(m);
+  state = std::move(st);
+  return {};
+}
+
+std::string checkpointPath(const std::string& path, const SolverComm* comm)
+{
+  if (!comm || comm->size() < 2)
+  {
+    return path;
+  }
+  return path + "." + std::to_string(comm->rank()) + "-of-" + std::to_string(comm->size());
+}
+
+namespace
+{
+// Collective: "" when no rank failed, else (on every rank) its own error, or the lowest failing
+// rank's error named as such.
+std::string agree(SolverComm* comm, const std::string& local)
+{
+  if (!comm || comm->size() < 2)
+  {
+    return local;
+  }
+  std::vector<std::vector<char>> send(static_cast<std::size_t>(comm->size()), std::vector<char>(local.begin(), local.end()));
+  const std::vector<std::vector<char>> got = comm->exchange(send);
+  if (!local.empty())
+  {
+    return local;
+  }
+  for (std::size_t r = 0; r < got.size(); ++r)
+  {
+    if (!got[r].empty())
+    {
+      return "rank " + std::to_string(r) + " failed: " + std::string(got[r].begin(), got[r].end());
+    }
+  }
+  return {};
+}
+} // namespace
+
+CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
+  const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+{
+  // Every rank decides these alike (same properties everywhere), so none waits in agree() alone.
+  CollisionSolverResult failed;
+  if (checkpoint.interval < 0)
+  {
+    failed.error = "CheckpointInterval is " + std::to_string(checkpoint.interval) + ", must be >= 0 (0 = off)";
+    return failed;
+  }
+  if (checkpoint.interval == 0 && !checkpoint.resume)
+  {
+    return solveCollisions(model, options, progress, observer, comm);
+  }
+  if (checkpoint.path.empty())
+  {
+    failed.error = "CheckpointFile is empty, but checkpoints are asked for (CheckpointInterval or resume)";
+    return failed;
+  }
+  const std::string path = checkpointPath(checkpoint.path, comm);
+  const std::uint64_t fingerprint = modelFingerprint(model);
+  // A resumed run works on the file's model and hands it over at the end, so that a failed
+  // resume leaves the caller's model unchanged.
+  FiberModel resumed;
+  CollisionSolverState saved;
+  if (checkpoint.resume)
+  {
+    failed.error = agree(comm, readSolverCheckpoint(path, options, fingerprint, resumed, saved));
+    if (!failed.error.empty())
+    {
+      return failed;
+    }
+  }
+  FiberModel& work = checkpoint.resume ? resumed : model;
+  CollisionSolverRun run(work, options, progress, observer, comm);
+  if (checkpoint.resume)
+  {
+    const std::string problem = run.resume(saved);
+    if (!problem.empty())
+    {
+      failed.error = named(path, "does not fit: " + problem);
+      return failed;
+    }
+  }
+  else if (!run.start())
+  {
+    return run.finish();
+  }
+  CollisionSolverResult result;
+  bool written = true;
+  while (run.step())
+  {
+    const CollisionSolverState& st = run.state();
+    if (checkpoint.interval > 0 && st.steps % checkpoint.interval == 0)
+    {
+      const std::string problem = agree(comm, writeSolverCheckpoint(path, work, st, options, fingerprint));
+      if (!problem.empty())
+      {
+        result = run.finish();
+        result.error = problem + " (at step " + std::to_string(st.steps) + ")";
+        written = false;
+        break;
+      }
+    }
+  }
+  if (written)
+  {
+    result = run.finish();
+  }
+  if (checkpoint.resume)
+  {
+    model = std::move(resumed);
+  }
+  return result;
+}
+
+} // namespace fiberpli

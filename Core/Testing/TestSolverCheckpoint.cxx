@@ -1,0 +1,260 @@
+// Solver checkpoints (docs/solver.md §14): a run stopped after a checkpoint and resumed from the
+// file ends bit for bit like the uninterrupted run (open cube with drag and curvature; periodic
+// cell with radius growth), the resumed run really starts at the saved step, and a file that does
+// not belong to the run (other options, other input, damaged, not a checkpoint, missing) is an
+// error naming the file and what differs.
+#include "Checkpoint/SolverCheckpoint.h"
+#include "PeriodicReference.h"
+#include "ThreadComm.h"
+#include "Tissue/CubeGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+
+using namespace fiberpli;
+
+namespace
+{
+struct TempFile
+{
+  std::string dir;
+  std::string path;
+  TempFile()
+  {
+    char tmpl[] = "/tmp/fiberpli-checkpoint-XXXXXX";
+    dir = ::mkdtemp(tmpl);
+    path = dir + "/solve.ckpt";
+  }
+  ~TempFile()
+  {
+    std::remove(path.c_str());
+    ::rmdir(dir.c_str());
+  }
+};
+
+bool bitwiseEqual(const FiberModel& a, const FiberModel& b)
+{
+  if (a.fibers.size() != b.fibers.size())
+    return false;
+  for (std::size_t f = 0; f < a.fibers.size(); ++f)
+  {
+    const Fiber& x = a.fibers[f];
+    const Fiber& y = b.fibers[f];
+    if (x.id != y.id || x.bundle != y.bundle || x.points.size() != y.points.size() ||
+      std::memcmp(x.points.data(), y.points.data(), x.points.size() * sizeof(Vec3)) != 0 ||
+      std::memcmp(x.radii.data(), y.radii.data(), x.radii.size() * sizeof(double)) != 0)
+      return false;
+  }
+  return true;
+}
+
+FiberModel denseOpenCube()
+{
+  CubeOptions o;
+  o.populations = 2;
+  o.numberOfFibers = 100;
+  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(100 / 1000.0);
+  o.seed = 3;
+  return generateCube(o);
+}
+
+// Uninterrupted, then: checkpoints every `interval` steps, "killed" (aborted) at step `killAt`,
+// resumed from the file; both must end identically, and the resumed run must begin right after
+// the last checkpoint before the kill.
+void expectResumeEqualsUninterrupted(const FiberModel& in, const CollisionSolverOptions& o, int interval, int killAt)
+{
+  FiberModel reference = in;
+  const CollisionSolverResult r1 = solveCollisions(reference, o);
+  ASSERT_TRUE(r1.error.empty()) << r1.error;
+  ASSERT_GT(r1.steps, killAt) << "the solve must outlast the kill";
+
+  TempFile file;
+  CheckpointOptions cp{ file.path, interval, false };
+  FiberModel killed = in;
+  int lastStep = 0;
+  const StepObserver count = [&](int step, const FiberModel&) { lastStep = step; };
+  const CollisionSolverResult aborted =
+    solveWithCheckpoints(killed, o, cp, [&](double) { return lastStep < killAt; }, count);
+  ASSERT_TRUE(aborted.error.empty()) << aborted.error;
+  ASSERT_TRUE(aborted.aborted);
+
+  cp.resume = true;
+  FiberModel resumed = in; // the input again, as a re-submitted job would build it
+  int firstStep = -1;
+  const StepObserver first = [&](int step, const FiberModel&) {
+    if (firstStep < 0)
+      firstStep = step;
+  };
+  const CollisionSolverResult r2 = solveWithCheckpoints(resumed, o, cp, {}, first);
+  ASSERT_TRUE(r2.error.empty()) << r2.error;
+  EXPECT_EQ(firstStep, killAt / interval * interval + 1) << "the resumed run must start after the last checkpoint";
+  EXPECT_TRUE(bitwiseEqual(resumed, reference));
+  EXPECT_EQ(r2.steps, r1.steps);
+  EXPECT_EQ(r2.collisions, r1.collisions);
+  EXPECT_EQ(r2.bestCollisions, r1.bestCollisions);
+  EXPECT_EQ(r2.bestStep, r1.bestStep);
+  EXPECT_EQ(r2.shapeOk, r1.shapeOk);
+  EXPECT_EQ(r2.radiusScale, r1.radiusScale);
+  EXPECT_EQ(r2.maxOverlap, r1.maxOverlap);
+  EXPECT_EQ(r2.minGap, r1.minGap);
+  EXPECT_EQ(r2.sourceIndex, r1.sourceIndex);
+  EXPECT_EQ(r2.warnings, r1.warnings);
+}
+} // namespace
+
+TEST(SolverCheckpoint, ResumedOpenCubeEqualsUninterruptedRun)
+{
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.drag = 0.3; // velocities are part of the state
+  o.numberOfThreads = 2;
+  expectResumeEqualsUninterrupted(denseOpenCube(), o, 20, 45);
+}
+
+TEST(SolverCheckpoint, ResumedPeriodicGrowthEqualsUninterruptedRun)
+{
+  const CubeOptions c = fiberpli_test::periodicCube(2, 20.0, 0.35);
+  const FiberModel in = generateCube(c);
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.initialRadiusScale = 0.9; // the radius scale and its counters are part of the state
+  o.maxSteps = 150;
+  expectResumeEqualsUninterrupted(in, o, 15, 40);
+}
+
+TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
+{
+  const FiberModel in = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 30;
+  TempFile file;
+  FiberModel m = in;
+  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+
+  FiberModel model;
+  CollisionSolverState state;
+  const std::uint64_t fingerprint = modelFingerprint(in);
+  EXPECT_EQ(readSolverCheckpoint(file.path, o, fingerprint, model, state), "");
+  EXPECT_EQ(state.steps, 30);
+  EXPECT_EQ(model.fibers.size(), in.fibers.size());
+
+  CollisionSolverOptions threads = o; // the thread count does not change the result
+  threads.numberOfThreads = 3;
+  EXPECT_EQ(readSolverCheckpoint(file.path, threads, fingerprint, model, state), "");
+
+  CollisionSolverOptions other = o;
+  other.separationSpeed = 0.05;
+  std::string e = readSolverCheckpoint(file.path, other, fingerprint, model, state);
+  EXPECT_NE(e.find(file.path), std::string::npos) << e;
+  EXPECT_NE(e.find("SeparationSpeed is 0.025 there and 0.05 now"), std::string::npos) << e;
+
+  FiberModel moved = in;
+  moved.fibers[7].points[2].x += 1e-9;
+  e = readSolverCheckpoint(file.path, o, modelFingerprint(moved), model, state);
+  EXPECT_NE(e.find("another input"), std::string::npos) << e;
+  // Through the solve: the caller's model is left as it was.
+  const CollisionSolverResult refused = solveWithCheckpoints(moved, o, { file.path, 10, true });
+  EXPECT_NE(refused.error.find("another input"), std::string::npos) << refused.error;
+  EXPECT_EQ(moved.fibers[7].points[2].x, in.fibers[7].points[2].x + 1e-9);
+
+  // Damaged: one byte changed, or the end cut off.
+  std::string bytes;
+  {
+    std::ifstream f(file.path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(f), {});
+  }
+  for (const std::string& bad : { bytes.substr(0, bytes.size() / 2), std::string(bytes).replace(bytes.size() / 2, 1, "~") })
+  {
+    std::ofstream(file.path, std::ios::binary) << bad;
+    e = readSolverCheckpoint(file.path, o, fingerprint, model, state);
+    EXPECT_NE(e.find("is damaged"), std::string::npos) << e;
+  }
+  std::ofstream(file.path, std::ios::binary) << "FiberPLI dat 1\n";
+  EXPECT_NE(readSolverCheckpoint(file.path, o, fingerprint, model, state).find("is not a FiberPLI solver checkpoint"),
+    std::string::npos);
+  std::remove(file.path.c_str());
+  e = solveWithCheckpoints(m, o, { file.path, 0, true }).error;
+  EXPECT_NE(e.find(file.path), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot be opened"), std::string::npos) << e;
+}
+
+TEST(SolverCheckpoint, AnUnwritableCheckpointStopsTheSolveNamingTheFile)
+{
+  FiberModel m = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 30;
+  const std::string path = "/nonexistent-fiberpli-dir/solve.ckpt";
+  const CollisionSolverResult r = solveWithCheckpoints(m, o, { path, 10, false });
+  EXPECT_NE(r.error.find(path), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("at step 10"), std::string::npos) << r.error;
+  EXPECT_NE(solveWithCheckpoints(m, o, { "", 10, false }).error.find("CheckpointFile is empty"), std::string::npos);
+  EXPECT_NE(solveWithCheckpoints(m, o, { path, -1, false }).error.find("CheckpointInterval is -1"), std::string::npos);
+}
+
+// Distributed (threads as ranks): one file per rank; a run stopped after a checkpoint and resumed
+// on 2 ranks gives the serial result; a checkpoint one rank cannot write fails both ranks.
+TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
+{
+  const FiberModel whole = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.numberOfThreads = 1;
+  FiberModel serial = whole;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_TRUE(s.error.empty()) << s.error;
+  ASSERT_GT(s.steps, 45);
+
+  TempFile file;
+  const auto piece = [&](int r) {
+    FiberModel m;
+    for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
+      m.fibers.push_back(whole.fibers[f]);
+    return m;
+  };
+  std::vector<FiberModel> out(2);
+  std::vector<CollisionSolverResult> results(2);
+  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    int last = 0;
+    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 45; },
+      [&](int step, const FiberModel&) { last = step; }, &comm);
+    FiberModel again = piece(comm.rank());
+    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(again, o, { file.path, 20, true }, {}, {}, &comm);
+    out[static_cast<std::size_t>(comm.rank())] = std::move(again);
+  });
+  for (int r = 0; r < 2; ++r)
+  {
+    const std::string own = checkpointPath(file.path, nullptr) + "." + std::to_string(r) + "-of-2";
+    EXPECT_EQ(checkpointPath(file.path, nullptr), file.path);
+    EXPECT_EQ(std::remove(own.c_str()), 0) << "no file " << own;
+    ASSERT_EQ(results[r].error, "");
+    EXPECT_EQ(results[r].steps, s.steps);
+  }
+  FiberModel joined = out[0];
+  joined.fibers.insert(joined.fibers.end(), out[1].fibers.begin(), out[1].fibers.end());
+  EXPECT_TRUE(bitwiseEqual(joined, serial));
+
+  // Rank 1's file cannot be written (a directory is in its place): both ranks fail at step 20.
+  const std::string blocked = file.path + ".1-of-2";
+  ASSERT_EQ(::mkdir(blocked.c_str(), 0700), 0);
+  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(m, o, { file.path, 20, false }, {}, {}, &comm);
+  });
+  ::rmdir(blocked.c_str());
+  std::remove((file.path + ".0-of-2").c_str());
+  EXPECT_NE(results[1].error.find(blocked), std::string::npos) << results[1].error;
+  EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
+  EXPECT_NE(results[0].error.find("at step 20"), std::string::npos) << results[0].error;
+}

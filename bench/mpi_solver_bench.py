@@ -1,0 +1,59 @@
+"""MPI benchmark of the distributed collision solver (bench/README.md "Distributed solver"):
+    mpiexec -n R pvbatch bench/mpi_solver_bench.py <FiberPLI.so> <workload> [--threads T]
+        [--max-steps N]
+Workloads: cube-a|cube-b|cube-c (the 1000-fiber cubes of solver_bench: 1/2/3 populations, edge
+√3·30 µm, r 0.8 µm, point spacing 2 µm, displacement ±0.5 µm, seed 42, SegmentLength 2,
+MinCurvatureRadius 4) and cell (the (100 µm)³ periodic cell, 2 populations, VolumeFraction 0.7,
+Seeding Lattice, displacement 0.5 µm). The source makes the pieces; rank 0 times the solver's
+update (the source is updated first and not timed) and prints one line: ranks, threads, steps, wall
+seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
+halo bytes sent per step, and a hash of the joined output (the same for every R and T)."""
+import argparse
+import hashlib
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+parser = argparse.ArgumentParser()
+parser.add_argument("plugin")
+parser.add_argument("workload", choices=["cube-a", "cube-b", "cube-c", "cell"])
+parser.add_argument("--threads", type=int, default=1)
+parser.add_argument("--max-steps", type=int, default=10000)
+args = parser.parse_args()
+LoadPlugin(args.plugin, remote=False, ns=globals())
+ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+
+if args.workload == "cell":
+    source = FiberCubeSource(Populations=2, EdgeLength=100.0, Periodic=1, VolumeFraction=0.7, Seeding=1,
+                             Displacement=0.5, Seed=42)
+    solver = FiberCollisionSolver(Input=source, MaxSteps=args.max_steps, NumberOfThreads=args.threads)
+else:
+    source = FiberCubeSource(Populations=" abc".index(args.workload[-1]), NumberOfFibers=1000,
+                             EdgeLength=3 ** 0.5 * 30.0, Seed=42)
+    solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, MinCurvatureRadius=4.0,
+                                  MaxSteps=args.max_steps, NumberOfThreads=args.threads)
+source.UpdatePipeline()
+start = time.perf_counter()
+solver.UpdatePipeline()
+wall = time.perf_counter() - start
+
+pieces = [servermanager.Fetch(solver, r) for r in range(ranks)]
+h = hashlib.sha256()
+for name in ("points", "radius"):
+    for p in pieces:
+        if p.GetNumberOfPoints() > 0:
+            array = p.GetPoints().GetData() if name == "points" else p.GetPointData().GetArray(name)
+            h.update(vtk_to_numpy(array).tobytes())
+fd = pieces[0].GetFieldData()
+steps = int(fd.GetArray("steps").GetTuple1(0))
+share = []
+for p in pieces:
+    f = p.GetFieldData()
+    if f.GetArray("rank_points"):
+        share.append("%d fibers/%d pts/%d halo/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
+                     f.GetArray("halo_points").GetTuple1(0), f.GetArray("halo_bytes_per_step").GetTuple1(0)))
+print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s |" % (
+    args.workload, ranks, args.threads, steps, wall, wall / max(1, steps), int(fd.GetArray("collisions").GetTuple1(0)),
+    "; ".join(share) if share else "-", h.hexdigest()[:12]))
