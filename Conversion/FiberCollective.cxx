@@ -91,6 +91,18 @@ std::string FiberCollective::AgreeOnError(vtkInformation* info, const std::strin
   return who + ": rank " + std::to_string(first) + " failed, so no rank gives output: " + text;
 }
 
+double FiberCollective::GlobalMax(vtkInformation* info, double local)
+{
+  vtkMultiProcessController* c = ControllerFor(info);
+  if (!c)
+  {
+    return local;
+  }
+  double global = local;
+  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
+  return global;
+}
+
 int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request, vtkInformationVector* outputVector,
   const std::string& who, const std::function<int()>& piece)
 {

@@ -44,6 +44,10 @@ public:
   /// R>" (R = the lowest failing rank) on the others.
   static std::string AgreeOnError(vtkInformation* info, const std::string& who, const std::string& localError);
 
+  /// The largest `local` over the ranks of ControllerFor(info) (`local` itself without one).
+  /// Collective: every rank calls it equally often per execution, whatever path it takes.
+  static double GlobalMax(vtkInformation* info, double local);
+
   /// Runs `piece` (this rank's RequestData, reporting errors with vtkErrorMacro and returning 0)
   /// and ends it with AgreeOnError over the information of the requesting output port. When any
   /// rank failed, the ranks whose piece succeeded empty every output, report the failed rank's

@@ -1,5 +1,6 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
@@ -10,7 +11,6 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -26,21 +26,12 @@ vtkStandardNewMacro(vtkFiberOrientationMap);
 
 namespace
 {
-/// The first component of every tuple of `a` as doubles: the array's own memory when it is a
-/// one-component double array, else a copy in `buffer`.
-const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
+/// Empty when `a` has one component (a value per pixel), else the message naming it.
+std::string OneComponent(vtkDataArray* a)
 {
-  auto* d = vtkDoubleArray::SafeDownCast(a);
-  if (d && d->GetNumberOfComponents() == 1)
-  {
-    return d->GetPointer(0);
-  }
-  buffer.resize(static_cast<std::size_t>(a->GetNumberOfTuples()));
-  for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
-  {
-    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k, 0);
-  }
-  return buffer.data();
+  return a->GetNumberOfComponents() == 1 ? std::string()
+                                         : std::string("FiberOrientationMap: the point array '") + a->GetName() +
+      "' has " + std::to_string(a->GetNumberOfComponents()) + " components, must have 1";
 }
 
 /// The name of input array `idx` as set by SetInputArrayToProcess ("" when it is not set by name).
@@ -50,18 +41,6 @@ std::string SelectedName(vtkAlgorithm* self, int idx)
   return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
 }
 
-/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
-double GlobalMax(double local, vtkInformation* outInfo)
-{
-  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
-  if (!c)
-  {
-    return local;
-  }
-  double global = local;
-  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
-  return global;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -121,7 +100,7 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
   const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
   if (!reduced)
   {
-    GlobalMax(-std::numeric_limits<double>::infinity(), outputVector->GetInformationObject(0));
+    fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
   }
   return rc;
 }
@@ -194,10 +173,17 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     output->Initialize();
     return 0;
   }
+  const std::string components = OneComponent(direction) + OneComponent(inclination);
+  if (!components.empty())
+  {
+    vtkErrorMacro(<< components);
+    output->Initialize();
+    return 0;
+  }
   output->ShallowCopy(input);
   std::vector<double> directionBuffer, inclinationBuffer;
-  const double* d = AsDoubles(direction, directionBuffer);
-  const double* i = AsDoubles(inclination, inclinationBuffer);
+  const double* d = fiberpli::AsDoubles(direction, directionBuffer);
+  const double* i = fiberpli::AsDoubles(inclination, inclinationBuffer);
   const auto count = static_cast<std::size_t>(direction->GetNumberOfTuples());
   vtkNew<vtkUnsignedCharArray> fom;
   fom->SetName("fom");
@@ -230,10 +216,16 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
       output->Initialize();
       return 0;
     }
+    if (!OneComponent(values).empty())
+    {
+      vtkErrorMacro(<< OneComponent(values));
+      output->Initialize();
+      return 0;
+    }
     std::vector<double> valueBuffer;
-    const double* v = AsDoubles(values, valueBuffer);
+    const double* v = fiberpli::AsDoubles(values, valueBuffer);
     const auto kind = static_cast<fiberpli::FomMask>(this->Mask);
-    const double largest = GlobalMax(fiberpli::fomMaskReference(v, count), outputVector->GetInformationObject(0));
+    const double largest = fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), fiberpli::fomMaskReference(v, count));
     reduced = true;
     double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;

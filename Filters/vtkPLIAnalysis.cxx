@@ -1,6 +1,7 @@
 #include "vtkPLIAnalysis.h"
 
 #include "Analysis/PliAnalysis.h"
+#include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
@@ -14,7 +15,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -94,35 +94,7 @@ std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<
   return {};
 }
 
-/// The values of a point array as contiguous doubles (no copy when it already is one).
-const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
-{
-  if (auto* d = vtkDoubleArray::SafeDownCast(a))
-  {
-    return d->GetPointer(0);
-  }
-  const vtkIdType n = a->GetNumberOfValues();
-  buffer.resize(static_cast<std::size_t>(n));
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents()));
-  }
-  return buffer.data();
-}
 
-/// MAX over all processes of a parallel update (FiberCollective::ControllerFor), else identity.
-/// Every rank calls it exactly once per RequestData (see RequestData), so it cannot deadlock.
-double GlobalMax(double local, vtkInformation* outInfo)
-{
-  vtkMultiProcessController* c = fiberpli::FiberCollective::ControllerFor(outInfo);
-  if (!c)
-  {
-    return local;
-  }
-  double global = local;
-  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
-  return global;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -152,7 +124,7 @@ int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** 
     const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
     if (!reduced)
     {
-      GlobalMax(0.0, outInfo);
+      fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);
     }
     return rc;
   });
@@ -246,7 +218,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   stack.ny = inExt[3] - inExt[2] + 1;
   stack.rho = rho;
   std::deque<std::vector<double>> buffers(1); // a deque never moves its elements: pointers stay valid
-  stack.intensity = AsDoubles(intensity, buffers[0]);
+  stack.intensity = fiberpli::AsDoubles(intensity, buffers[0]);
   for (int v = 0;; ++v)
   {
     const std::string name = fiberpli::plifield::intensityTilt(static_cast<std::size_t>(v));
@@ -262,7 +234,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
       return 0;
     }
     buffers.emplace_back();
-    stack.tilts.push_back(AsDoubles(a, buffers.back()));
+    stack.tilts.push_back(fiberpli::AsDoubles(a, buffers.back()));
   }
   const std::string tiltError = ReadTiltViews(input, stack.tilts.size(), stack.tiltViews);
   if (!tiltError.empty())
@@ -290,7 +262,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
 
   options.globalMaxRetardation = [&reduced, outInfo](double local) {
     reduced = true;
-    return GlobalMax(local, outInfo);
+    return fiberpli::FiberCollective::GlobalMax(outInfo, local);
   };
   const fiberpli::PixelRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
 

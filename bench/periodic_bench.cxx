@@ -133,10 +133,10 @@ int main(int argc, char** argv)
     }
   }
   std::printf("seeding: %s, displacement %.2f um\n", lattice ? "Lattice" : "Random", displacement);
-  std::printf("| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | "
+  std::printf("| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | CPU [s] | "
               "load after | peak RSS [MB] | solved | collisions | radius scale | phi solver | phi MC "
               "(27 images) | min gap [um] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (std::size_t k = 0; k < pops.size(); ++k)
   {
     const double phi = phis[std::min(k, phis.size() - 1)];
@@ -176,10 +176,12 @@ int main(int argc, char** argv)
         o.maxDisplacement = maxDisplacement;
       if (drag >= 0.0)
         o.drag = drag;
+      const double cpu0 = bench::cpuSeconds();
       const double t0 = bench::seconds();
       const CollisionSolverResult r =
         solveCollisions(m, o, [&](double) { return bench::seconds() - t0 < cap; });
       const double seconds = bench::seconds() - t0;
+      const double cpu = bench::cpuSeconds() - cpu0;
       double load = -1.0;
       if (FILE* f = std::fopen("/proc/loadavg", "r"))
       {
@@ -194,10 +196,10 @@ int main(int argc, char** argv)
       }
       const double mc = periodicFraction(m, edge, samples);
       const char* radii = spread > 0.0 ? (gamma ? "gamma" : "lognormal") : "0.8";
-      std::printf("| %.0f | %d | %.2f | %s | %d | %zu | %zu | %d | %.1f | %.1f | %.0f | %d%s | %zu | %.3f | "
+      std::printf("| %.0f | %d | %.3f | %s | %d | %zu | %zu | %d | %.1f | %.1f | %.1f | %.0f | %d%s | %zu | %.3f | "
                   "%.1f %% | %.1f %% | %.4f |\n",
         edge, c.populations, phi, radii, static_cast<int>(t), m.fibers.size(), m.numberOfLinks(), r.steps,
-        seconds, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
+        seconds, cpu, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
         r.radiusScale, 100.0 * r.volumeFraction, 100.0 * mc, r.minGap);
       for (const std::string& w : r.warnings)
         std::printf("  warning: %s\n", w.c_str());

@@ -102,6 +102,22 @@ TEST(LatticeSeeding, ClosedFormsOfTheThreeArrangements)
   EXPECT_NEAR(3 * 9 * M_PI * 1.0 * 12.0 / (12.0 * 12.0 * 12.0), 3.0 * M_PI / 16.0, 1e-12);
 }
 
+TEST(LatticeSeeding, BundledBlocksBeatTheFinelyInterleavedLimit)
+{
+  // 90 fibers per population in a 30 µm cell: the cubic rod packing needs 10 periods of 3 µm
+  // (spacing 1.5 µm); the three blocks keep every axis pair (brute force over all images) more
+  // than 2r = 1.6 µm apart, so straight fibers of r = 0.8 µm fill 3·90·π r²·L / L³ = 60.3 % of
+  // the cell without touching, above 3π/16 = 58.9 %.
+  const PeriodicLattice blocks = periodicLattice(30.0, { 90, 90, 90 });
+  ASSERT_EQ(blocks.sites.size(), 3u);
+  for (const auto& population : blocks.sites)
+    EXPECT_GE(population.size(), 90u);
+  const double spacing = bruteSpacing(30.0, blocks.sites);
+  EXPECT_NEAR(blocks.spacing, spacing, 1e-9);
+  EXPECT_GT(spacing, 1.6);
+  EXPECT_GT(3 * 90 * M_PI * 0.64 * 30.0 / (30.0 * 30.0 * 30.0), 3.0 * M_PI / 16.0);
+}
+
 TEST(LatticeSeeding, NeedsAPeriodicCellAndRandomSeedingIsUnchanged)
 {
   CubeOptions o = latticeCube(2, 20.0, 0.3, 5);
@@ -131,13 +147,15 @@ TEST(LatticeSeeding, NeedsAPeriodicCellAndRandomSeedingIsUnchanged)
 
 TEST(LatticeSeeding, DenseCellsSolveToZeroOverlapsAtTheRequestedFraction)
 {
-  // Denser than PeriodicSolver.SmallCellsSolve… reaches from random seeds (0.6 / 0.45 / 0.35).
+  // Denser than PeriodicSolver.SmallCellsSolve… reaches from random seeds (0.6 / 0.45 / 0.35);
+  // 3 populations at 0.55 in 14 µm: bundled blocks (the cubic rod packing holds 0.49 there).
   struct Case
   {
     int pops;
     double edge, phi;
   };
-  for (const Case c : { Case{ 1, 12.0, 0.8 }, Case{ 2, 16.0, 0.62 }, Case{ 3, 12.8, 0.5 } })
+  for (const Case c : { Case{ 1, 12.0, 0.8 }, Case{ 2, 16.0, 0.62 }, Case{ 3, 12.8, 0.5 },
+         Case{ 3, 14.0, 0.55 } })
   {
     const CubeOptions cube = latticeCube(c.pops, c.edge, c.phi, 11);
     FiberModel m = generateCube(cube);

@@ -6,7 +6,9 @@
 /// - 2 populations: alternating layers along z, x-fibers in even layers, y-fibers in odd ones
 ///   (straight-fiber limit π/4 for touching layers);
 /// - 3 populations: the cubic three-direction rod packing (x, y and z rods a/2 apart in the
-///   third coordinate, straight-fiber limit 3π/16 at a = 4r).
+///   third coordinate, straight-fiber limit 3π/16 at a = 4r), or three bundled blocks (one per
+///   population, filled with hexagonal rows, no two crossing; limit 3/4 × π/(2√3)), whichever
+///   has the larger spacing.
 #pragma once
 
 #include <vector>
