@@ -2,6 +2,8 @@
 // byte by byte, every datatype, round trip, bad files with byte offsets / header lines, sniffing.
 #include "IO/TckFormat.h"
 
+#include "HandEncoding.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <vector>
 
 using namespace fiberpli;
+using fiberpli::testing::encode;
 
 namespace
 {
@@ -20,36 +23,6 @@ FiberReadResult readBytes(const std::string& bytes, double radius = 0.5)
 {
   std::istringstream in(bytes);
   return readTck(in, "t.tck", radius);
-}
-
-/// Hand encoding for the tests (independent of the reader's BinaryIO): host is little endian on
-/// every platform we build on; the assert keeps us honest.
-std::string encode(const std::vector<double>& values, bool float64, bool bigEndian)
-{
-  std::string out;
-  for (double v : values)
-  {
-    unsigned char b[8];
-    std::size_t n = float64 ? 8 : 4;
-    if (float64)
-    {
-      std::memcpy(b, &v, 8);
-    }
-    else
-    {
-      const float f = static_cast<float>(v);
-      std::memcpy(b, &f, 4);
-    }
-    if (bigEndian)
-    {
-      for (std::size_t i = 0; i < n / 2; ++i)
-      {
-        std::swap(b[i], b[n - 1 - i]);
-      }
-    }
-    out.append(reinterpret_cast<const char*>(b), n);
-  }
-  return out;
 }
 
 const double NaN = std::numeric_limits<double>::quiet_NaN();

@@ -5,6 +5,8 @@
 #include "IO/TckFormat.h"
 #include "IO/TsfFormat.h"
 
+#include "HandEncoding.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +21,7 @@
 #include <unistd.h>
 
 using namespace fiberpli;
+using fiberpli::testing::encode;
 
 namespace
 {
@@ -45,34 +48,6 @@ TsfReadResult readBytes(const std::string& bytes)
   return readTsf(in, "r.tsf");
 }
 
-/// Hand encoding, independent of BinaryIO (the host is little endian: TckFormat tests assert it).
-std::string encode(const std::vector<double>& values, bool float64, bool bigEndian)
-{
-  std::string out;
-  for (double v : values)
-  {
-    unsigned char b[8];
-    const std::size_t n = float64 ? 8 : 4;
-    if (float64)
-    {
-      std::memcpy(b, &v, 8);
-    }
-    else
-    {
-      const float f = static_cast<float>(v);
-      std::memcpy(b, &f, 4);
-    }
-    if (bigEndian)
-    {
-      for (std::size_t i = 0; i < n / 2; ++i)
-      {
-        std::swap(b[i], b[n - 1 - i]);
-      }
-    }
-    out.append(reinterpret_cast<const char*>(b), n);
-  }
-  return out;
-}
 
 /// A .tsf with the given header keys and body; the `file:` offset is the header's own length.
 std::string tsfFile(const std::string& keys, const std::string& body, const std::string& magic = "mrtrix track scalars")

@@ -2,8 +2,11 @@
 // can assert the message instead of printing it (a printed "ERR|" fails every test).
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
+#include <vtkDataSet.h>
 #include <vtkExecutive.h>
 #include <vtkNew.h>
 
@@ -45,3 +48,14 @@ public:
   std::string Errors;
   std::string Warnings;
 };
+
+/// The bad-input tests' check: updating `algorithm` reports an error containing `text` and leaves
+/// output 0 without points.
+inline void ExpectUpdateError(vtkAlgorithm* algorithm, ErrorCatcher* catcher, const std::string& text)
+{
+  catcher->Clear();
+  algorithm->Update();
+  EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+  auto* output = vtkDataSet::SafeDownCast(algorithm->GetOutputDataObject(0));
+  EXPECT_EQ(output ? output->GetNumberOfPoints() : 0, 0) << text;
+}

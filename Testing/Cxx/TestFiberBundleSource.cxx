@@ -262,11 +262,8 @@ TEST(FiberBundleSource, BadInputIsAClearErrorAndRecoverable)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
   const auto expectError = [&](const std::string& text) {
-    catcher->Clear();
-    src->Update();
-    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    ExpectUpdateError(src, catcher, text);
     EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
-    EXPECT_EQ(src->GetOutput()->GetNumberOfPoints(), 0);
   };
   const auto expectValid = [&]() {
     catcher->Clear();
@@ -360,9 +357,7 @@ TEST(FiberBundleSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
   const auto expectError = [&](const std::string& text) {
-    catcher->Clear();
-    src->Update();
-    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
+    ExpectUpdateError(src, catcher, text);
     EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
   };
   src->SetNumberOfFibers(-1);

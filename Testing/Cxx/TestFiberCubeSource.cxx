@@ -123,10 +123,7 @@ TEST(FiberCubeSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
   catcher->Watch(cube);
   cube->SetNumberOfFibers(20);
   const auto expectError = [&](const std::string& text) {
-    catcher->Clear();
-    cube->Update();
-    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
-    EXPECT_EQ(cube->GetOutput()->GetNumberOfPoints(), 0);
+    ExpectUpdateError(cube, catcher, text);
   };
   cube->SetNumberOfFibers(-1);
   expectError("NumberOfFibers is -1");

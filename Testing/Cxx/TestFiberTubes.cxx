@@ -137,10 +137,7 @@ TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
   catcher->Watch(tubes);
   tubes->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
   const auto expectError = [&](const std::string& text) {
-    catcher->Clear();
-    tubes->Update();
-    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << catcher->Errors;
-    EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 0) << text;
+    ExpectUpdateError(tubes, catcher, text);
   };
   tubes->SetNumberOfSides(2);
   expectError("NumberOfSides is 2, must be in [3, 64]");
