@@ -365,4 +365,18 @@ void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)
   output->GetCellData()->AddArray(bundleId);
 }
 
+//------------------------------------------------------------------------------
+const FiberConversion& FiberModelCache::Get(vtkPolyData* input, const std::string& who)
+{
+  if (!this->Valid || this->Time != input->GetMTime())
+  {
+    this->Value = FiberPolyData::ToModel(input, who);
+    this->Value.sourceCell = {};
+    this->Value.sourcePoints = {};
+    this->Time = input->GetMTime();
+    this->Valid = true;
+  }
+  return this->Value;
+}
+
 } // namespace fiberpli

@@ -73,6 +73,21 @@ public:
   static bool IsEmpty(vtkPolyData* input);
 };
 
+/// The model of one input, converted again only when the input's MTime changes (the PLI filters
+/// keep their fibers between requests, docs/pli-simulation.md §7.3). Keeps the model, not the
+/// source ids (those filters pass no input arrays on).
+class FIBERPLICONVERSION_EXPORT FiberModelCache
+{
+public:
+  /// The conversion of `input` (ToModel with `who`), reused while its MTime is the same.
+  const FiberConversion& Get(vtkPolyData* input, const std::string& who);
+
+private:
+  bool Valid = false;
+  unsigned long long Time = 0;
+  FiberConversion Value;
+};
+
 } // namespace fiberpli
 
 #endif

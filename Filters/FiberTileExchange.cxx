@@ -227,7 +227,7 @@ void FiberTileExchange::RequestPiece(vtkInformation* request, vtkInformationVect
 }
 
 std::string FiberTileExchange::UpdateBounds(vtkAlgorithm* algorithm, vtkInformation* inInfo, const std::string& who,
-  double bounds[6])
+  double bounds[6], FiberModelCache* cache)
 {
   vtkMultiProcessController* c = ParallelController();
   auto* exec = vtkStreamingDemandDrivenPipeline::SafeDownCast(algorithm->GetInputExecutive(0, 0));
@@ -252,7 +252,8 @@ std::string FiberTileExchange::UpdateBounds(vtkAlgorithm* algorithm, vtkInformat
   double local[6] = { HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL };
   if (!FiberPolyData::IsEmpty(input))
   {
-    FiberConversion in = FiberPolyData::ToModel(input, who);
+    FiberConversion uncached;
+    const FiberConversion& in = cache ? cache->Get(input, who) : (uncached = FiberPolyData::ToModel(input, who));
     Vec3 lo, hi;
     error = in.error;
     if (in.ok() && modelBounds(in.model, true, lo, hi))
@@ -277,17 +278,19 @@ std::string FiberTileExchange::UpdateBounds(vtkAlgorithm* algorithm, vtkInformat
 }
 
 TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* input, const std::string& who,
-  const std::string& localError, const ReachFunction& reachOf)
+  const std::string& localError, const ReachFunction& reachOf, FiberModelCache* cache)
 {
   TileFibers result;
   std::string error = localError;
-  FiberConversion in;
+  FiberConversion local; // this rank's piece when there is no cache
+  const FiberConversion* conversion = &local;
   if (error.empty() && !FiberPolyData::IsEmpty(input))
   {
-    in = FiberPolyData::ToModel(input, who);
-    error = in.error;
-    result.warning = in.warning;
+    conversion = cache ? &cache->Get(input, who) : &(local = FiberPolyData::ToModel(input, who));
+    error = conversion->error;
+    result.warning = conversion->warning;
   }
+  const FiberConversion& in = *conversion;
   std::vector<double> cellValues;
   const bool hasCell = PeriodicCellValues(input, cellValues);
   result.pieceFibers = static_cast<long long>(in.model.fibers.size());
@@ -309,7 +312,7 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
     }
     result.bundleIds.assign(bundles.begin(), bundles.end());
     result.modelFibers = result.pieceFibers;
-    result.model = std::move(in.model);
+    result.model = cache ? in.model : std::move(local.model);
     return result;
   }
 
@@ -418,7 +421,7 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
       }
     }
   }
-  in.model = FiberModel(); // this rank's piece is no longer needed
+  local.model = FiberModel(); // this rank's piece is no longer needed (a cache keeps its own)
 
   // 5. The model order: by global index.
   std::sort(received.begin(), received.end(),

@@ -37,6 +37,7 @@ class vtkPolyData;
 
 namespace fiberpli
 {
+class FiberModelCache;
 
 /// The fibers one rank's piece reads and what every rank knows of the whole model.
 struct TileFibers
@@ -71,15 +72,18 @@ public:
   /// again) and gives the bounds, radii included, of the whole model (min > max when it has no
   /// point); collective over every rank when the global controller has more than one. Returns
   /// this rank's conversion error ("" when its piece is usable).
+  /// With a `cache` (FiberPolyData.h) the piece is converted only when its MTime changed.
   static std::string UpdateBounds(vtkAlgorithm* algorithm, vtkInformation* inInfo, const std::string& who,
-    double bounds[6]);
+    double bounds[6], FiberModelCache* cache = nullptr);
 
   /// RequestData: converts this rank's input piece and, in a parallel update, exchanges the fibers
   /// so that this rank receives those reaching reachOf's box. `localError` (this rank's error so
   /// far, "" when none) takes part in the agreement. Every rank of a parallel update must call it
   /// once per RequestData, whatever its own state.
+  /// With a `cache` the piece is converted only when its MTime changed (the result's model is
+  /// then a copy of the cached one).
   static TileFibers Receive(vtkInformation* outInfo, vtkPolyData* input, const std::string& who,
-    const std::string& localError, const ReachFunction& reachOf);
+    const std::string& localError, const ReachFunction& reachOf, FiberModelCache* cache = nullptr);
 };
 
 } // namespace fiberpli

@@ -47,7 +47,10 @@ struct vtkFiberOrientationGroundTruth::SectionPlanned
 };
 
 //------------------------------------------------------------------------------
-vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth() = default;
+vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth()
+  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
+{
+}
 vtkFiberOrientationGroundTruth::~vtkFiberOrientationGroundTruth() = default;
 
 //------------------------------------------------------------------------------
@@ -74,7 +77,7 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
     {
       double bounds[6];
       error = fiberpli::FiberTileExchange::UpdateBounds(
-        this, inputVector[0]->GetInformationObject(0), "FiberOrientationGroundTruth", bounds);
+        this, inputVector[0]->GetInformationObject(0), "FiberOrientationGroundTruth", bounds, this->Fibers.get());
       if (bounds[0] <= bounds[1])
       {
         std::copy(bounds, bounds + 6, this->PlannedVolume);
@@ -175,7 +178,8 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
         reach = fiberpli::groundTruthReach(section, options, range);
       }
       return e;
-    });
+    },
+    this->Fibers.get());
   if (!c.ok())
   {
     if (localError.empty())

@@ -22,6 +22,11 @@
 
 #include <memory> // for the plan
 
+namespace fiberpli
+{
+class FiberModelCache;
+}
+
 class FIBERPLIFILTERS_EXPORT vtkFiberOrientationGroundTruth : public vtkImageAlgorithm
 {
 public:
@@ -86,6 +91,8 @@ private:
   /// The section of PlannedVolume and the sizes (Section/SectionPlan.h), planned once per change.
   struct SectionPlanned;
   std::unique_ptr<SectionPlanned> Plan;
+  /// The input's fibers, converted once per input MTime (docs/pli-simulation.md §7.3).
+  std::unique_ptr<fiberpli::FiberModelCache> Fibers;
   void PlanSection();
 };
 

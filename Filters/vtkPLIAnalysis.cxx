@@ -76,12 +76,13 @@ std::string ReadTiltViews(vtkDataObject* input, std::size_t stacks, std::vector<
   std::ostringstream msg;
   if (angles.size() != stacks)
   {
-    msg << "field data 'tilt_angles' has " << angles.size() << " values for " << stacks << " tilted views (intensity_tilt_*)";
+    msg << "field data '" << fiberpli::plifield::kTiltAngles << "' has " << angles.size() << " values for " << stacks
+        << " tilted views (" << fiberpli::plifield::kIntensityTiltPrefix << "*)";
   }
   else if (azimuths.size() != stacks)
   {
-    msg << "field data 'tilt_directions' has " << azimuths.size() << " values for " << stacks
-        << " tilted views (intensity_tilt_*)";
+    msg << "field data '" << fiberpli::plifield::kTiltDirections << "' has " << azimuths.size() << " values for "
+        << stacks << " tilted views (" << fiberpli::plifield::kIntensityTiltPrefix << "*)";
   }
   if (!msg.str().empty())
   {
@@ -182,7 +183,8 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   vtkDataArray* intensity = input->GetPointData()->GetArray(fiberpli::plifield::kIntensity);
   if (!intensity)
   {
-    vtkErrorMacro(<< "PLIAnalysis: the input has no point array 'intensity' (one component per polarizer angle)");
+    vtkErrorMacro(<< "PLIAnalysis: the input has no point array '" << fiberpli::plifield::kIntensity
+                  << "' (one component per polarizer angle)");
     return 0;
   }
   const int n = intensity->GetNumberOfComponents();
@@ -203,12 +205,14 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   }
   if (rho.size() < 3)
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data 'polarizer_angles' or the components of 'intensity'); at least 3 are needed");
+    vtkErrorMacro(<< "PLIAnalysis: " << rho.size() << " polarizer angles (field data '" << fiberpli::plifield::kPolarizerAngles
+                  << "' or the components of '" << fiberpli::plifield::kIntensity << "'); at least 3 are needed");
     return 0;
   }
   if (static_cast<std::size_t>(n) != rho.size())
   {
-    vtkErrorMacro(<< "PLIAnalysis: point array 'intensity' has " << n << " components but field data 'polarizer_angles' has "
+    vtkErrorMacro(<< "PLIAnalysis: point array '" << fiberpli::plifield::kIntensity << "' has " << n
+                  << " components but field data '" << fiberpli::plifield::kPolarizerAngles << "' has "
                   << rho.size() << " angles; they must be equal");
     return 0;
   }
@@ -230,7 +234,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     if (a->GetNumberOfComponents() != n)
     {
       vtkErrorMacro(<< "PLIAnalysis: point array '" << name << "' has " << a->GetNumberOfComponents()
-                    << " components, 'intensity' has " << n << "; they must be equal");
+                    << " components, '" << fiberpli::plifield::kIntensity << "' has " << n << "; they must be equal");
       return 0;
     }
     buffers.emplace_back();
@@ -249,8 +253,9 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     if (this->InclinationMethod == TILT)
     {
       vtkErrorMacro(<< "PLIAnalysis: InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
-                 "but these are on the tilted sensor's grid (field data tilted_sensor = 1): simulate with "
-                 "TiltedSensor off, or use InclinationMethod Retardation");
+                       "but these are on the tilted sensor's grid (field data "
+                    << fiberpli::plifield::kTiltedSensor
+                    << " = 1): simulate with TiltedSensor off, or use InclinationMethod Retardation");
       return 0;
     }
     stack.tilts.clear(); // Auto: the retardation method, from the untilted view alone

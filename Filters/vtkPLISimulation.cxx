@@ -195,6 +195,7 @@ struct vtkPLISimulation::ImagePlan
 
 //------------------------------------------------------------------------------
 vtkPLISimulation::vtkPLISimulation()
+  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2); // 0: the image stack, 1: the voxelised tissue (ExportTissue)
@@ -304,7 +305,8 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
     // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced, so
     // every rank calls it on every pass, planned already or not).
     double bounds[6];
-    error = fiberpli::FiberTileExchange::UpdateBounds(this, inputVector->GetInformationObject(0), "PLISimulation", bounds);
+    error = fiberpli::FiberTileExchange::UpdateBounds(this, inputVector->GetInformationObject(0), "PLISimulation", bounds,
+      this->Fibers.get());
     noFibers = error.empty() && !(bounds[0] <= bounds[1]); // no fiber on any rank
     if (error.empty() && !noFibers)
     {
@@ -410,12 +412,17 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   fiberpli::pli::PLIPlan plan = this->Plan->plan;
   fiberpli::pli::Status tissueStatus;
   bool tissuePlanned = false;
+  const bool work = wantImage || (wantTissue && this->ExportTissue);
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
   // fibers its piece reads, in model order (FiberTileExchange.h).
   fiberpli::TileReach reach;
   fiberpli::TileFibers in = fiberpli::FiberTileExchange::Receive(
     outputVector->GetInformationObject(std::max(port, 0)), input, "PLISimulation", localError,
     [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
+      if (!work)
+      {
+        return std::string(); // this request computes nothing: no fiber is needed
+      }
       options.bundleIds = whole.bundleIds;
       tissueStatus = fiberpli::pli::planPLITissue(fiberpli::FiberModel(), options, plan);
       tissuePlanned = true;
@@ -427,7 +434,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
         PieceReach(this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
       reach = r;
       return e;
-    });
+    },
+    this->Fibers.get());
   if (!in.ok())
   {
     if (localError.empty())
@@ -440,7 +448,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     vtkWarningMacro(<< in.warning);
   }
-  if (in.emptyInput || this->Plan->noFibers)
+  if (in.emptyInput || this->Plan->noFibers || !work)
   {
     return 1;
   }

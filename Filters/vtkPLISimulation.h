@@ -49,6 +49,7 @@
 class vtkImageData;
 namespace fiberpli
 {
+class FiberModelCache;
 struct FiberModel;
 namespace pli
 {
@@ -357,6 +358,8 @@ private:
   /// RequestData (docs/pli-simulation.md §7.3).
   struct ImagePlan;
   std::unique_ptr<ImagePlan> Plan;
+  /// The input's fibers, converted once per input MTime (docs/pli-simulation.md §7.3).
+  std::unique_ptr<fiberpli::FiberModelCache> Fibers;
   void PlanImage(vtkInformationVector* inputVector);
 
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.

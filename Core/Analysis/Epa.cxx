@@ -1,5 +1,6 @@
 #include "Analysis/Epa.h"
 #include "Analysis/ForEachPixel.h"
+#include "Section/PLIFields.h"
 
 #include <cmath>
 #include <limits>
@@ -74,7 +75,7 @@ std::string EpaFit::init(const std::vector<double>& rho)
   if (n < 3)
   {
     std::ostringstream msg;
-    msg << "polarizer_angles has " << n << " angle(s), the analysis needs at least 3";
+    msg << plifield::kPolarizerAngles << " has " << n << " angle(s), the analysis needs at least 3";
     return msg.str();
   }
   for (std::size_t k = 0; k < n; ++k)
@@ -128,7 +129,7 @@ std::string EpaFit::init(const std::vector<double>& rho)
     w1_.clear();
     wb_.clear();
     std::ostringstream msg;
-    msg << "polarizer_angles do not determine the first harmonic (fewer than 3 distinct values of "
+    msg << plifield::kPolarizerAngles << " do not determine the first harmonic (fewer than 3 distinct values of "
            "2*rho mod 360 deg; reciprocal condition number "
         << rcond << " < 1e-10)";
     return msg.str();

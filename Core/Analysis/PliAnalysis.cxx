@@ -61,12 +61,12 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
     msg << "InclinationMethod is Tilt but the input has ";
     if (stack.tilts.size() != stack.tiltViews.size())
     {
-      msg << stack.tilts.size() << " tilted stacks (intensity_tilt_*) for " << stack.tiltViews.size()
+      msg << stack.tilts.size() << " tilted stacks (" << plifield::kIntensityTiltPrefix << "*) for " << stack.tiltViews.size()
           << " tilted views (" << plifield::kTiltAngles << " / " << plifield::kTiltDirections << ")";
     }
     else if (stack.tilts.size() < 2)
     {
-      msg << stack.tilts.size() << " tilted views (intensity_tilt_*), the tilt fit needs at least 2";
+      msg << stack.tilts.size() << " tilted views (" << plifield::kIntensityTiltPrefix << "*), the tilt fit needs at least 2";
     }
     else
     {
@@ -74,7 +74,7 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
       {
         if (!stack.tilts[t])
         {
-          msg << "no intensity_tilt_" << t;
+          msg << "no " << plifield::intensityTilt(t);
           break;
         }
         if (!(stack.tiltViews[t].theta > 0.0))

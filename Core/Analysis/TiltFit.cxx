@@ -92,7 +92,7 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
   if (rho.size() < 4)
   {
     std::ostringstream msg;
-    msg << "the tilt fit needs at least 4 polarizer angles, polarizer_angles has " << rho.size();
+    msg << "the tilt fit needs at least 4 polarizer angles, " << plifield::kPolarizerAngles << " has " << rho.size();
     return msg.str();
   }
   std::string err = epa_.init(rho);
