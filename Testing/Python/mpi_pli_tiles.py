@@ -4,8 +4,8 @@ its own piece and receives only the fibers its image tile reads; the pieces, put
 bit for bit the one-process result of the same pipeline, computed afterwards on rank 0 alone
 (client-side objects, one piece). Checked as well: every rank held fewer fibers than the model
 (field data tile_fibers < model_fibers), a rank whose tile no fiber reaches gives the background
-of the serial image, a periodic cell tiled into a larger section, and input that sits on rank 0
-only (FiberReader cannot make pieces)."""
+of the serial image, a periodic cell tiled into a larger section, input that sits on rank 0 only
+(FiberReader cannot make pieces), the bounds sentinel, and a distributed solve upstream."""
 import os
 import sys
 
@@ -100,6 +100,27 @@ for what, tiles in (("PLISimulation", simTiles), ("FiberOrientationGroundTruth",
         check(any(t[1] == 0 for t in tiles), "%s: no rank has a tile without fibers" % what)
         check(all(t[0][1] >= t[0][0] for t in tiles), "%s: a rank computed no pixel" % what)
 
+# The sources make pieces: no rank generated (or held as input) the whole model.
+cubePieces = [servermanager.Fetch(cube, r).GetNumberOfCells() for r in range(ranks)]
+check(sum(cubePieces) == 60 and (ranks == 1 or max(cubePieces) < 60), "the cube's pieces: %s" % cubePieces)
+
+# The VolumeOfInterest sentinel (input bounds): under MPI the ranks' bounds are reduced when the
+# image is planned; the image equals the one of the explicit volume of the whole model's bounds.
+whole = servermanager.Fetch(cube)
+points = vtk_to_numpy(whole.GetPoints().GetData())
+radius = vtk_to_numpy(whole.GetPointData().GetArray("radius"))
+bounds = [float(v) for a in range(3) for v in ((points[:, a] - radius).min(), (points[:, a] + radius).max())]
+simAuto = PLISimulation(Input=cube, VoxelSize=0.5, PixelSize=1.0, NumberOfRotations=6, TiltAngle=5.5,
+                        Birefringence=-0.004, Seed=4, NoiseGain=3.0, NumberOfThreads=1)
+simBounds = PLISimulation(Input=cube, VolumeOfInterest=bounds, VoxelSize=0.5, PixelSize=1.0, NumberOfRotations=6,
+                          TiltAngle=5.5, Birefringence=-0.004, Seed=4, NoiseGain=3.0, NumberOfThreads=1)
+for proxy in (simAuto, simBounds):
+    proxy.UpdatePipeline()
+check(simAuto.GetDataInformation().GetExtent() == simBounds.GetDataInformation().GetExtent(),
+      "sentinel extent %s, bounds extent %s" % (simAuto.GetDataInformation().GetExtent(),
+                                                simBounds.GetDataInformation().GetExtent()))
+same(gathered(simAuto, IMAGE)[0], gathered(simBounds, IMAGE)[0], "PLISimulation (input bounds)")
+
 # Rank 0 only: the cube written by the parallel writer (it gathers) and read back.
 dat = os.path.join(tmp, "cube_%d.dat" % ranks)
 SaveData(dat, proxy=cube)
@@ -125,12 +146,24 @@ imageCell, cellTiles = gathered(simCell, IMAGE)
 for rank, (extent, held, whole) in enumerate(cellTiles):
     print("mpi_pli_tiles: periodic rank %d: extent %s, %s fibers (translates) of %s in the cell" % (rank, extent, held, whole))
 
+# The whole chain: cube -> FiberCollisionSolver (distributed, docs/solver.md §13) -> PLISimulation.
+small = FiberCubeSource(Populations=2, NumberOfFibers=24, EdgeLength=8.05, FiberRadius=0.8, SegmentLength=2.0,
+                        Displacement=0.5, Seed=5)
+solver = FiberCollisionSolver(Input=small, SegmentLength=2.0, MinCurvatureRadius=4.0, MaxSteps=20000,
+                              NumberOfThreads=1)
+simSolved = PLISimulation(Input=solver, VolumeOfInterest=[-4, 4, -4, 4, -1, 1], VoxelSize=0.25, PixelSize=0.5,
+                          NumberOfRotations=6, TiltAngle=5.5, Birefringence=-0.004, Seed=4, NoiseGain=3.0,
+                          NumberOfThreads=1)
+simSolved.UpdatePipeline()
+imageSolved, _ = gathered(simSolved, IMAGE)
+
 # The one-process results, on rank 0 alone, after every parallel update.
 same(image, serial(sim, IMAGE), "PLISimulation")
 same(gt, serial(truth, TRUTH), "FiberOrientationGroundTruth")
 same(maps, serial(ana, MAPS), "PLIAnalysis")
 same(imageRead, serial(simRead, IMAGE), "PLISimulation (input on rank 0)")
 same(imageCell, serial(simCell, IMAGE), "PLISimulation (periodic cell)")
+same(imageSolved, serial(simSolved, IMAGE), "PLISimulation (solved cube)")
 check(numpy.nanmax(gt["fraction"]) > 0.3 and numpy.nanmin(gt["fraction"]) == 0.0, "the ground truth is flat")
 check(numpy.ptp(image["intensity"]) > 100.0, "the image is flat: not a real comparison")
 print("mpi_pli_tiles passed on %d ranks: image, ground truth, analysis, rank-0 input and periodic cell equal "
