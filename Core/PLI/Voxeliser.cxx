@@ -65,7 +65,7 @@ struct BlockColumn
   const std::vector<std::int64_t>* reach;
   std::int64_t out;
   std::uint32_t g;
-  std::int32_t fiber;
+  std::int32_t strand;
   std::int32_t labelBase;
   bool* overlap;
 
@@ -75,8 +75,9 @@ struct BlockColumn
     std::uint32_t* cell = col + 4 * k;
     double stored;
     std::memcpy(&stored, cell, sizeof(double));
-    if (stored != std::numeric_limits<double>::infinity() &&
-      table->links[cell[2]].fiber != fiber)
+    // Shared with another fiber: an overlap. Links of one fiber, or of the periodic translates
+    // of one closed fiber (its strand), meet at their joints without overlapping.
+    if (stored != std::numeric_limits<double>::infinity() && table->links[cell[2]].strand != strand)
       *overlap = true;
     if (ownerWins(d2, g, stored, cell[2]))
     {
@@ -124,7 +125,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
         out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
       }
       return BlockColumn{ w + 4 * block.index(i, j, 0), &t, layers, shape ? &shape->reach : &noReach, out, g,
-        lk.fiber, 1 + lk.slot * L, &stats.overlap };
+        lk.strand, 1 + lk.slot * L, &stats.overlap };
     });
   }
 

@@ -49,7 +49,7 @@ struct TissueBlock
 
 struct VoxeliseStats
 {
-  bool overlap = false;        ///< a voxel was reachable by two different fibers
+  bool overlap = false;        ///< a voxel was reachable by two different fibers (strands, LinkTable.h)
   std::int64_t labelled = 0;   ///< voxels with label > 0 in the block
 };
 

@@ -1,7 +1,79 @@
 #include "Section/LinkTable.h"
 
+#include <numeric>
+
 namespace fiberpli
 {
+
+namespace
+{
+double magnitude(const Vec3& v)
+{
+  return std::max({ std::abs(v.x), std::abs(v.y), std::abs(v.z) });
+}
+
+// Whether b is a translated by the closure of a (b starts where a ends), see fiberStrands.
+bool continues(const Fiber& a, const Fiber& b)
+{
+  if (a.bundle != b.bundle || a.size() < 2 || a.size() != b.size() || a.radii != b.radii)
+    return false;
+  const Vec3 t = b.points.front() - a.points.front();
+  const double tol = 1e-9 * std::max(1.0, magnitude(t) + magnitude(a.points.back()));
+  if (magnitude(b.points.front() - a.points.back()) > tol || magnitude(t) <= tol)
+    return false;
+  for (std::size_t i = 1; i < a.size(); ++i)
+  {
+    if (magnitude(b.points[i] - a.points[i] - t) > tol)
+      return false;
+  }
+  return true;
+}
+
+std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t f)
+{
+  while (parent[static_cast<std::size_t>(f)] != f)
+    f = parent[static_cast<std::size_t>(f)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
+  return f;
+}
+} // namespace
+
+std::vector<std::int32_t> fiberStrands(const FiberModel& model)
+{
+  const std::size_t n = model.fibers.size();
+  std::vector<std::int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  // Fibers by the x of their first point, so that the fibers starting where one ends are found
+  // by a binary search (the cost is n log n plus the candidates).
+  std::vector<std::int32_t> byStart;
+  for (std::size_t f = 0; f < n; ++f)
+  {
+    if (model.fibers[f].size() >= 2)
+      byStart.push_back(static_cast<std::int32_t>(f));
+  }
+  auto startX = [&](std::int32_t f) { return model.fibers[static_cast<std::size_t>(f)].points.front().x; };
+  std::sort(byStart.begin(), byStart.end(), [&](std::int32_t a, std::int32_t b) {
+    return startX(a) < startX(b) || (startX(a) == startX(b) && a < b);
+  });
+  for (const std::int32_t a : byStart)
+  {
+    const Fiber& fa = model.fibers[static_cast<std::size_t>(a)];
+    const double x = fa.points.back().x;
+    const double slack = 1e-6 * std::max(1.0, std::abs(x)); // wider than continues' tolerance
+    auto it = std::lower_bound(byStart.begin(), byStart.end(), x - slack,
+      [&](std::int32_t f, double v) { return startX(f) < v; });
+    for (; it != byStart.end() && startX(*it) <= x + slack; ++it)
+    {
+      if (*it != a && continues(fa, model.fibers[static_cast<std::size_t>(*it)]))
+      {
+        const std::int32_t ra = findRoot(parent, a), rb = findRoot(parent, *it);
+        parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+      }
+    }
+  }
+  for (std::size_t f = 0; f < n; ++f)
+    parent[f] = findRoot(parent, static_cast<std::int32_t>(f));
+  return parent;
+}
 
 std::vector<int> bundlesOf(const FiberModel& model)
 {
@@ -37,6 +109,7 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
     else
       fibersOfSlot[static_cast<std::size_t>(it - slotBundles.begin())].push_back(static_cast<int>(f));
   }
+  const std::vector<std::int32_t> strand = fiberStrands(model);
   const double inv = 1.0 / lat.voxel;
   const Vec3 o{ lat.origin[0], lat.origin[1], lat.origin[2] };
   for (std::size_t slot = 0; slot < fibersOfSlot.size(); ++slot)
@@ -54,6 +127,7 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
         L.rq = fib.radii[k + 1] * inv;
         L.slot = static_cast<std::int32_t>(slot);
         L.fiber = f;
+        L.strand = strand[static_cast<std::size_t>(f)];
         if (norm2(L.q - L.p) == 0.0)
         {
           ++t.zeroLengthLinks; // no axis to own a voxel

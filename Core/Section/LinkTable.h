@@ -37,6 +37,7 @@ struct SectionLink
   double rp = 0, rq = 0;
   std::int32_t slot = 0;  ///< bundle slot
   std::int32_t fiber = 0; ///< index in FiberModel::fibers
+  std::int32_t strand = 0; ///< fiberStrands: the same for the periodic translates of one closed fiber
 };
 
 /// All links that can reach a lateral region, in the order g of the rule, with a 2-D bin grid over
@@ -57,6 +58,14 @@ struct LinkTable
 /// slotScale their S; fibers of other bundles are skipped and counted.
 void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles, const std::vector<double>& slotScale,
   RadiusModel radius, const SectionLattice& lattice, const ColumnRange& region, std::int64_t binSize, LinkTable& table);
+
+/// Per fiber the index of the first fiber of its strand. A strand is a closed fiber of a periodic
+/// cell and its translates by its closure T = last − first (PeriodicTiling.h makes them): fiber b
+/// continues fiber a when b is a translated a (same bundle, point count and radii, every point
+/// moved by the same t) and b starts where a ends (t = T), both within 1e-9 of the coordinates'
+/// magnitude. Such copies are one infinite fiber: where they join, they share voxels without
+/// overlapping (docs/pli-simulation.md §3.3). Every other fiber is a strand of its own.
+std::vector<std::int32_t> fiberStrands(const FiberModel& model);
 
 /// Sorted distinct bundle ids of the model's fibers (the slots of a table that skips no fiber).
 std::vector<int> bundlesOf(const FiberModel& model);

@@ -1,4 +1,5 @@
 // Voxeliser (docs/pli-simulation.md §3.3, test vectors S-8) and axis interpolation (§4.5, S-9).
+#include "Model/PeriodicTiling.h"
 #include "PLI/AxisSampler.h"
 #include "PLI/TissueSpec.h"
 #include "PLI/Voxeliser.h"
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 using namespace fiberpli;
@@ -264,4 +266,88 @@ TEST(PLILayers, GrammarAndValidation)
   EXPECT_FALSE(st.warnings.empty());
   st = makeTissueSpec("1 0.004 1 p", { 0 }, 0, 0, 0, s);
   EXPECT_EQ(st.warnings.size(), 1u); // parallel with dn > 0
+}
+
+namespace
+{
+// A closed fiber along x through the cell [0, 20]³ (last point = first + (20, 0, 0)), waving in y.
+Fiber closedWave(double y, double z, double r, int bundle)
+{
+  Fiber f;
+  for (int i = 0; i <= 10; ++i)
+  {
+    const double x = 2.0 * i;
+    f.points.push_back({ x, y + 2.0 * std::sin(2.0 * M_PI * x / 20.0), z });
+    f.radii.push_back(r);
+  }
+  f.bundle = bundle;
+  return f;
+}
+
+PeriodicCell cell(double ex, double ey, double ez)
+{
+  PeriodicCell c;
+  c.lo = { 0, 0, 0 };
+  c.hi = { ex, ey, ez };
+  return c;
+}
+
+// The cell's model tiled over the cell itself (as PLISimulation tiles its volume of interest),
+// voxelised with one parallel layer on a 1 µm lattice over the cell.
+VoxeliseStats voxeliseTiledCell(FiberModel m, const PeriodicCell& c)
+{
+  const double b[6] = { 0, c.hi.x, 0, c.hi.y, 0, c.hi.z };
+  EXPECT_EQ(tileModel(m, c, b), "");
+  TissueSpec s;
+  s.bundleIds = bundlesOf(m);
+  s.layers.assign(s.bundleIds.size(), { { 1, 0, 1, AxisModel::Parallel } });
+  const SectionLattice lat = box(c.hi.x, c.hi.y, c.hi.z);
+  TissueBlock block;
+  return voxelise(m, s, lat, { 0, lat.n[0], 0, lat.n[1] }, block);
+}
+} // namespace
+
+// The translates of a closed fiber by its closure are one endless fiber: its copies meet end to
+// start at the cell faces and share the voxels round the joint, which is no overlap.
+TEST(PLIVoxeliser, ClosedFiberTranslatesAreOneStrand)
+{
+  FiberModel m;
+  m.fibers.push_back(closedWave(10, 10, 3, 0));
+  const double b[6] = { 0, 20, 0, 20, 0, 20 };
+  FiberModel tiled = m;
+  ASSERT_EQ(tileModel(tiled, cell(20, 20, 20), b), "");
+  ASSERT_EQ(tiled.fibers.size(), 3u); // shifts -1, 0, +1 along x
+  const std::vector<std::int32_t> strands = fiberStrands(tiled);
+  EXPECT_EQ(strands, std::vector<std::int32_t>(3, 0));
+  EXPECT_FALSE(voxeliseTiledCell(m, cell(20, 20, 20)).overlap);
+  // A second closed fiber, parallel and 8 µm apart (gap 2 µm): still no overlap, two strands.
+  m.fibers.push_back(closedWave(10, 2, 3, 1));
+  EXPECT_FALSE(voxeliseTiledCell(m, cell(20, 20, 20)).overlap);
+  // Fibers that merely touch end to start without being translates stay different fibers.
+  FiberModel pair;
+  pair.fibers.push_back(line({ 6, 5, 5 }, { 1, 0, 0 }, 6, 2.0, 0));  // (0,5,5) → (12,5,5)
+  pair.fibers.push_back(line({ 12, 11, 5 }, { 0, 1, 0 }, 6, 2.0, 0)); // (12,5,5) → (12,17,5)
+  EXPECT_EQ(fiberStrands(pair), (std::vector<std::int32_t>{ 0, 1 }));
+}
+
+// A real overlap of two fibers of a periodic cell still counts: a fiber crossing the closed one,
+// and the translate by a lattice vector other than the closure (a cell narrower than the fiber).
+TEST(PLIVoxeliser, OverlapInAPeriodicCellStillCounts)
+{
+  FiberModel m;
+  m.fibers.push_back(closedWave(10, 10, 3, 0));
+  Fiber across;
+  for (int i = 0; i <= 10; ++i)
+  {
+    across.points.push_back({ 10, 2.0 * i, 10 });
+    across.radii.push_back(2);
+  }
+  m.fibers.push_back(across);
+  EXPECT_TRUE(voxeliseTiledCell(m, cell(20, 20, 20)).overlap);
+  // Straight closed fiber of radius 3 in a cell 4 µm wide in y: its y-translates overlap it.
+  FiberModel narrow;
+  narrow.fibers.push_back(line({ 10, 2, 10 }, { 1, 0, 0 }, 10, 3.0, 0)); // (0,2,10) → (20,2,10)
+  EXPECT_TRUE(voxeliseTiledCell(narrow, cell(20, 4, 20)).overlap);
+  // The same cell 8 µm wide: the translates are 2 µm apart, no overlap.
+  EXPECT_FALSE(voxeliseTiledCell(narrow, cell(20, 8, 20)).overlap);
 }

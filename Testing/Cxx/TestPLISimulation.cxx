@@ -685,3 +685,45 @@ TEST(PLISimulation, EnumerationsSwitchesAndSeedOutOfRangeAreNamedNotClamped)
   sim->SetSeed(7);
   expectGood();
 }
+
+// A solved periodic cell (collisions 0): PLISimulation tiles its volume of interest with the
+// translates of the closed fibers, whose copies meet end to start at the faces. They are one
+// endless fiber each, so the tiled cell does not overlap; a fiber crossing them still does.
+TEST(PLISimulation, SolvedPeriodicCellWithClosedFibersDoesNotWarnOverlap)
+{
+  // Two closed fibers along x (last = first + (12, 0, 0)) and z, 6 µm apart, radius 2.
+  vtkSmartPointer<vtkPolyData> cell = MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
+    { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } } });
+  auto mark = [](vtkPolyData* pd) {
+    vtkNew<vtkDoubleArray> box;
+    box->SetName("periodic_cell");
+    for (double v : { 0.0, 12.0, 0.0, 12.0, 0.0, 12.0 })
+      box->InsertNextValue(v);
+    pd->GetFieldData()->AddArray(box);
+    vtkNew<vtkIntArray> collisions;
+    collisions->SetName("collisions");
+    collisions->InsertNextValue(0);
+    pd->GetFieldData()->AddArray(collisions);
+  };
+  mark(cell);
+  vtkNew<vtkPLISimulation> sim;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(sim);
+  sim->SetInputData(cell);
+  sim->SetVolumeOfInterest(0, 12, 0, 12, 0, 12);
+  sim->SetVoxelSize(0.5);
+  sim->SetNoiseGain(0.0);
+  sim->SetNumberOfRotations(4);
+  sim->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_EQ(catcher->Warnings.find("fibers overlap"), std::string::npos) << catcher->Warnings;
+  // A third closed fiber along y through the first: a real overlap, warned.
+  vtkSmartPointer<vtkPolyData> crossed = MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
+    { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } }, { { 3, 0, 6, 2 }, { 3, 6, 6, 2 }, { 3, 12, 6, 2 } } });
+  mark(crossed);
+  sim->SetInputData(crossed);
+  sim->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"), std::string::npos)
+    << catcher->Warnings;
+}
