@@ -77,6 +77,18 @@ void FiberPolyData::RequestAllFibers(vtkInformation* inputInfo)
   inputInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
 }
 
+int FiberPolyData::RequestedPiece(vtkInformation* outInfo)
+{
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER();
+  return outInfo && outInfo->Has(key) ? outInfo->Get(key) : 0;
+}
+
+int FiberPolyData::RequestedPieces(vtkInformation* outInfo)
+{
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES();
+  return outInfo && outInfo->Has(key) ? outInfo->Get(key) : 1;
+}
+
 void FiberPolyData::UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inputInfo)
 {
   // Update the connected output port (not always port 0 of the producer).

@@ -66,6 +66,10 @@ public:
   /// same piece and does not execute upstream again.
   static void UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inputInfo);
 
+  /// The piece an output request asks for (0 without one) and of how many pieces (1 without one).
+  static int RequestedPiece(vtkInformation* outInfo);
+  static int RequestedPieces(vtkInformation* outInfo);
+
   /// Field data of the fiber sources: `segment_length` (µm) and `seed`.
   static void AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed);
 

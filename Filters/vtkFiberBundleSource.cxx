@@ -13,7 +13,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <cstdint>
 #include <vector>
@@ -74,12 +73,8 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
+  const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
+  const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
 
   if (!fiberpli::CheckSeed(this, "FiberBundleSource", this->Seed))
   {

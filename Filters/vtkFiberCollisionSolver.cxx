@@ -31,8 +31,7 @@ namespace
 {
 bool FirstPiece(vtkInformation* outInfo)
 {
-  return !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) ||
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) == 0;
+  return fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
 }
 } // namespace
 

@@ -141,9 +141,9 @@ public:
   ///@{
   /**
    * Checkpoint file of the solve (docs/solver.md §14): the complete state of the run, written
-   * atomically every CheckpointInterval steps, read by ResumeFromCheckpoint. Under MPI the ranks
-   * that solve write it (the solve runs on piece 0; ranks solving the same model write the same
-   * bytes). Default empty.
+   * atomically every CheckpointInterval steps, read by ResumeFromCheckpoint. A distributed solve
+   * (MPI) writes one file per rank, CheckpointFile.<rank>-of-<ranks>, and an error on one rank
+   * fails all. Default empty.
    */
   vtkSetStdStringFromCharMacro(CheckpointFile);
   vtkGetCharFromStdStringMacro(CheckpointFile);

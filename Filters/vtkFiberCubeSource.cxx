@@ -10,7 +10,6 @@
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 
 vtkStandardNewMacro(vtkFiberCubeSource);
 
@@ -44,12 +43,8 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
+  const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
+  const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
 
   if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
   {

@@ -17,7 +17,6 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 
@@ -112,8 +111,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   summary->Initialize();
   bundles->Initialize();
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const bool firstPiece = !outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) ||
-    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) == 0;
+  const bool firstPiece = fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
   if (fiberpli::FiberPolyData::IsEmpty(input) || !firstPiece)
   {
     return 1;
