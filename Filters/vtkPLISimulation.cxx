@@ -179,6 +179,14 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   return {};
 }
 
+/// True when the fibers carry FiberCollisionSolver's field data collisions = 0 (solved). Under MPI
+/// the rank holding the solver's piece decides for itself (a warning only, no collective).
+bool ClaimsSolved(vtkPolyData* fibers)
+{
+  vtkDataArray* collisions = fibers ? fibers->GetFieldData()->GetArray("collisions") : nullptr;
+  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -489,7 +497,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   int ok = 1;
   if (wantImage)
   {
-    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image);
+    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image,
+      ClaimsSolved(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
@@ -501,7 +510,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
 //------------------------------------------------------------------------------
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
   const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
-  vtkImageData* output)
+  vtkImageData* output, bool claimsSolved)
 {
   int ext[6];
   if (!RequestedExtent(outInfo, ext))
@@ -529,6 +538,15 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   }
   // The plan's warnings first, as one runPLI call (planning and running) reports them.
   st.warnings.insert(st.warnings.begin(), planWarnings.begin(), planWarnings.end());
+  // Overlapping fibers are what a model straight from a source or a file has before it is solved:
+  // simulating it is a quick look the user chose (the nearest fiber owns a shared voxel), and the
+  // solver or FiberMetrics count its collisions. It matters when the input says it is
+  // collision-free: then something else (layers wider than the fibers, a later edit) overlaps.
+  if (image.fibersOverlap && claimsSolved)
+  {
+    st.warnings.push_back("fibers overlap although the input is collision-free (its field data collisions is 0): "
+                          "the nearest fiber owns the shared voxels (Layers scaled beyond the fiber radius?)");
+  }
   if (!st.warnings.empty())
   {
     std::string text = "PLISimulation:";

@@ -326,6 +326,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
     return st;
   }
   image.emptySection = sr.emptySection;
+  image.fibersOverlap = sr.overlap;
   image.voxeliseCpuSeconds = sr.voxeliseCpuSeconds;
   image.propagateCpuSeconds = sr.propagateCpuSeconds;
   image.raySteps = sr.raySteps;

@@ -99,6 +99,9 @@ struct PLIImage
   GridRange range;                 ///< pixels computed (global pixel indices)
   std::vector<Stack> views;         ///< one pixel stack per view, covering range
   bool emptySection = false;        ///< background only (warning in status)
+  /// Some voxel was reachable by two fibers and the nearest won (§3.3). Expected for a model that
+  /// was never solved; the caller decides whether it deserves a warning (it knows the model's origin).
+  bool fibersOverlap = false;
   double voxeliseCpuSeconds = 0.0, propagateCpuSeconds = 0.0, opticsSeconds = 0.0;
   std::int64_t raySteps = 0;
   std::size_t peakTissueBytes = 0;  ///< estimate of the tile buffers + voxel stacks

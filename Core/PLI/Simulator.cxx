@@ -274,8 +274,6 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
     res.emptySection = true;
     res.status.warnings.push_back("no fiber in the section: the image shows background only");
   }
-  if (res.overlap)
-    res.status.warnings.push_back("fibers overlap: the nearest fiber owns the shared voxels");
   return res;
 }
 

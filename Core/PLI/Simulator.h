@@ -22,7 +22,7 @@ struct SimResult
 {
   Status status; ///< error, warnings, and aborted when progress asked to stop (out is then empty)
   bool emptySection = false;   ///< no fiber voxel in the requested columns: background only
-  bool overlap = false;        ///< some voxel was reachable by two fibers (nearest won)
+  bool overlap = false;        ///< some voxel was reachable by two fibers (nearest won; no warning here)
   double voxeliseCpuSeconds = 0.0;  ///< summed over threads
   double propagateCpuSeconds = 0.0; ///< summed over threads
   std::int64_t voxelsVoxelised = 0; ///< including tile halos
