@@ -156,7 +156,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   int ext[6];
   if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
   {
-    reach = fiberpli::pli::imageReach(plan, options, fiberpli::PixelRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
+    reach = fiberpli::pli::imageReach(plan, options, fiberpli::GridRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
   }
   fiberpli::pli::VoxelBox box;
   if (tissue && self->GetExportTissue() && tissueError.empty() &&
@@ -177,6 +177,14 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
     std::copy(options.volumeOfInterest, options.volumeOfInterest + 6, reach.tiling);
   }
   return {};
+}
+
+/// True when the fibers carry FiberCollisionSolver's field data collisions = 0 (solved). Under MPI
+/// the rank holding the solver's piece decides for itself (a warning only, no collective).
+bool ClaimsSolved(vtkPolyData* fibers)
+{
+  vtkDataArray* collisions = fibers ? fibers->GetFieldData()->GetArray("collisions") : nullptr;
+  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
 }
 
 } // namespace
@@ -327,7 +335,7 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   if (error.empty() && !noFibers)
   {
     // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
-    const fiberpli::pli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
+    const fiberpli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
     p->error = st.ok() ? "" : "PLISimulation: " + st.error;
   }
   this->Plan = std::move(p);
@@ -410,7 +418,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // planned once here, for the fibers' reach under MPI or else for the fibers received.
   fiberpli::pli::PLIOptions options = this->Plan->options;
   fiberpli::pli::PLIPlan plan = this->Plan->plan;
-  fiberpli::pli::Status tissueStatus;
+  fiberpli::Status tissueStatus;
   bool tissuePlanned = false;
   const bool work = wantImage || (wantTissue && this->ExportTissue);
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
@@ -489,7 +497,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   int ok = 1;
   if (wantImage)
   {
-    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image);
+    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image,
+      ClaimsSolved(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
@@ -501,19 +510,19 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
 //------------------------------------------------------------------------------
 int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
   const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
-  vtkImageData* output)
+  vtkImageData* output, bool claimsSolved)
 {
   int ext[6];
   if (!RequestedExtent(outInfo, ext))
   {
     return 1;
   }
-  const fiberpli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
+  const fiberpli::GridRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;
   this->SetProgressText("Voxelising and propagating light");
-  fiberpli::pli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
+  fiberpli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
     [&](double f) {
       if (f >= 0.95 && !inOptics)
       {
@@ -529,6 +538,15 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   }
   // The plan's warnings first, as one runPLI call (planning and running) reports them.
   st.warnings.insert(st.warnings.begin(), planWarnings.begin(), planWarnings.end());
+  // Overlapping fibers are what a model straight from a source or a file has before it is solved:
+  // simulating it is a quick look the user chose (the nearest fiber owns a shared voxel), and the
+  // solver or FiberMetrics count its collisions. It matters when the input says it is
+  // collision-free: then something else (layers wider than the fibers, a later edit) overlaps.
+  if (image.fibersOverlap && claimsSolved)
+  {
+    st.warnings.push_back("fibers overlap although the input is collision-free (its field data collisions is 0): "
+                          "the nearest fiber owns the shared voxels (Layers scaled beyond the fiber radius?)");
+  }
   if (!st.warnings.empty())
   {
     std::string text = "PLISimulation:";
@@ -592,7 +610,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
     return 0;
   }
   fiberpli::pli::VoxelBox box;
-  fiberpli::pli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
+  fiberpli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
   if (!st.ok())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);

@@ -363,9 +363,10 @@ private:
   void PlanImage(vtkInformationVector* inputVector);
 
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.
+  /// claimsSolved: the input says it is collision-free, so overlapping tissue is worth a warning.
   int SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
     const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
-    vtkImageData* output);
+    vtkImageData* output, bool claimsSolved);
   int VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
     const fiberpli::pli::PLIPlan& plan, vtkInformation* outInfo, vtkImageData* output);
 

@@ -12,6 +12,7 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkPointData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -443,6 +444,41 @@ TEST(PLISimulation, EmptySectionAndEmptyInput)
   sim->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(sim->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// Overlapping fibers warn only when the input says it is collision-free (FiberCollisionSolver's
+// field data collisions = 0): a model straight from a source is simulated as it is, silently.
+TEST(PLISimulation, OverlapWarnsOnlyForAModelThatClaimsToBeSolved)
+{
+  vtkNew<vtkPLISimulation> sim;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(sim);
+  // Two fibers of radius 2 crossing at the origin: they share the voxels around it.
+  vtkSmartPointer<vtkPolyData> crossing = MakeFibers({ { { -8, 0, 0, 2 }, { 8, 0, 0, 2 } },
+    { { 0, -8, 0, 2 }, { 0, 8, 0, 2 } } });
+  sim->SetInputData(crossing);
+  sim->SetVolumeOfInterest(-6, 6, -6, 6, -3, 3);
+  sim->SetVoxelSize(0.5);
+  sim->SetNoiseGain(0.0);
+  sim->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_TRUE(catcher->Warnings.empty()) << catcher->Warnings;
+  // The same fibers marked as solved: now the overlap is a surprise worth a warning.
+  vtkNew<vtkIntArray> collisions;
+  collisions->SetName("collisions");
+  collisions->InsertNextValue(0);
+  crossing->GetFieldData()->AddArray(collisions);
+  crossing->Modified();
+  sim->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"), std::string::npos)
+    << catcher->Warnings;
+  // A solver's record of collisions left (it warned itself) does not repeat the warning.
+  catcher->Clear();
+  collisions->SetValue(0, 3);
+  crossing->Modified();
+  sim->Update();
+  EXPECT_TRUE(catcher->Warnings.empty()) << catcher->Warnings;
 }
 
 // Output port 1: the tissue of TissueVolume is the Core's export of the same box (the Core test
