@@ -3,10 +3,12 @@
 #include "IO/AtomicFile.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 #include <utility>
 #include <vector>
 
@@ -382,6 +384,11 @@ std::string checkpointPath(const std::string& path, const SolverComm* comm)
   return path + "." + std::to_string(comm->rank()) + "-of-" + std::to_string(comm->size());
 }
 
+std::string previousCheckpointPath(const std::string& path)
+{
+  return path + ".prev";
+}
+
 namespace
 {
 // Collective: "" when no rank failed, else (on every rank) its own error, or the lowest failing
@@ -406,6 +413,176 @@ std::string agree(SolverComm* comm, const std::string& local)
     }
   }
   return {};
+}
+
+// Keeps the generation before: the current file becomes previousCheckpointPath, then the new
+// one is written. Killed in between, the previous generation is still there to resume from.
+// Only a regular file is moved (anything else in the way fails the write, naming the file).
+std::string writeGeneration(const std::string& path, const FiberModel& model, const CollisionSolverState& st,
+  const CollisionSolverOptions& options, std::uint64_t fingerprint)
+{
+  struct stat info;
+  if (::lstat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode))
+  {
+    const std::string prev = previousCheckpointPath(path);
+    // ENOENT: another process writing the same file (ranks solving the same whole model) moved it.
+    if (std::rename(path.c_str(), prev.c_str()) != 0 && errno != ENOENT)
+    {
+      return named(path, "cannot be kept as '" + prev + "' (" + std::string(std::strerror(errno)) + ")");
+    }
+  }
+  return writeSolverCheckpoint(path, model, st, options, fingerprint);
+}
+
+struct Generation
+{
+  std::string file;
+  FiberModel model;
+  CollisionSolverState state;
+};
+
+// The generations of `path` that read (the file and its previous one), newest step first; with
+// none, error is the file's own read error.
+std::vector<Generation> readGenerations(const std::string& path, const CollisionSolverOptions& options,
+  std::uint64_t fingerprint, std::string& error)
+{
+  std::vector<Generation> found;
+  for (const std::string& file : { path, previousCheckpointPath(path) })
+  {
+    Generation g;
+    g.file = file;
+    const std::string problem = readSolverCheckpoint(file, options, fingerprint, g.model, g.state);
+    if (problem.empty())
+    {
+      found.push_back(std::move(g));
+    }
+    else if (file == path)
+    {
+      error = problem;
+    }
+  }
+  std::stable_sort(found.begin(), found.end(),
+    [](const Generation& a, const Generation& b) { return a.state.steps > b.state.steps; });
+  if (!found.empty())
+  {
+    error.clear();
+  }
+  return found;
+}
+
+std::string describe(const std::vector<Generation>& gens)
+{
+  std::string text;
+  for (const Generation& g : gens)
+  {
+    text += (text.empty() ? "'" : ", '") + g.file + "' at step " + std::to_string(g.state.steps);
+  }
+  return text;
+}
+
+// Collective: the index in gens of the newest step every rank holds, or -1 and (the same on
+// every rank) a message naming each rank's files and their steps.
+int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens, std::string& error)
+{
+  if (!comm || comm->size() < 2)
+  {
+    return gens.empty() ? -1 : 0;
+  }
+  // Sent to every rank: the steps held, then the description for the message.
+  std::string mine;
+  for (const Generation& g : gens)
+  {
+    mine += std::to_string(g.state.steps) + " ";
+  }
+  mine += "|" + describe(gens);
+  const std::vector<std::vector<char>> got =
+    comm->exchange(std::vector<std::vector<char>>(static_cast<std::size_t>(comm->size()), std::vector<char>(mine.begin(), mine.end())));
+  std::vector<int> common;
+  for (const Generation& g : gens)
+  {
+    common.push_back(g.state.steps);
+  }
+  std::string all;
+  for (std::size_t r = 0; r < got.size(); ++r)
+  {
+    const std::string text(got[r].begin(), got[r].end());
+    const std::size_t bar = text.find('|');
+    std::istringstream steps(text.substr(0, bar));
+    std::vector<int> held;
+    for (int v; steps >> v;)
+    {
+      held.push_back(v);
+    }
+    common.erase(std::remove_if(common.begin(), common.end(),
+                   [&](int v) { return std::find(held.begin(), held.end(), v) == held.end(); }),
+      common.end());
+    all += (r ? "; rank " : "rank ") + std::to_string(r) + ": " + text.substr(bar + 1);
+  }
+  if (common.empty())
+  {
+    error = "the ranks' checkpoints are of different steps and no step is held by every rank (" + all +
+      "): resume needs the same step on every rank";
+    return -1;
+  }
+  for (std::size_t i = 0; i < gens.size(); ++i)
+  {
+    if (gens[i].state.steps == common.front())
+    {
+      return static_cast<int>(i);
+    }
+  }
+  return -1; // not reached: common is a subset of gens' steps
+}
+
+// A hash of a global index, so that a sum over the indices catches swapped/duplicated ones that
+// keep the plain sum (31 bits: the sum of up to 2^32 of them stays exact in 64 bits).
+std::int64_t indexHash(std::int64_t i)
+{
+  std::uint64_t z = static_cast<std::uint64_t>(i) + 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return static_cast<std::int64_t>((z ^ (z >> 31)) & 0x7FFFFFFFULL);
+}
+
+// Collective: "" when the ranks' pieces hold every fiber of the model exactly once (their global
+// indices cover 0..N-1, N the total fiber count: the same count, sum and hash sum), else (on
+// every rank) a message naming this rank's file and step.
+std::string checkFiberSet(SolverComm* comm, const Generation& g)
+{
+  const std::vector<std::int64_t>& global = g.state.global;
+  std::vector<std::int64_t> sums{ static_cast<std::int64_t>(global.size()), 0, 0 };
+  std::vector<double> extremes{ -1.0, 0.0 }; // max index, max of −index
+  for (std::int64_t i : global)
+  {
+    sums[1] += i;
+    sums[2] += indexHash(i);
+    extremes[0] = std::max(extremes[0], static_cast<double>(i));
+    extremes[1] = std::max(extremes[1], -static_cast<double>(i));
+  }
+  if (comm)
+  {
+    comm->sum(sums);
+    comm->max(extremes);
+  }
+  const std::int64_t n = sums[0];
+  std::int64_t hashes = 0;
+  for (std::int64_t i = 0; i < n; ++i)
+  {
+    hashes += indexHash(i);
+  }
+  const bool inRange = n == 0 || (extremes[0] == static_cast<double>(n - 1) && extremes[1] == 0.0);
+  if (static_cast<std::int64_t>(g.model.fibers.size()) != static_cast<std::int64_t>(global.size()))
+  {
+    sums[1] = -1; // a damaged local state; reported below like a wrong set
+  }
+  if (inRange && sums[1] == n * (n - 1) / 2 && sums[2] == hashes)
+  {
+    return {};
+  }
+  return named(g.file, "the checkpoints of step " + std::to_string(g.state.steps) +
+      " do not hold each of the model's " + std::to_string(n) +
+      " fibers exactly once (global indices are not 0.." + std::to_string(n - 1) +
+      "): files of different runs or rank counts?");
 }
 } // namespace
 
@@ -432,15 +609,35 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   const std::uint64_t fingerprint = modelFingerprint(model);
   // A resumed run works on the file's model and hands it over at the end, so that a failed
   // resume leaves the caller's model unchanged.
+  // The ranks may hold different steps (a rank could not write its last checkpoint, or the job
+  // was killed between the ranks' writes): all resume from the newest step every rank holds, and
+  // only if their pieces together are the whole model, else all fail alike (no rank waits alone).
   FiberModel resumed;
   CollisionSolverState saved;
+  std::string resumedFile = path;
   if (checkpoint.resume)
   {
-    failed.error = agree(comm, readSolverCheckpoint(path, options, fingerprint, resumed, saved));
+    std::string problem;
+    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem);
+    failed.error = agree(comm, problem);
     if (!failed.error.empty())
     {
       return failed;
     }
+    const int chosen = newestCommonGeneration(comm, gens, failed.error);
+    if (chosen < 0)
+    {
+      return failed;
+    }
+    Generation& g = gens[static_cast<std::size_t>(chosen)];
+    failed.error = agree(comm, checkFiberSet(comm, g));
+    if (!failed.error.empty())
+    {
+      return failed;
+    }
+    resumed = std::move(g.model);
+    saved = std::move(g.state);
+    resumedFile = g.file;
   }
   FiberModel& work = checkpoint.resume ? resumed : model;
   CollisionSolverRun run(work, options, progress, observer, comm);
@@ -449,7 +646,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     const std::string problem = run.resume(saved);
     if (!problem.empty())
     {
-      failed.error = named(path, "does not fit: " + problem);
+      failed.error = named(resumedFile, "does not fit: " + problem);
       return failed;
     }
   }
@@ -464,7 +661,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     const CollisionSolverState& st = run.state();
     if (checkpoint.interval > 0 && st.steps % checkpoint.interval == 0)
     {
-      const std::string problem = agree(comm, writeSolverCheckpoint(path, work, st, options, fingerprint));
+      const std::string problem = agree(comm, writeGeneration(path, work, st, options, fingerprint));
       if (!problem.empty())
       {
         result = run.finish();

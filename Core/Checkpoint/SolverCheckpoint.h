@@ -42,12 +42,19 @@ struct CheckpointOptions
 /// "<path>.<rank>-of-<ranks>", one file per rank (its owned fibers and their state).
 std::string checkpointPath(const std::string& path, const SolverComm* comm);
 
+/// "<file>.prev": the generation before `file` (solveWithCheckpoints keeps it when it writes).
+std::string previousCheckpointPath(const std::string& file);
+
 /// solveCollisions with checkpoints: with resume the model is replaced by the file's (checked
 /// against options and the given model's fingerprint) and the run continues from its state.
-/// A checkpoint that cannot be read or written is result.error (naming the file); the model is
-/// then unchanged (read) or in the state of the failed write's step (write). With comm
-/// (distributed, collective) every rank writes and reads its own file (checkpointPath) and the
-/// ranks agree after every read and write: an error on one rank is an error on all.
+/// Every write first keeps the file as previousCheckpointPath; resume reads both and takes the
+/// newest that reads. A checkpoint that cannot be read or written is result.error (naming the
+/// file); the model is then unchanged (read, or any error of a resumed run) or in the state of
+/// the failed write's step (write, not resumed). With comm (distributed, collective) every rank
+/// writes and reads its own files (checkpointPath) and the ranks agree after every read and
+/// write: an error on one rank is an error on all. Resume takes the newest step every rank
+/// holds and checks that the pieces hold each fiber of the model exactly once; else every rank
+/// fails, naming the files and their steps.
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
   const CheckpointOptions& checkpoint, const ProgressFn& progress = {}, const StepObserver& observer = {},
   SolverComm* comm = nullptr);

@@ -11,14 +11,19 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dirent.h>
 #include <fstream>
+#include <future>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <sys/stat.h>
+#include <thread>
 #include <unistd.h>
 
 using namespace fiberpli;
@@ -35,9 +40,17 @@ struct TempFile
     dir = ::mkdtemp(tmpl);
     path = dir + "/solve.ckpt";
   }
-  ~TempFile()
+  ~TempFile() // the checkpoints, their previous generations, the ranks' files
   {
-    std::remove(path.c_str());
+    if (DIR* d = ::opendir(dir.c_str()))
+    {
+      while (const dirent* e = ::readdir(d))
+      {
+        if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, ".."))
+          std::remove((dir + "/" + e->d_name).c_str());
+      }
+      ::closedir(d);
+    }
     ::rmdir(dir.c_str());
   }
 };
@@ -95,6 +108,22 @@ void expectResumeEqualsUninterrupted(const FiberModel& in, const CollisionSolver
   EXPECT_EQ(r2.minGap, r1.minGap);
   EXPECT_EQ(r2.sourceIndex, r1.sourceIndex);
   EXPECT_EQ(r2.warnings, r1.warnings);
+}
+// runRanks, but a hang (a rank waiting in a collective the others never make) ends the test
+// program with a failure message instead of blocking ctest.
+void runRanksWithin(int ranks, int seconds, const std::function<void(SolverComm&)>& f)
+{
+  auto done = std::make_shared<std::promise<void>>();
+  std::future<void> finished = done->get_future();
+  std::thread([ranks, f, done] {
+    fiberpli_test::runRanks(ranks, f);
+    done->set_value();
+  }).detach();
+  if (finished.wait_for(std::chrono::seconds(seconds)) != std::future_status::ready)
+  {
+    std::fprintf(stderr, "FAILED: the ranks did not finish within %d s (hang)\n", seconds);
+    std::_Exit(1);
+  }
 }
 } // namespace
 
@@ -169,7 +198,17 @@ TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
   std::ofstream(file.path, std::ios::binary) << "FiberPLI dat 1\n";
   EXPECT_NE(readSolverCheckpoint(file.path, o, fingerprint, model, state).find("is not a FiberPLI solver checkpoint"),
     std::string::npos);
+  // Not readable (or gone): the previous generation (step 20) is taken; without it, an error.
   std::remove(file.path.c_str());
+  FiberModel fromPrevious = in;
+  int firstStep = -1;
+  e = solveWithCheckpoints(fromPrevious, o, { file.path, 0, true }, {}, [&](int step, const FiberModel&) {
+    if (firstStep < 0)
+      firstStep = step;
+  }).error;
+  EXPECT_EQ(e, "");
+  EXPECT_EQ(firstStep, 21);
+  std::remove(previousCheckpointPath(file.path).c_str());
   e = solveWithCheckpoints(m, o, { file.path, 0, true }).error;
   EXPECT_NE(e.find(file.path), std::string::npos) << e;
   EXPECT_NE(e.find("cannot be opened"), std::string::npos) << e;
@@ -245,3 +284,100 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
   EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
   EXPECT_NE(results[0].error.find("at step 20"), std::string::npos) << results[0].error;
 }
+
+// Rank 1's files are one generation older than rank 0's (it could not write its last checkpoint,
+// or the job died between the ranks' writes): both resume from the newest step both hold and end
+// like the serial run; with no common step both fail naming the files and steps — no hang.
+TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
+{
+  const FiberModel whole = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.numberOfThreads = 1;
+  FiberModel serial = whole;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_TRUE(s.error.empty()) << s.error;
+  ASSERT_GT(s.steps, 45);
+  const auto piece = [&](int r) {
+    FiberModel m;
+    for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
+      m.fibers.push_back(whole.fibers[f]);
+    return m;
+  };
+  TempFile file;
+  const std::string own0 = file.path + ".0-of-2", own1 = file.path + ".1-of-2";
+  const auto stopAt45 = [&] {
+    runRanksWithin(2, 120, [&](SolverComm& comm) {
+      FiberModel m = piece(comm.rank());
+      int last = 0;
+      solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 45; },
+        [&](int step, const FiberModel&) { last = step; }, &comm);
+    });
+  };
+  std::vector<FiberModel> out(2);
+  std::vector<CollisionSolverResult> results(2);
+  std::vector<int> firstSteps(2, -1);
+  const auto resume = [&] {
+    runRanksWithin(2, 120, [&](SolverComm& comm) {
+      const std::size_t r = static_cast<std::size_t>(comm.rank());
+      out[r] = piece(comm.rank());
+      results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {},
+        [&](int step, const FiberModel&) {
+          if (firstSteps[r] < 0)
+            firstSteps[r] = step;
+        },
+        &comm);
+    });
+  };
+
+  // Steps 40 (and 20 kept) on both ranks; rank 1 is put back to step 20 alone.
+  stopAt45();
+  ASSERT_EQ(std::rename(previousCheckpointPath(own1).c_str(), own1.c_str()), 0);
+  resume();
+  for (int r = 0; r < 2; ++r)
+  {
+    ASSERT_EQ(results[r].error, "") << "rank " << r;
+    EXPECT_EQ(firstSteps[r], 21) << "rank " << r << " must resume from the common step 20";
+    EXPECT_EQ(results[r].steps, s.steps);
+  }
+  FiberModel joined = out[0];
+  joined.fibers.insert(joined.fibers.end(), out[1].fibers.begin(), out[1].fibers.end());
+  EXPECT_TRUE(bitwiseEqual(joined, serial));
+
+  // No step on both: rank 0 holds only step 40, rank 1 only step 20.
+  stopAt45();
+  ASSERT_EQ(std::remove(previousCheckpointPath(own0).c_str()), 0);
+  ASSERT_EQ(std::rename(previousCheckpointPath(own1).c_str(), own1.c_str()), 0);
+  const std::vector<FiberModel> before{ piece(0), piece(1) };
+  resume();
+  for (int r = 0; r < 2; ++r)
+  {
+    const std::string& e = results[r].error;
+    EXPECT_NE(e.find("different steps"), std::string::npos) << e;
+    EXPECT_NE(e.find("'" + own0 + "' at step 40"), std::string::npos) << e;
+    EXPECT_NE(e.find("'" + own1 + "' at step 20"), std::string::npos) << e;
+    EXPECT_TRUE(bitwiseEqual(out[r], before[r])) << "rank " << r << " must keep its own piece";
+  }
+
+  // A common step, but rank 1's file holds rank 0's fibers (a file of the wrong rank): the
+  // fiber set check fails both ranks, naming the file.
+  stopAt45();
+  ASSERT_EQ(std::remove(previousCheckpointPath(own0).c_str()), 0);
+  ASSERT_EQ(std::remove(previousCheckpointPath(own1).c_str()), 0);
+  {
+    std::ifstream src(own0, std::ios::binary);
+    std::ofstream dst(own1, std::ios::binary | std::ios::trunc);
+    dst << src.rdbuf();
+  }
+  // The copy was written for rank 0's input: resume rank 1 from rank 0's piece too, so only the
+  // fiber set (not the input fingerprint) is wrong.
+  runRanksWithin(2, 120, [&](SolverComm& comm) {
+    const std::size_t r = static_cast<std::size_t>(comm.rank());
+    out[r] = piece(0);
+    results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
+  });
+  EXPECT_NE(results[1].error.find("exactly once"), std::string::npos) << results[1].error;
+  EXPECT_NE(results[0].error.find("exactly once"), std::string::npos) << results[0].error;
+}
+
