@@ -380,11 +380,13 @@ void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)
 //------------------------------------------------------------------------------
 const FiberConversion& FiberModelCache::Get(vtkPolyData* input, const std::string& who)
 {
-  if (!this->Valid || this->Time != input->GetMTime())
+  // The pointer too: after the input connection is switched another object may have the same MTime.
+  if (!this->Valid || this->Input != input || this->Time != input->GetMTime())
   {
     this->Value = FiberPolyData::ToModel(input, who);
     this->Value.sourceCell = {};
     this->Value.sourcePoints = {};
+    this->Input = input;
     this->Time = input->GetMTime();
     this->Valid = true;
   }

@@ -77,17 +77,19 @@ public:
   static bool IsEmpty(vtkPolyData* input);
 };
 
-/// The model of one input, converted again only when the input's MTime changes (the PLI filters
-/// keep their fibers between requests, docs/pli-simulation.md §7.3). Keeps the model, not the
-/// source ids (those filters pass no input arrays on).
+/// The model of one input, converted again only when the input object or its MTime changes (the
+/// PLI filters keep their fibers between requests, docs/pli-simulation.md §7.3). Keeps the model,
+/// not the source ids (those filters pass no input arrays on).
 class FIBERPLICONVERSION_EXPORT FiberModelCache
 {
 public:
-  /// The conversion of `input` (ToModel with `who`), reused while its MTime is the same.
+  /// The conversion of `input` (ToModel with `who`), reused while it is the same object with the
+  /// same MTime.
   const FiberConversion& Get(vtkPolyData* input, const std::string& who);
 
 private:
   bool Valid = false;
+  const vtkPolyData* Input = nullptr; // compared only, never dereferenced (it may be gone)
   unsigned long long Time = 0;
   FiberConversion Value;
 };

@@ -155,14 +155,14 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     this->PlanSection(); // a data pass without an information pass
   }
   const fiberpli::SectionPlan& section = this->Plan->section;
-  auto pieceRange = [&](fiberpli::PixelRange& range) {
+  auto pieceRange = [&](fiberpli::GridRange& range) {
     const std::string& e = this->Plan->error;
-    range = fiberpli::PixelRange{ 0, section.pixels[0], 0, section.pixels[1] };
+    range = fiberpli::GridRange{ 0, section.pixels[0], 0, section.pixels[1] };
     if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     {
       int u[6];
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), u);
-      range = fiberpli::PixelRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
+      range = fiberpli::GridRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
         std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
     }
     return e.empty() ? e : "FiberOrientationGroundTruth: " + e;
@@ -171,7 +171,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   // fibers its pixels read, in model order (FiberTileExchange.h).
   fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
     localError, [&](const fiberpli::TileFibers&, fiberpli::TileReach& reach) {
-      fiberpli::PixelRange range;
+      fiberpli::GridRange range;
       const std::string e = pieceRange(range);
       if (e.empty() && range.nx() > 0 && range.ny() > 0)
       {
@@ -196,7 +196,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   {
     return 1;
   }
-  fiberpli::PixelRange range;
+  fiberpli::GridRange range;
   std::string err = pieceRange(range);
   const std::int64_t nx = section.pixels[0];
   if (!err.empty())

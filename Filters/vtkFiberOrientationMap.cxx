@@ -5,6 +5,7 @@
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
+#include "Section/PLIFields.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -243,7 +244,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
       return 0;
     }
     output->GetPointData()->AddArray(mask);
-    fiberpli::AddFieldDoubles(output, "mask_threshold", { threshold });
+    fiberpli::AddFieldDoubles(output, fiberpli::plifield::kMaskThreshold, { threshold });
   }
   output->GetPointData()->AddArray(fom);
   output->GetPointData()->SetActiveScalars("fom");

@@ -269,7 +269,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     reduced = true;
     return fiberpli::FiberCollective::GlobalMax(outInfo, local);
   };
-  const fiberpli::PixelRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
+  const fiberpli::GridRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
 
   this->SetProgressText("Analysing the polarizer stack");
   fiberpli::PliAnalysisMaps maps;

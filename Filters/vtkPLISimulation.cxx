@@ -156,7 +156,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   int ext[6];
   if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
   {
-    reach = fiberpli::pli::imageReach(plan, options, fiberpli::PixelRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
+    reach = fiberpli::pli::imageReach(plan, options, fiberpli::GridRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
   }
   fiberpli::pli::VoxelBox box;
   if (tissue && self->GetExportTissue() && tissueError.empty() &&
@@ -335,7 +335,7 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   if (error.empty() && !noFibers)
   {
     // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
-    const fiberpli::pli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
+    const fiberpli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
     p->error = st.ok() ? "" : "PLISimulation: " + st.error;
   }
   this->Plan = std::move(p);
@@ -418,7 +418,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // planned once here, for the fibers' reach under MPI or else for the fibers received.
   fiberpli::pli::PLIOptions options = this->Plan->options;
   fiberpli::pli::PLIPlan plan = this->Plan->plan;
-  fiberpli::pli::Status tissueStatus;
+  fiberpli::Status tissueStatus;
   bool tissuePlanned = false;
   const bool work = wantImage || (wantTissue && this->ExportTissue);
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
@@ -517,12 +517,12 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   {
     return 1;
   }
-  const fiberpli::PixelRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
+  const fiberpli::GridRange range{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 };
   fiberpli::pli::PLIImage image;
   const fiberpli::ProgressFn vtkProgress = fiberpli::MakeProgress(this);
   bool inOptics = false;
   this->SetProgressText("Voxelising and propagating light");
-  fiberpli::pli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
+  fiberpli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
     [&](double f) {
       if (f >= 0.95 && !inOptics)
       {
@@ -610,7 +610,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
     return 0;
   }
   fiberpli::pli::VoxelBox box;
-  fiberpli::pli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
+  fiberpli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
   if (!st.ok())
   {
     vtkErrorMacro(<< "PLISimulation: " << st.error);

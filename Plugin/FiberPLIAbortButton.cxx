@@ -7,9 +7,51 @@
 #include <pqCoreUtilities.h>
 #include <pqProgressManager.h>
 
+#include <QCoreApplication>
+#include <QEvent>
 #include <QPointer>
 #include <QWidget>
 #include <QWindow>
+
+namespace
+{
+// While events are processed inside a running filter, only the presses pqProgressManager lets
+// through (those on the abort button) may act. Keys and shortcuts (Delete, Ctrl+Z, Ctrl+S), the
+// wheel over a property widget or a view, context menus, drops and closing a window would change,
+// render or delete the pipeline that is executing: they are swallowed until the filter returns.
+class PipelineChangeBlocker : public QObject
+{
+public:
+  bool eventFilter(QObject*, QEvent* event) override
+  {
+    switch (event->type())
+    {
+      case QEvent::ShortcutOverride:
+        event->accept(); // "the focus widget takes this key": no shortcut fires for it
+        return true;
+      case QEvent::Close:
+        event->ignore(); // a swallowed close event that stays accepted would still close
+        return true;
+      case QEvent::Shortcut:
+      case QEvent::KeyPress:
+      case QEvent::KeyRelease:
+      case QEvent::MouseButtonDblClick:
+      case QEvent::Wheel:
+      case QEvent::ContextMenu:
+      case QEvent::DragEnter:
+      case QEvent::DragMove:
+      case QEvent::Drop:
+      case QEvent::TabletPress:
+      case QEvent::TouchBegin:
+      case QEvent::TouchUpdate:
+      case QEvent::TouchEnd:
+        return true;
+      default:
+        return false;
+    }
+  }
+};
+} // namespace
 
 void FiberPLIAbortButton::startup()
 {
@@ -42,7 +84,11 @@ void FiberPLIAbortButton::onProgress(const QString&, int percent)
   if (percent > 0 && pqCoreConfiguration::instance()->testScriptCount() == 0)
   {
     letClicksReachTheButton(progress);
+    // Installed last, so it sees every event before pqProgressManager's own filter.
+    PipelineChangeBlocker blocker;
+    QCoreApplication::instance()->installEventFilter(&blocker);
     pqCoreUtilities::processEvents();
+    QCoreApplication::instance()->removeEventFilter(&blocker);
   }
 }
 

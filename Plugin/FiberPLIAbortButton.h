@@ -13,8 +13,10 @@
 /// - on every progress report of a running FiberPLI execution it enables the button and lets Qt
 ///   process the pending events; pqProgressManager's event filter still drops every key and mouse
 ///   press except those on the progress widget and its abort button (whose window is added to
-///   its list, see letClicksReachTheButton), so the user can do nothing else meanwhile
-///   (ParaView 5.12 processes events in pqProgressManager::onProgress the same way);
+///   its list, see letClicksReachTheButton), and a filter of ours swallows keys, shortcuts, the
+///   wheel, context menus, drops and window closes meanwhile, so nothing can change, render or
+///   delete the executing pipeline (ParaView 5.12 processes events in
+///   pqProgressManager::onProgress the same way, without that second filter);
 /// - the abort() signal asks the running FiberPLI executions to stop (Conversion/FiberExecutions.h);
 ///   each stops at its next progress check, and the abort applies to that execution only;
 /// - when the progress ends, the button is disabled again.

@@ -11,14 +11,15 @@ workloads=("$@"); [ ${#workloads[@]} -gt 0 ] || workloads=(cube-a cube-b cube-c 
 here=$(cd "$(dirname "$0")" && pwd)
 plugin=$(find "$build" -name FiberPLI.so | head -1)
 pvbatch=$(command -v pvbatch)
-# Waiting ranks yield the core (the default busy poll starves the others on a loaded machine).
+# --bind-to none: Open MPI binds each of up to 2 ranks to one core by default, which would run a
+# rank's threads on that one core. Waiting ranks yield the core (the default busy poll starves the others on a loaded machine).
 export OMP_WAIT_POLICY=PASSIVE OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_mpi_yield_when_idle=1
 echo "| workload | ranks | threads | steps | wall [s] | s/step | collisions left | per rank: fibers/peak points/halo points/halo bytes per step | hash |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for w in "${workloads[@]}"; do
   for run in "1 1" "1 2" "2 1"; do
     set -- $run
-    mpiexec --allow-run-as-root --oversubscribe -n "$1" "$pvbatch" --dr "$here/mpi_solver_bench.py" "$plugin" "$w" \
+    mpiexec --allow-run-as-root --oversubscribe --bind-to none -n "$1" "$pvbatch" --dr "$here/mpi_solver_bench.py" "$plugin" "$w" \
       --threads "$2" "${steps[@]}" 2>/dev/null | grep '^| '
   done
 done

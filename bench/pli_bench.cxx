@@ -99,7 +99,7 @@ int main(int argc, char** argv)
 
   const auto t0 = std::chrono::steady_clock::now();
   pli::PLIImage img;
-  const pli::Status st = pli::runPLI(model, o, fiberpli::PixelRange{}, img);
+  const fiberpli::Status st = pli::runPLI(model, o, fiberpli::GridRange{}, img);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!st.ok())
   {

@@ -189,7 +189,7 @@ EpaPixel epaFromHarmonic(const Harmonic& h)
 }
 
 Status computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
-  const std::vector<double>& rho, const PixelRange& range, int threads, EpaMaps& maps,
+  const std::vector<double>& rho, const GridRange& range, int threads, EpaMaps& maps,
   const ProgressFn& progress)
 {
   EpaFit fit;

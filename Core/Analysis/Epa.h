@@ -73,7 +73,7 @@ struct EpaMaps
 /// The Status error says why it failed (bad angles, bad range, null stack); aborted: progress
 /// asked to stop (the maps are then incomplete).
 Status computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
-  const std::vector<double>& rho, const PixelRange& range, int threads, EpaMaps& maps,
+  const std::vector<double>& rho, const GridRange& range, int threads, EpaMaps& maps,
   const ProgressFn& progress = {});
 
 } // namespace fiberpli

@@ -43,7 +43,7 @@ struct OwnerColumn
 } // namespace
 
 Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
-  const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps, const ProgressFn& progress)
+  const GroundTruthOptions& options, const GridRange& range, GroundTruthMaps& maps, const ProgressFn& progress)
 {
   std::int64_t nx = 0, ny = 0;
   std::string err = checkPixelGrid(grid, nx, ny);
@@ -77,7 +77,7 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const double scale = grid.scale();
   const std::int64_t nz = lat.n[2];
   // The voxel columns of the range (empty when the range is).
-  ColumnRange cols{ 0, 0, 0, 0 };
+  GridRange cols{ 0, 0, 0, 0 };
   if (range.nx() > 0 && range.ny() > 0)
   {
     cols = voxelColumnsOf(grid, range);
@@ -160,7 +160,7 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
       const std::size_t nVox = static_cast<std::size_t>(wx * wy * nz);
       std::vector<double> bestD2(nVox, std::numeric_limits<double>::infinity());
       std::vector<std::uint32_t> owner(nVox, kNoOwner);
-      const ColumnRange row{ vx0, vx1, vy0, vy1 };
+      const GridRange row{ vx0, vx1, vy0, vy1 };
       std::vector<std::uint32_t> cand;
       candidateLinks(table, row, cand);
       for (const std::uint32_t g : cand)
@@ -211,7 +211,7 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   return {};
 }
 
-TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const PixelRange& range)
+TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range)
 {
   // The columns computeGroundTruth builds its link table for.
   if (range.nx() < 1 || range.ny() < 1)

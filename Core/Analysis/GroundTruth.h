@@ -49,12 +49,12 @@ struct GroundTruthMaps
 /// more memory than the budget of Util/MemoryBudget.h, checked before allocating. aborted:
 /// progress asked to stop.
 Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
-  const GroundTruthOptions& options, const PixelRange& range, GroundTruthMaps& maps,
+  const GroundTruthOptions& options, const GridRange& range, GroundTruthMaps& maps,
   const ProgressFn& progress = {});
 
 /// The fibers the pixels `range` read (docs/pli-simulation.md §6.3): the voxel columns that bin
 /// into them over every depth (Section/SectionReach.h), with the options' radius scale.
-TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const PixelRange& range);
+TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range);
 
 /// Whole-model orientation histogram (fastPLI orientation.py): every link (φ = atan2(dy, dx),
 /// θ = arccos(dz/|d|), antipode when θ > 90°) counted in nPhi bins over φ ∈ [0°, 360°) × nTheta

@@ -37,7 +37,7 @@ std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)
   return msg.str();
 }
 
-Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const GridRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress)
 {
   const std::string optionError = checkPliAnalysisOptions(options);

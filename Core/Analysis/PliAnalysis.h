@@ -75,7 +75,7 @@ struct PliAnalysisMaps
 /// in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few or
 /// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range; aborted when
 /// progress asked to stop.
-Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const PixelRange& range,
+Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const GridRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress = {});
 
 } // namespace fiberpli

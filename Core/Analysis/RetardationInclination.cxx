@@ -26,7 +26,7 @@ double inclinationFromRetardation(double r, double rRef)
   return std::acos(std::sqrt(c2));
 }
 
-double maxRetardation(const double* retardation, std::int64_t nx, const PixelRange& range)
+double maxRetardation(const double* retardation, std::int64_t nx, const GridRange& range)
 {
   double best = 0.0;
   for (std::int64_t j = range.j0; j < range.j1; ++j)
@@ -44,7 +44,7 @@ double maxRetardation(const double* retardation, std::int64_t nx, const PixelRan
 }
 
 std::string inclinationMapFromRetardation(const double* retardation, std::int64_t nx, std::int64_t ny,
-  const PixelRange& range, double referenceRetardation, int threads, std::vector<double>& inclination)
+  const GridRange& range, double referenceRetardation, int threads, std::vector<double>& inclination)
 {
   std::string err = validatePixelRange(nx, ny, range);
   if (!err.empty())

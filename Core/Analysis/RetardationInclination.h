@@ -20,13 +20,13 @@ double inclinationFromRetardation(double r, double rRef);
 /// Largest finite retardation of the pixels in range (the automatic r_ref of §3.1: the most
 /// in-plane region of the section); 0 when there is none. Under MPI the caller takes the global
 /// maximum of the pieces' values.
-double maxRetardation(const double* retardation, std::int64_t nx, const PixelRange& range);
+double maxRetardation(const double* retardation, std::int64_t nx, const GridRange& range);
 
 /// Inclination map (radians) of the pixels in range; `inclination` is resized to nx·ny (NaN
 /// outside the range when freshly allocated). referenceRetardation > 0 is r_ref, 0 = automatic
 /// (maxRetardation over the range; all-zero retardation then gives 90° everywhere).
 /// Errors: referenceRetardation < 0, > 1 or non-finite (named ReferenceRetardation), bad range.
 std::string inclinationMapFromRetardation(const double* retardation, std::int64_t nx, std::int64_t ny,
-  const PixelRange& range, double referenceRetardation, int threads, std::vector<double>& inclination);
+  const GridRange& range, double referenceRetardation, int threads, std::vector<double>& inclination);
 
 } // namespace fiberpli

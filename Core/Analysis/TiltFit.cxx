@@ -357,7 +357,7 @@ std::vector<TiltView> fourTiltViews(double theta)
 
 Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
-  const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
+  const GridRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
 {
   TiltFit fit;
   std::string err = fit.init(rho, options);

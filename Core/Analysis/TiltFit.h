@@ -92,6 +92,6 @@ struct TiltMaps
 /// The Status error says why it failed; aborted: progress asked to stop (maps incomplete).
 Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
   std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
-  const PixelRange& range, int threads, TiltMaps& maps, const ProgressFn& progress = {});
+  const GridRange& range, int threads, TiltMaps& maps, const ProgressFn& progress = {});
 
 } // namespace fiberpli

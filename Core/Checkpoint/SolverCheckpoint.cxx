@@ -675,7 +675,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   {
     result = run.finish();
   }
-  if (checkpoint.resume)
+  if (checkpoint.resume && result.error.empty()) // a failed resumed run leaves the caller's piece
   {
     model = std::move(resumed);
   }

@@ -76,7 +76,7 @@ inline Ax fetch(const TissueBlock& b, std::int64_t i, std::int64_t j, std::int64
 } // namespace
 
 bool sampleAxis(const TissueBlock& block, const double p[3], std::int32_t label, Interp interp,
-  const ColumnRange& clamp, double out[3])
+  const GridRange& clamp, double out[3])
 {
   if (interp == Interp::NN)
   {

@@ -15,7 +15,7 @@ namespace pli
 /// [0, n_z). Neighbours with another label or a zero axis are missing; the result is normalised.
 /// Returns false when no axis exists (all missing): the step is then isotropic.
 bool sampleAxis(const TissueBlock& block, const double p[3], std::int32_t label, Interp interp,
-  const ColumnRange& clamp, double out[3]);
+  const GridRange& clamp, double out[3]);
 
 } // namespace pli
 } // namespace fiberpli

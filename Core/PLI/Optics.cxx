@@ -48,7 +48,7 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n)
   return r < n ? r : period - 1 - r;
 }
 
-Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sigma, const ColumnRange& range, Stack& out)
+Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sigma, const GridRange& range, Stack& out)
 {
   Status st;
   const std::int64_t R = gaussianRadius(sigma);
@@ -84,7 +84,7 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
   }
   // x pass over every row of the piece, then y pass.
   Stack tmp;
-  tmp.resize(ColumnRange{ range.i0, range.i1, in.y0, in.y0 + in.ny }, nr);
+  tmp.resize(GridRange{ range.i0, range.i1, in.y0, in.y0 + in.ny }, nr);
   for (std::int64_t j = in.y0; j < in.y0 + in.ny; ++j)
     for (std::int64_t i = range.i0; i < range.i1; ++i)
     {
@@ -113,7 +113,7 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
   return st;
 }
 
-Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scale, const PixelRange& px, Stack& out)
+Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scale, const GridRange& px, Stack& out)
 {
   Status st;
   const int nr = in.nrho;

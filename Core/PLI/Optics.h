@@ -30,12 +30,12 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n);
 /// `range`. `in` must hold every column the kernel reads (range ± R, mirrored at the global edge).
 /// Error when R exceeds twice the larger image side (planPLI refuses such an OpticalSigma first).
 Status blurStack(const Stack& in, std::int64_t nGlobalX, std::int64_t nGlobalY, double sigmaVox,
-  const ColumnRange& range, Stack& out);
+  const GridRange& range, Stack& out);
 
 /// Mean of the voxels of each pixel in `pixels` (§5.2, the mapping of Section/PixelGrid.h); `in`
 /// must cover those voxels.
 Status binStack(const Stack& in, std::int64_t nVoxX, std::int64_t nVoxY, double scale,
-  const PixelRange& pixels, Stack& out);
+  const GridRange& pixels, Stack& out);
 
 /// Camera counts with mean I and variance g·I (§5.3): Gamma–Poisson mixture for g > 1, Poisson for
 /// g = 1, nothing for g = 0. The stream of value (pixel, k) is RandomStream(seed, global pixel

@@ -172,7 +172,7 @@ Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   }
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
-  plan.estimatedBytes = estimatePieceBytes(plan, o, PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
+  plan.estimatedBytes = estimatePieceBytes(plan, o, GridRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
   return st;
 }
 
@@ -217,28 +217,28 @@ Status planPLI(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 namespace
 {
 // Voxel columns that bin into px, grown by R and clipped to the voxel image.
-ColumnRange binnedVoxels(const PLIPlan& plan, const PixelRange& px, std::int64_t R)
+GridRange binnedVoxels(const PLIPlan& plan, const GridRange& px, std::int64_t R)
 {
-  const ColumnRange v = voxelColumnsOf(plan, px);
+  const GridRange v = voxelColumnsOf(plan, px);
   // The mirror at the global edge only reads inside [0, n); clipping keeps that exact.
-  return ColumnRange{ std::max<std::int64_t>(0, v.i0 - R), std::min(plan.lattice.n[0], v.i1 + R),
+  return GridRange{ std::max<std::int64_t>(0, v.i0 - R), std::min(plan.lattice.n[0], v.i1 + R),
     std::max<std::int64_t>(0, v.j0 - R), std::min(plan.lattice.n[1], v.j1 + R) };
 }
 } // namespace
 
-ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions&, const PixelRange& px)
+GridRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions&, const GridRange& px)
 {
   return binnedVoxels(plan, px, std::max<std::int64_t>(0, gaussianRadius(plan.sigmaVox)));
 }
 
-double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& o, const PixelRange& px)
+double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& o, const GridRange& px)
 {
   SimParams sp;
   sp.rho = plan.rho;
   sp.threads = o.numberOfThreads;
   sp.tile = o.tileSize;
   sp.interp = o.interpolation;
-  const ColumnRange cols = voxelColumnsFor(plan, o, px);
+  const GridRange cols = voxelColumnsFor(plan, o, px);
   double bytes = estimateSimulationBytes(plan.lattice, sp, plan.views, cols);
   // Blur buffers of one view at voxel resolution (x pass, y pass), then the pixel stacks of every
   // view twice: the Core image and the VTK arrays it is copied into.
@@ -265,7 +265,7 @@ SimParams simParams(const PLIPlan& plan, const PLIOptions& o)
   return sp;
 }
 
-Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIImage& image, const ProgressFn& progress)
+Status runPLI(const FiberModel& model, const PLIOptions& o, GridRange px, PLIImage& image, const ProgressFn& progress)
 {
   PLIPlan plan;
   Status st = planPLI(model, o, plan);
@@ -279,7 +279,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, PixelRange px, PLIIm
   return run;
 }
 
-Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planIn, PixelRange px, PLIImage& image,
+Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planIn, GridRange px, PLIImage& image,
   const ProgressFn& progress)
 {
   image = PLIImage();
@@ -287,7 +287,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   Status st;
   const PLIPlan& plan = image.plan;
   if (px.nx() <= 0 && px.ny() <= 0 && px.i0 == 0 && px.j0 == 0)
-    px = PixelRange{ 0, plan.pixels[0], 0, plan.pixels[1] };
+    px = GridRange{ 0, plan.pixels[0], 0, plan.pixels[1] };
   if (px.i0 < 0 || px.j0 < 0 || px.i1 > plan.pixels[0] || px.j1 > plan.pixels[1] || px.nx() < 1 || px.ny() < 1)
   {
     std::ostringstream m;
@@ -297,7 +297,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
     return st;
   }
   image.range = px;
-  const ColumnRange cols = voxelColumnsFor(plan, o, px);
+  const GridRange cols = voxelColumnsFor(plan, o, px);
   // The budget of this piece only: under MPI every rank holds its own columns and pixels, so a
   // job too large for one process may fit split over the ranks.
   std::ostringstream what;
@@ -340,7 +340,7 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   const auto t0 = std::chrono::steady_clock::now();
   const double scale = plan.scale();
   // Blur only the voxels that bin into the pixels (the halo was simulated for the kernel).
-  const ColumnRange needed = binnedVoxels(plan, px, 0);
+  const GridRange needed = binnedVoxels(plan, px, 0);
   for (std::size_t v = 0; v < voxelStacks.size(); ++v)
   {
     Stack blurred, pix;

@@ -96,7 +96,7 @@ std::string resolutionWarning(const FiberModel& model, const PLIOptions& options
 struct PLIImage
 {
   PLIPlan plan;
-  PixelRange range;                 ///< pixels computed (global pixel indices)
+  GridRange range;                 ///< pixels computed (global pixel indices)
   std::vector<Stack> views;         ///< one pixel stack per view, covering range
   bool emptySection = false;        ///< background only (warning in status)
   /// Some voxel was reachable by two fibers and the nearest won (§3.3). Expected for a model that
@@ -109,11 +109,11 @@ struct PLIImage
 
 /// Voxel columns (global, clipped to the voxel image) whose rays a pixel range needs: the voxels
 /// that bin into it, grown by the blur radius (§6.2 step 3).
-ColumnRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
+GridRange voxelColumnsFor(const PLIPlan& plan, const PLIOptions& options, const GridRange& pixels);
 
 /// Bytes runPLI plans for the pixel range `pixels`: tile buffers and voxel stacks of its columns
 /// (with the blur halo), the blur buffers, and its pixel stacks twice (Core and VTK arrays).
-double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& options, const PixelRange& pixels);
+double estimatePieceBytes(const PLIPlan& plan, const PLIOptions& options, const GridRange& pixels);
 
 /// The propagation settings of the options (what runPLI hands to simulate).
 SimParams simParams(const PLIPlan& plan, const PLIOptions& options);
@@ -121,12 +121,12 @@ SimParams simParams(const PLIPlan& plan, const PLIOptions& options);
 /// Runs the simulation for `pixels` (an empty range = the whole image). status.error set on
 /// invalid options or when the piece exceeds the memory budget; the model must be valid
 /// (validateModel). status.aborted when progress asked to stop (the image is then incomplete).
-Status runPLI(const FiberModel& model, const PLIOptions& options, PixelRange pixels, PLIImage& image,
+Status runPLI(const FiberModel& model, const PLIOptions& options, GridRange pixels, PLIImage& image,
   const ProgressFn& progress = {});
 
 /// The same with the plan planPLI made for this model and these options (the VTK filter plans once
 /// per change of its input or properties and runs every piece and request on that plan).
-Status runPLI(const FiberModel& model, const PLIOptions& options, const PLIPlan& plan, PixelRange pixels,
+Status runPLI(const FiberModel& model, const PLIOptions& options, const PLIPlan& plan, GridRange pixels,
   PLIImage& image, const ProgressFn& progress = {});
 
 } // namespace pli

@@ -23,11 +23,11 @@ double largestScale(const PLIPlan& plan)
 }
 } // namespace
 
-TileReach imageReach(const PLIPlan& plan, const PLIOptions& options, const PixelRange& px)
+TileReach imageReach(const PLIPlan& plan, const PLIOptions& options, const GridRange& px)
 {
   if (px.nx() < 1 || px.ny() < 1)
     return TileReach();
-  const ColumnRange cols = voxelColumnsFor(plan, options, px);
+  const GridRange cols = voxelColumnsFor(plan, options, px);
   return columnsReach(plan.lattice, linkRegion(plan.lattice, simParams(plan, options), plan.views, cols), largestScale(plan));
 }
 
@@ -35,7 +35,7 @@ TileReach tissueReach(const PLIPlan& plan, const VoxelBox& box)
 {
   if (box.count() <= 0)
     return TileReach();
-  return columnsReach(plan.lattice, ColumnRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, largestScale(plan));
+  return columnsReach(plan.lattice, GridRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, largestScale(plan));
 }
 
 } // namespace pli

@@ -109,7 +109,7 @@ struct Stack
   int nrho = 0;
   std::vector<double> data;
 
-  void resize(const ColumnRange& r, int rotations)
+  void resize(const GridRange& r, int rotations)
   {
     x0 = r.i0;
     y0 = r.j0;
@@ -131,10 +131,6 @@ struct Stack
     return data[static_cast<std::size_t>(((j - y0) * nx + (i - x0)) * nrho + k)];
   }
 };
-
-/// Outcome of a Core PLI call: the Core's one Status (Util/Status.h); warnings are reported once
-/// per call.
-using Status = fiberpli::Status;
 
 } // namespace pli
 } // namespace fiberpli

@@ -102,7 +102,7 @@ void RayMarcher::midPlanePoint(std::int64_t i, std::int64_t j, double out[2]) co
   out[1] += t * dir_[1];
 }
 
-ColumnRange RayMarcher::midPlaneColumns(const ColumnRange& cols) const
+GridRange RayMarcher::midPlaneColumns(const GridRange& cols) const
 {
   if (stretch_ == 1.0 || cols.nx() < 1 || cols.ny() < 1)
     return cols;
@@ -120,10 +120,10 @@ ColumnRange RayMarcher::midPlaneColumns(const ColumnRange& cols) const
       }
     }
   auto column = [](double x) { return static_cast<std::int64_t>(std::floor(x)); };
-  return ColumnRange{ column(lo[0]) - 1, column(hi[0]) + 2, column(lo[1]) - 1, column(hi[1]) + 2 };
+  return GridRange{ column(lo[0]) - 1, column(hi[0]) + 2, column(lo[1]) - 1, column(hi[1]) + 2 };
 }
 
-void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j, const ColumnRange& clamp, double* out) const
+void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j, const GridRange& clamp, double* out) const
 {
   const int nr = static_cast<int>(c2r_.size());
   // Stokes S1..S3 per rotation without attenuation: attenuation is a scalar for all four

@@ -39,11 +39,11 @@ public:
 
   /// Columns holding the mid-plane points of the rays of `cols` (grown by 1 on the tilted sensor,
   /// where they are not column centres, so the halo of §3.5 still covers every sample).
-  ColumnRange midPlaneColumns(const ColumnRange& cols) const;
+  GridRange midPlaneColumns(const GridRange& cols) const;
 
   /// Marches the ray of column (i, j) through `block` and writes I(ρ_k) = ½(S0 − S1) for every k
   /// to out[0..nrho). `clamp` = lateral stencil bounds for interpolation (see sampleAxis).
-  void march(const TissueBlock& block, std::int64_t i, std::int64_t j, const ColumnRange& clamp, double* out) const;
+  void march(const TissueBlock& block, std::int64_t i, std::int64_t j, const GridRange& clamp, double* out) const;
 
 private:
   SectionLattice lat_;

@@ -34,9 +34,9 @@ std::int64_t floorDiv(std::int64_t a, std::int64_t b)
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 
-ColumnRange grow(const ColumnRange& c, std::int64_t h)
+GridRange grow(const GridRange& c, std::int64_t h)
 {
-  return ColumnRange{ c.i0 - h, c.i1 + h, c.j0 - h, c.j1 + h };
+  return GridRange{ c.i0 - h, c.i1 + h, c.j0 - h, c.j1 + h };
 }
 } // namespace
 
@@ -51,22 +51,22 @@ std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& vi
   return interp == Interp::NN ? 0 : 1;
 }
 
-ColumnRange linkRegion(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views, const ColumnRange& cols)
+GridRange linkRegion(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views, const GridRange& cols)
 {
   const std::int64_t halo = tiltHalo(lat, views, par.interp);
   // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
-  ColumnRange region = grow(cols, halo);
+  GridRange region = grow(cols, halo);
   for (const View& v : views)
   {
-    const ColumnRange r = grow(RayMarcher(lat, par, v, LabelProps()).midPlaneColumns(cols), halo);
-    region = ColumnRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
+    const GridRange r = grow(RayMarcher(lat, par, v, LabelProps()).midPlaneColumns(cols), halo);
+    region = GridRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
       std::max(region.j1, r.j1) };
   }
   return region;
 }
 
 double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
-  const ColumnRange& cols)
+  const GridRange& cols)
 {
   const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
   const double B = std::min<double>(par.tile, std::max<double>(cols.nx(), cols.ny()));
@@ -83,7 +83,7 @@ double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, 
 }
 
 std::string validateSimulation(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
-  const ColumnRange& cols)
+  const GridRange& cols)
 {
   std::ostringstream m;
   if (!std::isfinite(lat.voxel) || lat.voxel <= 0.0)
@@ -126,7 +126,7 @@ std::string validateSimulation(const SectionLattice& lat, const SimParams& par, 
 }
 
 SimResult simulate(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lat,
-  const SimParams& par, const std::vector<View>& views, const ColumnRange& cols,
+  const SimParams& par, const std::vector<View>& views, const GridRange& cols,
   std::vector<Stack>& out, const ProgressFn& progress)
 {
   SimResult res;
@@ -142,7 +142,7 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
   std::vector<RayMarcher> marchers;
   for (const View& v : views)
     marchers.emplace_back(lat, par, v, props);
-  const ColumnRange region = linkRegion(lat, par, views, cols);
+  const GridRange region = linkRegion(lat, par, views, cols);
   LinkTable table;
   tissueLinkTable(model, spec, lat, region, B, table);
   res.estimatedBytes += table.links.size() * sizeof(SectionLink);
@@ -157,10 +157,10 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
 
   // Tiles aligned to the global B grid, so a split changes which tile a column is in but never
   // how it is computed.
-  std::vector<ColumnRange> tiles;
+  std::vector<GridRange> tiles;
   for (std::int64_t ty = floorDiv(cols.j0, B); ty * B < cols.j1; ++ty)
     for (std::int64_t tx = floorDiv(cols.i0, B); tx * B < cols.i1; ++tx)
-      tiles.push_back(ColumnRange{ std::max(cols.i0, tx * B), std::min(cols.i1, (tx + 1) * B),
+      tiles.push_back(GridRange{ std::max(cols.i0, tx * B), std::min(cols.i1, (tx + 1) * B),
         std::max(cols.j0, ty * B), std::min(cols.j1, (ty + 1) * B) });
 
   // Bow-tie of the tilted rays: at depth k a sample lies within (|k + ½ − n_z/2| + 1)·tan θ of its
@@ -202,7 +202,7 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
 #else
       const std::size_t me = 0;
 #endif
-      const ColumnRange& tile = tiles[static_cast<std::size_t>(ti)];
+      const GridRange& tile = tiles[static_cast<std::size_t>(ti)];
       TissueBlock& block = blocks[me];
       // Views whose rays cross the mid-plane in the same columns share one block: all of them
       // when registered; on the tilted sensor each stretched view has its own (§4.6).
@@ -213,7 +213,7 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
       while (!pending.empty())
       {
         const double t0 = now();
-        const ColumnRange core = marchers[pending.front()].midPlaneColumns(tile);
+        const GridRange core = marchers[pending.front()].midPlaneColumns(tile);
         block.reset(grow(core, halo), lat.n[2]);
         VoxeliseStats vs;
         HaloShape shape{ core, reach };
@@ -231,13 +231,13 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
           first = false;
         }
         const double t1 = now();
-        ColumnRange clamp = block.cols;
+        GridRange clamp = block.cols;
         if (par.lateral == LateralOutside::Background)
-          clamp = ColumnRange{ 0, lat.n[0], 0, lat.n[1] };
+          clamp = GridRange{ 0, lat.n[0], 0, lat.n[1] };
         std::vector<std::size_t> later;
         for (std::size_t v : pending)
         {
-          const ColumnRange c = marchers[v].midPlaneColumns(tile);
+          const GridRange c = marchers[v].midPlaneColumns(tile);
           if (c.i0 != core.i0 || c.i1 != core.i1 || c.j0 != core.j0 || c.j1 != core.j1)
           {
             later.push_back(v);

@@ -36,24 +36,24 @@ std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& vi
 /// Voxel columns whose links the rays of `cols` read: the columns and, on the tilted sensor, the
 /// columns of their stretched mid-plane images, grown by the tilt halo (the region of simulate's
 /// link table, and of the fibers an MPI tile receives, PLIReach.h).
-ColumnRange linkRegion(const SectionLattice& lattice, const SimParams& params, const std::vector<View>& views,
-  const ColumnRange& cols);
+GridRange linkRegion(const SectionLattice& lattice, const SimParams& params, const std::vector<View>& views,
+  const GridRange& cols);
 
 /// Memory estimate (bytes) of simulate() for these arguments, without allocating.
 double estimateSimulationBytes(const SectionLattice& lattice, const SimParams& params,
-  const std::vector<View>& views, const ColumnRange& cols);
+  const std::vector<View>& views, const GridRange& cols);
 
 /// Empty string when lattice/params/views/cols can be simulated, else a message naming the option
 /// (also when estimateSimulationBytes exceeds the memory budget, Util/MemoryBudget.h).
 std::string validateSimulation(const SectionLattice& lattice, const SimParams& params,
-  const std::vector<View>& views, const ColumnRange& cols);
+  const std::vector<View>& views, const GridRange& cols);
 
 /// Voxel-resolution intensities I_v(i, j, k) for the columns `cols` (global voxel indices; they may
 /// lie outside [0, n) laterally) and every view: out[v] covers cols, nrho = params.rho.size().
 /// Each column is computed by the same operations for any thread count, tile size or split, so
 /// results are bitwise identical. progress is called between tile batches.
 SimResult simulate(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const SimParams& params, const std::vector<View>& views, const ColumnRange& cols,
+  const SimParams& params, const std::vector<View>& views, const GridRange& cols,
   std::vector<Stack>& out, const ProgressFn& progress = {});
 
 } // namespace pli

@@ -95,7 +95,7 @@ Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptio
   // progress and abort); every tile spans all depths because a voxel's owner does not depend on
   // the block (Voxeliser.h), so the tiling and the crop in z are exact.
   const std::int64_t B = tileSide(options);
-  const ColumnRange cols{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] };
+  const GridRange cols{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] };
   LinkTable table;
   tissueLinkTable(model, plan.tissue, plan.lattice, cols, B, table);
   const std::size_t n = static_cast<std::size_t>(box.count());
@@ -113,7 +113,7 @@ Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptio
       return st;
     }
     const std::int64_t i0 = cols.i0 + (t % tilesX) * B, j0 = cols.j0 + (t / tilesX) * B;
-    const ColumnRange tile{ i0, std::min(cols.i1, i0 + B), j0, std::min(cols.j1, j0 + B) };
+    const GridRange tile{ i0, std::min(cols.i1, i0 + B), j0, std::min(cols.j1, j0 + B) };
     block.reset(tile, plan.lattice.n[2]);
     VoxeliseStats vs;
     voxeliseBlock(table, plan.tissue, plan.lattice, options.lateralOutside, block, vs);

@@ -22,7 +22,7 @@ void TissueBlock::setVoxel(std::int64_t i, std::int64_t j, std::int64_t k, std::
   words[w + 3] = static_cast<std::uint32_t>(lab);
 }
 
-void TissueBlock::reset(const ColumnRange& c, std::int64_t nzIn)
+void TissueBlock::reset(const GridRange& c, std::int64_t nzIn)
 {
   cols = c;
   nz = nzIn;
@@ -41,7 +41,7 @@ void TissueBlock::reset(const ColumnRange& c, std::int64_t nzIn)
 }
 
 void tissueLinkTable(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lat,
-  const ColumnRange& region, std::int64_t binSize, LinkTable& t)
+  const GridRange& region, std::int64_t binSize, LinkTable& t)
 {
   std::vector<double> scale(spec.bundleIds.size(), 0.0);
   for (std::size_t b = 0; b < spec.layers.size() && b < scale.size(); ++b)
@@ -96,7 +96,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
   LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats, const HaloShape* shape)
 {
   stats = VoxeliseStats();
-  ColumnRange fill = block.cols;
+  GridRange fill = block.cols;
   if (lateral == LateralOutside::Background)
   {
     fill.i0 = std::max<std::int64_t>(fill.i0, 0);
@@ -120,7 +120,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
       std::int64_t out = 0;
       if (shape)
       {
-        const ColumnRange& c = shape->core;
+        const GridRange& c = shape->core;
         out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
       }
       return BlockColumn{ w + 4 * block.index(i, j, 0), &t, layers, shape ? &shape->reach : &noReach, out, g,
@@ -129,7 +129,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
   }
 
   // Second pass: the owner key is replaced in place by the optic axis.
-  const ColumnRange& all = block.cols;
+  const GridRange& all = block.cols;
   for (std::int64_t j = all.j0; j < all.j1; ++j)
     for (std::int64_t i = all.i0; i < all.i1; ++i)
     {
@@ -173,7 +173,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
 }
 
 VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const ColumnRange& cols, TissueBlock& block, LateralOutside lateral)
+  const GridRange& cols, TissueBlock& block, LateralOutside lateral)
 {
   LinkTable table;
   tissueLinkTable(model, spec, lattice, cols, 64, table);

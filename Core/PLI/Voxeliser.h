@@ -19,12 +19,12 @@ namespace pli
 /// bundles of spec (fibers of other bundles are skipped and counted), S of a slot its largest layer
 /// scale (§3.3), the radius taper spec.radius.
 void tissueLinkTable(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const ColumnRange& region, std::int64_t binSize, LinkTable& table);
+  const GridRange& region, std::int64_t binSize, LinkTable& table);
 
 /// Voxel data of the columns `cols` × [0, n_z) (global indices), z fastest in memory.
 struct TissueBlock
 {
-  ColumnRange cols;
+  GridRange cols;
   std::int64_t nz = 0;
   std::vector<std::uint32_t> words; ///< 4 per voxel
 
@@ -44,7 +44,7 @@ struct TissueBlock
   void axis(std::int64_t i, std::int64_t j, std::int64_t k, float out[3]) const;
   void setVoxel(std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t label, const float axis[3]);
   /// Sizes the buffer (reusing its capacity) for cols × nz, all voxels unowned.
-  void reset(const ColumnRange& c, std::int64_t nzIn);
+  void reset(const GridRange& c, std::int64_t nzIn);
 };
 
 struct VoxeliseStats
@@ -62,7 +62,7 @@ struct VoxeliseStats
 /// label 0 and are never read). This trims the tilt halo of §3.5 to the "bow-tie" the rays use.
 struct HaloShape
 {
-  ColumnRange core;
+  GridRange core;
   std::vector<std::int64_t> reach;
 };
 void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const SectionLattice& lattice,
@@ -70,7 +70,7 @@ void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const Section
 
 /// Convenience for tests and field export: links for `cols`, then voxeliseBlock.
 VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const ColumnRange& cols, TissueBlock& block, LateralOutside lateral = LateralOutside::SampleFibers);
+  const GridRange& cols, TissueBlock& block, LateralOutside lateral = LateralOutside::SampleFibers);
 
 } // namespace pli
 } // namespace fiberpli

@@ -14,7 +14,7 @@ std::vector<int> bundlesOf(const FiberModel& model)
 }
 
 void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles, const std::vector<double>& slotScale,
-  RadiusModel radius, const SectionLattice& lat, const ColumnRange& region, std::int64_t binSize, LinkTable& t)
+  RadiusModel radius, const SectionLattice& lat, const GridRange& region, std::int64_t binSize, LinkTable& t)
 {
   t = LinkTable();
   t.radius = radius;
@@ -88,7 +88,7 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
   }
 }
 
-void candidateLinks(const LinkTable& t, const ColumnRange& fill, std::vector<std::uint32_t>& cand)
+void candidateLinks(const LinkTable& t, const GridRange& fill, std::vector<std::uint32_t>& cand)
 {
   cand.clear();
   if (fill.nx() <= 0 || fill.ny() <= 0 || t.links.empty())

@@ -56,13 +56,13 @@ struct LinkTable
 /// and the slab z ∈ [0, n_z). slotBundles are the bundle ids of the slots (sorted, distinct),
 /// slotScale their S; fibers of other bundles are skipped and counted.
 void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles, const std::vector<double>& slotScale,
-  RadiusModel radius, const SectionLattice& lattice, const ColumnRange& region, std::int64_t binSize, LinkTable& table);
+  RadiusModel radius, const SectionLattice& lattice, const GridRange& region, std::int64_t binSize, LinkTable& table);
 
 /// Sorted distinct bundle ids of the model's fibers (the slots of a table that skips no fiber).
 std::vector<int> bundlesOf(const FiberModel& model);
 
 /// The ids g of the links whose bins meet the columns `fill`, sorted and distinct.
-void candidateLinks(const LinkTable& table, const ColumnRange& fill, std::vector<std::uint32_t>& out);
+void candidateLinks(const LinkTable& table, const GridRange& fill, std::vector<std::uint32_t>& out);
 
 /// The tie-break of the rule: a link at d² with id g takes a voxel held at storedD2 by storedG.
 inline bool ownerWins(double d2, std::uint32_t g, double storedD2, std::uint32_t storedG)
@@ -80,7 +80,7 @@ inline double radiusAt(const SectionLink& l, double t, RadiusModel m)
 /// of the rule). `column(i, j)` gives a visitor for column (i, j) with `bool skip(k)` (a voxel the
 /// caller never reads: not even tested) and `void cover(k, d2, r)` (covered, at d² and local radius r).
 template <class Column>
-void forEachCoveredVoxel(const LinkTable& t, std::uint32_t g, const ColumnRange& fill, std::int64_t nz, Column&& column)
+void forEachCoveredVoxel(const LinkTable& t, std::uint32_t g, const GridRange& fill, std::int64_t nz, Column&& column)
 {
   const SectionLink& lk = t.links[g];
   const double S = t.scale[static_cast<std::size_t>(lk.slot)];

@@ -1,6 +1,7 @@
 /// PLIFields: the names of the arrays and field data of a PLISimulation image (docs/pli-simulation.md
-/// §7), written by PLISimulation and read by PLIAnalysis (and named in the Core's messages): one
-/// place for every writer and reader, so that a name cannot drift between them.
+/// §7), written by PLISimulation and read by PLIAnalysis (and named in the Core's messages), and
+/// of the field data the analysis filters add: one place for every writer and reader, so that a
+/// name cannot drift between them.
 #pragma once
 
 #include <cstddef>
@@ -44,6 +45,9 @@ constexpr const char* kLayersPerBundle = "layers_per_bundle"; ///< field data, i
 // Field data PLIAnalysis adds to its maps.
 constexpr const char* kReferenceRetardation = "reference_retardation";
 constexpr const char* kInclinationMethod = "inclination_method"; ///< int
+
+// Field data FiberOrientationMap adds to its image.
+constexpr const char* kMaskThreshold = "mask_threshold"; ///< absolute threshold of the mask
 
 } // namespace plifield
 } // namespace fiberpli

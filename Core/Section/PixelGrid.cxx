@@ -7,7 +7,7 @@
 namespace fiberpli
 {
 
-std::string validatePixelRange(std::int64_t nx, std::int64_t ny, const PixelRange& r)
+std::string validatePixelRange(std::int64_t nx, std::int64_t ny, const GridRange& r)
 {
   std::ostringstream msg;
   if (nx < 0 || ny < 0)
@@ -86,7 +86,7 @@ std::string checkPixelGrid(const PixelGrid& g, std::int64_t& nx, std::int64_t& n
   return {};
 }
 
-ColumnRange voxelColumnsOf(const PixelGrid& g, const PixelRange& px)
+GridRange voxelColumnsOf(const PixelGrid& g, const GridRange& px)
 {
   const double scale = g.scale();
   std::int64_t a, b, c, d, tmp;
@@ -94,7 +94,7 @@ ColumnRange voxelColumnsOf(const PixelGrid& g, const PixelRange& px)
   voxelsOfPixel(px.i1 - 1, scale, g.lattice.n[0], tmp, b);
   voxelsOfPixel(px.j0, scale, g.lattice.n[1], c, tmp);
   voxelsOfPixel(px.j1 - 1, scale, g.lattice.n[1], tmp, d);
-  return ColumnRange{ a, b, c, d };
+  return GridRange{ a, b, c, d };
 }
 
 } // namespace fiberpli

@@ -11,9 +11,9 @@
 namespace fiberpli
 {
 
-/// Half-open rectangle [i0, i1) × [j0, j1) of a 2-D index grid: pixels of an image (PixelRange: an
-/// MPI piece or an UPDATE_EXTENT, pixel (i, j) has linear index i + nx·j) or global voxel columns
-/// of a lattice (ColumnRange).
+/// Half-open rectangle [i0, i1) × [j0, j1) of a 2-D index grid: pixels of an image (an MPI piece
+/// or an UPDATE_EXTENT, pixel (i, j) has linear index i + nx·j) or global voxel columns of a
+/// lattice.
 struct GridRange
 {
   std::int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
@@ -21,15 +21,13 @@ struct GridRange
   std::int64_t ny() const { return j1 - j0; }
   std::int64_t count() const { return nx() * ny(); }
 };
-using PixelRange = GridRange;
-using ColumnRange = GridRange;
 
 /// The whole nx × ny image.
-inline PixelRange wholeImage(std::int64_t nx, std::int64_t ny) { return { 0, nx, 0, ny }; }
+inline GridRange wholeImage(std::int64_t nx, std::int64_t ny) { return { 0, nx, 0, ny }; }
 
 /// Empty string when nx, ny >= 0 and the range lies inside the image (an empty range is allowed),
 /// else a message naming the offending bound.
-std::string validatePixelRange(std::int64_t nx, std::int64_t ny, const PixelRange& range);
+std::string validatePixelRange(std::int64_t nx, std::int64_t ny, const GridRange& range);
 
 /// Pixel of voxel index i for scale = VoxelSize/PixelSize: floor((i + ½)·scale) (§5.2).
 std::int64_t pixelOfVoxel(std::int64_t i, double scale);
@@ -52,6 +50,6 @@ struct PixelGrid
 std::string checkPixelGrid(const PixelGrid& grid, std::int64_t& nx, std::int64_t& ny);
 
 /// The voxel columns that bin into the pixels of `pixels` (a non-empty range inside the image).
-ColumnRange voxelColumnsOf(const PixelGrid& grid, const PixelRange& pixels);
+GridRange voxelColumnsOf(const PixelGrid& grid, const GridRange& pixels);
 
 } // namespace fiberpli

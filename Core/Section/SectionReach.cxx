@@ -3,7 +3,7 @@
 namespace fiberpli
 {
 
-TileReach columnsReach(const SectionLattice& lat, const ColumnRange& c, double radiusScale)
+TileReach columnsReach(const SectionLattice& lat, const GridRange& c, double radiusScale)
 {
   TileReach r;
   if (c.nx() < 1 || c.ny() < 1 || lat.n[2] < 1)

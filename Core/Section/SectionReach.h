@@ -14,6 +14,6 @@ namespace fiberpli
 /// radius scale S: buildLinkTable (Section/LinkTable.h) keeps a link when its bounding box grown by
 /// S·r holds a voxel centre of the columns, so the box of those centres grown by one voxel holds
 /// every link it keeps, whatever the rounding of either test. Empty columns read nothing.
-TileReach columnsReach(const SectionLattice& lattice, const ColumnRange& c, double radiusScale);
+TileReach columnsReach(const SectionLattice& lattice, const GridRange& c, double radiusScale);
 
 } // namespace fiberpli

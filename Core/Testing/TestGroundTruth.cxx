@@ -290,7 +290,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   }
   EXPECT_GT(tissuePixels, 50); // the test must look at real tissue
 
-  ASSERT_EQ(computeGroundTruth(m, lat, o2, PixelRange{ 3, 8, 2, 6 }, part).error, "");
+  ASSERT_EQ(computeGroundTruth(m, lat, o2, GridRange{ 3, 8, 2, 6 }, part).error, "");
   for (std::int64_t j = 0; j < 10; ++j)
   {
     for (std::int64_t i = 0; i < 10; ++i)
@@ -314,7 +314,7 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   FiberModel broken = m;
   broken.fibers[3].radii[0] = -1;
   EXPECT_NE(computeGroundTruth(broken, lat, o1, wholeImage(10, 10), part).error, "");
-  EXPECT_NE(computeGroundTruth(m, lat, o1, PixelRange{ 0, 11, 0, 10 }, part).error, "");
+  EXPECT_NE(computeGroundTruth(m, lat, o1, GridRange{ 0, 11, 0, 10 }, part).error, "");
 }
 
 // Whole-model histogram (fastPLI orientation.py): links along +x, −x, +y, −z and a 45° link.

@@ -41,11 +41,11 @@ TEST(GroundTruthMemory, HistogramsOnlyWhenAsked)
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 1;
-  ASSERT_EQ(computeGroundTruth(diagonalFiber(8), lat, o, PixelRange{ 0, 8, 0, 8 }, maps).error, "");
+  ASSERT_EQ(computeGroundTruth(diagonalFiber(8), lat, o, GridRange{ 0, 8, 0, 8 }, maps).error, "");
   EXPECT_TRUE(maps.histogram.empty());
   EXPECT_EQ(maps.fraction.size(), 64u);
   o.histogram = true;
-  ASSERT_EQ(computeGroundTruth(diagonalFiber(8), lat, o, PixelRange{ 0, 8, 0, 8 }, maps).error, "");
+  ASSERT_EQ(computeGroundTruth(diagonalFiber(8), lat, o, GridRange{ 0, 8, 0, 8 }, maps).error, "");
   EXPECT_EQ(maps.histogram.size(), 64u * 18u * 9u);
 }
 
@@ -56,7 +56,7 @@ TEST(GroundTruthMemory, SizeFollowsTheMemoryBudget)
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 1;
-  const std::string err = computeGroundTruth(diagonalFiber(10), lat, o, PixelRange{ 0, 500, 0, 500 }, maps).error;
+  const std::string err = computeGroundTruth(diagonalFiber(10), lat, o, GridRange{ 0, 500, 0, 500 }, maps).error;
   EXPECT_NE(err.find("500 x 500 pixels"), std::string::npos) << err;
   EXPECT_NE(err.find("memory budget"), std::string::npos) << err;
   EXPECT_TRUE(maps.fraction.empty()) << "allocated before the check";
@@ -74,7 +74,7 @@ TEST(GroundTruthMemory, LargeGridInBoundedMemory)
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;
-    const std::string err = computeGroundTruth(diagonalFiber(1500), lat, o, PixelRange{ 0, 1500, 0, 1500 }, maps).error;
+    const std::string err = computeGroundTruth(diagonalFiber(1500), lat, o, GridRange{ 0, 1500, 0, 1500 }, maps).error;
     const double grown = peakRssBytes() - before;
     const bool ok = err.empty() && maps.fraction[0] > 0.0 && grown < 400.0 * 1024 * 1024;
     if (!ok)

@@ -273,7 +273,7 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
   EXPECT_NEAR(one.transmittance[10], 2 * 1010.0, 1e-9);
   EXPECT_NEAR(one.retardation[10], 0.2, 1e-12);
 
-  const PixelRange r{ 2, 5, 1, 4 };
+  const GridRange r{ 2, 5, 1, 4 };
   ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, r, 2, part).error, "");
   for (std::int64_t j = 0; j < ny; ++j)
   {
@@ -291,7 +291,7 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
       }
     }
   }
-  EXPECT_NE(computeEpa(stack.data(), nx, ny, rho, PixelRange{ 0, 8, 0, 5 }, 1, part).error, "");
+  EXPECT_NE(computeEpa(stack.data(), nx, ny, rho, GridRange{ 0, 8, 0, 5 }, 1, part).error, "");
   // Cancellation is reported, not ignored.
   EXPECT_TRUE(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part, [](double) { return false; }).aborted);
 }
@@ -717,5 +717,5 @@ TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
   o.noiseGain = -0.5;
   PliStack stack;
   PliAnalysisMaps maps;
-  EXPECT_NE(analysePli(stack, o, PixelRange{ 0, 0, 0, 0 }, maps).error.find("NoiseGain is -0.5"), std::string::npos);
+  EXPECT_NE(analysePli(stack, o, GridRange{ 0, 0, 0, 0 }, maps).error.find("NoiseGain is -0.5"), std::string::npos);
 }

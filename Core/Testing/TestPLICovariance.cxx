@@ -79,7 +79,7 @@ PLIOptions options(Interp interp, double step)
 PLIImage run(const FiberModel& m, const PLIOptions& o)
 {
   PLIImage img;
-  const Status st = runPLI(m, o, PixelRange{}, img);
+  const Status st = runPLI(m, o, GridRange{}, img);
   EXPECT_TRUE(st.ok()) << st.error;
   return img;
 }

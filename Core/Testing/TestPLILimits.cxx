@@ -55,7 +55,7 @@ bool allFinite(const PLIImage& img)
 std::string errorOf(const PLIOptions& o)
 {
   PLIImage img;
-  return runPLI(oneFiber(), o, PixelRange{}, img).error;
+  return runPLI(oneFiber(), o, GridRange{}, img).error;
 }
 
 void expectNames(const std::string& error, const char* property, const char* value)
@@ -86,13 +86,13 @@ TEST(PLILimits, WidestOpticalSigmaStillWorks)
   PLIOptions o = smallOptions();
   o.opticalSigma = 2.0;
   PLIImage img;
-  const Status st = runPLI(FiberModel{}, o, PixelRange{}, img);
+  const Status st = runPLI(FiberModel{}, o, GridRange{}, img);
   ASSERT_TRUE(st.ok()) << st.error;
   ASSERT_TRUE(allFinite(img));
   PLIOptions sharp = o;
   sharp.opticalSigma = 0.0;
   PLIImage ref;
-  ASSERT_TRUE(runPLI(FiberModel{}, sharp, PixelRange{}, ref).ok());
+  ASSERT_TRUE(runPLI(FiberModel{}, sharp, GridRange{}, ref).ok());
   ASSERT_EQ(img.views[0].data.size(), ref.views[0].data.size());
   for (std::size_t k = 0; k < ref.views[0].data.size(); ++k)
     EXPECT_NEAR(img.views[0].data[k], ref.views[0].data[k], 1e-9 * o.lightIntensity);
@@ -104,16 +104,16 @@ TEST(PLILimits, BlurLongerThanTheImageKeepsTotals)
 {
   const std::int64_t n = 5;
   Stack in;
-  in.resize(ColumnRange{ 0, n, 0, n }, 1);
+  in.resize(GridRange{ 0, n, 0, n }, 1);
   for (std::size_t k = 0; k < in.data.size(); ++k)
     in.data[k] = static_cast<double>((k * 7919) % 13);
   const double total = std::accumulate(in.data.begin(), in.data.end(), 0.0);
   Stack out;
-  ASSERT_TRUE(blurStack(in, n, n, 2.4, ColumnRange{ 0, n, 0, n }, out).ok()); // R = 10 = 2n
+  ASSERT_TRUE(blurStack(in, n, n, 2.4, GridRange{ 0, n, 0, n }, out).ok()); // R = 10 = 2n
   EXPECT_NEAR(std::accumulate(out.data.begin(), out.data.end(), 0.0), total, 1e-9 * total);
   Stack flat = in, flatOut;
   std::fill(flat.data.begin(), flat.data.end(), 3.0);
-  ASSERT_TRUE(blurStack(flat, n, n, 2.4, ColumnRange{ 0, n, 0, n }, flatOut).ok());
+  ASSERT_TRUE(blurStack(flat, n, n, 2.4, GridRange{ 0, n, 0, n }, flatOut).ok());
   for (double v : flatOut.data)
     EXPECT_NEAR(v, 3.0, 1e-12);
 }
@@ -126,9 +126,9 @@ TEST(PLILimits, GaussianRadiusCannotOverflow)
   EXPECT_EQ(gaussianRadius(INFINITY), -1);
   EXPECT_TRUE(gaussianWeights(1e9).empty());
   Stack in, out;
-  in.resize(ColumnRange{ 0, 4, 0, 4 }, 1);
-  EXPECT_FALSE(blurStack(in, 4, 4, 1e9, ColumnRange{ 0, 4, 0, 4 }, out).ok());
-  EXPECT_FALSE(blurStack(in, 4, 4, 3.0, ColumnRange{ 0, 4, 0, 4 }, out).ok()); // R = 12 > 2·4
+  in.resize(GridRange{ 0, 4, 0, 4 }, 1);
+  EXPECT_FALSE(blurStack(in, 4, 4, 1e9, GridRange{ 0, 4, 0, 4 }, out).ok());
+  EXPECT_FALSE(blurStack(in, 4, 4, 3.0, GridRange{ 0, 4, 0, 4 }, out).ok()); // R = 12 > 2·4
 }
 
 // 1e308 gave inf images.
@@ -140,7 +140,7 @@ TEST(PLILimits, LightIntensityAboveTheLimitIsRefused)
   o.lightIntensity = kMaxLightIntensity;
   o.noiseGain = 3.0;
   PLIImage img;
-  ASSERT_TRUE(runPLI(oneFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(oneFiber(), o, GridRange{}, img).ok());
   EXPECT_TRUE(allFinite(img));
 }
 
@@ -152,14 +152,14 @@ TEST(PLILimits, NoiseGainAboveTheLimitIsRefused)
   expectNames(errorOf(o), "NoiseGain", "1e+300");
   o.noiseGain = kMaxNoiseGain;
   PLIImage img;
-  ASSERT_TRUE(runPLI(oneFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(oneFiber(), o, GridRange{}, img).ok());
   ASSERT_TRUE(allFinite(img));
   // Mean I, variance g·I: over 8·8·6 counts of mean ~13000 the average stays within a few σ.
   double sum = 0.0, expected = 0.0;
   PLIOptions quiet = o;
   quiet.noiseGain = 0.0;
   PLIImage ref;
-  ASSERT_TRUE(runPLI(oneFiber(), quiet, PixelRange{}, ref).ok());
+  ASSERT_TRUE(runPLI(oneFiber(), quiet, GridRange{}, ref).ok());
   for (std::size_t k = 0; k < img.views[0].data.size(); ++k)
   {
     sum += img.views[0].data[k];
@@ -182,7 +182,7 @@ TEST(PLILimits, BirefringenceAboveOneIsRefused)
   expectNames(errorOf(o), "Birefringence", "1e+308");
   o.birefringence = -kMaxBirefringence;
   PLIImage img;
-  ASSERT_TRUE(runPLI(oneFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(oneFiber(), o, GridRange{}, img).ok());
   EXPECT_TRUE(allFinite(img));
 }
 
@@ -193,12 +193,12 @@ TEST(PLILimits, SimulationSizeFollowsTheMemoryBudget)
   PLIImage img;
   {
     fiberpli::testing::MemoryLimitGuard limit("64K");
-    const Status st = runPLI(oneFiber(), o, PixelRange{}, img);
+    const Status st = runPLI(oneFiber(), o, GridRange{}, img);
     EXPECT_NE(st.error.find("VoxelSize"), std::string::npos) << st.error;
     EXPECT_NE(st.error.find("memory budget"), std::string::npos) << st.error;
   }
   fiberpli::testing::MemoryLimitGuard limit("64M");
-  EXPECT_TRUE(runPLI(oneFiber(), o, PixelRange{}, img).ok());
+  EXPECT_TRUE(runPLI(oneFiber(), o, GridRange{}, img).ok());
 }
 
 // The budget is per piece: a whole image above it is refused, but its quarter (one MPI rank's
@@ -210,8 +210,8 @@ TEST(PLILimits, MemoryBudgetIsCheckedPerPiece)
   std::copy(voi, voi + 6, o.volumeOfInterest);
   PLIPlan plan;
   ASSERT_TRUE(planPLI(oneFiber(), o, plan).ok());
-  const PixelRange whole{ 0, plan.pixels[0], 0, plan.pixels[1] };
-  const PixelRange quarter{ 0, plan.pixels[0] / 2, 0, plan.pixels[1] / 2 };
+  const GridRange whole{ 0, plan.pixels[0], 0, plan.pixels[1] };
+  const GridRange quarter{ 0, plan.pixels[0] / 2, 0, plan.pixels[1] / 2 };
   const double wholeBytes = estimatePieceBytes(plan, o, whole);
   const double pieceBytes = estimatePieceBytes(plan, o, quarter);
   ASSERT_LT(1.5 * pieceBytes, wholeBytes);

@@ -17,14 +17,14 @@ namespace
 Stack image(std::int64_t nx, std::int64_t ny, int nr = 1)
 {
   Stack s;
-  s.resize(ColumnRange{ 0, nx, 0, ny }, nr);
+  s.resize(GridRange{ 0, nx, 0, ny }, nr);
   return s;
 }
 
 Stack blurAll(const Stack& in, double sigma)
 {
   Stack out;
-  const Status st = blurStack(in, in.nx, in.ny, sigma, ColumnRange{ 0, in.nx, 0, in.ny }, out);
+  const Status st = blurStack(in, in.nx, in.ny, sigma, GridRange{ 0, in.nx, 0, in.ny }, out);
   EXPECT_TRUE(st.ok()) << st.error;
   return out;
 }
@@ -193,7 +193,7 @@ TEST(PLIOptics, NoiseKeyedByGlobalPixel)
   for (double& v : whole.data)
     v = 900;
   Stack piece;
-  piece.resize(ColumnRange{ 3, 7, 2, 5 }, 4);
+  piece.resize(GridRange{ 3, 7, 2, 5 }, 4);
   for (double& v : piece.data)
     v = 900;
   addNoise(whole, 3, 9, 2, 8, 1);

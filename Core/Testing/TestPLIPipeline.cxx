@@ -85,7 +85,7 @@ PLIOptions cubeOptions()
 TEST(PLIPipeline, S6UniformSlabPhysical)
 {
   PLIImage img;
-  const Status st = runPLI(slabFiber(), slabOptions(), PixelRange{}, img);
+  const Status st = runPLI(slabFiber(), slabOptions(), GridRange{}, img);
   ASSERT_TRUE(st.ok()) << st.error;
   EXPECT_FALSE(img.emptySection);
   EXPECT_EQ(img.plan.pixels[0], 10);
@@ -101,21 +101,21 @@ TEST(PLIPipeline, S6UniformSlabFastPLIConventionAndAbsorption)
   PLIOptions o = slabOptions();
   o.tiltConvention = TiltConvention::FastPLI;
   PLIImage img;
-  ASSERT_TRUE(runPLI(slabFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(slabFiber(), o, GridRange{}, img).ok());
   const double dir[5] = { 30.0, 29.1380, 31.5904, 31.1522, 28.1205 };
   const double ret[5] = { 0.592436, 0.622326, 0.611887, 0.560579, 0.576308 };
   expectViews(img, dir, ret);
 
   o = slabOptions();
   o.layers = "1 -0.001 5 p";
-  ASSERT_TRUE(runPLI(slabFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(slabFiber(), o, GridRange{}, img).ok());
   EXPECT_NEAR(epa(img.views[0].data.data(), 18).T, 9630.6369, 1e-3);
   for (int v = 1; v < 5; ++v)
     EXPECT_NEAR(epa(img.views[v].data.data(), 18).T, 9617.2834, 1e-3);
 
   o = slabOptions();
   o.stepRule = StepRule::FastPLIMidpoint;
-  ASSERT_TRUE(runPLI(slabFiber(), o, PixelRange{}, img).ok());
+  ASSERT_TRUE(runPLI(slabFiber(), o, GridRange{}, img).ok());
   EXPECT_NEAR(epa(img.views[1].data.data(), 18).ret, 0.558309, 1e-6);
 }
 
@@ -153,12 +153,12 @@ TEST(PLIPipeline, ThreadsAndTilesGiveBitIdenticalImages)
   const FiberModel m = smallCube();
   PLIOptions o = cubeOptions();
   PLIImage a, b, c;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, a).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, a).ok());
   EXPECT_FALSE(a.emptySection);
   o.numberOfThreads = 2;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, b).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, b).ok());
   o.tileSize = 7;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, c).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, c).ok());
   ASSERT_EQ(a.views.size(), 5u);
   for (int v = 0; v < 5; ++v)
   {
@@ -175,10 +175,10 @@ TEST(PLIPipeline, SubRectangleEqualsCropOfWholeImage)
   const FiberModel m = smallCube();
   const PLIOptions o = cubeOptions();
   PLIImage whole;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, whole).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, whole).ok());
   ASSERT_EQ(whole.plan.pixels[0], 8);
-  const PixelRange pieces[] = { { 0, 3, 0, 8 }, { 3, 8, 0, 2 }, { 3, 8, 2, 8 }, { 5, 6, 4, 5 } };
-  for (const PixelRange& r : pieces)
+  const GridRange pieces[] = { { 0, 3, 0, 8 }, { 3, 8, 0, 2 }, { 3, 8, 2, 8 }, { 5, 6, 4, 5 } };
+  for (const GridRange& r : pieces)
   {
     PLIImage piece;
     ASSERT_TRUE(runPLI(m, o, r, piece).ok());
@@ -196,10 +196,10 @@ TEST(PLIPipeline, SeededNoiseIsReproducible)
   const FiberModel m = smallCube();
   PLIOptions o = cubeOptions();
   PLIImage a, b, c;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, a).ok());
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, b).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, a).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, b).ok());
   o.seed = 18;
-  ASSERT_TRUE(runPLI(m, o, PixelRange{}, c).ok());
+  ASSERT_TRUE(runPLI(m, o, GridRange{}, c).ok());
   EXPECT_EQ(a.views[0].data, b.views[0].data);
   EXPECT_NE(a.views[0].data, c.views[0].data);
   for (double v : a.views[0].data)
@@ -214,7 +214,7 @@ TEST(PLIPipeline, EmptySectionGivesBackgroundAndWarning)
   o.noiseGain = 0;
   o.backgroundAbsorption = 2;
   PLIImage img;
-  const Status st = runPLI(smallCube(), o, PixelRange{}, img);
+  const Status st = runPLI(smallCube(), o, GridRange{}, img);
   ASSERT_TRUE(st.ok());
   EXPECT_TRUE(img.emptySection);
   EXPECT_FALSE(st.warnings.empty());
@@ -230,28 +230,28 @@ TEST(PLIPipeline, OptionsAreValidatedBeforeAllocation)
   PLIImage img;
   PLIOptions o = cubeOptions();
   o.voxelSize = 0;
-  EXPECT_NE(runPLI(m, o, PixelRange{}, img).error.find("VoxelSize"), std::string::npos);
+  EXPECT_NE(runPLI(m, o, GridRange{}, img).error.find("VoxelSize"), std::string::npos);
   o = cubeOptions();
   o.volumeOfInterest[2] = 5; // y min > y max only
-  EXPECT_NE(runPLI(m, o, PixelRange{}, img).error.find("VolumeOfInterest y"), std::string::npos);
+  EXPECT_NE(runPLI(m, o, GridRange{}, img).error.find("VolumeOfInterest y"), std::string::npos);
   o = cubeOptions();
   o.pixelSize = 0.1;
-  EXPECT_NE(runPLI(m, o, PixelRange{}, img).error.find("PixelSize"), std::string::npos);
+  EXPECT_NE(runPLI(m, o, GridRange{}, img).error.find("PixelSize"), std::string::npos);
   o = cubeOptions();
   const double huge[6] = { -5000, 5000, -5000, 5000, -30, 30 };
   std::copy(huge, huge + 6, o.volumeOfInterest);
   o.voxelSize = 0.05;
-  const Status st = runPLI(m, o, PixelRange{}, img);
+  const Status st = runPLI(m, o, GridRange{}, img);
   EXPECT_NE(st.error.find("GiB"), std::string::npos) << st.error;
   EXPECT_NE(st.error.find("VoxelSize"), std::string::npos);
   o = cubeOptions();
   o.tiltAngle = 45;
-  EXPECT_NE(runPLI(m, o, PixelRange{}, img).error.find("TiltAngle"), std::string::npos);
+  EXPECT_NE(runPLI(m, o, GridRange{}, img).error.find("TiltAngle"), std::string::npos);
   o = cubeOptions();
   o.noiseGain = 0.5;
-  EXPECT_NE(runPLI(m, o, PixelRange{}, img).error.find("NoiseGain"), std::string::npos);
+  EXPECT_NE(runPLI(m, o, GridRange{}, img).error.find("NoiseGain"), std::string::npos);
   o = cubeOptions();
-  EXPECT_FALSE(runPLI(m, o, PixelRange{ 0, 9, 0, 2 }, img).ok()); // outside the 8 x 8 image
+  EXPECT_FALSE(runPLI(m, o, GridRange{ 0, 9, 0, 2 }, img).ok()); // outside the 8 x 8 image
 
   PLIPlan plan;
   ASSERT_TRUE(planPLI(m, cubeOptions(), plan).ok());

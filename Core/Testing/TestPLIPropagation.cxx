@@ -48,7 +48,7 @@ std::vector<double> singleVoxel(const Vec3& u, double dn, double mu, SimParams p
   FiberModel m;
   m.fibers.push_back(line({ 30, 30, 30 }, u, 1e4, 1e4));
   std::vector<Stack> out;
-  SimResult r = simulate(m, oneLayer(dn, mu), voxels(1), p, { view }, ColumnRange{ 0, 1, 0, 1 }, out);
+  SimResult r = simulate(m, oneLayer(dn, mu), voxels(1), p, { view }, GridRange{ 0, 1, 0, 1 }, out);
   EXPECT_TRUE(r.status.ok()) << r.status.error;
   EXPECT_FALSE(r.emptySection);
   return std::vector<double>(out[0].data.begin(), out[0].data.end());
@@ -143,7 +143,7 @@ TEST(PLIPropagation, S4StackedVoxelsFixTheHandedness)
     m.fibers.push_back(line({ 30, 30, 30 }, dirVec(row.bottom, 0), 1e3, 40));
     m.fibers.push_back(line({ 30, 30, 90 }, dirVec(row.top, 0), 1e3, 40));
     std::vector<Stack> out;
-    SimResult r = simulate(m, oneLayer(-0.001, 0), voxels(2), params(), { View{} }, ColumnRange{ 0, 1, 0, 1 }, out);
+    SimResult r = simulate(m, oneLayer(-0.001, 0), voxels(2), params(), { View{} }, GridRange{ 0, 1, 0, 1 }, out);
     ASSERT_TRUE(r.status.ok()) << r.status.error;
     const Epa e = epa(out[0].data.data(), 6);
     EXPECT_NEAR(e.T, 13000, 13000 * 1e-9);

@@ -47,7 +47,7 @@ PLIOptions slabOptions()
 PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, InclinationMethod method)
 {
   PLIImage img;
-  const Status st = runPLI(m, o, fiberpli::PixelRange{}, img);
+  const Status st = runPLI(m, o, fiberpli::GridRange{}, img);
   EXPECT_TRUE(st.ok()) << st.error;
   PliStack s;
   s.nx = img.plan.pixels[0];
@@ -96,8 +96,8 @@ TEST(PLISetUp, ArbitraryPolarizerAnglesGiveTheFiberDirection)
   a.rotationAngles = { 0, 15, 50, 100, 170 };
   b.rotationAngles = { 170, 50, 0, 100, 15 };
   PLIImage ia, ib;
-  ASSERT_TRUE(runPLI(slab(37, 20), a, fiberpli::PixelRange{}, ia).ok());
-  ASSERT_TRUE(runPLI(slab(37, 20), b, fiberpli::PixelRange{}, ib).ok());
+  ASSERT_TRUE(runPLI(slab(37, 20), a, fiberpli::GridRange{}, ia).ok());
+  ASSERT_TRUE(runPLI(slab(37, 20), b, fiberpli::GridRange{}, ib).ok());
   const int perm[5] = { 4, 2, 0, 3, 1 }; // b[k] = a[perm[k]]
   for (int k = 0; k < 5; ++k)
     EXPECT_EQ(ib.views[0].at(3, 4, k), ia.views[0].at(3, 4, perm[k]));

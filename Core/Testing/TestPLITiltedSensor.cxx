@@ -48,7 +48,7 @@ PLIOptions bandOptions(bool sensor)
   return o;
 }
 
-PLIImage run(const FiberModel& m, const PLIOptions& o, PixelRange px = PixelRange{})
+PLIImage run(const FiberModel& m, const PLIOptions& o, GridRange px = GridRange{})
 {
   PLIImage img;
   const Status st = runPLI(m, o, px, img);
@@ -171,7 +171,7 @@ TEST(PLITiltedSensor, IndependentOfTilesThreadsAndPieces)
   const PLIImage tiled = run(m, p);
   for (std::size_t v = 0; v < ref.views.size(); ++v)
     EXPECT_EQ(tiled.views[v].data, ref.views[v].data) << "view " << v;
-  const PixelRange piece{ 7, 12, 2, 9 };
+  const GridRange piece{ 7, 12, 2, 9 };
   const PLIImage part = run(m, o, piece);
   for (std::size_t v = 0; v < ref.views.size(); ++v)
     for (std::int64_t j = piece.j0; j < piece.j1; ++j)

@@ -147,8 +147,8 @@ TEST(PLIVoxeliser, S8dOrderAndSplitIndependence)
   EXPECT_TRUE(st.overlap);
   EXPECT_GT(st.labelled, 100);
   // Split into four blocks of different shapes: every voxel must match bit for bit.
-  const ColumnRange parts[] = { { 0, 5, 0, 14 }, { 5, 14, 0, 3 }, { 5, 14, 3, 9 }, { 5, 14, 9, 14 } };
-  for (const ColumnRange& c : parts)
+  const GridRange parts[] = { { 0, 5, 0, 14 }, { 5, 14, 0, 3 }, { 5, 14, 3, 9 }, { 5, 14, 9, 14 } };
+  for (const GridRange& c : parts)
   {
     TissueBlock part;
     voxelise(m, s, lat, c, part);

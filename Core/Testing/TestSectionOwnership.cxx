@@ -1,6 +1,9 @@
-// The ground truth's owner of every voxel is the voxeliser's (docs/pli-simulation.md §3.3): the
-// orientation a ground-truth pixel reports is the one the simulation voxelised, also for voxels
-// whose centre is (nearly) equidistant from two fibers and for voxels on a capsule's surface.
+// Guards the callers of the one ownership rule (ownerWins in Section/LinkTable.h,
+// docs/pli-simulation.md §3.3): the voxeliser and the ground truth both ask it for a voxel's owner
+// and must hand it the same voxel (same centre, same units), so the orientation a ground-truth
+// pixel reports is the one the simulation voxelised, also for voxels whose centre is (nearly)
+// equidistant from two fibers and for voxels on a capsule's surface, where a caller converting µm
+// and voxel units differently would pick a different owner.
 #include "Analysis/GroundTruth.h"
 #include "PLI/Voxeliser.h"
 #include "PLITestUtil.h"

@@ -381,3 +381,29 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   EXPECT_NE(results[0].error.find("exactly once"), std::string::npos) << results[0].error;
 }
 
+
+// A resumed run that fails (here: its next checkpoint cannot be written, a directory stands where
+// the file was; the run resumed from the previous generation) leaves the caller's model as it was.
+TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
+{
+  const FiberModel in = denseOpenCube();
+  CollisionSolverOptions o;
+  o.maxSteps = 30;
+  TempFile file;
+  FiberModel m = in;
+  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+  ASSERT_EQ(std::remove(file.path.c_str()), 0); // steps 30 gone, 20 kept as .prev
+  ASSERT_EQ(::mkdir(file.path.c_str(), 0700), 0);
+  FiberModel resumed = in;
+  int firstStep = -1;
+  const CollisionSolverResult r = solveWithCheckpoints(resumed, o, { file.path, 5, true }, {},
+    [&](int step, const FiberModel&) {
+      if (firstStep < 0)
+        firstStep = step;
+    });
+  ::rmdir(file.path.c_str());
+  EXPECT_EQ(firstStep, 21) << "resumed from the previous generation";
+  EXPECT_NE(r.error.find(file.path), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("at step 25"), std::string::npos) << r.error;
+  EXPECT_TRUE(bitwiseEqual(resumed, in)) << "the caller's model must be unchanged";
+}

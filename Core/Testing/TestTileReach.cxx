@@ -95,7 +95,7 @@ double pointSegmentDistance2(const Vec3& p, const Vec3& a, const Vec3& b)
 
 /// Whether some voxel centre of columns `c` (every depth of a lattice with lower corner `o`, voxel
 /// size h and nz voxels deep) lies within S·r of a link of `fib`.
-bool touchesVoxels(const Fiber& fib, const double o[3], double h, std::int64_t nz, const ColumnRange& c, double S)
+bool touchesVoxels(const Fiber& fib, const double o[3], double h, std::int64_t nz, const GridRange& c, double S)
 {
   for (std::size_t k = 0; k + 1 < fib.size(); ++k)
   {
@@ -115,7 +115,7 @@ bool touchesVoxels(const Fiber& fib, const double o[3], double h, std::int64_t n
 /// Brute force: no fiber of `model` missing from `part` (a selection in model order, ids
 /// distinct) touches a voxel of the columns.
 void expectLeftOutAreFar(const FiberModel& model, const FiberModel& part, const double o[3], double h,
-  std::int64_t nz, const ColumnRange& c, double S)
+  std::int64_t nz, const GridRange& c, double S)
 {
   std::size_t next = 0;
   for (const Fiber& f : model.fibers)
@@ -156,9 +156,9 @@ TEST(TileReach, SelectedFibersGiveTheSameTileAndLeaveOutOnlyFarFibers)
   PLIPlan plan;
   ASSERT_TRUE(planPLI(model, o, plan).ok());
   // Tiles of a 2 × 2 split and one of a single pixel row at the edge.
-  const std::vector<fiberpli::PixelRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 }, { 0, 16, 12, 24 }, { 16, 32, 12, 24 },
+  const std::vector<fiberpli::GridRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 }, { 0, 16, 12, 24 }, { 16, 32, 12, 24 },
     { 0, 32, 23, 24 } };
-  for (const fiberpli::PixelRange& px : tiles)
+  for (const fiberpli::GridRange& px : tiles)
   {
     const TileReach reach = imageReach(plan, o, px);
     EXPECT_DOUBLE_EQ(reach.radiusScale, 1.2);
@@ -170,7 +170,7 @@ TEST(TileReach, SelectedFibersGiveTheSameTileAndLeaveOutOnlyFarFibers)
     ASSERT_TRUE(runPLI(part, o, px, tile).ok());
     expectSameImage(whole, tile);
     // Brute force: a fiber left out has no link within S·r of any voxel centre the rays read.
-    const ColumnRange region = linkRegion(plan.lattice, simParams(plan, o), plan.views, voxelColumnsFor(plan, o, px));
+    const GridRange region = linkRegion(plan.lattice, simParams(plan, o), plan.views, voxelColumnsFor(plan, o, px));
     expectLeftOutAreFar(model, part, plan.lattice.origin, plan.lattice.voxel, plan.lattice.n[2], region, 1.2);
   }
 }
@@ -183,7 +183,7 @@ TEST(TileReach, TiltedSensorAndTissueExportPieces)
   o.tiltAngles = { 4.0, 8.0 };
   PLIPlan plan;
   ASSERT_TRUE(planPLI(model, o, plan).ok());
-  const fiberpli::PixelRange px{ 20, 32, 0, 10 };
+  const fiberpli::GridRange px{ 20, 32, 0, 10 };
   const FiberModel part = selected(model, imageReach(plan, o, px));
   PLIImage whole, tile;
   ASSERT_TRUE(runPLI(model, o, px, whole).ok());
@@ -200,7 +200,7 @@ TEST(TileReach, TiltedSensorAndTissueExportPieces)
   EXPECT_EQ(a.label, b.label);
   EXPECT_EQ(a.axis, b.axis);
   expectLeftOutAreFar(model, inBox, plan.lattice.origin, plan.lattice.voxel, plan.lattice.n[2],
-    ColumnRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, 1.2);
+    GridRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, 1.2);
 }
 
 TEST(TileReach, GroundTruthTileFromSelectedFibers)
@@ -210,8 +210,8 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
   const PixelGrid lat = latticeForPixelGrid(Vec3{ -8, -6, 0 }, 1.0, 16, 12, -2.0, 2.0, 4);
   GroundTruthOptions opt;
   opt.threads = 1;
-  for (const fiberpli::PixelRange range :
-    { fiberpli::PixelRange{ 0, 8, 0, 6 }, fiberpli::PixelRange{ 8, 16, 6, 12 }, fiberpli::PixelRange{ 5, 6, 0, 12 } })
+  for (const fiberpli::GridRange range :
+    { fiberpli::GridRange{ 0, 8, 0, 6 }, fiberpli::GridRange{ 8, 16, 6, 12 }, fiberpli::GridRange{ 5, 6, 0, 12 } })
   {
     const FiberModel part = selected(model, groundTruthReach(lat, opt, range));
     EXPECT_LT(part.fibers.size(), model.fibers.size());
@@ -235,7 +235,7 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
       }
     EXPECT_GT(tissuePixels, 0) << "no fiber in the tile: not a real comparison";
     // The voxels that bin into the range: centres inside its pixels.
-    const ColumnRange voxels{ range.i0 * 4, range.i1 * 4, range.j0 * 4, range.j1 * 4 };
+    const GridRange voxels{ range.i0 * 4, range.i1 * 4, range.j0 * 4, range.j1 * 4 };
     expectLeftOutAreFar(model, part, lat.lattice.origin, lat.lattice.voxel, lat.lattice.n[2], voxels, 1.0);
   }
 }
@@ -255,7 +255,7 @@ TEST(TileReach, PeriodicTranslatesAgainstEveryTranslate)
   ASSERT_EQ(tileModel(tiled, cell, voi), "");
   PLIPlan plan;
   ASSERT_TRUE(planPLI(tiled, o, plan).ok());
-  const fiberpli::PixelRange px{ 40, 60, 0, 15 };
+  const fiberpli::GridRange px{ 40, 60, 0, 15 };
   TileReach reach = imageReach(plan, o, px);
   reach.periodic = true;
   reach.cell = cell;

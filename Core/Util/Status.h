@@ -11,6 +11,7 @@
 /// it).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,8 @@ struct Status
     : error(message)
   {
   }
+  /// `return nullptr;` / `return 0;` would build a std::string from a null pointer (undefined).
+  Status(std::nullptr_t) = delete;
 
   /// Neither failed nor stopped.
   bool ok() const { return error.empty() && !aborted; }

@@ -104,6 +104,16 @@ int main(int argc, char* argv[])
   controller->RegisterPipelineProxy(solver);
   cube->UpdatePipeline(); // the fibers exist before the clock starts
 
+  // Closing the window during the solve must be refused: it would delete the executing pipeline
+  // (the plugin swallows closes, keys, shortcuts, the wheel, context menus and drops meanwhile; of
+  // these only the close can be delivered in this harness: Xvfb without a window manager delivers
+  // no shortcut even outside a filter).
+  bool windowOpenAfterClose = false;
+  QTimer::singleShot(1000, [&]() {
+    window.close();
+    windowOpenAfterClose = window.isVisible();
+  });
+
   // Click after 2 s of solving; measure from the click to the end of the update.
   bool clicked = false, enabledAtClick = false;
   QElapsedTimer sinceClick, sinceStart;
@@ -121,7 +131,10 @@ int main(int argc, char* argv[])
     static_cast<long long>(afterClick));
   check(clicked, "events were processed while the solver ran (the click's timer fired)");
   check(enabledAtClick, "the abort button was enabled during the solve");
-  check(clicked && afterClick >= 0 && afterClick < 1000, "the solve stopped within a second of the click");
+  check(windowOpenAfterClose, "closing the window during the solve was refused");
+  // The solve would run for minutes (MaxSteps 10^6): stopping soon after the click is the abort.
+  // The figure (~0.3 s) is printed above; the bound is loose because CI machines are loaded.
+  check(clicked && afterClick >= 0 && afterClick < 10000, "the solve stopped soon after the click");
   auto* algorithm = vtkAlgorithm::SafeDownCast(solver->GetClientSideObject());
   check(algorithm->GetAbortExecute() == 0, "no abort request is left on the solver");
   check(!fiberpli::FiberExecutions::Running(), "no FiberPLI execution is listed as running");

@@ -10,6 +10,7 @@
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkObjectFactory.h>
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 
@@ -40,7 +41,35 @@ void ExpectErrorThenRecovery(vtkPolyData* bad, std::initializer_list<const char*
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_GT(tubes->GetOutput()->GetNumberOfCells(), 0);
 }
+/// Polydata whose MTime is fixed: two of them look unchanged to a cache that compares MTimes only.
+class FixedMTimePolyData : public vtkPolyData
+{
+public:
+  static FixedMTimePolyData* New();
+  vtkTypeMacro(FixedMTimePolyData, vtkPolyData);
+  vtkMTimeType GetMTime() override { return 1; }
+};
+vtkStandardNewMacro(FixedMTimePolyData);
 } // namespace
+
+TEST(FiberPolyData, CacheConvertsAnotherInputWithTheSameMTime)
+{
+  auto two = MakeTwoFibers();
+  fiberpli::FiberConversion c = fiberpli::FiberPolyData::ToModel(two, "Test");
+  ASSERT_TRUE(c.ok()) << c.error;
+  c.model.fibers.pop_back();
+  vtkNew<vtkPolyData> one;
+  fiberpli::FiberPolyData::FromModel(c.model, one);
+  vtkNew<FixedMTimePolyData> a, b;
+  a->ShallowCopy(two);
+  b->ShallowCopy(one);
+  ASSERT_EQ(a->GetMTime(), b->GetMTime());
+
+  fiberpli::FiberModelCache cache;
+  EXPECT_EQ(cache.Get(a, "Test").model.fibers.size(), 2u);
+  EXPECT_EQ(cache.Get(b, "Test").model.fibers.size(), 1u); // the input connection was switched
+  EXPECT_EQ(cache.Get(a, "Test").model.fibers.size(), 2u);
+}
 
 TEST(FiberPolyData, RoundTripKeepsPointsRadiiAndIds)
 {
