@@ -6,6 +6,7 @@
 #include "Solver/CollisionSolver.h"
 
 #include "PeriodicReference.h"
+#include "SolverTestModels.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -15,6 +16,8 @@
 #include <cstring>
 
 using namespace fiberpli;
+using fiberpli_test::line;
+using fiberpli_test::paperCube;
 using fiberpli_test::periodicCube;
 using fiberpli_test::runRanks;
 
@@ -123,25 +126,6 @@ void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o)
   }
 }
 
-FiberModel paperCube(int pops, int n, std::uint64_t seed)
-{
-  CubeOptions c;
-  c.populations = pops;
-  c.numberOfFibers = n;
-  c.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(n / 1000.0); // paper density
-  c.seed = seed;
-  return generateCube(c);
-}
-
-Fiber line(Vec3 a, Vec3 step, int n, double r, std::int64_t id)
-{
-  Fiber f;
-  for (int i = 0; i < n; ++i)
-    f.points.push_back(a + double(i) * step);
-  f.radii.assign(f.points.size(), r);
-  f.id = id;
-  return f;
-}
 } // namespace
 
 TEST(DistributedSolver, OpenCubeBitIdenticalForAnyRanksAndThreads)
