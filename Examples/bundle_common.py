@@ -7,6 +7,7 @@ import time
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
+from plain_view import plain_view
 
 
 def run(name, camera, **properties):
@@ -29,12 +30,7 @@ def run(name, camera, **properties):
     tubes = globals()["FiberTubes"](Input=solver, NumberOfSides=12, Capping=1)
     view = CreateView("RenderView")
     view.ViewSize = [480, 360]
-    view.OrientationAxesVisibility = 0
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [0.1, 0.1, 0.15]
+    plain_view(view, [0.1, 0.1, 0.15])
     display = Show(tubes, view)
     ColorBy(display, ("CELLS", "bundle_id"))
     lut = GetColorTransferFunction("bundle_id")

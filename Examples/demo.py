@@ -20,6 +20,7 @@ import passive_openmp  # noqa: E402,F401  (restarts once with OMP_WAIT_POLICY=PA
 
 from paraview.simple import *  # noqa: E402,F401,F403
 import paraview.simple  # noqa: E402
+from plain_view import plain_view  # noqa: E402
 
 plugin, out_dir = sys.argv[1], sys.argv[2]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -77,12 +78,7 @@ views = []
 def add_view(title, size):
     view = CreateView("RenderView")
     view.ViewSize = size
-    view.OrientationAxesVisibility = 0
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [1, 1, 1]
+    plain_view(view, [1, 1, 1])
     text = Text(Text=title)
     label = Show(text, view)
     label.FontSize = 14

@@ -7,6 +7,7 @@
 //        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
 //        [--lattice (Seeding Lattice instead of Random)]
 #include "BenchUtil.h"
+#include "PushOverrides.h"
 #include "CapsuleCells.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
@@ -78,9 +79,8 @@ int main(int argc, char** argv)
   int seed = 42;
   double curvature = 4.0;
   double cap = 1e9;
-  double overlapPush = -1.0, separationSpeed = -1.0, maxDisplacement = -1.0;
+  bench::PushOverrides push;
   double displacement = 0.5;
-  double drag = -1.0;
   bool lattice = false;
   for (int i = 1; i < argc; ++i)
   {
@@ -117,15 +117,15 @@ int main(int argc, char** argv)
     else if (a == "--cap")
       cap = std::atof(argv[++i]);
     else if (a == "--drag")
-      drag = std::atof(argv[++i]);
+      push.drag = std::atof(argv[++i]);
     else if (a == "--displacement")
       displacement = std::atof(argv[++i]);
     else if (a == "--overlap-push")
-      overlapPush = std::atof(argv[++i]);
+      push.overlapPush = std::atof(argv[++i]);
     else if (a == "--separation-speed")
-      separationSpeed = std::atof(argv[++i]);
+      push.separationSpeed = std::atof(argv[++i]);
     else if (a == "--max-displacement")
-      maxDisplacement = std::atof(argv[++i]);
+      push.maxDisplacement = std::atof(argv[++i]);
     else
     {
       std::fprintf(stderr, "unknown argument '%s'\n", a.c_str());
@@ -168,14 +168,7 @@ int main(int argc, char** argv)
       o.numberOfThreads = static_cast<int>(t);
       o.periodicCell = cubeCell(c);
       o.initialRadiusScale = initScale;
-      if (overlapPush >= 0.0)
-        o.overlapPush = overlapPush;
-      if (separationSpeed > 0.0)
-        o.separationSpeed = separationSpeed;
-      if (maxDisplacement > 0.0)
-        o.maxDisplacement = maxDisplacement;
-      if (drag >= 0.0)
-        o.drag = drag;
+      push.apply(o);
       const double cpu0 = bench::cpuSeconds();
       const double t0 = bench::seconds();
       const CollisionSolverResult r =

@@ -5,6 +5,7 @@
 //        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
 //        [--end-points perpendicular|free|fixed] (solver knobs)
 #include "BenchUtil.h"
+#include "PushOverrides.h"
 #include "CapsuleCells.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
@@ -73,10 +74,7 @@ int main(int argc, char** argv)
   std::vector<int> threads{ 1, 2 };
   double cap = 540.0;
   int maxSteps = 100000;
-  double overlapPush = -1.0;
-  double separationSpeed = -1.0;
-  double maxDisplacement = -1.0;
-  double drag = -1.0;
+  bench::PushOverrides push;
   int endPoints = -1;
   double pushSpread = -1.0;
   long samples = 1000000;
@@ -94,11 +92,11 @@ int main(int argc, char** argv)
     else if (a == "--max-steps" && i + 1 < argc)
       maxSteps = std::atoi(argv[++i]);
     else if (a == "--overlap-push" && i + 1 < argc)
-      overlapPush = std::atof(argv[++i]);
+      push.overlapPush = std::atof(argv[++i]);
     else if (a == "--separation-speed" && i + 1 < argc)
-      separationSpeed = std::atof(argv[++i]);
+      push.separationSpeed = std::atof(argv[++i]);
     else if (a == "--max-displacement" && i + 1 < argc)
-      maxDisplacement = std::atof(argv[++i]);
+      push.maxDisplacement = std::atof(argv[++i]);
     else if (a == "--end-points" && i + 1 < argc)
     {
       const std::string e = argv[++i];
@@ -107,7 +105,7 @@ int main(int argc, char** argv)
     else if (a == "--push-spread" && i + 1 < argc)
       pushSpread = std::atof(argv[++i]);
     else if (a == "--drag" && i + 1 < argc)
-      drag = std::atof(argv[++i]);
+      push.drag = std::atof(argv[++i]);
     else if (a == "--samples" && i + 1 < argc)
       samples = std::atol(argv[++i]);
     else
@@ -157,14 +155,7 @@ int main(int argc, char** argv)
       o.minCurvatureRadius = 4.0;
       o.maxSteps = maxSteps;
       o.numberOfThreads = t;
-      if (overlapPush >= 0.0)
-        o.overlapPush = overlapPush;
-      if (separationSpeed > 0.0)
-        o.separationSpeed = separationSpeed;
-      if (maxDisplacement > 0.0)
-        o.maxDisplacement = maxDisplacement;
-      if (drag >= 0.0)
-        o.drag = drag;
+      push.apply(o);
       if (pushSpread >= 0.0)
         o.pushSpread = pushSpread;
       if (endPoints >= 0)

@@ -899,6 +899,21 @@ namespace
 // the move steps without growth after which growth gives up.
 constexpr double kGrowth = 0.002;
 constexpr int kGrowthStall = 2000;
+
+// validateModel (short fibers allowed: they are copied through), the fiber named by its global
+// index (global[i] of piece fiber i; none given: the piece index), so a distributed run's message
+// is the serial one for any rank count.
+std::string validatePiece(const FiberModel& piece, const std::vector<std::int64_t>& global)
+{
+  std::size_t bad = 0;
+  std::string error = validateModel(piece, &bad, ShortFibers::Allowed);
+  const std::string local = "fiber " + std::to_string(bad);
+  if (!error.empty() && bad < global.size() && error.compare(0, local.size(), local) == 0)
+  {
+    error = "fiber " + std::to_string(global[bad]) + error.substr(local.size());
+  }
+  return error;
+}
 } // namespace
 
 struct CollisionSolverRun::Impl
@@ -1024,35 +1039,34 @@ bool CollisionSolverRun::start()
   const CollisionSolverOptions& o = r.options;
   FiberModel& model = r.model;
   CollisionSolverState& st = s.st_;
+  const std::size_t nf = model.fibers.size();
+  std::int64_t first = 0; // global index of this piece's first fiber: pieces in rank order
+  if (s.comm_)
+  {
+    r.input = model; // before any failure path: fail() restores it
+    std::vector<std::int64_t> counts(static_cast<std::size_t>(s.comm_->size()), 0);
+    counts[static_cast<std::size_t>(s.comm_->rank())] = static_cast<std::int64_t>(nf);
+    s.comm_->sum(counts);
+    first = std::accumulate(counts.begin(), counts.begin() + s.comm_->rank(), std::int64_t{ 0 });
+  }
+  st.global.resize(nf);
+  std::iota(st.global.begin(), st.global.end(), first);
   std::string error = validateCollisionSolverOptions(o);
   if (error.empty())
   {
-    error = validateModel(model, nullptr, ShortFibers::Allowed); // short fibers are copied through
+    error = validatePiece(model, st.global);
   }
   if (r.fail(error))
   {
     return false;
   }
   s.threads_ = resolveThreadCount(o.numberOfThreads);
-  const std::size_t nf = model.fibers.size();
   st.points.assign(nf, FiberPointState{});
   st.active.assign(nf, 1);
   st.closed.assign(nf, 0);
   st.closure.assign(nf, Vec3{});
-  st.home.assign(nf, 0);
+  st.home.assign(nf, s.comm_ ? s.comm_->rank() : 0);
   s.owned_.assign(nf, 1);
-  std::int64_t first = 0; // global index of this piece's first fiber: pieces in rank order
-  if (s.comm_)
-  {
-    r.input = model;
-    std::vector<std::int64_t> counts(static_cast<std::size_t>(s.comm_->size()), 0);
-    counts[static_cast<std::size_t>(s.comm_->rank())] = static_cast<std::int64_t>(nf);
-    s.comm_->sum(counts);
-    first = std::accumulate(counts.begin(), counts.begin() + s.comm_->rank(), std::int64_t{ 0 });
-    st.home.assign(nf, s.comm_->rank());
-  }
-  st.global.resize(nf);
-  std::iota(st.global.begin(), st.global.end(), first);
   if (s.comm_)
   {
     s.startDistribution();
@@ -1107,8 +1121,19 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
 {
   Impl& r = *impl_;
   r.phase = Impl::Phase::Failed;
+  if (r.s.periodic() || r.s.comm_)
+  {
+    r.input = r.model; // before any failure path: fail() restores it
+  }
   r.result.error = validateCollisionSolverOptions(r.options);
   const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
+  if (r.result.error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
+  {
+    // Every rank would number its fibers 0..n-1: the global indices would collide.
+    r.result.error = "the saved solver state has no global fiber indices (a serial state): it cannot "
+                     "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
+  }
   if (r.result.error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
     saved.closed.size() != nf || saved.closure.size() != nf))
   {
@@ -1126,7 +1151,7 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   }
   if (r.result.error.empty())
   {
-    r.result.error = validateModel(r.model, nullptr, ShortFibers::Allowed);
+    r.result.error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
   }
   if (r.fail(r.result.error))
   {
@@ -1134,17 +1159,13 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   }
   r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
   r.s.st_ = saved;
-  if (r.s.st_.global.size() != nf || r.s.st_.home.size() != nf) // a serial state
+  if (serialState) // one rank only (refused above otherwise)
   {
     r.s.st_.global.resize(nf);
     std::iota(r.s.st_.global.begin(), r.s.st_.global.end(), std::int64_t{ 0 });
     r.s.st_.home.assign(nf, 0);
   }
   r.s.owned_.assign(nf, 1);
-  if (r.s.periodic() || r.s.comm_)
-  {
-    r.input = r.model;
-  }
   if (r.s.comm_)
   {
     r.s.startDistribution(); // any slabs do: the result does not depend on who owns what

@@ -63,9 +63,10 @@ TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, Solv
 void dropHalo(RankFibers& fibers);
 
 /// Adds to every rank, as halo, the other ranks' solved fibers whose extent along the slab axis
-/// comes within `reach` of the extent of its owned fibers (modulo the cell when periodic). Any
-/// two capsules closer than reach − nothing belong to fibers this way: reach = 2·ρmax + gap makes
-/// the halo complete for every pair that can collide. Collective.
+/// comes within `reach` of the extent of its owned fibers (modulo the cell when periodic), so every
+/// partner of an owned fiber closer than reach along the slab axis is there. Two capsules collide
+/// only closer than 2·ρmax + gap; the solver passes 3·ρmax + gap (plus a rounding margin) because
+/// its minimum-gap probe looks one median radius (<= ρmax) further. Collective.
 TrafficCount addHalo(RankFibers& fibers, const SlabLayout& layout, const PeriodicCell& cell, double reach,
   SolverComm& comm);
 
@@ -76,9 +77,11 @@ bool anyRank(SolverComm& comm, bool value);
 double minOverRanks(SolverComm& comm, double value);
 double maxOverRanks(SolverComm& comm, double value);
 
-/// Exactly rounded-once sum of non-negative terms, independent of their order and of how they
-/// are split over ranks: each term is rounded to a multiple of 2^-32 (terms below 2^64), the multiples
-/// summed as integers.
+/// Deterministic sum of non-negative terms: the same bits on every rank, independent of the terms'
+/// order and of how they are split over ranks. Each term is rounded to a multiple of 2^-32 (terms
+/// below 2^64) and the multiples are summed exactly as integers; only the final conversion of that
+/// integer to a double rounds (up to three roundings of its 32-bit digits, so within a few ulp of
+/// the exact sum of the rounded terms, not necessarily the nearest double).
 class ExactSum
 {
 public:

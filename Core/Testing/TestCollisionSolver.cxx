@@ -3,6 +3,7 @@
 #include "Solver/CollisionSolver.h"
 
 #include "BruteForceOverlap.h"
+#include "SolverTestModels.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
 
@@ -19,25 +20,8 @@ using namespace fiberpli;
 
 namespace
 {
-Fiber line(Vec3 a, Vec3 step, int n, double r, std::int64_t id)
-{
-  Fiber f;
-  for (int i = 0; i < n; ++i)
-    f.points.push_back(a + double(i) * step);
-  f.radii.assign(f.points.size(), r);
-  f.id = id;
-  return f;
-}
-
-FiberModel paperCube(int pops, int n, std::uint64_t seed)
-{
-  CubeOptions o;
-  o.populations = pops;
-  o.numberOfFibers = n;
-  o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(n / 1000.0); // paper density
-  o.seed = seed;
-  return generateCube(o);
-}
+using fiberpli_test::line;
+using fiberpli_test::paperCube;
 
 double minAxisDistance(const Fiber& a, const Fiber& b)
 {
@@ -57,21 +41,7 @@ bool allFinite(const FiberModel& m)
   return true;
 }
 
-bool bitwiseEqual(const FiberModel& a, const FiberModel& b)
-{
-  if (a.fibers.size() != b.fibers.size())
-    return false;
-  for (std::size_t f = 0; f < a.fibers.size(); ++f)
-  {
-    const Fiber& x = a.fibers[f];
-    const Fiber& y = b.fibers[f];
-    if (x.size() != y.size() || x.id != y.id || x.bundle != y.bundle ||
-      std::memcmp(x.points.data(), y.points.data(), x.size() * sizeof(Vec3)) != 0 ||
-      std::memcmp(x.radii.data(), y.radii.data(), x.size() * sizeof(double)) != 0)
-      return false;
-  }
-  return true;
-}
+using fiberpli_test::bitwiseEqual;
 } // namespace
 
 TEST(CollisionSolver, CrossingFibersSeparateSymmetrically)

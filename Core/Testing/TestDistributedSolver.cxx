@@ -6,6 +6,7 @@
 #include "Solver/CollisionSolver.h"
 
 #include "PeriodicReference.h"
+#include "SolverTestModels.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -15,6 +16,8 @@
 #include <cstring>
 
 using namespace fiberpli;
+using fiberpli_test::line;
+using fiberpli_test::paperCube;
 using fiberpli_test::periodicCube;
 using fiberpli_test::runRanks;
 
@@ -123,25 +126,6 @@ void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o)
   }
 }
 
-FiberModel paperCube(int pops, int n, std::uint64_t seed)
-{
-  CubeOptions c;
-  c.populations = pops;
-  c.numberOfFibers = n;
-  c.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(n / 1000.0); // paper density
-  c.seed = seed;
-  return generateCube(c);
-}
-
-Fiber line(Vec3 a, Vec3 step, int n, double r, std::int64_t id)
-{
-  Fiber f;
-  for (int i = 0; i < n; ++i)
-    f.points.push_back(a + double(i) * step);
-  f.radii.assign(f.points.size(), r);
-  f.id = id;
-  return f;
-}
 } // namespace
 
 TEST(DistributedSolver, OpenCubeBitIdenticalForAnyRanksAndThreads)
@@ -229,21 +213,66 @@ TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
 TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
 {
   FiberModel m = paperCube(1, 30, 2);
-  m.fibers[20].points[3].y = std::nan(""); // in the piece of rank 2 of 3
+  m.fibers[20].points[3].y = std::nan(""); // in the piece of rank 2 of 3 (its fiber 0)
   CollisionSolverOptions o;
   o.maxSteps = 20;
+  FiberModel serial = m;
+  const std::string serialError = solveCollisions(serial, o).error;
+  ASSERT_EQ(serialError.rfind("fiber 20 (fiber_id ", 0), 0u) << serialError;
   const std::vector<RankRun> runs = solveOnRanks(m, o, 3);
   std::size_t f = 0;
   for (const RankRun& run : runs)
   {
-    EXPECT_NE(run.result.error.find("fiber 0"), std::string::npos) << run.result.error; // rank 2's index
-    EXPECT_EQ(run.result.error, runs[0].result.error);
-    for (const Fiber& fib : run.model.fibers) // every piece unchanged
+    EXPECT_EQ(run.result.error, serialError); // the global index, as the serial run names it
+    ASSERT_EQ(run.model.fibers.size(), 10u); // every piece unchanged (the input piece had 10)
+    for (const Fiber& fib : run.model.fibers)
     {
-      EXPECT_TRUE(fib.points == m.fibers[f].points || f == 20);
+      EXPECT_TRUE(sameFiber(fib, m.fibers[f])) << "fiber " << f; // bitwise: the NaN is kept too
       ++f;
     }
   }
+  EXPECT_EQ(f, m.fibers.size());
+}
+
+// A state without global indices (a serial run's) cannot be resumed over several ranks: every
+// rank would number its fibers from 0. Every rank refuses it and keeps its piece.
+TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
+{
+  const FiberModel m = paperCube(1, 30, 2);
+  CollisionSolverOptions o;
+  o.maxSteps = 20;
+  std::vector<FiberModel> pieces(2);
+  std::vector<CollisionSolverState> states(2);
+  for (std::size_t p = 0; p < 2; ++p)
+  {
+    pieces[p].fibers.assign(m.fibers.begin() + 15 * p, m.fibers.begin() + 15 * (p + 1));
+    CollisionSolverRun serial(pieces[p], o); // the piece as prepared: the state is for it
+    ASSERT_TRUE(serial.start());
+    states[p] = serial.state();
+    states[p].global.clear(); // as a state saved without them
+    states[p].home.clear();
+  }
+  std::vector<std::string> errors(2);
+  std::vector<FiberModel> after = pieces;
+  runRanks(2, [&](SolverComm& comm) {
+    const std::size_t p = static_cast<std::size_t>(comm.rank());
+    CollisionSolverRun run(after[p], o, {}, {}, &comm);
+    errors[p] = run.resume(states[p]);
+  });
+  for (std::size_t p = 0; p < 2; ++p)
+  {
+    EXPECT_NE(errors[p].find("no global fiber indices"), std::string::npos) << errors[p];
+    EXPECT_EQ(errors[p], errors[0]);
+    ASSERT_EQ(after[p].fibers.size(), pieces[p].fibers.size());
+    for (std::size_t i = 0; i < after[p].fibers.size(); ++i)
+      EXPECT_TRUE(sameFiber(after[p].fibers[i], pieces[p].fibers[i]));
+  }
+  // One rank takes it (0..n-1 are then the global indices).
+  FiberModel whole = pieces[0];
+  runRanks(1, [&](SolverComm& comm) {
+    CollisionSolverRun run(whole, o, {}, {}, &comm);
+    EXPECT_EQ(run.resume(states[0]), "");
+  });
 }
 
 // Rank 1's callback asks to stop at its 6th call (after the 6th move): every rank stops there,

@@ -5,6 +5,7 @@
 // error naming the file and what differs.
 #include "Checkpoint/SolverCheckpoint.h"
 #include "PeriodicReference.h"
+#include "SolverTestModels.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -54,21 +55,7 @@ struct TempFile
   }
 };
 
-bool bitwiseEqual(const FiberModel& a, const FiberModel& b)
-{
-  if (a.fibers.size() != b.fibers.size())
-    return false;
-  for (std::size_t f = 0; f < a.fibers.size(); ++f)
-  {
-    const Fiber& x = a.fibers[f];
-    const Fiber& y = b.fibers[f];
-    if (x.id != y.id || x.bundle != y.bundle || x.points.size() != y.points.size() ||
-      std::memcmp(x.points.data(), y.points.data(), x.points.size() * sizeof(Vec3)) != 0 ||
-      std::memcmp(x.radii.data(), y.radii.data(), x.radii.size() * sizeof(double)) != 0)
-      return false;
-  }
-  return true;
-}
+using fiberpli_test::bitwiseEqual;
 
 FiberModel denseOpenCube()
 {

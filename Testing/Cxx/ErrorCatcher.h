@@ -59,3 +59,11 @@ inline void ExpectUpdateError(vtkAlgorithm* algorithm, ErrorCatcher* catcher, co
   auto* output = vtkDataSet::SafeDownCast(algorithm->GetOutputDataObject(0));
   EXPECT_EQ(output ? output->GetNumberOfPoints() : 0, 0) << text;
 }
+
+/// The recovery check of the bad-input tests: updating `algorithm` again reports no error.
+inline void ExpectUpdateClean(vtkAlgorithm* algorithm, ErrorCatcher* catcher)
+{
+  catcher->Clear();
+  algorithm->Update();
+  EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+}

@@ -1,17 +1,10 @@
 // Regression image: the paper's crossing, Y-shape and chiasm-like models (FiberBundleSource, small),
 // solved by FiberCollisionSolver, side by side as tubes coloured by bundle_id.
+#include "ImageTestUtil.h"
 #include "vtkFiberBundleSource.h"
 #include "vtkFiberCollisionSolver.h"
-#include "vtkFiberTubes.h"
 
-#include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkNew.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkRegressionTestImage.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderWindowInteractor.h>
-#include <vtkRenderer.h>
 
 int main(int argc, char* argv[])
 {
@@ -38,18 +31,7 @@ int main(int argc, char* argv[])
     solver->SetSegmentLength(2.0);
     solver->SetMaxSteps(5000);
     solver->SetNumberOfThreads(2);
-    vtkNew<vtkFiberTubes> tubes;
-    tubes->SetInputConnection(solver->GetOutputPort());
-    tubes->SetNumberOfSides(10);
-    tubes->SetNumberOfThreads(1);
-
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(tubes->GetOutputPort());
-    mapper->SetScalarModeToUseCellFieldData();
-    mapper->SelectColorArray("bundle_id");
-    mapper->SetScalarRange(0, 3);
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
+    vtkSmartPointer<vtkActor> actor = fiberpli_test::bundleTubesActor(solver, 10, 3);
     actor->SetPosition(-32.0 + 32.0 * i, 0.0, 0.0);
     renderer->AddActor(actor);
   }
@@ -61,19 +43,5 @@ int main(int argc, char* argv[])
   camera->SetViewAngle(40);
   renderer->ResetCameraClippingRange();
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(400, 300);
-  window->AddRenderer(renderer);
-  vtkNew<vtkRenderWindowInteractor> interactor;
-  interactor->SetRenderWindow(window);
-  window->Render();
-  renderer->ResetCameraClippingRange();
-  window->Render();
-
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    interactor->Start();
-  }
-  return !result;
+  return fiberpli_test::renderAndCompare(argc, argv, renderer);
 }

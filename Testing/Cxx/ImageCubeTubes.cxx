@@ -1,15 +1,8 @@
 // Regression image: a small 3-population cube rendered as tubes coloured by bundle_id.
+#include "ImageTestUtil.h"
 #include "vtkFiberCubeSource.h"
-#include "vtkFiberTubes.h"
 
-#include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkNew.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkRegressionTestImage.h>
-#include <vtkRenderWindow.h>
-#include <vtkRenderWindowInteractor.h>
-#include <vtkRenderer.h>
 
 int main(int argc, char* argv[])
 {
@@ -21,18 +14,7 @@ int main(int argc, char* argv[])
   cube->SetSegmentLength(2.0);
   cube->SetDisplacement(0.5);
   cube->SetSeed(1);
-  vtkNew<vtkFiberTubes> tubes;
-  tubes->SetInputConnection(cube->GetOutputPort());
-  tubes->SetNumberOfSides(12);
-  tubes->SetNumberOfThreads(1);
-
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(tubes->GetOutputPort());
-  mapper->SetScalarModeToUseCellFieldData();
-  mapper->SelectColorArray("bundle_id");
-  mapper->SetScalarRange(0, 2);
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkActor> actor = fiberpli_test::bundleTubesActor(cube, 12, 2);
 
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
@@ -43,17 +25,5 @@ int main(int argc, char* argv[])
   camera->SetViewUp(0, 1, 0);
   renderer->ResetCameraClippingRange();
 
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(400, 300);
-  window->AddRenderer(renderer);
-  vtkNew<vtkRenderWindowInteractor> interactor;
-  interactor->SetRenderWindow(window);
-  window->Render();
-
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    interactor->Start();
-  }
-  return !result;
+  return fiberpli_test::renderAndCompare(argc, argv, renderer);
 }

@@ -104,6 +104,14 @@ void Small(vtkFiberBundleSource* s, int shape)
   s->SetRanvierSpacing(-1.0);
   s->SetSeed(3);
 }
+
+// The update is an error naming `text` and the source gives no fibers.
+void ExpectErrorAndNoFibers(vtkFiberBundleSource* src, ErrorCatcher* catcher, const std::string& text)
+{
+  ExpectUpdateError(src, catcher, text);
+  EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
+}
+
 } // namespace
 
 TEST(FiberBundleSource, CylinderFibersStayInsideTheBundleOnTheGrid)
@@ -261,10 +269,7 @@ TEST(FiberBundleSource, BadInputIsAClearErrorAndRecoverable)
   vtkNew<vtkFiberBundleSource> src;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(src, catcher, text);
-    EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
-  };
+  const auto expectError = [&](const std::string& text) { ExpectErrorAndNoFibers(src, catcher, text); };
   const auto expectValid = [&]() {
     catcher->Clear();
     src->Update();
@@ -356,10 +361,7 @@ TEST(FiberBundleSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
   vtkNew<vtkFiberBundleSource> src;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(src, catcher, text);
-    EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
-  };
+  const auto expectError = [&](const std::string& text) { ExpectErrorAndNoFibers(src, catcher, text); };
   src->SetNumberOfFibers(-1);
   expectError("NumberOfFibers is -1");
   src->SetNumberOfFibers(0);

@@ -630,15 +630,25 @@ TEST(FiberOrientationGroundTruth, StraightFibers)
   }
 }
 
+namespace
+{
+// The ground-truth tests' input: one fiber along x from 0 to 10 with radius 1, voxels 0.25 µm,
+// pixels 1 µm.
+void SetUpFiberAlongX(vtkFiberOrientationGroundTruth* f)
+{
+  f->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
+  f->SetVoxelSize(0.25);
+  f->SetPixelSize(1.0);
+}
+} // namespace
+
 TEST(FiberOrientationGroundTruth, InputBoundsEmptyAndBadInput)
 {
   // Sentinel VOI = bounds with radii: fiber along x from 0 to 10, r 1 → [−1, 11] × [−1, 1] × [−1, 1].
   vtkNew<vtkFiberOrientationGroundTruth> f;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(f);
-  f->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
-  f->SetVoxelSize(0.25);
-  f->SetPixelSize(1.0);
+  SetUpFiberAlongX(f);
   f->Update();
   int ext[6];
   f->GetOutput()->GetExtent(ext);
@@ -684,13 +694,9 @@ TEST(PLIAnalysis, OutOfRangePropertiesAreNamedNotClamped)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(f);
   f->SetInputData(MakeStack(Equidistant(6), { { 1, 0, 0.1 } }));
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(f, catcher, text);
-  };
+  const auto expectError = [&](const std::string& text) { ExpectUpdateError(f, catcher, text); };
   const auto expectGood = [&]() {
-    catcher->Clear();
-    f->Update();
-    EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+    ExpectUpdateClean(f, catcher);
     ASSERT_EQ(f->GetOutput()->GetNumberOfPoints(), 1);
     EXPECT_NEAR(Value(f->GetOutput(), "transmittance", 0), 2.0, 1e-12);
   };
@@ -723,16 +729,10 @@ TEST(FiberOrientationGroundTruth, BadSizesAreNamedNotClamped)
   vtkNew<vtkFiberOrientationGroundTruth> f;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(f);
-  f->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
-  f->SetVoxelSize(0.25);
-  f->SetPixelSize(1.0);
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(f, catcher, text);
-  };
+  SetUpFiberAlongX(f);
+  const auto expectError = [&](const std::string& text) { ExpectUpdateError(f, catcher, text); };
   const auto expectGood = [&]() {
-    catcher->Clear();
-    f->Update();
-    EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
+    ExpectUpdateClean(f, catcher);
     EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 24); // 12 × 2 pixels of [−1, 11] × [−1, 1]
   };
   expectGood();

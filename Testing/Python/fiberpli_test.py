@@ -1,4 +1,4 @@
-"""Helpers shared by the pvpython tests: plugin loading and argument parsing."""
+"""Helpers shared by the pvpython tests: plugin loading, argument parsing, error capture, images, MPI inputs."""
 import sys
 
 
@@ -77,3 +77,33 @@ def compare_image(proxy, cell_array, position, up=(0, 1, 0), focal=(0, 0, 0)):
     Render(view)
     if not smtesting.DoRegressionTesting(view.SMProxy):
         raise RuntimeError("image differs from the baseline")
+
+
+# Script of a ProgrammableSource (it runs on every rank under MPI) giving the MPI error tests their
+# input: CELLS is a Python expression in `rank`, a list of polylines (lists of points); every
+# point's radius is BAD on rank 1 and 1.0 on the other ranks.
+_RANK_FIBERS_SCRIPT = """
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray
+rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
+out = self.GetPolyDataOutput()
+points = vtkPoints()
+radius = vtkDoubleArray()
+radius.SetName("radius")
+lines = vtkCellArray()
+for cell in CELLS:
+    lines.InsertNextCell(len(cell))
+    for p in cell:
+        lines.InsertCellPoint(points.InsertNextPoint(p))
+        radius.InsertNextValue(BAD if rank == 1 else 1.0)
+out.SetPoints(points)
+out.SetLines(lines)
+out.GetPointData().AddArray(radius)
+"""
+
+
+def rank_fibers_script(cells, radius_on_rank1):
+    """ProgrammableSource script of the polylines `cells` (an expression in `rank`) whose radius
+    is `radius_on_rank1` on rank 1 and 1.0 elsewhere."""
+    return _RANK_FIBERS_SCRIPT.replace("CELLS", cells).replace("BAD", repr(float(radius_on_rank1)))

@@ -5,12 +5,17 @@ here), checks that the legend's preferred view is a FOM Legend View of its own, 
 (Map Scalars off by default), not "fom Magnitude" through a blue-red colour map.
 
 Paths come from the environment because sys.argv is [''] inside paraview --script:
-FIBERPLI_PLUGIN, FIBERPLI_OUT (output folder), FIBERPLI_BASELINE (the map's baseline PNG)."""
+FIBERPLI_PLUGIN, FIBERPLI_OUT (output folder), FIBERPLI_BASELINE (the map's baseline PNG),
+FIBERPLI_EXAMPLES (the Examples folder, for the views' look)."""
 import os
+import sys
 
 import paraview.simple
 from paraview import servermanager, smtesting
 from paraview.simple import *  # noqa: F401,F403
+
+sys.path.insert(0, os.environ["FIBERPLI_EXAMPLES"])
+from plain_view import plain_view  # noqa: E402
 
 LoadPlugin(os.environ["FIBERPLI_PLUGIN"], remote=False, ns=globals())
 out_dir = os.environ["FIBERPLI_OUT"]
@@ -34,12 +39,7 @@ if GetColorTransferFunction("bundle_id").InterpretValuesAsCategories != 1:
 fd = servermanager.Fetch(solver).GetFieldData()
 if fd.GetArray("collisions").GetValue(0) != 0:
     fail("the solver left collisions")
-view.OrientationAxesVisibility = 0
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
-view.Background = [0.1, 0.1, 0.15]
+plain_view(view, [0.1, 0.1, 0.15])
 view.CameraPosition = [40, 30, 50]
 view.CameraFocalPoint = [0, 0, 0]
 view.CameraViewUp = [0, 1, 0]

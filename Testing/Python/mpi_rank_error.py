@@ -9,7 +9,7 @@ import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import ErrorCatcher, check, load_plugin  # noqa: E402
+from fiberpli_test import ErrorCatcher, check, load_plugin, rank_fibers_script  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
 from vtkmodules.vtkParallelCore import vtkMultiProcessController  # noqa: E402
 
@@ -21,25 +21,8 @@ rank = controller.GetLocalProcessId()
 check(controller.GetNumberOfProcesses() == 2, "expected 2 MPI ranks")
 
 # One fiber along x; its radius is BAD on rank 1 only (ProgrammableSource runs on every rank).
-SCRIPT = """
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray
-rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
-out = self.GetPolyDataOutput()
-points = vtkPoints()
-radius = vtkDoubleArray()
-radius.SetName("radius")
-lines = vtkCellArray()
-lines.InsertNextCell(5)
-for k in range(5):
-    lines.InsertCellPoint(points.InsertNextPoint(-4.0 + 2.0 * k, 0.1 * rank, 0.0))
-    radius.InsertNextValue(BAD if rank == 1 else 1.0)
-out.SetPoints(points)
-out.SetLines(lines)
-out.GetPointData().AddArray(radius)
-"""
-fibers = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT.replace("BAD", "-1.0"))
+CELLS = "[[(-4.0 + 2.0 * k, 0.1 * rank, 0.0) for k in range(5)]]"
+fibers = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=rank_fibers_script(CELLS, -1.0))
 
 # (1) PLISimulation -> PLIAnalysis: both ranks fail, nobody waits.
 sim = PLISimulation(Input=fibers, VolumeOfInterest=[-5, 5, -3, 3, -2, 2], VoxelSize=0.5, PixelSize=1.0,
@@ -90,7 +73,7 @@ with open(target) as f:
 check(sorted(os.listdir(out_dir)) == ["fibers.dat"], "left behind: %s" % os.listdir(out_dir))
 
 # (3) Fixed input: everything works again on both ranks.
-fibers.Script = SCRIPT.replace("BAD", "1.0")
+fibers.Script = rank_fibers_script(CELLS, 1.0)
 sim_errors.clear()
 ana_errors.clear()
 ana.UpdatePipeline()

@@ -7,7 +7,7 @@ import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import ErrorCatcher, check, load_plugin  # noqa: E402
+from fiberpli_test import ErrorCatcher, check, load_plugin, rank_fibers_script  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
 from vtkmodules.vtkParallelCore import vtkMultiProcessController  # noqa: E402
 
@@ -18,27 +18,9 @@ rank = controller.GetLocalProcessId()
 check(controller.GetNumberOfProcesses() == 2, "expected 2 MPI ranks")
 
 # Two crossing fibers per rank; the radius is BAD on rank 1 only (ProgrammableSource runs on every rank).
-SCRIPT = """
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray
-rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
-out = self.GetPolyDataOutput()
-points = vtkPoints()
-radius = vtkDoubleArray()
-radius.SetName("radius")
-lines = vtkCellArray()
-for f in range(2):
-    lines.InsertNextCell(5)
-    for k in range(5):
-        p = (-4.0 + 2.0 * k, 0.3 * f, 3.0 * rank) if f == 0 else (0.3, -4.0 + 2.0 * k, 3.0 * rank + 0.5)
-        lines.InsertCellPoint(points.InsertNextPoint(p))
-        radius.InsertNextValue(BAD if rank == 1 else 1.0)
-out.SetPoints(points)
-out.SetLines(lines)
-out.GetPointData().AddArray(radius)
-"""
-fibers = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT.replace("BAD", "-1.0"))
+CELLS = ("[[(-4.0 + 2.0 * k, 0.0, 3.0 * rank) for k in range(5)],"
+         " [(0.3, -4.0 + 2.0 * k, 3.0 * rank + 0.5) for k in range(5)]]")
+fibers = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=rank_fibers_script(CELLS, -1.0))
 solver = FiberCollisionSolver(Input=fibers, MaxSteps=200, NumberOfThreads=1)
 errors = ErrorCatcher(solver)
 solver.UpdatePipeline()
@@ -47,7 +29,7 @@ check("radius -1" in text, "rank %d: the solver must report rank 1's bad radius:
 out = solver.GetClientSideObject().GetOutputDataObject(0)
 check(out.GetNumberOfPoints() == 0, "rank %d: output after the error" % rank)
 
-fibers.Script = SCRIPT.replace("BAD", "1.0")
+fibers.Script = rank_fibers_script(CELLS, 1.0)
 errors.clear()
 solver.UpdatePipeline()
 check(errors.text() == "", "rank %d: errors after the fix: %r" % (rank, errors.text()))
