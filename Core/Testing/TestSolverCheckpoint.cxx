@@ -125,6 +125,26 @@ void runRanksWithin(int ranks, int seconds, const std::function<void(SolverComm&
     std::_Exit(1);
   }
 }
+
+// The two-rank tests: a run long enough (> 45 steps) to be stopped after a checkpoint at step 20.
+CollisionSolverOptions twoRankOptions()
+{
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.numberOfThreads = 1;
+  return o;
+}
+
+// Rank r's input piece of two: the first or second half of the fibers, in order.
+FiberModel halfOf(const FiberModel& whole, int r)
+{
+  FiberModel m;
+  for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
+    m.fibers.push_back(whole.fibers[f]);
+  return m;
+}
+
 } // namespace
 
 TEST(SolverCheckpoint, ResumedOpenCubeEqualsUninterruptedRun)
@@ -232,22 +252,14 @@ TEST(SolverCheckpoint, AnUnwritableCheckpointStopsTheSolveNamingTheFile)
 TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
 {
   const FiberModel whole = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 90;
-  o.minCurvatureRadius = 4.0;
-  o.numberOfThreads = 1;
+  const CollisionSolverOptions o = twoRankOptions();
   FiberModel serial = whole;
   const CollisionSolverResult s = solveCollisions(serial, o);
   ASSERT_TRUE(s.error.empty()) << s.error;
   ASSERT_GT(s.steps, 45);
 
   TempFile file;
-  const auto piece = [&](int r) {
-    FiberModel m;
-    for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
-      m.fibers.push_back(whole.fibers[f]);
-    return m;
-  };
+  const auto piece = [&](int r) { return halfOf(whole, r); };
   std::vector<FiberModel> out(2);
   std::vector<CollisionSolverResult> results(2);
   fiberpli_test::runRanks(2, [&](SolverComm& comm) {
@@ -291,20 +303,12 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
 TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
 {
   const FiberModel whole = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 90;
-  o.minCurvatureRadius = 4.0;
-  o.numberOfThreads = 1;
+  const CollisionSolverOptions o = twoRankOptions();
   FiberModel serial = whole;
   const CollisionSolverResult s = solveCollisions(serial, o);
   ASSERT_TRUE(s.error.empty()) << s.error;
   ASSERT_GT(s.steps, 45);
-  const auto piece = [&](int r) {
-    FiberModel m;
-    for (std::size_t f = whole.fibers.size() * r / 2; f < whole.fibers.size() * (r + 1) / 2; ++f)
-      m.fibers.push_back(whole.fibers[f]);
-    return m;
-  };
+  const auto piece = [&](int r) { return halfOf(whole, r); };
   TempFile file;
   const std::string own0 = file.path + ".0-of-2", own1 = file.path + ".1-of-2";
   const auto stopAt45 = [&] {

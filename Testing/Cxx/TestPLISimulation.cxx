@@ -101,6 +101,16 @@ vtkSmartPointer<vtkPolyData> SmallModel()
     { { -2, -12, 3, 1.5 }, { 1, 0, -2, 1.5 }, { 3, 12, 1, 1.5 } },
     { { -12, 7, -4, 2.5 }, { 12, 4, 5, 2.5 } } });
 }
+
+/// The section of SmallModel's tests: a 20 × 16 × 10 µm box, 0.5 µm voxels, 1 µm pixels, 6 angles.
+void SetUpSmallSection(vtkPLISimulation* s, vtkPolyData* fibers)
+{
+  s->SetInputData(fibers);
+  s->SetVolumeOfInterest(-10, 10, -8, 8, -5, 5);
+  s->SetVoxelSize(0.5);
+  s->SetPixelSize(1.0);
+  s->SetNumberOfRotations(6);
+}
 } // namespace
 
 TEST(PLISimulation, UniformSlabGivesTheClosedForm)
@@ -210,11 +220,7 @@ TEST(PLISimulation, SubExtentEqualsCropOfTheWholeImage)
 {
   auto fibers = SmallModel();
   auto configure = [&](vtkPLISimulation* s) {
-    s->SetInputData(fibers);
-    s->SetVolumeOfInterest(-10, 10, -8, 8, -5, 5);
-    s->SetVoxelSize(0.5);
-    s->SetPixelSize(1.0);
-    s->SetNumberOfRotations(6);
+    SetUpSmallSection(s, fibers);
     s->SetTiltAngle(5.5);
     s->SetNoiseGain(3.0);
     s->SetSeed(7);
@@ -488,11 +494,7 @@ TEST(PLISimulation, TissuePortIsTheCoreVoxelisationAndLeavesTheImageAlone)
 {
   auto fibers = SmallModel();
   auto configure = [&](vtkPLISimulation* s) {
-    s->SetInputData(fibers);
-    s->SetVolumeOfInterest(-10, 10, -8, 8, -5, 5);
-    s->SetVoxelSize(0.5);
-    s->SetPixelSize(1.0);
-    s->SetNumberOfRotations(6);
+    SetUpSmallSection(s, fibers);
     s->SetLayers("0.6 -0.004 5 p; 1 0.004 1 r");
     s->SetExportTissue(1);
     s->SetTissueVolume(-4, 6, -8, 0, -2, 2);
