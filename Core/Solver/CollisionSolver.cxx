@@ -238,6 +238,7 @@ public:
   std::vector<char> owned_; // per fiber: 1 owned, 0 halo (a partner only)
   SlabLayout layout_;
   double haloReach_ = 0.0; // fibers closer than this along the slab axis are exchanged
+  bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0;
 
   RankFibers rankFibers() { return RankFibers{ model_, st_, owned_ }; }
@@ -257,24 +258,31 @@ public:
       dest[f] = layout_.owner(model_.fibers[f]);
     }
     redistribute(r, dest, *comm_);
+    migrationDue_ = false;
   }
   void resetTraffic()
   {
     migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = 0;
   }
 
-  // Before a detection: fibers whose slab changed go to their new owner, then every rank gets
-  // the halo of its owned fibers (current positions, so it is complete for this step).
+  // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
+  // at the end of the last step: most steps move no fiber out of its slab, and the halo below
+  // covers any owner), then every rank gets the halo of its owned fibers (current positions, so
+  // it is complete for this step).
   void exchangeFibers()
   {
     RankFibers r = rankFibers();
     dropHalo(r);
-    std::vector<int> dest(r.size());
-    for (std::size_t f = 0; f < r.size(); ++f)
+    if (migrationDue_)
     {
-      dest[f] = layout_.owner(model_.fibers[f]);
+      std::vector<int> dest(r.size());
+      for (std::size_t f = 0; f < r.size(); ++f)
+      {
+        dest[f] = layout_.owner(model_.fibers[f]);
+      }
+      migrations_ += redistribute(r, dest, *comm_).fibers;
+      migrationDue_ = false;
     }
-    migrations_ += redistribute(r, dest, *comm_).fibers;
     haloBytes_ += addHalo(r, layout_, o_.periodicCell, haloReach_, *comm_).bytes;
     ++haloExchanges_;
     std::size_t halo = 0, all = 0;
@@ -294,19 +302,37 @@ public:
     std::size_t links = 0;
     bool changed = false;
   };
+  // This rank's share of the counts: pairs, links, changed.
+  std::vector<std::int64_t> localCounts(bool changed) const
+  {
+    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
+    for (const CapsulePair& p : pairs_)
+      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
+    for (const CapsuleLink& l : links_)
+      v[1] += owned_[l.fiber] ? 1 : 0;
+    return v;
+  }
+  static Counts countsOf(const std::vector<std::int64_t>& v)
+  {
+    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+  }
   Counts globalCounts(bool changed) const
   {
     if (!comm_)
     {
       return { pairs_.size(), links_.size(), changed };
     }
-    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
-    for (const CapsulePair& p : pairs_)
-      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
-    for (const CapsuleLink& l : links_)
-      v[1] += owned_[l.fiber] ? 1 : 0;
+    std::vector<std::int64_t> v = localCounts(changed);
     comm_->sum(v);
-    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+    return countsOf(v);
+  }
+  // Owned fibers whose middle left this rank's slab (after a move): they migrate next step.
+  std::int64_t leavingFibers() const
+  {
+    std::int64_t n = 0;
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+      n += owned_[f] && layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+    return n;
   }
 
   double median() { return medianRadius(model_, comm_, comm_ ? &owned_ : nullptr); }
@@ -398,8 +424,9 @@ public:
   }
 
   // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
-  // than their limit (packingPairBound or the memory budget); detectError_ says why.
-  bool detect()
+  // than their limit (packingPairBound or the memory budget); detectError_ says why. counts (if
+  // given): the global counts, with `changed` (shape control's) or-ed over the ranks.
+  bool detect(Counts* counts = nullptr, bool changed = false)
   {
     if (comm_)
     {
@@ -409,14 +436,32 @@ public:
     const bool found = findBoundedPairs();
     if (!comm_)
     {
+      if (counts)
+      {
+        *counts = { pairs_.size(), links_.size(), changed };
+      }
       return found;
     }
     // Pairs of two halo links move nothing here (their owners find them too).
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
                    [this](const CapsulePair& p) { return !owned_[links_[p.a].fiber] && !owned_[links_[p.b].fiber]; }),
       pairs_.end());
-    detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
-    return detectError_.empty();
+    // One sum per step for whether any rank failed and the counts; the failing rank's message
+    // then takes a second round (rare: the run ends).
+    std::vector<std::int64_t> v = localCounts(changed);
+    v.push_back(found ? 0 : 1);
+    comm_->sum(v);
+    if (v[3] > 0)
+    {
+      detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
+      return false;
+    }
+    detectError_.clear();
+    if (counts)
+    {
+      *counts = countsOf(v);
+    }
+    return true;
   }
 
   bool findBoundedPairs()
@@ -942,12 +987,23 @@ struct CollisionSolverRun::Impl
   CollisionSolverResult result;
   Phase phase = Phase::Created;
 
-  // The callback never sees progress go back.
-  bool report(double fraction)
+  // The callback never sees progress go back. A stop on one rank stops all; distributed, the
+  // same sum tells (with leaving non-null) whether any rank has fibers to migrate.
+  bool report(double fraction, std::int64_t* leaving = nullptr)
   {
     s.st_.reported = std::max(s.st_.reported, fraction);
     const bool go = reportProgress(progress, s.st_.reported);
-    return s.comm_ ? !anyRank(*s.comm_, !go) : go; // a stop on one rank stops all
+    if (!s.comm_)
+    {
+      return go;
+    }
+    std::vector<std::int64_t> v{ go ? 0 : 1, leaving ? *leaving : 0 };
+    s.comm_->sum(v);
+    if (leaving)
+    {
+      *leaving = v[1];
+    }
+    return v[0] == 0;
   }
   // Errors of one rank reach all (distributed runs restore the input piece).
   bool fail(std::string error)
@@ -1185,12 +1241,12 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
-  if (!s.detect())
+  Solver::Counts counts;
+  if (!s.detect(&counts, changed))
   {
     r.failDetection(" (at step " + std::to_string(st.steps) + ")");
     return false;
   }
-  const Solver::Counts counts = s.globalCounts(changed);
   st.changed = counts.changed;
   const std::size_t count = counts.pairs;
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
@@ -1258,10 +1314,12 @@ bool CollisionSolverRun::step()
     st.warnings.push_back("1000 steps passed without fewer collisions");
   }
   s.separate();
+  std::int64_t leaving = 0;
   if (s.comm_)
   {
     RankFibers fibers = s.rankFibers();
     dropHalo(fibers); // between steps a rank holds its own fibers only
+    leaving = s.leavingFibers();
   }
   ++st.steps;
   ++st.sinceGrowth;
@@ -1269,7 +1327,9 @@ bool CollisionSolverRun::step()
   {
     r.observer(st.steps, r.model);
   }
-  if (!r.report(std::max(st.done, r.stepShareAfter(st.steps))))
+  const bool go = r.report(std::max(st.done, r.stepShareAfter(st.steps)), &leaving);
+  s.migrationDue_ = leaving > 0;
+  if (!go)
   {
     r.result.aborted = true;
     if (!s.detect()) // collisions must describe the geometry that is returned
