@@ -1173,6 +1173,40 @@ bool CollisionSolverRun::start()
   return true;
 }
 
+std::string CollisionSolverRun::checkResume(const CollisionSolverState& saved) const
+{
+  const Impl& r = *impl_;
+  std::string error = validateCollisionSolverOptions(r.options);
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
+  if (error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
+  {
+    // Every rank would number its fibers 0..n-1: the global indices would collide.
+    error = "the saved solver state has no global fiber indices (a serial state): it cannot "
+            "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
+  }
+  if (error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
+    saved.closed.size() != nf || saved.closure.size() != nf))
+  {
+    error = "the saved solver state is for " + std::to_string(saved.points.size()) +
+      " fibers, the model has " + std::to_string(nf);
+  }
+  for (std::size_t f = 0; error.empty() && f < nf; ++f)
+  {
+    const std::size_t n = r.model.fibers[f].size();
+    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
+    {
+      error = "the saved solver state of fiber " + std::to_string(f) + " has " +
+        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
+    }
+  }
+  if (error.empty())
+  {
+    error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
+  }
+  return error;
+}
+
 std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
 {
   Impl& r = *impl_;
@@ -1181,38 +1215,14 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   {
     r.input = r.model; // before any failure path: fail() restores it
   }
-  r.result.error = validateCollisionSolverOptions(r.options);
-  const std::size_t nf = r.model.fibers.size();
-  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
-  if (r.result.error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
-  {
-    // Every rank would number its fibers 0..n-1: the global indices would collide.
-    r.result.error = "the saved solver state has no global fiber indices (a serial state): it cannot "
-                     "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
-  }
-  if (r.result.error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
-    saved.closed.size() != nf || saved.closure.size() != nf))
-  {
-    r.result.error = "the saved solver state is for " + std::to_string(saved.points.size()) +
-      " fibers, the model has " + std::to_string(nf);
-  }
-  for (std::size_t f = 0; r.result.error.empty() && f < nf; ++f)
-  {
-    const std::size_t n = r.model.fibers[f].size();
-    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
-    {
-      r.result.error = "the saved solver state of fiber " + std::to_string(f) + " has " +
-        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
-    }
-  }
-  if (r.result.error.empty())
-  {
-    r.result.error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
-  }
-  if (r.fail(r.result.error))
+  // Agreed over the ranks before any other collective: a rank refusing its state alone must not
+  // leave the others waiting in the distribution below.
+  if (r.fail(checkResume(saved)))
   {
     return r.result.error;
   }
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
   r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
   r.s.st_ = saved;
   if (serialState) // one rank only (refused above otherwise)
