@@ -67,6 +67,22 @@ FiberModel denseOpenCube()
   return generateCube(o);
 }
 
+// A finished 30-step solve of the dense open cube that wrote a checkpoint every 10 steps (the
+// file then holds step 30, its previous generation step 20): what the tests reading a file start from.
+struct CheckpointedRun
+{
+  const FiberModel in = denseOpenCube();
+  CollisionSolverOptions options;
+  TempFile file;
+  std::string error; ///< of the solve, "" when it ran
+  CheckpointedRun()
+  {
+    options.maxSteps = 30;
+    FiberModel m = in;
+    error = solveWithCheckpoints(m, options, { file.path, 10, false }).error;
+  }
+};
+
 // Uninterrupted, then: checkpoints every `interval` steps, "killed" (aborted) at step `killAt`,
 // resumed from the file; both must end identically, and the resumed run must begin right after
 // the last checkpoint before the kill.
@@ -170,12 +186,11 @@ TEST(SolverCheckpoint, ResumedPeriodicGrowthEqualsUninterruptedRun)
 
 TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
 {
-  const FiberModel in = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 30;
-  TempFile file;
-  FiberModel m = in;
-  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+  const CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  const FiberModel& in = run.in;
+  const CollisionSolverOptions& o = run.options;
+  const TempFile& file = run.file;
 
   FiberModel model;
   CollisionSolverState state;
@@ -229,7 +244,8 @@ TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
   EXPECT_EQ(e, "");
   EXPECT_EQ(firstStep, 21);
   std::remove(previousCheckpointPath(file.path).c_str());
-  e = solveWithCheckpoints(m, o, { file.path, 0, true }).error;
+  FiberModel noFile = in;
+  e = solveWithCheckpoints(noFile, o, { file.path, 0, true }).error;
   EXPECT_NE(e.find(file.path), std::string::npos) << e;
   EXPECT_NE(e.find("cannot be opened"), std::string::npos) << e;
 }
@@ -390,12 +406,11 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
 // the file was; the run resumed from the previous generation) leaves the caller's model as it was.
 TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
 {
-  const FiberModel in = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 30;
-  TempFile file;
-  FiberModel m = in;
-  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+  const CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  const FiberModel& in = run.in;
+  const CollisionSolverOptions& o = run.options;
+  const TempFile& file = run.file;
   ASSERT_EQ(std::remove(file.path.c_str()), 0); // steps 30 gone, 20 kept as .prev
   ASSERT_EQ(::mkdir(file.path.c_str(), 0700), 0);
   FiberModel resumed = in;
