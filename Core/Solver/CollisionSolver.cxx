@@ -3,6 +3,7 @@
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
 #include "Solver/Decomposition.h"
+#include "Solver/LinkExchange.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -85,15 +86,14 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-// Median point radius of the fibers with >= 2 points; distributed (comm): of the owned fibers
-// (owned non-null) of all ranks, exactly the same value.
-double medianRadius(const FiberModel& model, SolverComm* comm = nullptr, const std::vector<char>* owned = nullptr)
+// Median point radius of the fibers with >= 2 points; distributed (comm): of all ranks' fibers,
+// exactly the same value.
+double medianRadius(const FiberModel& model, SolverComm* comm = nullptr)
 {
   std::vector<double> r;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  for (const Fiber& fib : model.fibers)
   {
-    const Fiber& fib = model.fibers[f];
-    if (fib.points.size() >= 2 && !(owned && !(*owned)[f]))
+    if (fib.points.size() >= 2)
     {
       r.insert(r.end(), fib.radii.begin(), fib.radii.end());
     }
@@ -136,11 +136,6 @@ std::size_t removeRepeatedPoints(Fiber& f, FiberPointState& st)
   return removed;
 }
 
-struct PairPush
-{
-  Vec3 a0, a1, b0, b1;
-};
-
 // What the solver keeps per point (model point and radius, velocity and source index, force) and
 // per link (its capsule and the grid's buffers); links ≈ points.
 constexpr double kBytesPerPoint = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
@@ -150,7 +145,7 @@ double bytesPerPoint()
 }
 double bytesPerPair()
 {
-  return CollisionGrid::bytesPerPair() + static_cast<double>(sizeof(PairPush));
+  return CollisionGrid::bytesPerPair() + static_cast<double>(sizeof(LinkPairPush));
 }
 
 // Exact copies of fibers (same points and radii): how many fibers repeat an earlier one, and the
@@ -225,32 +220,38 @@ public:
   const CollisionSolverOptions& o_;
   int threads_;
   CollisionSolverState st_; // what a step hands to the next (header); the rest is rebuilt per step
-  std::vector<CapsuleLink> links_;
+  std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<PairPush> push_;
+  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
-  // Distributed run (docs/solver.md §13); comm_ null: this process alone, every fiber owned.
+  // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
+  // fibers this rank owns; the pairs are found among the links near its slab (LinkExchange.h).
   SolverComm* comm_ = nullptr;
-  std::vector<char> owned_; // per fiber: 1 owned, 0 halo (a partner only)
+  std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
+  HeldLinkInfo held_;                 // per link of links_
   SlabLayout layout_;
-  double haloReach_ = 0.0; // fibers closer than this along the slab axis are exchanged
+  // Links closer than this along the slab axis to a rank's test region go there: for the pairs of
+  // a step, and for the minimum-gap probe at the end.
+  double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
-  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0;
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0,
+              peakHeldLinks_ = 0;
 
-  RankFibers rankFibers() { return RankFibers{ model_, st_, owned_ }; }
+  RankFibers rankFibers() { return RankFibers{ model_, st_ }; }
 
   // The slabs, the halo reach and every fiber to its owner (the run's first exchange).
   void startDistribution()
   {
     layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
     const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
-    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes up to one more median
-    // radius (<= ρmax); a relative margin covers the rounding of the distances.
-    haloReach_ = (3.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes pairs up to one median
+    // radius (<= ρmax) apart; a relative margin covers the rounding of the distances.
+    pairReach_ = (2.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    probeReach_ = 3.0 * rhoMax * (1.0 + 1e-6) + 1e-9;
     RankFibers r = rankFibers();
     std::vector<int> dest(r.size());
     for (std::size_t f = 0; f < r.size(); ++f)
@@ -262,19 +263,17 @@ public:
   }
   void resetTraffic()
   {
-    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = 0;
+    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = peakHeldLinks_ = 0;
   }
 
   // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
-  // at the end of the last step: most steps move no fiber out of its slab, and the halo below
-  // covers any owner), then every rank gets the halo of its owned fibers (current positions, so
-  // it is complete for this step).
-  void exchangeFibers()
+  // at the end of the last step: most steps move no fiber out of its slab, and the links go to
+  // every rank whose region they reach whoever owns them).
+  void migrate()
   {
-    RankFibers r = rankFibers();
-    dropHalo(r);
     if (migrationDue_)
     {
+      RankFibers r = rankFibers();
       std::vector<int> dest(r.size());
       for (std::size_t f = 0; f < r.size(); ++f)
       {
@@ -283,19 +282,36 @@ public:
       migrations_ += redistribute(r, dest, *comm_).fibers;
       migrationDue_ = false;
     }
-    haloBytes_ += addHalo(r, layout_, o_.periodicCell, haloReach_, *comm_).bytes;
-    ++haloExchanges_;
-    std::size_t halo = 0, all = 0;
-    for (std::size_t f = 0; f < r.size(); ++f)
-    {
-      all += model_.fibers[f].size();
-      halo += owned_[f] ? 0 : model_.fibers[f].size();
-    }
-    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
-    peakRankPoints_ = std::max(peakRankPoints_, all);
   }
 
-  // Collisions and links of the whole model: a pair counts on the rank owning its first link.
+  // links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
+  // from all owners, with the current positions (so they are complete for this step), or with
+  // the wider reach of the minimum-gap probe (then not counted as a step's traffic).
+  void gatherLinks(const std::vector<char>* active, const std::vector<char>* closed, double scale,
+    bool forGapProbe = false)
+  {
+    buildLinks(model_, active, threads_, comm_ ? ownLinks_ : links_, &pointOffset_, closed, scale);
+    if (!comm_)
+    {
+      return;
+    }
+    const double reach = forGapProbe ? probeReach_ : pairReach_;
+    const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, layout_, reach, *comm_, links_, held_);
+    if (forGapProbe)
+    {
+      return;
+    }
+    haloBytes_ += sent.bytes;
+    ++haloExchanges_;
+    std::size_t halo = 0;
+    for (int owner : held_.owner)
+      halo += owner != comm_->rank() ? 1 : 0;
+    peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
+    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
+    peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo);
+  }
+
+  // Collisions and links of the whole model: a pair counts on the rank testing it.
   struct Counts
   {
     std::size_t pairs = 0;
@@ -305,12 +321,7 @@ public:
   // This rank's share of the counts: pairs, links, changed.
   std::vector<std::int64_t> localCounts(bool changed) const
   {
-    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
-    for (const CapsulePair& p : pairs_)
-      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
-    for (const CapsuleLink& l : links_)
-      v[1] += owned_[l.fiber] ? 1 : 0;
-    return v;
+    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()), changed ? 1 : 0 };
   }
   static Counts countsOf(const std::vector<std::int64_t>& v)
   {
@@ -331,20 +342,20 @@ public:
   {
     std::int64_t n = 0;
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
-      n += owned_[f] && layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
     return n;
   }
 
-  double median() { return medianRadius(model_, comm_, comm_ ? &owned_ : nullptr); }
+  double median() { return medianRadius(model_, comm_); }
 
-  // Σ π ρ² · link length of the owned fibers of all ranks, the same bits for any split.
+  // Σ π ρ² · link length of the fibers of all ranks, the same bits for any split.
   double fiberVolume()
   {
     ExactSum sum;
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      for (std::size_t k = 0; owned_[f] && k + 1 < fib.size(); ++k)
+      for (std::size_t k = 0; k + 1 < fib.size(); ++k)
       {
         const double rho = fib.linkRadius(k);
         sum.add(M_PI * rho * rho * distance(fib.points[k], fib.points[k + 1]));
@@ -374,7 +385,7 @@ public:
     for (std::int64_t f = 0; f < nf; ++f)
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
-      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -402,7 +413,7 @@ public:
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      if (!st_.active[f] || !owned_[f])
+      if (!st_.active[f])
       {
         continue;
       }
@@ -430,9 +441,9 @@ public:
   {
     if (comm_)
     {
-      exchangeFibers();
+      migrate();
     }
-    buildLinks(model_, &st_.active, threads_, links_, &pointOffset_, periodic() ? &st_.closed : nullptr, st_.scale);
+    gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
     const bool found = findBoundedPairs();
     if (!comm_)
     {
@@ -442,9 +453,8 @@ public:
       }
       return found;
     }
-    // Pairs of two halo links move nothing here (their owners find them too).
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                   [this](const CapsulePair& p) { return !owned_[links_[p.a].fiber] && !owned_[links_[p.b].fiber]; }),
+    // Each pair is tested on one rank only, the one testing its lower link (LinkExchange.h).
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [this](const CapsulePair& p) { return !held_.tested[p.a]; }),
       pairs_.end());
     // One sum per step for whether any rank failed and the counts; the failing rank's message
     // then takes a second round (rare: the run ends).
@@ -505,23 +515,46 @@ public:
     return false;
   }
 
-  // Point index (into force_) of the outer neighbour of a link's first (before) or second (after)
-  // point, or SIZE_MAX at an open end; through the closure on a closed fiber.
-  std::size_t outerBefore(const CapsuleLink& l) const
+  // Point index (into force_) of the outer neighbour of the first (before) or second (after)
+  // point of link k of fiber f, or SIZE_MAX at an open end; through the closure on a closed fiber.
+  std::size_t outerBefore(std::size_t f, std::size_t k) const
   {
-    const std::size_t base = pointOffset_[l.fiber];
-    if (l.k > 0)
-      return base + l.k - 1;
-    const std::size_t n = model_.fibers[l.fiber].size();
-    return periodic() && st_.closed[l.fiber] ? base + n - 2 : SIZE_MAX;
+    const std::size_t base = pointOffset_[f];
+    if (k > 0)
+      return base + k - 1;
+    const std::size_t n = model_.fibers[f].size();
+    return periodic() && st_.closed[f] ? base + n - 2 : SIZE_MAX;
   }
-  std::size_t outerAfter(const CapsuleLink& l) const
+  std::size_t outerAfter(std::size_t f, std::size_t k) const
   {
-    const std::size_t base = pointOffset_[l.fiber];
-    const std::size_t n = model_.fibers[l.fiber].size();
-    if (l.k + 2 < n)
-      return base + l.k + 2;
-    return periodic() && st_.closed[l.fiber] ? base + 1 : SIZE_MAX;
+    const std::size_t base = pointOffset_[f];
+    const std::size_t n = model_.fibers[f].size();
+    if (k + 2 < n)
+      return base + k + 2;
+    return periodic() && st_.closed[f] ? base + 1 : SIZE_MAX;
+  }
+
+  // The smaller radius of the two points of link i of links_.
+  double smallerPointRadius(std::size_t i) const
+  {
+    if (comm_)
+    {
+      return held_.pointRadius[i];
+    }
+    const CapsuleLink& l = links_[i];
+    const Fiber& fib = model_.fibers[l.fiber];
+    return std::min(fib.radii[l.k], fib.radii[l.k + 1]);
+  }
+
+  // The model index of the fiber with this global index (SIZE_MAX: another rank owns it).
+  std::size_t localFiber(std::uint32_t global) const
+  {
+    if (!comm_)
+    {
+      return global;
+    }
+    const auto it = std::lower_bound(st_.global.begin(), st_.global.end(), static_cast<std::int64_t>(global));
+    return it != st_.global.end() && *it == global ? static_cast<std::size_t>(it - st_.global.begin()) : SIZE_MAX;
   }
 
   // Largest factor s <= 1 with δ >= s·(ρa + ρb) + g for every colliding pair.
@@ -545,8 +578,9 @@ public:
     return comm_ ? maxOverRanks(*comm_, m) : m;
   }
 
-  // §4.4: pushes in parallel into their own slots, summed serially in pair order, then moved per
-  // fiber in parallel: no floating result depends on the thread that computed it.
+  // §4.4: pushes in parallel into their own slots, summed serially in pair order (distributed:
+  // by the owners of the links, LinkExchange.h), then moved per fiber in parallel: no floating
+  // result depends on the thread or the rank that computed it.
   void separate()
   {
     const std::int64_t np = static_cast<std::int64_t>(pairs_.size());
@@ -557,45 +591,62 @@ public:
       const CapsulePair& p = pairs_[static_cast<std::size_t>(pi)];
       const CapsuleLink& la = links_[p.a];
       const CapsuleLink& lb = links_[p.b];
-      const Fiber& fa = model_.fibers[la.fiber];
-      const Fiber& fb = model_.fibers[lb.fiber];
-      const double rMin = std::min(std::min(fa.radii[la.k], fa.radii[la.k + 1]),
-        std::min(fb.radii[lb.k], fb.radii[lb.k + 1]));
+      const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
       const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
       const double sigma = std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
       const Vec3 n = sigma * p.direction;
-      PairPush& out = push_[static_cast<std::size_t>(pi)];
+      LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
+      out.fiberA = la.fiber;
+      out.kA = la.k;
+      out.fiberB = lb.fiber;
+      out.kB = lb.k;
+      out.ownerA = comm_ ? held_.owner[p.a] : 0;
+      out.ownerB = comm_ ? held_.owner[p.b] : 0;
       out.a0 = (1.0 - p.s) * n;
       out.a1 = p.s * n;
       out.b0 = -((1.0 - p.t) * n);
       out.b1 = -(p.t * n);
     }
+    if (comm_)
+    {
+      TrafficCount sent;
+      push_ = returnPushes(push_, *comm_, sent);
+      haloBytes_ += sent.bytes;
+    }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (std::size_t pi = 0; pi < pairs_.size(); ++pi)
+    for (const LinkPairPush& p : push_)
     {
-      const CapsuleLink& la = links_[pairs_[pi].a];
-      const CapsuleLink& lb = links_[pairs_[pi].b];
-      const std::size_t ia = pointOffset_[la.fiber] + la.k;
-      const std::size_t ib = pointOffset_[lb.fiber] + lb.k;
-      force_[ia] += push_[pi].a0;
-      force_[ia + 1] += push_[pi].a1;
-      force_[ib] += push_[pi].b0;
-      force_[ib + 1] += push_[pi].b1;
+      // A side whose fiber another rank owns is added there, in the same order.
+      const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
+      if (fa != SIZE_MAX)
+      {
+        force_[pointOffset_[fa] + p.kA] += p.a0;
+        force_[pointOffset_[fa] + p.kA + 1] += p.a1;
+      }
+      if (fb != SIZE_MAX)
+      {
+        force_[pointOffset_[fb] + p.kB] += p.b0;
+        force_[pointOffset_[fb] + p.kB + 1] += p.b1;
+      }
       if (spread > 0.0)
       {
         // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
         // create the curvature violations that shape control then undoes step after step.
-        const std::size_t a0 = outerBefore(la), a1 = outerAfter(la);
-        const std::size_t b0 = outerBefore(lb), b1 = outerAfter(lb);
-        if (a0 != SIZE_MAX)
-          force_[a0] += spread * push_[pi].a0;
-        if (a1 != SIZE_MAX)
-          force_[a1] += spread * push_[pi].a1;
-        if (b0 != SIZE_MAX)
-          force_[b0] += spread * push_[pi].b0;
-        if (b1 != SIZE_MAX)
-          force_[b1] += spread * push_[pi].b1;
+        const auto add = [this, spread](std::size_t i, const Vec3& push) {
+          if (i != SIZE_MAX)
+            force_[i] += spread * push;
+        };
+        if (fa != SIZE_MAX)
+        {
+          add(outerBefore(fa, p.kA), p.a0);
+          add(outerAfter(fa, p.kA), p.a1);
+        }
+        if (fb != SIZE_MAX)
+        {
+          add(outerBefore(fb, p.kB), p.b0);
+          add(outerAfter(fb, p.kB), p.b1);
+        }
       }
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
@@ -607,7 +658,7 @@ public:
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
       const std::size_t n = fib.points.size();
-      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -736,8 +787,15 @@ double initialScale(const CollisionSolverOptions& o)
 }
 
 // Smallest surface gap over pairs closer than probe (µm); probe when no pair is that close.
+// Distributed, the links are gathered again with the probe's reach (the pairs found before no
+// longer index them).
 double smallestGap(Solver& s, double probe)
 {
+  if (s.comm_)
+  {
+    s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
+    s.pairs_.clear();
+  }
   std::vector<CapsulePair> near;
   if (s.periodic())
   {
@@ -1049,13 +1107,13 @@ struct CollisionSolverRun::Impl
   void goHome()
   {
     RankFibers fibers = s.rankFibers();
-    dropHalo(fibers);
     result.rankFibers = fibers.size();
     redistribute(fibers, s.st_.home, *s.comm_);
     result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
     result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
     result.peakHaloPoints = s.peakHaloPoints_;
     result.peakRankPoints = s.peakRankPoints_;
+    result.peakHeldLinks = s.peakHeldLinks_;
   }
   std::int64_t sumOverRanks(std::int64_t v)
   {
@@ -1122,7 +1180,6 @@ bool CollisionSolverRun::start()
   st.closed.assign(nf, 0);
   st.closure.assign(nf, Vec3{});
   st.home.assign(nf, s.comm_ ? s.comm_->rank() : 0);
-  s.owned_.assign(nf, 1);
   if (s.comm_)
   {
     s.startDistribution();
@@ -1142,17 +1199,8 @@ bool CollisionSolverRun::start()
   {
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
-    if (s.comm_)
-    {
-      s.exchangeFibers();
-    }
-    buildLinks(model, nullptr, s.threads_, s.links_, nullptr);
+    s.gatherLinks(nullptr, nullptr, 1.0);
     const bool found = s.findBoundedPairs();
-    if (s.comm_)
-    {
-      RankFibers fibers = s.rankFibers();
-      dropHalo(fibers);
-    }
     if (r.fail(found ? std::string() : s.detectError_))
     {
       return false;
@@ -1231,7 +1279,6 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
     std::iota(r.s.st_.global.begin(), r.s.st_.global.end(), std::int64_t{ 0 });
     r.s.st_.home.assign(nf, 0);
   }
-  r.s.owned_.assign(nf, 1);
   if (r.s.comm_)
   {
     r.s.startDistribution(); // any slabs do: the result does not depend on who owns what
@@ -1324,13 +1371,7 @@ bool CollisionSolverRun::step()
     st.warnings.push_back("1000 steps passed without fewer collisions");
   }
   s.separate();
-  std::int64_t leaving = 0;
-  if (s.comm_)
-  {
-    RankFibers fibers = s.rankFibers();
-    dropHalo(fibers); // between steps a rank holds its own fibers only
-    leaving = s.leavingFibers();
-  }
+  std::int64_t leaving = s.comm_ ? s.leavingFibers() : 0;
   ++st.steps;
   ++st.sinceGrowth;
   if (r.observer)
@@ -1421,9 +1462,12 @@ CollisionSolverResult CollisionSolverRun::finish()
   {
     result.volumeFraction = s.fiberVolume() / o.periodicCell.volume();
   }
+  // How far it got: the radius scale at which this geometry would be free of overlaps.
+  const bool unsolved = !result.solved && !result.aborted;
+  const double free = unsolved && s.periodic() ? s.overlapFreeScale() : 1.0;
   result.minGapProbe = s.median();
   result.minGap = smallestGap(s, result.minGapProbe);
-  if (!result.solved && !result.aborted)
+  if (unsolved)
   {
     std::ostringstream w;
     w << result.collisions << " capsule pairs still overlap after " << result.steps
@@ -1431,8 +1475,6 @@ CollisionSolverResult CollisionSolverRun::finish()
       << ", max overlap " << result.maxOverlap << " um";
     if (s.periodic())
     {
-      // How far it got: the radius scale at which this geometry would be free of overlaps.
-      const double free = s.overlapFreeScale();
       w << "; overlap-free at " << 100.0 * free << " % of the radii, i.e. a volume fraction of "
         << result.volumeFraction * free * free << " of the requested " << result.volumeFraction;
     }

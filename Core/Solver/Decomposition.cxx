@@ -58,8 +58,8 @@ private:
   std::size_t at_ = 0;
 };
 
-// One fiber; the point state only for owned fibers (a halo fiber is a partner only).
-void writeFiber(Writer& w, const RankFibers& r, std::size_t f, bool owned)
+// One fiber with its point state.
+void writeFiber(Writer& w, const RankFibers& r, std::size_t f)
 {
   const CollisionSolverState& st = r.state;
   const Fiber& fib = r.model.fibers[f];
@@ -72,12 +72,8 @@ void writeFiber(Writer& w, const RankFibers& r, std::size_t f, bool owned)
   w.put<Vec3>(st.closure[f]);
   w.putVector(fib.points);
   w.putVector(fib.radii);
-  w.put<char>(owned ? 1 : 0);
-  if (owned)
-  {
-    w.putVector(st.points[f].velocity);
-    w.putVector(st.points[f].source);
-  }
+  w.putVector(st.points[f].velocity);
+  w.putVector(st.points[f].source);
 }
 
 void readFiber(Reader& rd, RankFibers& r)
@@ -93,14 +89,9 @@ void readFiber(Reader& rd, RankFibers& r)
   st.closure.push_back(rd.get<Vec3>());
   rd.getVector(fib.points);
   rd.getVector(fib.radii);
-  const char owned = rd.get<char>();
   FiberPointState ps;
-  if (owned)
-  {
-    rd.getVector(ps.velocity);
-    rd.getVector(ps.source);
-  }
-  r.owned.push_back(owned);
+  rd.getVector(ps.velocity);
+  rd.getVector(ps.source);
   st.points.push_back(std::move(ps));
   r.model.fibers.push_back(std::move(fib));
 }
@@ -128,7 +119,6 @@ void keepAndSort(RankFibers& r, const std::vector<char>& keep)
   permute(st.closure);
   permute(st.global);
   permute(st.home);
-  permute(r.owned);
 }
 
 // Extent [lo, hi] of a fiber's points along an axis.
@@ -143,19 +133,8 @@ void extent(const Fiber& f, int axis, double& lo, double& hi)
   }
 }
 
-// Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
-// integer k with a − reach + kP <= d and b + reach + kP >= c.
-bool within(double a, double b, double c, double d, double reach, double period)
-{
-  if (period <= 0.0)
-  {
-    return a - reach <= d && b + reach >= c;
-  }
-  return std::floor((d - a + reach) / period) >= std::ceil((c - b - reach) / period);
-}
-
 TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to,
-  const std::vector<char>& keep, bool owned, SolverComm& comm)
+  const std::vector<char>& keep, SolverComm& comm)
 {
   TrafficCount t;
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
@@ -163,7 +142,7 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
   {
     Writer w(out[q]);
     for (std::size_t f : to[q])
-      writeFiber(w, r, f, owned);
+      writeFiber(w, r, f);
     t.fibers += to[q].size();
     t.bytes += out[q].size();
   }
@@ -241,13 +220,27 @@ int SlabLayout::owner(const Fiber& f) const
   }
   double a, b;
   extent(f, axis_, a, b);
-  double t = (0.5 * (a + b) - lo_) / (hi_ - lo_);
+  return slabOf(0.5 * (a + b));
+}
+
+int SlabLayout::slabOf(double x) const
+{
+  if (ranks_ == 1 || !(hi_ > lo_))
+  {
+    return 0;
+  }
+  double t = (x - lo_) / (hi_ - lo_);
   if (periodic_)
   {
     t -= std::floor(t);
   }
   const double slab = std::floor(t * ranks_);
   return slab < 0.0 ? 0 : slab >= ranks_ ? ranks_ - 1 : static_cast<int>(slab);
+}
+
+double SlabLayout::wrapShift(double x) const
+{
+  return periodic_ ? -(hi_ - lo_) * std::floor((x - lo_) / (hi_ - lo_)) : 0.0;
 }
 
 TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverComm& comm)
@@ -262,45 +255,7 @@ TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverCom
       keep[f] = 0;
     }
   }
-  return send(r, to, keep, true, comm);
-}
-
-void dropHalo(RankFibers& r)
-{
-  keepAndSort(r, r.owned);
-}
-
-TrafficCount addHalo(RankFibers& r, const SlabLayout& layout, const PeriodicCell& cell, double reach, SolverComm& comm)
-{
-  const int axis = layout.axis();
-  const std::size_t nr = static_cast<std::size_t>(comm.size());
-  const std::size_t me = static_cast<std::size_t>(comm.rank());
-  // Every rank's extent of its owned fibers (−lo, hi; empty: −∞, −∞).
-  std::vector<double> ext(2 * nr, -HUGE_VAL);
-  std::vector<double> lo(r.size()), hi(r.size());
-  for (std::size_t f = 0; f < r.size(); ++f)
-  {
-    extent(r.model.fibers[f], axis, lo[f], hi[f]);
-    if (r.owned[f] && !r.model.fibers[f].points.empty())
-    {
-      ext[2 * me] = std::max(ext[2 * me], -lo[f]);
-      ext[2 * me + 1] = std::max(ext[2 * me + 1], hi[f]);
-    }
-  }
-  comm.max(ext);
-  const double period = cell.enabled() ? cell.edge()[axis] : 0.0;
-  std::vector<std::vector<std::size_t>> to(nr);
-  for (std::size_t f = 0; f < r.size(); ++f)
-  {
-    if (!r.owned[f] || !r.state.active[f])
-      continue;
-    for (std::size_t q = 0; q < nr; ++q)
-    {
-      if (q != me && ext[2 * q + 1] > -HUGE_VAL && within(lo[f], hi[f], -ext[2 * q], ext[2 * q + 1], reach, period))
-        to[q].push_back(f);
-    }
-  }
-  return send(r, to, std::vector<char>(r.size(), 1), false, comm);
+  return send(r, to, keep, comm);
 }
 
 std::string agreeOnError(SolverComm& comm, const std::string& localError)

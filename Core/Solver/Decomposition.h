@@ -1,9 +1,9 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
 /// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
 /// run, the one along which the fibers are shortest) holds the fiber's reference point, the middle of its extent along that axis (in a
-/// periodic cell wrapped into the cell). Every rank keeps its owned fibers and, per step, a halo
-/// of the other ranks' fibers that can touch them, all in global fiber order; fibers travel
-/// between ranks as byte records through SolverComm::exchange.
+/// periodic cell wrapped into the cell). Every rank keeps its owned fibers, in global fiber order;
+/// fibers travel between ranks as byte records through SolverComm::exchange. The pair work goes
+/// by region (links, not fibers: Solver/LinkExchange.h).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
@@ -19,14 +19,12 @@
 namespace fiberpli
 {
 
-/// The rank's fibers (model), what the solver keeps per fiber (state: parallel vectors, global
-/// order) and which of them it owns (owned: 1 = owned, 0 = halo, a partner whose pushes are
-/// discarded; halo fibers carry no point state).
+/// The fibers a rank owns (model) and what the solver keeps per fiber (state: parallel vectors,
+/// global order).
 struct RankFibers
 {
   FiberModel& model;
   CollisionSolverState& state;
-  std::vector<char>& owned;
   std::size_t size() const { return model.fibers.size(); }
 };
 
@@ -39,7 +37,14 @@ public:
   static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
   /// Rank that owns the fiber (0 for a fiber without points).
   int owner(const Fiber& f) const;
+  /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
+  int slabOf(double x) const;
+  /// What wrapping x into the cell adds to it along the axis (0 without a cell).
+  double wrapShift(double x) const;
   int axis() const { return axis_; }
+  bool periodic() const { return periodic_; }
+  /// The cell's edge along the axis (0 without a cell).
+  double period() const { return periodic_ ? hi_ - lo_ : 0.0; }
 
 private:
   int axis_ = 0;
@@ -58,17 +63,6 @@ struct TrafficCount
 /// Sends every fiber whose destination (dest(index), a rank) is another rank there, receives the
 /// fibers others send here, keeps global order. Collective.
 TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
-
-/// Drops the halo fibers.
-void dropHalo(RankFibers& fibers);
-
-/// Adds to every rank, as halo, the other ranks' solved fibers whose extent along the slab axis
-/// comes within `reach` of the extent of its owned fibers (modulo the cell when periodic), so every
-/// partner of an owned fiber closer than reach along the slab axis is there. Two capsules collide
-/// only closer than 2·ρmax + gap; the solver passes 3·ρmax + gap (plus a rounding margin) because
-/// its minimum-gap probe looks one median radius (<= ρmax) further. Collective.
-TrafficCount addHalo(RankFibers& fibers, const SlabLayout& layout, const PeriodicCell& cell, double reach,
-  SolverComm& comm);
 
 /// "" when no rank failed, else the message of the lowest failing rank, on every rank. Collective.
 std::string agreeOnError(SolverComm& comm, const std::string& localError);

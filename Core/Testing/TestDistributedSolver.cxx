@@ -297,3 +297,104 @@ TEST(DistributedSolver, AStopOnOneRankStopsEveryRankAtTheSameStep)
   for (const RankRun& run : runs)
     EXPECT_TRUE(run.result.aborted);
 }
+
+namespace
+{
+// Links of `m` whose extent along `axis`, shifted by a multiple of the cell edge L, comes within
+// w of [lo, hi]: brute force over the shifts.
+std::size_t linksNear(const FiberModel& m, int axis, double lo, double hi, double w, double L)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      const double a = std::min(f.points[k][axis], f.points[k + 1][axis]);
+      const double b = std::max(f.points[k][axis], f.points[k + 1][axis]);
+      bool near = false;
+      for (int s = -3; s <= 3 && !near; ++s)
+        near = a + s * L <= hi + w && b + s * L >= lo - w;
+      n += near ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+std::size_t linkCount(const FiberModel& m)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+    n += f.size() > 1 ? f.size() - 1 : 0;
+  return n;
+}
+
+std::size_t pointCount(const FiberModel& m)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+    n += f.size();
+  return n;
+}
+} // namespace
+
+// Three populations in a periodic cell: one of them runs along whichever axis the slabs cut, so
+// whole fibers span every slab. A rank must still hold only its share and the links near its
+// slab (not the whole model), and the result must be the serial one.
+TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
+{
+  const CubeOptions c = periodicCube(3, 30.0, 0.3, 5);
+  const FiberModel in = generateCube(c);
+  const double L = c.edgeLength;
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.numberOfThreads = 1;
+  double rhoMax = 0.0, rMin = HUGE_VAL, longest = 0.0;
+  for (const Fiber& f : in.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      rhoMax = std::max(rhoMax, f.linkRadius(k));
+      rMin = std::min(rMin, std::min(f.radii[k], f.radii[k + 1]));
+      longest = std::max(longest, distance(f.points[k], f.points[k + 1]));
+    }
+  }
+  for (int steps : { 4, 40 })
+  {
+    o.maxSteps = steps;
+    // The short run keeps the input's links (no split/merge), so that brute force over the
+    // input bounds what a rank may hold.
+    o.segmentLength = steps < 10 ? -1.0 : 2.0;
+    FiberModel serial = in;
+    const CollisionSolverResult s = solveCollisions(serial, o);
+    ASSERT_EQ(s.error, "");
+    ASSERT_EQ(s.steps, steps);
+    const double links = static_cast<double>(linkCount(serial));
+    const double points = static_cast<double>(pointCount(serial));
+    // How far a held link can lie from a slab: half the longest link (its centre is in a test
+    // region), the pair reach 2·ρmax, and what the points moved.
+    const double w = 0.5 * longest + 2.0 * rhoMax + 2.0 * steps * o.maxDisplacement * rMin + 1e-6;
+    for (int ranks : { 2, 3 })
+    {
+      const std::string what = std::to_string(ranks) + " ranks, " + std::to_string(steps) + " steps";
+      const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+      expectSerial(runs, serial, s, what);
+      for (int q = 0; q < ranks; ++q)
+      {
+        const CollisionSolverResult& r = runs[static_cast<std::size_t>(q)].result;
+        EXPECT_LT(static_cast<double>(r.peakHeldLinks), 0.8 * links) << what << ", rank " << q << " of " << links;
+        EXPECT_LT(static_cast<double>(r.peakRankPoints), 0.8 * points) << what << ", rank " << q << " of " << points;
+        if (steps < 10) // the geometry is still (nearly) the input's: bound it by brute force
+        {
+          std::size_t bound = 0;
+          for (int axis = 0; axis < 3; ++axis) // whichever axis the slabs cut
+          {
+            const double lo = c.edgeLength * (q / static_cast<double>(ranks) - 0.5);
+            bound = std::max(bound, linksNear(in, axis, lo, lo + L / ranks, w, L));
+          }
+          EXPECT_LE(r.peakHeldLinks, bound) << what << ", rank " << q;
+          EXPECT_GT(r.peakHaloPoints, 0u) << what;
+        }
+      }
+    }
+  }
+}
