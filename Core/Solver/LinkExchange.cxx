@@ -78,7 +78,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   for (const CapsuleLink& l : own)
   {
     const double c = centre(l, axis);
-    const std::size_t q = static_cast<std::size_t>(layout.slabOf(c));
+    const std::size_t q = static_cast<std::size_t>(layout.testerOf(c));
     const double shift = layout.wrapShift(c);
     region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
@@ -123,7 +123,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     held[i] = rec.link;
     info.pointRadius[i] = rec.pointRadius;
     info.owner[i] = from[order[i]];
-    info.tested[i] = layout.slabOf(centre(rec.link, axis)) == me ? 1 : 0;
+    info.tested[i] = layout.testerOf(centre(rec.link, axis)) == me ? 1 : 0;
   }
   return sent;
 }
