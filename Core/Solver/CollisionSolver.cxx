@@ -237,6 +237,7 @@ public:
   // Links closer than this along the slab axis to a rank's test region go there: for the pairs of
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
+  bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
@@ -258,22 +259,29 @@ public:
       dest[f] = layout_.owner(model_.fibers[f]);
     }
     redistribute(r, dest, *comm_);
+    migrationDue_ = false;
   }
   void resetTraffic()
   {
     migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = peakHeldLinks_ = 0;
   }
 
-  // Before a detection: fibers whose slab changed go to their new owner.
+  // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
+  // at the end of the last step: most steps move no fiber out of its slab, and the links go to
+  // every rank whose region they reach whoever owns them).
   void migrate()
   {
-    RankFibers r = rankFibers();
-    std::vector<int> dest(r.size());
-    for (std::size_t f = 0; f < r.size(); ++f)
+    if (migrationDue_)
     {
-      dest[f] = layout_.owner(model_.fibers[f]);
+      RankFibers r = rankFibers();
+      std::vector<int> dest(r.size());
+      for (std::size_t f = 0; f < r.size(); ++f)
+      {
+        dest[f] = layout_.owner(model_.fibers[f]);
+      }
+      migrations_ += redistribute(r, dest, *comm_).fibers;
+      migrationDue_ = false;
     }
-    migrations_ += redistribute(r, dest, *comm_).fibers;
   }
 
   // links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
@@ -310,16 +318,32 @@ public:
     std::size_t links = 0;
     bool changed = false;
   };
+  // This rank's share of the counts: pairs, links, changed.
+  std::vector<std::int64_t> localCounts(bool changed) const
+  {
+    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()), changed ? 1 : 0 };
+  }
+  static Counts countsOf(const std::vector<std::int64_t>& v)
+  {
+    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+  }
   Counts globalCounts(bool changed) const
   {
     if (!comm_)
     {
       return { pairs_.size(), links_.size(), changed };
     }
-    std::vector<std::int64_t> v{ static_cast<std::int64_t>(pairs_.size()),
-      static_cast<std::int64_t>(ownLinks_.size()), changed ? 1 : 0 };
+    std::vector<std::int64_t> v = localCounts(changed);
     comm_->sum(v);
-    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+    return countsOf(v);
+  }
+  // Owned fibers whose middle left this rank's slab (after a move): they migrate next step.
+  std::int64_t leavingFibers() const
+  {
+    std::int64_t n = 0;
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+    return n;
   }
 
   double median() { return medianRadius(model_, comm_); }
@@ -411,8 +435,9 @@ public:
   }
 
   // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
-  // than their limit (packingPairBound or the memory budget); detectError_ says why.
-  bool detect()
+  // than their limit (packingPairBound or the memory budget); detectError_ says why. counts (if
+  // given): the global counts, with `changed` (shape control's) or-ed over the ranks.
+  bool detect(Counts* counts = nullptr, bool changed = false)
   {
     if (comm_)
     {
@@ -422,13 +447,31 @@ public:
     const bool found = findBoundedPairs();
     if (!comm_)
     {
+      if (counts)
+      {
+        *counts = { pairs_.size(), links_.size(), changed };
+      }
       return found;
     }
     // Each pair is tested on one rank only, the one testing its lower link (LinkExchange.h).
     pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [this](const CapsulePair& p) { return !held_.tested[p.a]; }),
       pairs_.end());
-    detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
-    return detectError_.empty();
+    // One sum per step for whether any rank failed and the counts; the failing rank's message
+    // then takes a second round (rare: the run ends).
+    std::vector<std::int64_t> v = localCounts(changed);
+    v.push_back(found ? 0 : 1);
+    comm_->sum(v);
+    if (v[3] > 0)
+    {
+      detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
+      return false;
+    }
+    detectError_.clear();
+    if (counts)
+    {
+      *counts = countsOf(v);
+    }
+    return true;
   }
 
   bool findBoundedPairs()
@@ -1002,12 +1045,23 @@ struct CollisionSolverRun::Impl
   CollisionSolverResult result;
   Phase phase = Phase::Created;
 
-  // The callback never sees progress go back.
-  bool report(double fraction)
+  // The callback never sees progress go back. A stop on one rank stops all; distributed, the
+  // same sum tells (with leaving non-null) whether any rank has fibers to migrate.
+  bool report(double fraction, std::int64_t* leaving = nullptr)
   {
     s.st_.reported = std::max(s.st_.reported, fraction);
     const bool go = reportProgress(progress, s.st_.reported);
-    return s.comm_ ? !anyRank(*s.comm_, !go) : go; // a stop on one rank stops all
+    if (!s.comm_)
+    {
+      return go;
+    }
+    std::vector<std::int64_t> v{ go ? 0 : 1, leaving ? *leaving : 0 };
+    s.comm_->sum(v);
+    if (leaving)
+    {
+      *leaving = v[1];
+    }
+    return v[0] == 0;
   }
   // Errors of one rank reach all (distributed runs restore the input piece).
   bool fail(std::string error)
@@ -1167,6 +1221,40 @@ bool CollisionSolverRun::start()
   return true;
 }
 
+std::string CollisionSolverRun::checkResume(const CollisionSolverState& saved) const
+{
+  const Impl& r = *impl_;
+  std::string error = validateCollisionSolverOptions(r.options);
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
+  if (error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
+  {
+    // Every rank would number its fibers 0..n-1: the global indices would collide.
+    error = "the saved solver state has no global fiber indices (a serial state): it cannot "
+            "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
+  }
+  if (error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
+    saved.closed.size() != nf || saved.closure.size() != nf))
+  {
+    error = "the saved solver state is for " + std::to_string(saved.points.size()) +
+      " fibers, the model has " + std::to_string(nf);
+  }
+  for (std::size_t f = 0; error.empty() && f < nf; ++f)
+  {
+    const std::size_t n = r.model.fibers[f].size();
+    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
+    {
+      error = "the saved solver state of fiber " + std::to_string(f) + " has " +
+        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
+    }
+  }
+  if (error.empty())
+  {
+    error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
+  }
+  return error;
+}
+
 std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
 {
   Impl& r = *impl_;
@@ -1175,38 +1263,14 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   {
     r.input = r.model; // before any failure path: fail() restores it
   }
-  r.result.error = validateCollisionSolverOptions(r.options);
-  const std::size_t nf = r.model.fibers.size();
-  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
-  if (r.result.error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
-  {
-    // Every rank would number its fibers 0..n-1: the global indices would collide.
-    r.result.error = "the saved solver state has no global fiber indices (a serial state): it cannot "
-                     "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
-  }
-  if (r.result.error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
-    saved.closed.size() != nf || saved.closure.size() != nf))
-  {
-    r.result.error = "the saved solver state is for " + std::to_string(saved.points.size()) +
-      " fibers, the model has " + std::to_string(nf);
-  }
-  for (std::size_t f = 0; r.result.error.empty() && f < nf; ++f)
-  {
-    const std::size_t n = r.model.fibers[f].size();
-    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
-    {
-      r.result.error = "the saved solver state of fiber " + std::to_string(f) + " has " +
-        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
-    }
-  }
-  if (r.result.error.empty())
-  {
-    r.result.error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
-  }
-  if (r.fail(r.result.error))
+  // Agreed over the ranks before any other collective: a rank refusing its state alone must not
+  // leave the others waiting in the distribution below.
+  if (r.fail(checkResume(saved)))
   {
     return r.result.error;
   }
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
   r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
   r.s.st_ = saved;
   if (serialState) // one rank only (refused above otherwise)
@@ -1234,12 +1298,12 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
-  if (!s.detect())
+  Solver::Counts counts;
+  if (!s.detect(&counts, changed))
   {
     r.failDetection(" (at step " + std::to_string(st.steps) + ")");
     return false;
   }
-  const Solver::Counts counts = s.globalCounts(changed);
   st.changed = counts.changed;
   const std::size_t count = counts.pairs;
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
@@ -1307,13 +1371,16 @@ bool CollisionSolverRun::step()
     st.warnings.push_back("1000 steps passed without fewer collisions");
   }
   s.separate();
+  std::int64_t leaving = s.comm_ ? s.leavingFibers() : 0;
   ++st.steps;
   ++st.sinceGrowth;
   if (r.observer)
   {
     r.observer(st.steps, r.model);
   }
-  if (!r.report(std::max(st.done, r.stepShareAfter(st.steps))))
+  const bool go = r.report(std::max(st.done, r.stepShareAfter(st.steps)), &leaving);
+  s.migrationDue_ = leaving > 0;
+  if (!go)
   {
     r.result.aborted = true;
     if (!s.detect()) // collisions must describe the geometry that is returned

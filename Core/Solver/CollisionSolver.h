@@ -157,6 +157,9 @@ public:
   /// Instead of start(): continue from a state saved with the model now in the run (same
   /// options). Returns "" or an error naming what does not match (then finish() returns it).
   std::string resume(const CollisionSolverState& saved);
+  /// What resume(saved) would refuse, checked on this rank alone ("" = fits; not collective, so
+  /// a distributed caller can name its file in the message before the ranks agree on it).
+  std::string checkResume(const CollisionSolverState& saved) const;
   /// One iteration (§6): shape control, detection, the stop rules, one move. False when the run
   /// has ended (solved, MaxSteps, StallSteps, abort or error): then call finish().
   bool step();

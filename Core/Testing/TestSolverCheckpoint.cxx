@@ -402,6 +402,45 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
 }
 
 
+// Rank 1's checkpoint reads (checksum, options and input fingerprint fine) but its state does not
+// fit its model: the refusal is agreed on before any other collective, so both ranks fail, naming
+// rank 1's file, and nobody waits for the other in the distribution (under a timeout).
+TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
+{
+  const FiberModel whole = denseOpenCube();
+  const CollisionSolverOptions o = twoRankOptions();
+  const auto piece = [&](int r) { return halfOf(whole, r); };
+  TempFile file;
+  const std::string own1 = file.path + ".1-of-2";
+  runRanksWithin(2, 120, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    int last = 0;
+    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 25; },
+      [&](int step, const FiberModel&) { last = step; }, &comm);
+  });
+  FiberModel saved;
+  CollisionSolverState state;
+  const std::uint64_t fingerprint = modelFingerprint(piece(1));
+  ASSERT_EQ(readSolverCheckpoint(own1, o, fingerprint, saved, state), "");
+  ASSERT_FALSE(saved.fibers.empty());
+  saved.fibers[0].radii[0] = -1.0; // a radius the solver refuses (file and state still consistent)
+  ASSERT_EQ(writeSolverCheckpoint(own1, saved, state, o, fingerprint), "");
+  std::vector<CollisionSolverResult> results(2);
+  std::vector<FiberModel> out{ piece(0), piece(1) };
+  runRanksWithin(2, 120, [&](SolverComm& comm) {
+    const std::size_t r = static_cast<std::size_t>(comm.rank());
+    results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
+  });
+  for (int r = 0; r < 2; ++r)
+  {
+    const std::string& e = results[r].error;
+    EXPECT_NE(e.find("'" + own1 + "': does not fit"), std::string::npos) << "rank " << r << ": " << e;
+    EXPECT_NE(e.find("fiber " + std::to_string(state.global[0])), std::string::npos) << "rank " << r << ": " << e;
+    EXPECT_TRUE(bitwiseEqual(out[r], piece(r))) << "rank " << r << " must keep its own piece";
+  }
+  EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
+}
+
 // A resumed run that fails (here: its next checkpoint cannot be written, a directory stands where
 // the file was; the run resumed from the previous generation) leaves the caller's model as it was.
 TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
