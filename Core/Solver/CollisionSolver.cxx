@@ -69,7 +69,7 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
       CapsuleLink& l = links[linkOffset[f] + k];
       l.p0 = fib.points[k];
       l.p1 = fib.points[k + 1];
-      l.rho = scale == 1.0 ? fib.linkRadius(k) : scale * fib.linkRadius(k);
+      l.rho = capsuleRadius(fib.radii[k], fib.radii[k + 1], scale);
       l.fiber = static_cast<std::uint32_t>(f);
       l.k = static_cast<std::uint32_t>(k);
       l.arc0 = arc;
@@ -296,7 +296,7 @@ public:
       return;
     }
     const double reach = forGapProbe ? probeReach_ : pairReach_;
-    const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, layout_, reach, *comm_, links_, held_);
+    const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
     if (forGapProbe)
     {
       return;

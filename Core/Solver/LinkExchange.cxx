@@ -12,29 +12,48 @@ namespace fiberpli
 
 namespace
 {
-// A link as it travels: its capsule (fiber = global index) and the smaller radius of its points.
-struct LinkRecord
+// A run of consecutive links of one fiber as it travels: this header, then its count + 1 points
+// and their radii. The receiver rebuilds the capsules exactly as buildLinks made them (arc
+// lengths summed from the run's first one in the same order, the same radius formula).
+struct RunHeader
 {
-  CapsuleLink link;
-  double pointRadius;
+  std::uint32_t fiber; // global index
+  std::uint32_t k0;    // first link
+  std::uint32_t count; // links
+  double arc0;         // arc length at the run's first point
+  double closedLength;
 };
-static_assert(std::is_trivially_copyable<LinkRecord>::value, "sent as bytes");
-static_assert(std::is_trivially_copyable<LinkPairPush>::value, "sent as bytes");
+// One side or both of a pair's pushes as they travel: this header, then a0, a1 (sides & 1) and
+// b0, b1 (sides & 2).
+struct PushHeader
+{
+  std::uint32_t fiberA, kA, fiberB, kB, sides;
+};
 
-template <class T> void append(std::vector<char>& out, const T& v)
+template <class T> void append(std::vector<char>& out, const T* v, std::size_t n)
 {
   const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, &v, sizeof(T));
+  out.resize(at + n * sizeof(T));
+  if (n > 0)
+    std::memcpy(out.data() + at, v, n * sizeof(T));
 }
 
-template <class T> std::vector<T> records(const std::vector<char>& in)
+class Reader
 {
-  std::vector<T> v(in.size() / sizeof(T));
-  if (!v.empty())
-    std::memcpy(v.data(), in.data(), v.size() * sizeof(T));
-  return v;
-}
+public:
+  explicit Reader(const std::vector<char>& in) : in_(in) {}
+  bool done() const { return at_ >= in_.size(); }
+  template <class T> void get(T* v, std::size_t n = 1)
+  {
+    if (n > 0)
+      std::memcpy(v, in_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+  }
+
+private:
+  const std::vector<char>& in_;
+  std::size_t at_ = 0;
+};
 
 // The all-to-all without copying this rank's own buffer through the communicator.
 std::vector<std::vector<char>> exchangeAll(std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
@@ -64,10 +83,29 @@ double centre(const CapsuleLink& l, int axis)
 {
   return 0.5 * (l.p0[axis] + l.p1[axis]);
 }
+
+// Writes the run of own[first, first + count) (links of one fiber, consecutive).
+void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first, std::size_t count,
+  const FiberModel& model, const std::vector<std::int64_t>& global)
+{
+  const CapsuleLink& l = own[first];
+  const Fiber& fib = model.fibers[l.fiber];
+  const RunHeader h{ static_cast<std::uint32_t>(global[l.fiber]), l.k, static_cast<std::uint32_t>(count), l.arc0,
+    l.closedLength };
+  append(out, &h, 1);
+  append(out, fib.points.data() + l.k, count + 1);
+  append(out, fib.radii.data() + l.k, count + 1);
+}
 } // namespace
 
+double capsuleRadius(double r0, double r1, double scale)
+{
+  const double rho = r0 > r1 ? r0 : r1;
+  return scale == 1.0 ? rho : scale * rho;
+}
+
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, const SlabLayout& layout, double reach, SolverComm& comm,
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
   std::vector<CapsuleLink>& held, HeldLinkInfo& info)
 {
   const int axis = layout.axis();
@@ -84,65 +122,148 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
   }
   comm.max(region);
+  // Per destination, the run of links being collected: its first link and its length.
   std::vector<std::vector<char>> out(nr);
-  for (const CapsuleLink& l : own)
+  std::vector<std::size_t> first(nr), count(nr, 0);
+  for (std::size_t i = 0; i < own.size(); ++i)
   {
-    const Fiber& fib = model.fibers[l.fiber];
-    LinkRecord rec{ l, std::min(fib.radii[l.k], fib.radii[l.k + 1]) };
-    rec.link.fiber = static_cast<std::uint32_t>(global[l.fiber]);
+    const CapsuleLink& l = own[i];
     const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
     for (std::size_t q = 0; q < nr; ++q)
     {
-      if (region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
-        append(out[q], rec);
+      const bool send =
+        region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period());
+      const bool continues = count[q] > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
+      if (count[q] > 0 && !(send && continues))
+      {
+        writeRun(out[q], own, first[q], count[q], model, global);
+        count[q] = 0;
+      }
+      if (send)
+      {
+        first[q] = count[q] == 0 ? i : first[q];
+        ++count[q];
+      }
     }
   }
+  for (std::size_t q = 0; q < nr; ++q)
+    if (count[q] > 0)
+      writeRun(out[q], own, first[q], count[q], model, global);
   TrafficCount sent;
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
-  std::vector<LinkRecord> all;
+  held.clear();
+  info.pointRadius.clear();
   std::vector<int> from;
   for (std::size_t q = 0; q < nr; ++q)
   {
-    const std::vector<LinkRecord> part = records<LinkRecord>(in[q]);
-    all.insert(all.end(), part.begin(), part.end());
-    from.insert(from.end(), part.size(), static_cast<int>(q));
+    Reader rd(in[q]);
+    std::vector<Vec3> p;
+    std::vector<double> r;
+    while (!rd.done())
+    {
+      RunHeader h;
+      rd.get(&h);
+      p.resize(h.count + 1);
+      r.resize(h.count + 1);
+      rd.get(p.data(), p.size());
+      rd.get(r.data(), r.size());
+      double arc = h.arc0;
+      for (std::uint32_t j = 0; j < h.count; ++j)
+      {
+        CapsuleLink l;
+        l.p0 = p[j];
+        l.p1 = p[j + 1];
+        l.rho = capsuleRadius(r[j], r[j + 1], scale);
+        l.fiber = h.fiber;
+        l.k = h.k0 + j;
+        l.arc0 = arc;
+        arc += distance(l.p0, l.p1);
+        l.arc1 = arc;
+        l.closedLength = h.closedLength;
+        held.push_back(l);
+        info.pointRadius.push_back(std::min(r[j], r[j + 1]));
+        from.push_back(static_cast<int>(q));
+      }
+    }
   }
   // Global link order: the pair list found among them is then the serial one's, restricted.
-  std::vector<std::size_t> order(all.size());
+  std::vector<std::size_t> order(held.size());
   std::iota(order.begin(), order.end(), std::size_t{ 0 });
-  std::sort(order.begin(), order.end(), [&all](std::size_t a, std::size_t b) {
-    return std::tie(all[a].link.fiber, all[a].link.k) < std::tie(all[b].link.fiber, all[b].link.k);
+  std::sort(order.begin(), order.end(), [&held](std::size_t a, std::size_t b) {
+    return std::tie(held[a].fiber, held[a].k) < std::tie(held[b].fiber, held[b].k);
   });
-  held.resize(all.size());
-  info.pointRadius.resize(all.size());
-  info.owner.resize(all.size());
-  info.tested.resize(all.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-  {
-    const LinkRecord& rec = all[order[i]];
-    held[i] = rec.link;
-    info.pointRadius[i] = rec.pointRadius;
-    info.owner[i] = from[order[i]];
-    info.tested[i] = layout.testerOf(centre(rec.link, axis)) == me ? 1 : 0;
-  }
+  const auto permute = [&order](auto& v) {
+    std::remove_reference_t<decltype(v)> sorted(v.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      sorted[i] = v[order[i]];
+    v.swap(sorted);
+  };
+  permute(held);
+  permute(info.pointRadius);
+  permute(from);
+  info.owner = std::move(from);
+  info.tested.resize(held.size());
+  for (std::size_t i = 0; i < held.size(); ++i)
+    info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
   return sent;
 }
 
 std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent)
 {
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+  const auto write = [&out](const LinkPairPush& p, int to, std::uint32_t sides) {
+    std::vector<char>& b = out[static_cast<std::size_t>(to)];
+    const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
+    append(b, &h, 1);
+    if (sides & 1)
+    {
+      append(b, &p.a0, 1);
+      append(b, &p.a1, 1);
+    }
+    if (sides & 2)
+    {
+      append(b, &p.b0, 1);
+      append(b, &p.b1, 1);
+    }
+  };
   for (const LinkPairPush& p : tested)
   {
-    append(out[static_cast<std::size_t>(p.ownerA)], p);
-    if (p.ownerB != p.ownerA)
-      append(out[static_cast<std::size_t>(p.ownerB)], p);
+    if (p.ownerA == p.ownerB)
+    {
+      write(p, p.ownerA, 3);
+    }
+    else // each owner gets its side only
+    {
+      write(p, p.ownerA, 1);
+      write(p, p.ownerB, 2);
+    }
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
   std::vector<LinkPairPush> mine;
   for (const std::vector<char>& buffer : in)
   {
-    const std::vector<LinkPairPush> part = records<LinkPairPush>(buffer);
-    mine.insert(mine.end(), part.begin(), part.end());
+    Reader rd(buffer);
+    while (!rd.done())
+    {
+      PushHeader h;
+      rd.get(&h);
+      LinkPairPush p; // a side not sent stays zero: its fiber is not this rank's
+      p.fiberA = h.fiberA;
+      p.kA = h.kA;
+      p.fiberB = h.fiberB;
+      p.kB = h.kB;
+      if (h.sides & 1)
+      {
+        rd.get(&p.a0);
+        rd.get(&p.a1);
+      }
+      if (h.sides & 2)
+      {
+        rd.get(&p.b0);
+        rd.get(&p.b1);
+      }
+      mine.push_back(p);
+    }
   }
   std::sort(mine.begin(), mine.end(), [](const LinkPairPush& x, const LinkPairPush& y) {
     return std::tie(x.fiberA, x.kA, x.fiberB, x.kB) < std::tie(y.fiberA, y.kA, y.fiberB, y.kB);

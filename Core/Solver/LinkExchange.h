@@ -27,16 +27,21 @@ struct HeldLinkInfo
   std::vector<char> tested;        ///< 1: this rank tests the pairs whose lower link this is
 };
 
+/// A link's capsule radius from its points' radii at radius scale `scale` (radius growth); the
+/// solver's links and the received ones use this one formula, so they have the same bits.
+double capsuleRadius(double r0, double r1, double scale);
+
 /// Sends every owned link to every rank whose test region comes within `reach` of the link's
 /// extent along the slab axis (modulo the cell). A rank's test region is the extent of all links
 /// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
 /// own: the links of `model` (CapsuleLink::fiber = index in model); global: the fibers' global
-/// indices. Returns in `held` (CapsuleLink::fiber = global fiber index, in global link order) and
-/// `info` what this rank receives: with reach at least 2·ρmax + gap every colliding partner of a
-/// link tested here is held here. Collective (a maximum of 2·R values, one exchange); returns
-/// what was sent to other ranks.
+/// indices; scale: the capsule radius scale they were built with. Consecutive links of a fiber
+/// travel as one run of points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber =
+/// global fiber index, in global link order) and `info` what this rank receives: with reach at
+/// least 2·ρmax + gap every colliding partner of a link tested here is held here. Collective (a
+/// maximum of 2·R values, one exchange); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, const SlabLayout& layout, double reach, SolverComm& comm,
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
   std::vector<CapsuleLink>& held, HeldLinkInfo& info);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
@@ -48,9 +53,9 @@ struct LinkPairPush
   Vec3 a0, a1, b0, b1;
 };
 
-/// Sends every tested pair's pushes to the owners of its two links (once when one rank owns
-/// both) and returns those this rank receives, in pair order. Collective; `sent` counts what went
-/// to other ranks.
+/// Sends every tested pair's pushes to the owners of its two links (each owner its side; both
+/// sides once when one rank owns both) and returns those this rank receives, in pair order (a
+/// side not received is zero). Collective; `sent` counts what went to other ranks.
 std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm,
   TrafficCount& sent);
 
