@@ -39,6 +39,8 @@ public:
   int owner(const Fiber& f) const;
   /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
   int slabOf(double x) const;
+  /// Lower bound of slab q along the axis (q = R: the upper bound of the last slab).
+  double slabLo(int q) const { return lo_ + (hi_ - lo_) * q / ranks_; }
   /// What wrapping x into the cell adds to it along the axis (0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
