@@ -209,7 +209,66 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
       s.axis_ = d;
   s.lo_ = lo[s.axis_];
   s.hi_ = hi[s.axis_];
+  s.cutTesterSlabs(local, comm);
   return s;
+}
+
+void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm)
+{
+  // A histogram of all ranks' link centres (exact integer sums, the same on every rank), cut
+  // where its running sum passes k/R of the links: within one bin (1/4096 of [lo, hi]) of the
+  // balanced cut.
+  constexpr std::size_t kBins = 4096;
+  std::vector<std::int64_t> count(kBins, 0);
+  for (const Fiber& f : hi_ > lo_ ? local.fibers : std::vector<Fiber>{})
+  {
+    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+    {
+      const double t = fraction(0.5 * (f.points[k][axis_] + f.points[k + 1][axis_]));
+      const double bin = std::floor(t * static_cast<double>(kBins));
+      ++count[bin < 0.0 ? 0 : bin >= kBins ? kBins - 1 : static_cast<std::size_t>(bin)];
+    }
+  }
+  comm.sum(count);
+  const std::int64_t total = std::accumulate(count.begin(), count.end(), std::int64_t{ 0 });
+  testCuts_.clear();
+  std::int64_t below = 0;
+  std::size_t b = 0;
+  for (int k = 1; k < ranks_; ++k)
+  {
+    // The first bin edge b with below(b) >= k/R of all (equal widths when there are no links).
+    if (total == 0)
+    {
+      testCuts_.push_back(static_cast<double>(k) / ranks_);
+      continue;
+    }
+    while (b < kBins && below * ranks_ < k * total)
+    {
+      below += count[b++];
+    }
+    testCuts_.push_back(static_cast<double>(b) / static_cast<double>(kBins));
+  }
+}
+
+double SlabLayout::fraction(double x) const
+{
+  const double t = (x - lo_) / (hi_ - lo_);
+  return periodic_ ? t - std::floor(t) : t;
+}
+
+int SlabLayout::testerOf(double x) const
+{
+  if (ranks_ == 1 || !(hi_ > lo_))
+  {
+    return 0;
+  }
+  return static_cast<int>(std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
+}
+
+double SlabLayout::testerLo(int q) const
+{
+  const double t = q <= 0 ? 0.0 : q >= ranks_ ? 1.0 : testCuts_[static_cast<std::size_t>(q - 1)];
+  return lo_ + (hi_ - lo_) * t;
 }
 
 int SlabLayout::owner(const Fiber& f) const

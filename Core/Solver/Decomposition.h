@@ -39,8 +39,13 @@ public:
   int owner(const Fiber& f) const;
   /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
   int slabOf(double x) const;
-  /// Lower bound of slab q along the axis (q = R: the upper bound of the last slab).
-  double slabLo(int q) const { return lo_ + (hi_ - lo_) * q / ranks_; }
+  /// Rank testing the pairs of a link whose centre is at x along the axis (Solver/LinkExchange.h):
+  /// slabs cut so that each holds as many link centres of the start model as the others (the pair
+  /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
+  /// of it). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
+  int testerOf(double x) const;
+  /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
+  double testerLo(int q) const;
   /// What wrapping x into the cell adds to it along the axis (0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
@@ -53,6 +58,9 @@ private:
   double lo_ = 0.0, hi_ = 0.0;
   int ranks_ = 1;
   bool periodic_ = false;
+  std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
+  double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
+  void cutTesterSlabs(const FiberModel& local, SolverComm& comm); // collective
 };
 
 /// What a redistribution moved (this rank's share).

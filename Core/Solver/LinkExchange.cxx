@@ -84,17 +84,20 @@ double centre(const CapsuleLink& l, int axis)
   return 0.5 * (l.p0[axis] + l.p1[axis]);
 }
 
-// Calls f(q) for every slab q that [a, b] touches (modulo the cell) and one more on each side.
-template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, double a, double b, F f)
+// Calls f(q) for every tester slab q that [a, b] touches (modulo the cell) and one more on each
+// side (rounding). In a cell an interval shorter than the cell minus the widest slab cannot wrap
+// back into the slab it starts in, so its slabs run cyclically from a's to b's.
+// widest: the widest tester slab.
+template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
 {
   const double period = layout.period();
-  if (period > 0.0 && b - a >= period * (1.0 - 2.0 / ranks)) // (nearly) around the cell
+  if (period > 0.0 && b - a >= 0.999 * (period - widest))
   {
     for (int q = 0; q < ranks; ++q)
       f(static_cast<std::size_t>(q));
     return;
   }
-  const int qa = layout.slabOf(a), qb = layout.slabOf(b);
+  const int qa = layout.testerOf(a), qb = layout.testerOf(b);
   if (period > 0.0)
   {
     const int n = std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
@@ -138,7 +141,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   for (const CapsuleLink& l : own)
   {
     const double c = centre(l, axis);
-    const std::size_t q = static_cast<std::size_t>(layout.slabOf(c));
+    const std::size_t q = static_cast<std::size_t>(layout.testerOf(c));
     const double shift = layout.wrapShift(c);
     region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
@@ -147,15 +150,17 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // Every region lies in its slab grown by `grow`: a link can only reach the regions of the slabs
   // its extent grown by reach + grow touches (and, for rounding, one more on each side), so a
   // link tests a few ranks, not all.
-  double grow = 0.0;
+  double grow = 0.0, widest = 0.0;
   for (std::size_t q = 0; q < nr; ++q)
   {
+    widest = std::max(widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
     if (region[2 * q + 1] > -HUGE_VAL)
     {
       const int r = static_cast<int>(q);
-      grow = std::max(grow, std::max(layout.slabLo(r) + region[2 * q], region[2 * q + 1] - layout.slabLo(r + 1)));
+      grow = std::max(grow, std::max(layout.testerLo(r) + region[2 * q], region[2 * q + 1] - layout.testerLo(r + 1)));
     }
   }
+  grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
   // Per destination, the run of links being collected (first link, length); `open`: those with
   // a run, `stamp[q] == i`: link i goes to q.
   std::vector<std::vector<char>> out(nr);
@@ -165,7 +170,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     const CapsuleLink& l = own[i];
     const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
     dests.clear();
-    forNearbySlabs(layout, static_cast<int>(nr), lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
+    forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
       if (region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
       {
         dests.push_back(q);
@@ -251,7 +256,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   info.owner = std::move(from);
   info.tested.resize(held.size());
   for (std::size_t i = 0; i < held.size(); ++i)
-    info.tested[i] = layout.slabOf(centre(held[i], axis)) == me ? 1 : 0;
+    info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
   return sent;
 }
 

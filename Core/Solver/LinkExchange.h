@@ -1,8 +1,9 @@
 /// LinkExchange: the pair work of the distributed collision solver, by region (docs/solver.md §13).
 /// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
 /// each owner sends each of its links to every rank whose test region comes within reach of it.
-/// A pair is tested by exactly one rank, the one whose slab holds the centre of its lower link
-/// (in global link order), which holds every partner of such a link. It sends the pair's pushes
+/// A pair is tested by exactly one rank, the one whose tester slab (SlabLayout::testerOf: slabs of
+/// equal link counts) holds the centre of its lower link (in global link order), which holds every
+/// partner of such a link. It sends the pair's pushes
 /// back to the owners of the two links, and they add them in pair order, as the serial solver
 /// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
 #pragma once
@@ -32,7 +33,7 @@ double capsuleRadius(double r0, double r1, double scale);
 
 /// Sends every owned link to every rank whose test region comes within `reach` of the link's
 /// extent along the slab axis (modulo the cell). A rank's test region is the extent of all links
-/// whose centre lies in its slab, each shifted as wrapping its centre into the cell shifts it.
+/// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
 /// own: the links of `model` (CapsuleLink::fiber = index in model); global: the fibers' global
 /// indices; scale: the capsule radius scale they were built with. Consecutive links of a fiber
 /// travel as one run of points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber =

@@ -4,6 +4,7 @@
 // whose region is empty, fibers longer than a rank's region, fibers moving between ranks, and an
 // error or a stop on one rank only.
 #include "Solver/CollisionSolver.h"
+#include "Solver/Decomposition.h"
 
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
@@ -206,6 +207,41 @@ TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
     {
       EXPECT_EQ(runs[1].result.rankFibers, 1u); // the long fiber
       EXPECT_EQ(runs[2].result.rankFibers, 0u);
+    }
+  }
+}
+
+// The pair testers' slabs hold equal link counts (docs/solver.md §13), not equal widths: 30 fibers
+// crowd x in [0, 2], 10 spread over [2, 20] (all along y: x is the slab axis). Each rank computes
+// the same cuts from its own piece, and each slab gets N/R links to within one fiber's 10 links
+// (equal widths would give the first of 2 slabs 34 of the 40 fibers).
+TEST(DistributedSolver, TesterSlabsHoldEqualLinkCounts)
+{
+  FiberModel m;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double x = i < 30 ? 2.0 * i / 30.0 : 2.0 + 18.0 * (i - 30) / 9.0;
+    m.fibers.push_back(line({ x, 0.0, 0.0 }, { 0, 1.0, 0 }, 11, 0.3, i));
+  }
+  for (int ranks : { 2, 3 })
+  {
+    std::vector<std::vector<int>> testers(static_cast<std::size_t>(ranks));
+    runRanks(ranks, [&](SolverComm& comm) {
+      FiberModel piece;
+      for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += static_cast<std::size_t>(ranks))
+        piece.fibers.push_back(m.fibers[f]);
+      const SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+      ASSERT_EQ(layout.axis(), 0);
+      for (const Fiber& f : m.fibers) // every link of a fiber has its centre at the fiber's x
+        testers[static_cast<std::size_t>(comm.rank())].push_back(layout.testerOf(f.points[0].x));
+    });
+    std::vector<int> links(static_cast<std::size_t>(ranks), 0);
+    for (int t : testers[0])
+      links[static_cast<std::size_t>(t)] += 10;
+    for (int q = 0; q < ranks; ++q)
+    {
+      EXPECT_EQ(testers[static_cast<std::size_t>(q)], testers[0]) << "rank " << q << " cuts differently";
+      EXPECT_NEAR(links[static_cast<std::size_t>(q)], 400.0 / ranks, 10.0) << ranks << " ranks, slab " << q;
     }
   }
 }
