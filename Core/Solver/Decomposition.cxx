@@ -265,6 +265,12 @@ int SlabLayout::testerOf(double x) const
   return static_cast<int>(std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
 }
 
+double SlabLayout::testerLo(int q) const
+{
+  const double t = q <= 0 ? 0.0 : q >= ranks_ ? 1.0 : testCuts_[static_cast<std::size_t>(q - 1)];
+  return lo_ + (hi_ - lo_) * t;
+}
+
 int SlabLayout::owner(const Fiber& f) const
 {
   if (f.points.empty() || ranks_ == 1 || !(hi_ > lo_))

@@ -44,6 +44,8 @@ public:
   /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
   /// of it). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
   int testerOf(double x) const;
+  /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
+  double testerLo(int q) const;
   /// What wrapping x into the cell adds to it along the axis (0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }

@@ -84,6 +84,31 @@ double centre(const CapsuleLink& l, int axis)
   return 0.5 * (l.p0[axis] + l.p1[axis]);
 }
 
+// Calls f(q) for every tester slab q that [a, b] touches (modulo the cell) and one more on each
+// side (rounding). In a cell an interval shorter than the cell minus the widest slab cannot wrap
+// back into the slab it starts in, so its slabs run cyclically from a's to b's.
+// widest: the widest tester slab.
+template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
+{
+  const double period = layout.period();
+  if (period > 0.0 && b - a >= 0.999 * (period - widest))
+  {
+    for (int q = 0; q < ranks; ++q)
+      f(static_cast<std::size_t>(q));
+    return;
+  }
+  const int qa = layout.testerOf(a), qb = layout.testerOf(b);
+  if (period > 0.0)
+  {
+    const int n = std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
+    for (int j = 0; j < n; ++j)
+      f(static_cast<std::size_t>(((qa - 1 + j) % ranks + ranks) % ranks));
+    return;
+  }
+  for (int q = std::max(0, qa - 1); q <= std::min(ranks - 1, qb + 1); ++q)
+    f(static_cast<std::size_t>(q));
+}
+
 // Writes the run of own[first, first + count) (links of one fiber, consecutive).
 void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first, std::size_t count,
   const FiberModel& model, const std::vector<std::int64_t>& global)
@@ -122,33 +147,60 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
   }
   comm.max(region);
-  // Per destination, the run of links being collected: its first link and its length.
+  // Every region lies in its slab grown by `grow`: a link can only reach the regions of the slabs
+  // its extent grown by reach + grow touches (and, for rounding, one more on each side), so a
+  // link tests a few ranks, not all.
+  double grow = 0.0, widest = 0.0;
+  for (std::size_t q = 0; q < nr; ++q)
+  {
+    widest = std::max(widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
+    if (region[2 * q + 1] > -HUGE_VAL)
+    {
+      const int r = static_cast<int>(q);
+      grow = std::max(grow, std::max(layout.testerLo(r) + region[2 * q], region[2 * q + 1] - layout.testerLo(r + 1)));
+    }
+  }
+  grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
+  // Per destination, the run of links being collected (first link, length); `open`: those with
+  // a run, `stamp[q] == i`: link i goes to q.
   std::vector<std::vector<char>> out(nr);
-  std::vector<std::size_t> first(nr), count(nr, 0);
+  std::vector<std::size_t> first(nr), count(nr, 0), stamp(nr, SIZE_MAX), open, dests;
   for (std::size_t i = 0; i < own.size(); ++i)
   {
     const CapsuleLink& l = own[i];
     const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
-    for (std::size_t q = 0; q < nr; ++q)
-    {
-      const bool send =
-        region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period());
-      const bool continues = count[q] > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
-      if (count[q] > 0 && !(send && continues))
+    dests.clear();
+    forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
+      if (region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
       {
-        writeRun(out[q], own, first[q], count[q], model, global);
-        count[q] = 0;
+        dests.push_back(q);
+        stamp[q] = i;
       }
-      if (send)
+    });
+    const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
+    std::size_t kept = 0;
+    for (std::size_t q : open)
+    {
+      if (continues && stamp[q] == i)
       {
-        first[q] = count[q] == 0 ? i : first[q];
-        ++count[q];
+        open[kept++] = q;
+        continue;
+      }
+      writeRun(out[q], own, first[q], count[q], model, global);
+      count[q] = 0;
+    }
+    open.resize(kept);
+    for (std::size_t q : dests)
+    {
+      if (count[q]++ == 0)
+      {
+        first[q] = i;
+        open.push_back(q);
       }
     }
   }
-  for (std::size_t q = 0; q < nr; ++q)
-    if (count[q] > 0)
-      writeRun(out[q], own, first[q], count[q], model, global);
+  for (std::size_t q : open)
+    writeRun(out[q], own, first[q], count[q], model, global);
   TrafficCount sent;
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
   held.clear();
