@@ -49,7 +49,6 @@ public:
   /// What wrapping x into the cell adds to it along the axis (0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
-  bool periodic() const { return periodic_; }
   /// The cell's edge along the axis (0 without a cell).
   double period() const { return periodic_ ? hi_ - lo_ : 0.0; }
 

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -356,6 +357,28 @@ std::size_t linksNear(const FiberModel& m, int axis, double lo, double hi, doubl
   return n;
 }
 
+// Rank q's tester slab along `axis` as the solver cuts a cell of edge L centred at 0 (equal link
+// counts: a cut lies within one histogram bin, L/4096, above the centre it must have below it),
+// from the sorted link centres, widened by two bins each side.
+std::pair<double, double> testerSlab(const FiberModel& m, int axis, int q, int ranks, double L)
+{
+  std::vector<double> c;
+  for (const Fiber& f : m.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      const double x = 0.5 * (f.points[k][axis] + f.points[k + 1][axis]);
+      c.push_back(x - L * std::floor((x + 0.5 * L) / L));
+    }
+  }
+  std::sort(c.begin(), c.end());
+  const double bins = 2.0 * L / 4096.0;
+  const auto cut = [&](int k) { // the ceil(k·N/R)-th smallest centre
+    return c[(static_cast<std::size_t>(k) * c.size() + static_cast<std::size_t>(ranks) - 1) / ranks - 1];
+  };
+  return { q == 0 ? -0.5 * L : cut(q) - bins, q + 1 == ranks ? 0.5 * L : cut(q + 1) + bins };
+}
+
 std::size_t linkCount(const FiberModel& m)
 {
   std::size_t n = 0;
@@ -424,8 +447,8 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
           std::size_t bound = 0;
           for (int axis = 0; axis < 3; ++axis) // whichever axis the slabs cut
           {
-            const double lo = c.edgeLength * (q / static_cast<double>(ranks) - 0.5);
-            bound = std::max(bound, linksNear(in, axis, lo, lo + L / ranks, w, L));
+            const std::pair<double, double> slab = testerSlab(in, axis, q, ranks, L);
+            bound = std::max(bound, linksNear(in, axis, slab.first, slab.second, w, L));
           }
           EXPECT_LE(r.peakHeldLinks, bound) << what << ", rank " << q;
           EXPECT_GT(r.peakHaloPoints, 0u) << what;
