@@ -55,12 +55,16 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
 }
 
 // Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
-// the result does not depend on which cell found the pair.
-inline void testPair(const std::vector<CapsuleLink>& links, std::uint32_t i, std::uint32_t j,
+// the result does not depend on which cell found the pair. lowerOnly: see findPairs.
+inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
   double gap, std::vector<CapsulePair>& out)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
+  if (lowerOnly && !lowerOnly[a])
+  {
+    return;
+  }
   const CapsuleLink& la = links[a];
   const CapsuleLink& lb = links[b];
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
@@ -133,7 +137,7 @@ double CollisionGrid::bytesPerPair()
 }
 
 bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
-  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs)
+  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* lowerOnly)
 {
   pairs.clear();
   if (links.size() < 2)
@@ -145,7 +149,7 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   collectOversize(grid);
   sortByCell(grid, nThreads);
   buildCellArrays(nThreads);
-  if (!collectPairs(links, minimumGap, grid, nThreads, maxPairs))
+  if (!collectPairs(links, lowerOnly ? lowerOnly->data() : nullptr, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
   }
@@ -384,8 +388,8 @@ void CollisionGrid::buildCellArrays(int nThreads)
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
 // (lists emptied) as soon as more than maxPairs pairs exist.
-bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, double minimumGap, const Layout& grid,
-  int nThreads, std::size_t maxPairs)
+bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* lowerOnly, double minimumGap,
+  const Layout& grid, int nThreads, std::size_t maxPairs)
 {
   const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
@@ -471,7 +475,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, double m
       }
       for (std::size_t i = 0; i < nc; ++i)
       {
-        testPair(links, order_[r], order_[cp[i]], minimumGap, out);
+        testPair(links, lowerOnly, order_[r], order_[cp[i]], minimumGap, out);
         if ((i & 1023) == 1023 && publish(false))
         {
           return;
@@ -536,7 +540,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, double m
         const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
         if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
-          testPair(links, o, order_[r], minimumGap, out);
+          testPair(links, lowerOnly, o, order_[r], minimumGap, out);
         }
       }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
@@ -544,7 +548,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, double m
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
         if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
         {
-          testPair(links, o, p, minimumGap, out);
+          testPair(links, lowerOnly, o, p, minimumGap, out);
         }
       }
     }

@@ -66,8 +66,12 @@ public:
   /// (a, b). threads: 0 = all cores. Links must have finite coordinates. Stops as soon as more
   /// than maxPairs pairs are found: returns false and leaves `pairs` empty (whether it stops
   /// does not depend on the thread count: it is "the true count exceeds maxPairs").
+  /// lowerOnly (one entry per link, or null): only the pairs whose lower link a has a nonzero
+  /// entry are tested, kept and counted; the others are skipped before the exact test (a rank of
+  /// the distributed solver finds only the pairs it tests, docs/solver.md §13).
   bool findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
-    std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1));
+    std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1),
+    const std::vector<char>* lowerOnly = nullptr);
 
   /// Bytes the grid keeps per link (its buffers), for memory estimates.
   static double bytesPerLink();
@@ -96,8 +100,8 @@ private:
   void collectOversize(const Layout& grid);
   void sortByCell(const Layout& grid, int nThreads);
   void buildCellArrays(int nThreads);
-  bool collectPairs(const std::vector<CapsuleLink>& links, double minimumGap, const Layout& grid, int nThreads,
-    std::size_t maxPairs);
+  bool collectPairs(const std::vector<CapsuleLink>& links, const char* lowerOnly, double minimumGap,
+    const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
 
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2

@@ -24,7 +24,8 @@ double boxEdge(const CapsuleLink& l, double gap)
 } // namespace
 
 std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
-  double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow)
+  double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow,
+  const std::vector<char>* lowerOnly)
 {
   pairs.clear();
   if (overflow)
@@ -98,7 +99,13 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
   // The raw pairs include images of the physical ones (ghosts exist only near faces): allow twice
   // the limit there, then check the physical count.
   const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
-  if (!grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit))
+  // A kept raw pair's lower id is its lower real link (see below); ghost-ghost pairs are dropped.
+  if (lowerOnly)
+  {
+    imageLowerOnly_.assign(lowerOnly->begin(), lowerOnly->end());
+    imageLowerOnly_.resize(images_.size(), 0);
+  }
+  if (!grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, lowerOnly ? &imageLowerOnly_ : nullptr))
   {
     if (overflow)
     {

@@ -453,9 +453,6 @@ public:
       }
       return found;
     }
-    // Each pair is tested on one rank only, the one testing its lower link (LinkExchange.h).
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [this](const CapsulePair& p) { return !held_.tested[p.a]; }),
-      pairs_.end());
     // One sum per step for whether any rank failed and the counts; the failing rank's message
     // then takes a second round (rare: the run ends).
     std::vector<std::int64_t> v = localCounts(changed);
@@ -481,10 +478,14 @@ public:
     const double affordable = std::max(0.0, budget) / bytesPerPair();
     const double limit = std::min(bound, affordable);
     const auto maxPairs = static_cast<std::size_t>(limit);
+    // Distributed: each pair is tested on one rank only, the one testing its lower link
+    // (LinkExchange.h); the finder skips the others before their exact test.
+    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
     bool overflow = false;
     if (periodic())
     {
-      detectError_ = periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow);
+      detectError_ =
+        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
       if (!detectError_.empty())
       {
         return false;
@@ -492,7 +493,7 @@ public:
     }
     else
     {
-      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs);
+      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
     }
     if (!overflow)
     {

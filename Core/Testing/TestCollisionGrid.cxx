@@ -1,6 +1,7 @@
 // Uniform-grid collision detection (docs/solver.md §3, tests 9–13 of §10) against an
 // independent O(N²) reference.
 #include "Index/CollisionGrid.h"
+#include "Index/PeriodicPairs.h"
 
 #include "BruteForceOverlap.h"
 #include "Tissue/CubeGenerator.h"
@@ -191,6 +192,69 @@ TEST(CollisionGrid, StopsExactlyWhenThePairsExceedTheLimit)
     EXPECT_TRUE(pairs.empty());
     EXPECT_TRUE(grid.findPairs(links, 0.0, threads, pairs, expected)); // reusable after a refusal
     EXPECT_EQ(pairs.size(), expected);
+  }
+}
+
+TEST(CollisionGrid, LowerOnlyFindsExactlyThePairsWhoseLowerLinkIsMarked)
+{
+  // Random marks; the reference is the brute-force list restricted to marked lower links, in the
+  // open space and (against the unrestricted periodic finder) in a cell. The limit counts only
+  // the marked pairs.
+  FiberModel m;
+  RandomStream rng(5, 1, 2);
+  for (int i = 0; i < 400; ++i)
+  {
+    const Vec3 a{ rng.uniform(0, 16), rng.uniform(0, 16), rng.uniform(0, 16) };
+    const Vec3 d{ rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2) };
+    m.fibers.push_back(fiber({ a, a + d, a + 2.0 * d }, 0.4, i));
+  }
+  m.fibers.push_back(fiber({ { 0, 0, 0 }, { 16, 16, 16 } }, 0.5, 400)); // oversize path
+  const std::vector<CapsuleLink> links = linksOf(m);
+  std::vector<char> marked(links.size());
+  for (char& c : marked)
+    c = rng.uniform(0, 1) < 0.4 ? 1 : 0;
+  marked.back() = 1;
+  std::vector<std::pair<std::size_t, std::size_t>> expected;
+  for (const auto& p : fiberpli_test::refPairs(fiberpli_test::refLinks(m)))
+    if (marked[p.first])
+      expected.push_back(p);
+  ASSERT_GT(expected.size(), 50u);
+  const auto ids = [](const std::vector<CapsulePair>& pairs) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (const CapsulePair& p : pairs)
+      out.emplace_back(p.a, p.b);
+    return out;
+  };
+  for (int threads : { 1, 2 })
+  {
+    CollisionGrid grid;
+    std::vector<CapsulePair> pairs;
+    EXPECT_TRUE(grid.findPairs(links, 0.0, threads, pairs, expected.size(), &marked));
+    EXPECT_EQ(ids(pairs), expected);
+    EXPECT_FALSE(grid.findPairs(links, 0.0, threads, pairs, expected.size() - 1, &marked));
+  }
+  PeriodicCell cell;
+  cell.lo = { 0, 0, 0 };
+  cell.hi = { 16, 16, 16 };
+  std::vector<CapsuleLink> inCell(links.begin(), links.end() - 1); // without the oversize link
+  marked.pop_back();
+  PeriodicPairs finder;
+  std::vector<CapsulePair> all, some;
+  ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, all), "");
+  ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, some, static_cast<std::size_t>(-1), nullptr, &marked), "");
+  std::vector<std::pair<std::size_t, std::size_t>> restricted;
+  for (const auto& p : ids(all))
+    if (marked[p.first])
+      restricted.push_back(p);
+  EXPECT_GT(restricted.size(), expected.size()); // pairs across the faces too
+  EXPECT_EQ(ids(some), restricted);
+  for (std::size_t i = 0; i < some.size(); ++i) // the same closest points as unrestricted
+  {
+    const auto it = std::find_if(all.begin(), all.end(),
+      [&](const CapsulePair& p) { return p.a == some[i].a && p.b == some[i].b; });
+    ASSERT_NE(it, all.end());
+    EXPECT_EQ(it->distance, some[i].distance);
+    EXPECT_EQ(it->direction, some[i].direction);
   }
 }
 
