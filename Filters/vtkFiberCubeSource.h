@@ -107,8 +107,9 @@ public:
 
   ///@{
   /**
-   * Target fiber volume fraction in (0, 1): the fiber count is chosen so that Σ π r² · EdgeLength
-   * is this fraction of the cube. 0 = use NumberOfFibers. Default is 0.
+   * Target fiber volume fraction in (0, 1): the fiber count is the smallest for which
+   * Σ π r² · EdgeLength reaches at least this fraction of the cube (fibers added to the
+   * populations in turn). 0 = use NumberOfFibers. Default is 0.
    */
   vtkSetMacro(VolumeFraction, double);
   vtkGetMacro(VolumeFraction, double);

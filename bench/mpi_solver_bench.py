@@ -7,7 +7,9 @@ MinCurvatureRadius 4) and cell (the (100 µm)³ periodic cell, 2 populations, Vo
 Seeding Lattice, displacement 0.5 µm). The source makes the pieces; rank 0 times the solver's
 update (the source is updated first and not timed) and prints one line: ranks, threads, steps, wall
 seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
-halo bytes sent per step, and a hash of the joined output (the same for every R and T)."""
+halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
+memory before the solve (VmRSS after the source), and a hash of the joined output (the same for
+every R and T)."""
 import argparse
 import hashlib
 import time
@@ -34,10 +36,39 @@ else:
                              EdgeLength=3 ** 0.5 * 30.0, Seed=42)
     solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, MinCurvatureRadius=4.0,
                                   MaxSteps=args.max_steps, NumberOfThreads=args.threads)
-source.UpdatePipeline()
+# Memory per rank: a ProgrammableFilter runs on every rank and puts that process's resident set
+# (VmRSS) and peak (VmHWM, the high-water mark since the start) into field data: once after the
+# source (the pvbatch process plus its input piece), once after the solve (the peak includes it).
+MEMORY_SCRIPT = """
+from vtkmodules.vtkCommonCore import vtkDoubleArray
+with open("/proc/self/status") as status:
+    kb = dict((l.split(":")[0], float(l.split()[1])) for l in status if l.startswith(("VmRSS", "VmHWM")))
+for name in ("VmRSS", "VmHWM"):
+    a = vtkDoubleArray()
+    a.SetName(name)
+    a.InsertNextValue(kb[name] / 1024.0)
+    self.GetOutput().GetFieldData().AddArray(a)
+"""
+
+
+def memory_probe(upstream):
+    probe = ProgrammableFilter(Input=upstream, Script=MEMORY_SCRIPT)
+    probe.UpdatePipeline()
+    return probe
+
+
+before = memory_probe(source)
 start = time.perf_counter()
 solver.UpdatePipeline()
 wall = time.perf_counter() - start
+after = memory_probe(solver)
+
+
+def mib(probe, rank, name):
+    return servermanager.Fetch(probe, rank).GetFieldData().GetArray(name).GetTuple1(0)
+
+
+memory = ["%.0f / %.0f MiB" % (mib(after, r, "VmHWM"), mib(before, r, "VmRSS")) for r in range(ranks)]
 
 pieces = [servermanager.Fetch(solver, r) for r in range(ranks)]
 h = hashlib.sha256()
@@ -54,6 +85,6 @@ for p in pieces:
     if f.GetArray("rank_points"):
         share.append("%d fibers/%d pts/%d halo/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
                      f.GetArray("halo_points").GetTuple1(0), f.GetArray("halo_bytes_per_step").GetTuple1(0)))
-print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s |" % (
-    args.workload, ranks, args.threads, steps, wall, wall / max(1, steps), int(fd.GetArray("collisions").GetTuple1(0)),
-    "; ".join(share) if share else "-", h.hexdigest()[:12]))
+print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s | %s |" % (
+    args.workload, ranks, args.threads, steps, wall, wall / (steps if steps > 0 else 1), int(fd.GetArray("collisions").GetTuple1(0)),
+    "; ".join(share) if share else "-", "; ".join(memory), h.hexdigest()[:12]))

@@ -2,6 +2,7 @@
 
 #include "Analysis/RetardationInclination.h"
 #include "Section/PLIFields.h"
+#include "Util/EnumCode.h"
 
 #include <cmath>
 #include <limits>
@@ -12,14 +13,7 @@ namespace fiberpli
 
 std::string inclinationMethodFromCode(int code, InclinationMethod& method)
 {
-  if (code < 0 || code > 2)
-  {
-    std::ostringstream msg;
-    msg << "InclinationMethod is " << code << ", must be 0 (Auto), 1 (Retardation) or 2 (Tilt)";
-    return msg.str();
-  }
-  method = static_cast<InclinationMethod>(code);
-  return {};
+  return enumFromCode(code, 2, "InclinationMethod", "0 (Auto), 1 (Retardation) or 2 (Tilt)", method);
 }
 
 std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)

@@ -3,8 +3,9 @@
 #include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
-#include "Util/MemoryBudget.h"
 #include "PLI/TissueSpec.h"
+#include "Util/EnumCode.h"
+#include "Util/MemoryBudget.h"
 
 #include <algorithm>
 #include <chrono>
@@ -96,14 +97,7 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
 
 std::string interpolationFromCode(int code, Interp& interpolation)
 {
-  if (code < 0 || code > 2)
-  {
-    std::ostringstream m;
-    m << "Interpolation is " << code << ", must be 0 (nearest), 1 (linear) or 2 (Slerp)";
-    return m.str();
-  }
-  interpolation = static_cast<Interp>(code);
-  return {};
+  return enumFromCode(code, 2, "Interpolation", "0 (nearest), 1 (linear) or 2 (Slerp)", interpolation);
 }
 
 Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)

@@ -1,20 +1,13 @@
 #include "Section/TiltConvention.h"
 
-#include <sstream>
+#include "Util/EnumCode.h"
 
 namespace fiberpli
 {
 
 std::string tiltConventionFromCode(int code, TiltConvention& convention)
 {
-  if (code < 0 || code > 1)
-  {
-    std::ostringstream m;
-    m << "TiltConvention is " << code << ", must be 0 (physical) or 1 (fastPLI)";
-    return m.str();
-  }
-  convention = static_cast<TiltConvention>(code);
-  return {};
+  return enumFromCode(code, 1, "TiltConvention", "0 (physical) or 1 (fastPLI)", convention);
 }
 
 } // namespace fiberpli

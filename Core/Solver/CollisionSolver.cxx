@@ -3,6 +3,7 @@
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
 #include "Solver/Decomposition.h"
+#include "Solver/LinkExchange.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -68,7 +69,7 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
       CapsuleLink& l = links[linkOffset[f] + k];
       l.p0 = fib.points[k];
       l.p1 = fib.points[k + 1];
-      l.rho = scale == 1.0 ? fib.linkRadius(k) : scale * fib.linkRadius(k);
+      l.rho = capsuleRadius(fib.radii[k], fib.radii[k + 1], scale);
       l.fiber = static_cast<std::uint32_t>(f);
       l.k = static_cast<std::uint32_t>(k);
       l.arc0 = arc;
@@ -85,15 +86,14 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-// Median point radius of the fibers with >= 2 points; distributed (comm): of the owned fibers
-// (owned non-null) of all ranks, exactly the same value.
-double medianRadius(const FiberModel& model, SolverComm* comm = nullptr, const std::vector<char>* owned = nullptr)
+// Median point radius of the fibers with >= 2 points; distributed (comm): of all ranks' fibers,
+// exactly the same value.
+double medianRadius(const FiberModel& model, SolverComm* comm = nullptr)
 {
   std::vector<double> r;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  for (const Fiber& fib : model.fibers)
   {
-    const Fiber& fib = model.fibers[f];
-    if (fib.points.size() >= 2 && !(owned && !(*owned)[f]))
+    if (fib.points.size() >= 2)
     {
       r.insert(r.end(), fib.radii.begin(), fib.radii.end());
     }
@@ -136,11 +136,6 @@ std::size_t removeRepeatedPoints(Fiber& f, FiberPointState& st)
   return removed;
 }
 
-struct PairPush
-{
-  Vec3 a0, a1, b0, b1;
-};
-
 // What the solver keeps per point (model point and radius, velocity and source index, force) and
 // per link (its capsule and the grid's buffers); links ≈ points.
 constexpr double kBytesPerPoint = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
@@ -150,7 +145,7 @@ double bytesPerPoint()
 }
 double bytesPerPair()
 {
-  return CollisionGrid::bytesPerPair() + static_cast<double>(sizeof(PairPush));
+  return CollisionGrid::bytesPerPair() + static_cast<double>(sizeof(LinkPairPush));
 }
 
 // Exact copies of fibers (same points and radii): how many fibers repeat an earlier one, and the
@@ -225,31 +220,38 @@ public:
   const CollisionSolverOptions& o_;
   int threads_;
   CollisionSolverState st_; // what a step hands to the next (header); the rest is rebuilt per step
-  std::vector<CapsuleLink> links_;
+  std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<PairPush> push_;
+  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
-  // Distributed run (docs/solver.md §13); comm_ null: this process alone, every fiber owned.
+  // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
+  // fibers this rank owns; the pairs are found among the links near its slab (LinkExchange.h).
   SolverComm* comm_ = nullptr;
-  std::vector<char> owned_; // per fiber: 1 owned, 0 halo (a partner only)
+  std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
+  HeldLinkInfo held_;                 // per link of links_
   SlabLayout layout_;
-  double haloReach_ = 0.0; // fibers closer than this along the slab axis are exchanged
-  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0;
+  // Links closer than this along the slab axis to a rank's test region go there: for the pairs of
+  // a step, and for the minimum-gap probe at the end.
+  double pairReach_ = 0.0, probeReach_ = 0.0;
+  bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0,
+              peakHeldLinks_ = 0;
 
-  RankFibers rankFibers() { return RankFibers{ model_, st_, owned_ }; }
+  RankFibers rankFibers() { return RankFibers{ model_, st_ }; }
 
   // The slabs, the halo reach and every fiber to its owner (the run's first exchange).
   void startDistribution()
   {
     layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
     const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
-    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes up to one more median
-    // radius (<= ρmax); a relative margin covers the rounding of the distances.
-    haloReach_ = (3.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    // Pairs collide closer than 2·ρmax + gap; the minimum gap probes pairs up to one median
+    // radius (<= ρmax) apart; a relative margin covers the rounding of the distances.
+    pairReach_ = (2.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+    probeReach_ = 3.0 * rhoMax * (1.0 + 1e-6) + 1e-9;
     RankFibers r = rankFibers();
     std::vector<int> dest(r.size());
     for (std::size_t f = 0; f < r.size(); ++f)
@@ -257,68 +259,103 @@ public:
       dest[f] = layout_.owner(model_.fibers[f]);
     }
     redistribute(r, dest, *comm_);
+    migrationDue_ = false;
   }
   void resetTraffic()
   {
-    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = 0;
+    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = peakHeldLinks_ = 0;
   }
 
-  // Before a detection: fibers whose slab changed go to their new owner, then every rank gets
-  // the halo of its owned fibers (current positions, so it is complete for this step).
-  void exchangeFibers()
+  // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
+  // at the end of the last step: most steps move no fiber out of its slab, and the links go to
+  // every rank whose region they reach whoever owns them).
+  void migrate()
   {
-    RankFibers r = rankFibers();
-    dropHalo(r);
-    std::vector<int> dest(r.size());
-    for (std::size_t f = 0; f < r.size(); ++f)
+    if (migrationDue_)
     {
-      dest[f] = layout_.owner(model_.fibers[f]);
+      RankFibers r = rankFibers();
+      std::vector<int> dest(r.size());
+      for (std::size_t f = 0; f < r.size(); ++f)
+      {
+        dest[f] = layout_.owner(model_.fibers[f]);
+      }
+      migrations_ += redistribute(r, dest, *comm_).fibers;
+      migrationDue_ = false;
     }
-    migrations_ += redistribute(r, dest, *comm_).fibers;
-    haloBytes_ += addHalo(r, layout_, o_.periodicCell, haloReach_, *comm_).bytes;
-    ++haloExchanges_;
-    std::size_t halo = 0, all = 0;
-    for (std::size_t f = 0; f < r.size(); ++f)
-    {
-      all += model_.fibers[f].size();
-      halo += owned_[f] ? 0 : model_.fibers[f].size();
-    }
-    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
-    peakRankPoints_ = std::max(peakRankPoints_, all);
   }
 
-  // Collisions and links of the whole model: a pair counts on the rank owning its first link.
+  // links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
+  // from all owners, with the current positions (so they are complete for this step), or with
+  // the wider reach of the minimum-gap probe (then not counted as a step's traffic).
+  void gatherLinks(const std::vector<char>* active, const std::vector<char>* closed, double scale,
+    bool forGapProbe = false)
+  {
+    buildLinks(model_, active, threads_, comm_ ? ownLinks_ : links_, &pointOffset_, closed, scale);
+    if (!comm_)
+    {
+      return;
+    }
+    const double reach = forGapProbe ? probeReach_ : pairReach_;
+    const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
+    if (forGapProbe)
+    {
+      return;
+    }
+    haloBytes_ += sent.bytes;
+    ++haloExchanges_;
+    std::size_t halo = 0;
+    for (int owner : held_.owner)
+      halo += owner != comm_->rank() ? 1 : 0;
+    peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
+    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
+    peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo);
+  }
+
+  // Collisions and links of the whole model: a pair counts on the rank testing it.
   struct Counts
   {
     std::size_t pairs = 0;
     std::size_t links = 0;
     bool changed = false;
   };
+  // This rank's share of the counts: pairs, links, changed.
+  std::vector<std::int64_t> localCounts(bool changed) const
+  {
+    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()), changed ? 1 : 0 };
+  }
+  static Counts countsOf(const std::vector<std::int64_t>& v)
+  {
+    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+  }
   Counts globalCounts(bool changed) const
   {
     if (!comm_)
     {
       return { pairs_.size(), links_.size(), changed };
     }
-    std::vector<std::int64_t> v{ 0, 0, changed ? 1 : 0 };
-    for (const CapsulePair& p : pairs_)
-      v[0] += owned_[links_[p.a].fiber] ? 1 : 0;
-    for (const CapsuleLink& l : links_)
-      v[1] += owned_[l.fiber] ? 1 : 0;
+    std::vector<std::int64_t> v = localCounts(changed);
     comm_->sum(v);
-    return { static_cast<std::size_t>(v[0]), static_cast<std::size_t>(v[1]), v[2] > 0 };
+    return countsOf(v);
+  }
+  // Owned fibers whose middle left this rank's slab (after a move): they migrate next step.
+  std::int64_t leavingFibers() const
+  {
+    std::int64_t n = 0;
+    for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+    return n;
   }
 
-  double median() { return medianRadius(model_, comm_, comm_ ? &owned_ : nullptr); }
+  double median() { return medianRadius(model_, comm_); }
 
-  // Σ π ρ² · link length of the owned fibers of all ranks, the same bits for any split.
+  // Σ π ρ² · link length of the fibers of all ranks, the same bits for any split.
   double fiberVolume()
   {
     ExactSum sum;
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      for (std::size_t k = 0; owned_[f] && k + 1 < fib.size(); ++k)
+      for (std::size_t k = 0; k + 1 < fib.size(); ++k)
       {
         const double rho = fib.linkRadius(k);
         sum.add(M_PI * rho * rho * distance(fib.points[k], fib.points[k + 1]));
@@ -352,7 +389,7 @@ public:
     for (std::int64_t f = 0; f < nf; ++f)
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
-      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -380,7 +417,7 @@ public:
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
     {
       const Fiber& fib = model_.fibers[f];
-      if (!st_.active[f] || !owned_[f])
+      if (!st_.active[f])
       {
         continue;
       }
@@ -402,25 +439,43 @@ public:
   }
 
   // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
-  // than their limit (packingPairBound or the memory budget); detectError_ says why.
-  bool detect()
+  // than their limit (packingPairBound or the memory budget); detectError_ says why. counts (if
+  // given): the global counts, with `changed` (shape control's) or-ed over the ranks.
+  bool detect(Counts* counts = nullptr, bool changed = false)
   {
     if (comm_)
     {
-      exchangeFibers();
+      migrate();
     }
-    buildLinks(model_, &st_.active, threads_, links_, &pointOffset_, periodic() ? &st_.closed : nullptr, st_.scale);
+    gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
     const bool found = findBoundedPairs();
     if (!comm_)
     {
+      if (counts)
+      {
+        *counts = { pairs_.size(), links_.size(), changed };
+      }
       return found;
     }
-    // Pairs of two halo links move nothing here (their owners find them too).
-    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(),
-                   [this](const CapsulePair& p) { return !owned_[links_[p.a].fiber] && !owned_[links_[p.b].fiber]; }),
+    // Each pair is tested on one rank only, the one testing its lower link (LinkExchange.h).
+    pairs_.erase(std::remove_if(pairs_.begin(), pairs_.end(), [this](const CapsulePair& p) { return !held_.tested[p.a]; }),
       pairs_.end());
-    detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
-    return detectError_.empty();
+    // One sum per step for whether any rank failed and the counts; the failing rank's message
+    // then takes a second round (rare: the run ends).
+    std::vector<std::int64_t> v = localCounts(changed);
+    v.push_back(found ? 0 : 1);
+    comm_->sum(v);
+    if (v[3] > 0)
+    {
+      detectError_ = agreeOnError(*comm_, found ? std::string() : detectError_);
+      return false;
+    }
+    detectError_.clear();
+    if (counts)
+    {
+      *counts = countsOf(v);
+    }
+    return true;
   }
 
   bool findBoundedPairs()
@@ -464,23 +519,46 @@ public:
     return false;
   }
 
-  // Point index (into force_) of the outer neighbour of a link's first (before) or second (after)
-  // point, or SIZE_MAX at an open end; through the closure on a closed fiber.
-  std::size_t outerBefore(const CapsuleLink& l) const
+  // Point index (into force_) of the outer neighbour of the first (before) or second (after)
+  // point of link k of fiber f, or SIZE_MAX at an open end; through the closure on a closed fiber.
+  std::size_t outerBefore(std::size_t f, std::size_t k) const
   {
-    const std::size_t base = pointOffset_[l.fiber];
-    if (l.k > 0)
-      return base + l.k - 1;
-    const std::size_t n = model_.fibers[l.fiber].size();
-    return periodic() && st_.closed[l.fiber] ? base + n - 2 : SIZE_MAX;
+    const std::size_t base = pointOffset_[f];
+    if (k > 0)
+      return base + k - 1;
+    const std::size_t n = model_.fibers[f].size();
+    return periodic() && st_.closed[f] ? base + n - 2 : SIZE_MAX;
   }
-  std::size_t outerAfter(const CapsuleLink& l) const
+  std::size_t outerAfter(std::size_t f, std::size_t k) const
   {
-    const std::size_t base = pointOffset_[l.fiber];
-    const std::size_t n = model_.fibers[l.fiber].size();
-    if (l.k + 2 < n)
-      return base + l.k + 2;
-    return periodic() && st_.closed[l.fiber] ? base + 1 : SIZE_MAX;
+    const std::size_t base = pointOffset_[f];
+    const std::size_t n = model_.fibers[f].size();
+    if (k + 2 < n)
+      return base + k + 2;
+    return periodic() && st_.closed[f] ? base + 1 : SIZE_MAX;
+  }
+
+  // The smaller radius of the two points of link i of links_.
+  double smallerPointRadius(std::size_t i) const
+  {
+    if (comm_)
+    {
+      return held_.pointRadius[i];
+    }
+    const CapsuleLink& l = links_[i];
+    const Fiber& fib = model_.fibers[l.fiber];
+    return std::min(fib.radii[l.k], fib.radii[l.k + 1]);
+  }
+
+  // The model index of the fiber with this global index (SIZE_MAX: another rank owns it).
+  std::size_t localFiber(std::uint32_t global) const
+  {
+    if (!comm_)
+    {
+      return global;
+    }
+    const auto it = std::lower_bound(st_.global.begin(), st_.global.end(), static_cast<std::int64_t>(global));
+    return it != st_.global.end() && *it == global ? static_cast<std::size_t>(it - st_.global.begin()) : SIZE_MAX;
   }
 
   // Largest factor s <= 1 with δ >= s·(ρa + ρb) + g for every colliding pair.
@@ -504,8 +582,9 @@ public:
     return comm_ ? maxOverRanks(*comm_, m) : m;
   }
 
-  // §4.4: pushes in parallel into their own slots, summed serially in pair order, then moved per
-  // fiber in parallel: no floating result depends on the thread that computed it.
+  // §4.4: pushes in parallel into their own slots, summed serially in pair order (distributed:
+  // by the owners of the links, LinkExchange.h), then moved per fiber in parallel: no floating
+  // result depends on the thread or the rank that computed it.
   void separate()
   {
     const std::int64_t np = static_cast<std::int64_t>(pairs_.size());
@@ -516,45 +595,62 @@ public:
       const CapsulePair& p = pairs_[static_cast<std::size_t>(pi)];
       const CapsuleLink& la = links_[p.a];
       const CapsuleLink& lb = links_[p.b];
-      const Fiber& fa = model_.fibers[la.fiber];
-      const Fiber& fb = model_.fibers[lb.fiber];
-      const double rMin = std::min(std::min(fa.radii[la.k], fa.radii[la.k + 1]),
-        std::min(fb.radii[lb.k], fb.radii[lb.k + 1]));
+      const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
       const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
       const double sigma = st_.pushScale * std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
       const Vec3 n = sigma * p.direction;
-      PairPush& out = push_[static_cast<std::size_t>(pi)];
+      LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
+      out.fiberA = la.fiber;
+      out.kA = la.k;
+      out.fiberB = lb.fiber;
+      out.kB = lb.k;
+      out.ownerA = comm_ ? held_.owner[p.a] : 0;
+      out.ownerB = comm_ ? held_.owner[p.b] : 0;
       out.a0 = (1.0 - p.s) * n;
       out.a1 = p.s * n;
       out.b0 = -((1.0 - p.t) * n);
       out.b1 = -(p.t * n);
     }
+    if (comm_)
+    {
+      TrafficCount sent;
+      push_ = returnPushes(push_, *comm_, sent);
+      haloBytes_ += sent.bytes;
+    }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (std::size_t pi = 0; pi < pairs_.size(); ++pi)
+    for (const LinkPairPush& p : push_)
     {
-      const CapsuleLink& la = links_[pairs_[pi].a];
-      const CapsuleLink& lb = links_[pairs_[pi].b];
-      const std::size_t ia = pointOffset_[la.fiber] + la.k;
-      const std::size_t ib = pointOffset_[lb.fiber] + lb.k;
-      force_[ia] += push_[pi].a0;
-      force_[ia + 1] += push_[pi].a1;
-      force_[ib] += push_[pi].b0;
-      force_[ib + 1] += push_[pi].b1;
+      // A side whose fiber another rank owns is added there, in the same order.
+      const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
+      if (fa != SIZE_MAX)
+      {
+        force_[pointOffset_[fa] + p.kA] += p.a0;
+        force_[pointOffset_[fa] + p.kA + 1] += p.a1;
+      }
+      if (fb != SIZE_MAX)
+      {
+        force_[pointOffset_[fb] + p.kB] += p.b0;
+        force_[pointOffset_[fb] + p.kB + 1] += p.b1;
+      }
       if (spread > 0.0)
       {
         // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
         // create the curvature violations that shape control then undoes step after step.
-        const std::size_t a0 = outerBefore(la), a1 = outerAfter(la);
-        const std::size_t b0 = outerBefore(lb), b1 = outerAfter(lb);
-        if (a0 != SIZE_MAX)
-          force_[a0] += spread * push_[pi].a0;
-        if (a1 != SIZE_MAX)
-          force_[a1] += spread * push_[pi].a1;
-        if (b0 != SIZE_MAX)
-          force_[b0] += spread * push_[pi].b0;
-        if (b1 != SIZE_MAX)
-          force_[b1] += spread * push_[pi].b1;
+        const auto add = [this, spread](std::size_t i, const Vec3& push) {
+          if (i != SIZE_MAX)
+            force_[i] += spread * push;
+        };
+        if (fa != SIZE_MAX)
+        {
+          add(outerBefore(fa, p.kA), p.a0);
+          add(outerAfter(fa, p.kA), p.a1);
+        }
+        if (fb != SIZE_MAX)
+        {
+          add(outerBefore(fb, p.kB), p.b0);
+          add(outerAfter(fb, p.kB), p.b1);
+        }
       }
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
@@ -566,7 +662,7 @@ public:
     {
       Fiber& fib = model_.fibers[static_cast<std::size_t>(f)];
       const std::size_t n = fib.points.size();
-      if (!st_.active[static_cast<std::size_t>(f)] || !owned_[static_cast<std::size_t>(f)])
+      if (!st_.active[static_cast<std::size_t>(f)])
       {
         continue;
       }
@@ -695,8 +791,15 @@ double initialScale(const CollisionSolverOptions& o)
 }
 
 // Smallest surface gap over pairs closer than probe (µm); probe when no pair is that close.
+// Distributed, the links are gathered again with the probe's reach (the pairs found before no
+// longer index them).
 double smallestGap(Solver& s, double probe)
 {
+  if (s.comm_)
+  {
+    s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
+    s.pairs_.clear();
+  }
   std::vector<CapsulePair> near;
   if (s.periodic())
   {
@@ -966,12 +1069,23 @@ struct CollisionSolverRun::Impl
   CollisionSolverResult result;
   Phase phase = Phase::Created;
 
-  // The callback never sees progress go back.
-  bool report(double fraction)
+  // The callback never sees progress go back. A stop on one rank stops all; distributed, the
+  // same sum tells (with leaving non-null) whether any rank has fibers to migrate.
+  bool report(double fraction, std::int64_t* leaving = nullptr)
   {
     s.st_.reported = std::max(s.st_.reported, fraction);
     const bool go = reportProgress(progress, s.st_.reported);
-    return s.comm_ ? !anyRank(*s.comm_, !go) : go; // a stop on one rank stops all
+    if (!s.comm_)
+    {
+      return go;
+    }
+    std::vector<std::int64_t> v{ go ? 0 : 1, leaving ? *leaving : 0 };
+    s.comm_->sum(v);
+    if (leaving)
+    {
+      *leaving = v[1];
+    }
+    return v[0] == 0;
   }
   // Errors of one rank reach all (distributed runs restore the input piece).
   bool fail(std::string error)
@@ -1017,13 +1131,13 @@ struct CollisionSolverRun::Impl
   void goHome()
   {
     RankFibers fibers = s.rankFibers();
-    dropHalo(fibers);
     result.rankFibers = fibers.size();
     redistribute(fibers, s.st_.home, *s.comm_);
     result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
     result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
     result.peakHaloPoints = s.peakHaloPoints_;
     result.peakRankPoints = s.peakRankPoints_;
+    result.peakHeldLinks = s.peakHeldLinks_;
   }
   std::int64_t sumOverRanks(std::int64_t v)
   {
@@ -1090,7 +1204,6 @@ bool CollisionSolverRun::start()
   st.closed.assign(nf, 0);
   st.closure.assign(nf, Vec3{});
   st.home.assign(nf, s.comm_ ? s.comm_->rank() : 0);
-  s.owned_.assign(nf, 1);
   if (s.comm_)
   {
     s.startDistribution();
@@ -1110,17 +1223,8 @@ bool CollisionSolverRun::start()
   {
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
-    if (s.comm_)
-    {
-      s.exchangeFibers();
-    }
-    buildLinks(model, nullptr, s.threads_, s.links_, nullptr);
+    s.gatherLinks(nullptr, nullptr, 1.0);
     const bool found = s.findBoundedPairs();
-    if (s.comm_)
-    {
-      RankFibers fibers = s.rankFibers();
-      dropHalo(fibers);
-    }
     if (r.fail(found ? std::string() : s.detectError_))
     {
       return false;
@@ -1141,6 +1245,40 @@ bool CollisionSolverRun::start()
   return true;
 }
 
+std::string CollisionSolverRun::checkResume(const CollisionSolverState& saved) const
+{
+  const Impl& r = *impl_;
+  std::string error = validateCollisionSolverOptions(r.options);
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
+  if (error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
+  {
+    // Every rank would number its fibers 0..n-1: the global indices would collide.
+    error = "the saved solver state has no global fiber indices (a serial state): it cannot "
+            "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
+  }
+  if (error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
+    saved.closed.size() != nf || saved.closure.size() != nf))
+  {
+    error = "the saved solver state is for " + std::to_string(saved.points.size()) +
+      " fibers, the model has " + std::to_string(nf);
+  }
+  for (std::size_t f = 0; error.empty() && f < nf; ++f)
+  {
+    const std::size_t n = r.model.fibers[f].size();
+    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
+    {
+      error = "the saved solver state of fiber " + std::to_string(f) + " has " +
+        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
+    }
+  }
+  if (error.empty())
+  {
+    error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
+  }
+  return error;
+}
+
 std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
 {
   Impl& r = *impl_;
@@ -1149,38 +1287,14 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   {
     r.input = r.model; // before any failure path: fail() restores it
   }
-  r.result.error = validateCollisionSolverOptions(r.options);
-  const std::size_t nf = r.model.fibers.size();
-  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
-  if (r.result.error.empty() && serialState && r.s.comm_ && r.s.comm_->size() > 1)
-  {
-    // Every rank would number its fibers 0..n-1: the global indices would collide.
-    r.result.error = "the saved solver state has no global fiber indices (a serial state): it cannot "
-                     "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
-  }
-  if (r.result.error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
-    saved.closed.size() != nf || saved.closure.size() != nf))
-  {
-    r.result.error = "the saved solver state is for " + std::to_string(saved.points.size()) +
-      " fibers, the model has " + std::to_string(nf);
-  }
-  for (std::size_t f = 0; r.result.error.empty() && f < nf; ++f)
-  {
-    const std::size_t n = r.model.fibers[f].size();
-    if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
-    {
-      r.result.error = "the saved solver state of fiber " + std::to_string(f) + " has " +
-        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
-    }
-  }
-  if (r.result.error.empty())
-  {
-    r.result.error = validatePiece(r.model, serialState ? std::vector<std::int64_t>{} : saved.global);
-  }
-  if (r.fail(r.result.error))
+  // Agreed over the ranks before any other collective: a rank refusing its state alone must not
+  // leave the others waiting in the distribution below.
+  if (r.fail(checkResume(saved)))
   {
     return r.result.error;
   }
+  const std::size_t nf = r.model.fibers.size();
+  const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
   r.s.threads_ = resolveThreadCount(r.options.numberOfThreads);
   r.s.st_ = saved;
   if (serialState) // one rank only (refused above otherwise)
@@ -1189,7 +1303,6 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
     std::iota(r.s.st_.global.begin(), r.s.st_.global.end(), std::int64_t{ 0 });
     r.s.st_.home.assign(nf, 0);
   }
-  r.s.owned_.assign(nf, 1);
   if (r.s.comm_)
   {
     r.s.startDistribution(); // any slabs do: the result does not depend on who owns what
@@ -1209,12 +1322,12 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
-  if (!s.detect())
+  Solver::Counts counts;
+  if (!s.detect(&counts, changed))
   {
     r.failDetection(" (at step " + std::to_string(st.steps) + ")");
     return false;
   }
-  const Solver::Counts counts = s.globalCounts(changed);
   st.changed = counts.changed;
   const std::size_t count = counts.pairs;
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved since the
@@ -1283,18 +1396,16 @@ bool CollisionSolverRun::step()
     st.warnings.push_back("1000 steps passed without fewer collisions");
   }
   s.separate();
-  if (s.comm_)
-  {
-    RankFibers fibers = s.rankFibers();
-    dropHalo(fibers); // between steps a rank holds its own fibers only
-  }
+  std::int64_t leaving = s.comm_ ? s.leavingFibers() : 0;
   ++st.steps;
   ++st.sinceGrowth;
   if (r.observer)
   {
     r.observer(st.steps, r.model);
   }
-  if (!r.report(std::max(st.done, r.stepShareAfter(st.steps))))
+  const bool go = r.report(std::max(st.done, r.stepShareAfter(st.steps)), &leaving);
+  s.migrationDue_ = leaving > 0;
+  if (!go)
   {
     r.result.aborted = true;
     if (!s.detect()) // collisions must describe the geometry that is returned
@@ -1376,9 +1487,12 @@ CollisionSolverResult CollisionSolverRun::finish()
   {
     result.volumeFraction = s.fiberVolume() / o.periodicCell.volume();
   }
+  // How far it got: the radius scale at which this geometry would be free of overlaps.
+  const bool unsolved = !result.solved && !result.aborted;
+  const double free = unsolved && s.periodic() ? s.overlapFreeScale() : 1.0;
   result.minGapProbe = s.median();
   result.minGap = smallestGap(s, result.minGapProbe);
-  if (!result.solved && !result.aborted)
+  if (unsolved)
   {
     std::ostringstream w;
     w << result.collisions << " capsule pairs still overlap after " << result.steps
@@ -1386,8 +1500,6 @@ CollisionSolverResult CollisionSolverRun::finish()
       << ", max overlap " << result.maxOverlap << " um";
     if (s.periodic())
     {
-      // How far it got: the radius scale at which this geometry would be free of overlaps.
-      const double free = s.overlapFreeScale();
       w << "; overlap-free at " << 100.0 * free << " % of the radii, i.e. a volume fraction of "
         << result.volumeFraction * free * free << " of the requested " << result.volumeFraction;
     }

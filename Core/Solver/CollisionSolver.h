@@ -101,9 +101,10 @@ struct CollisionSolverResult : Status
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   // Distributed runs (docs/solver.md §13; 0 otherwise): this rank's share and traffic.
   std::size_t rankFibers = 0;     ///< fibers this rank owned at the end (before they went home)
-  std::size_t peakRankPoints = 0; ///< most points (owned + halo) this rank held in a step
-  std::size_t peakHaloPoints = 0; ///< most halo points it held in a step
-  double haloBytesPerStep = 0.0;  ///< bytes it sent as halo per step, mean
+  std::size_t peakRankPoints = 0; ///< most points this rank held in a step: owned + halo links
+  std::size_t peakHaloPoints = 0; ///< most halo links (of other ranks' fibers) it held in a step
+  std::size_t peakHeldLinks = 0;  ///< most links (own or halo) it held for its pair tests in a step
+  double haloBytesPerStep = 0.0;  ///< bytes it sent per step, mean: links out and pushes back
   std::size_t migrations = 0;     ///< fibers that changed rank during the solve (all ranks)
 };
 
@@ -164,6 +165,9 @@ public:
   /// Instead of start(): continue from a state saved with the model now in the run (same
   /// options). Returns "" or an error naming what does not match (then finish() returns it).
   std::string resume(const CollisionSolverState& saved);
+  /// What resume(saved) would refuse, checked on this rank alone ("" = fits; not collective, so
+  /// a distributed caller can name its file in the message before the ranks agree on it).
+  std::string checkResume(const CollisionSolverState& saved) const;
   /// One iteration (§6): shape control, detection, the stop rules, one move. False when the run
   /// has ended (solved, MaxSteps, StallSteps, abort or error): then call finish().
   bool step();

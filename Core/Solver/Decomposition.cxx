@@ -58,8 +58,8 @@ private:
   std::size_t at_ = 0;
 };
 
-// One fiber; the point state only for owned fibers (a halo fiber is a partner only).
-void writeFiber(Writer& w, const RankFibers& r, std::size_t f, bool owned)
+// One fiber with its point state.
+void writeFiber(Writer& w, const RankFibers& r, std::size_t f)
 {
   const CollisionSolverState& st = r.state;
   const Fiber& fib = r.model.fibers[f];
@@ -72,12 +72,8 @@ void writeFiber(Writer& w, const RankFibers& r, std::size_t f, bool owned)
   w.put<Vec3>(st.closure[f]);
   w.putVector(fib.points);
   w.putVector(fib.radii);
-  w.put<char>(owned ? 1 : 0);
-  if (owned)
-  {
-    w.putVector(st.points[f].velocity);
-    w.putVector(st.points[f].source);
-  }
+  w.putVector(st.points[f].velocity);
+  w.putVector(st.points[f].source);
 }
 
 void readFiber(Reader& rd, RankFibers& r)
@@ -93,14 +89,9 @@ void readFiber(Reader& rd, RankFibers& r)
   st.closure.push_back(rd.get<Vec3>());
   rd.getVector(fib.points);
   rd.getVector(fib.radii);
-  const char owned = rd.get<char>();
   FiberPointState ps;
-  if (owned)
-  {
-    rd.getVector(ps.velocity);
-    rd.getVector(ps.source);
-  }
-  r.owned.push_back(owned);
+  rd.getVector(ps.velocity);
+  rd.getVector(ps.source);
   st.points.push_back(std::move(ps));
   r.model.fibers.push_back(std::move(fib));
 }
@@ -128,7 +119,6 @@ void keepAndSort(RankFibers& r, const std::vector<char>& keep)
   permute(st.closure);
   permute(st.global);
   permute(st.home);
-  permute(r.owned);
 }
 
 // Extent [lo, hi] of a fiber's points along an axis.
@@ -143,19 +133,8 @@ void extent(const Fiber& f, int axis, double& lo, double& hi)
   }
 }
 
-// Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
-// integer k with a − reach + kP <= d and b + reach + kP >= c.
-bool within(double a, double b, double c, double d, double reach, double period)
-{
-  if (period <= 0.0)
-  {
-    return a - reach <= d && b + reach >= c;
-  }
-  return std::floor((d - a + reach) / period) >= std::ceil((c - b - reach) / period);
-}
-
 TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to,
-  const std::vector<char>& keep, bool owned, SolverComm& comm)
+  const std::vector<char>& keep, SolverComm& comm)
 {
   TrafficCount t;
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
@@ -163,7 +142,7 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
   {
     Writer w(out[q]);
     for (std::size_t f : to[q])
-      writeFiber(w, r, f, owned);
+      writeFiber(w, r, f);
     t.fibers += to[q].size();
     t.bytes += out[q].size();
   }
@@ -230,7 +209,66 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
       s.axis_ = d;
   s.lo_ = lo[s.axis_];
   s.hi_ = hi[s.axis_];
+  s.cutTesterSlabs(local, comm);
   return s;
+}
+
+void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm)
+{
+  // A histogram of all ranks' link centres (exact integer sums, the same on every rank), cut
+  // where its running sum passes k/R of the links: within one bin (1/4096 of [lo, hi]) of the
+  // balanced cut.
+  constexpr std::size_t kBins = 4096;
+  std::vector<std::int64_t> count(kBins, 0);
+  for (const Fiber& f : hi_ > lo_ ? local.fibers : std::vector<Fiber>{})
+  {
+    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+    {
+      const double t = fraction(0.5 * (f.points[k][axis_] + f.points[k + 1][axis_]));
+      const double bin = std::floor(t * static_cast<double>(kBins));
+      ++count[bin < 0.0 ? 0 : bin >= kBins ? kBins - 1 : static_cast<std::size_t>(bin)];
+    }
+  }
+  comm.sum(count);
+  const std::int64_t total = std::accumulate(count.begin(), count.end(), std::int64_t{ 0 });
+  testCuts_.clear();
+  std::int64_t below = 0;
+  std::size_t b = 0;
+  for (int k = 1; k < ranks_; ++k)
+  {
+    // The first bin edge b with below(b) >= k/R of all (equal widths when there are no links).
+    if (total == 0)
+    {
+      testCuts_.push_back(static_cast<double>(k) / ranks_);
+      continue;
+    }
+    while (b < kBins && below * ranks_ < k * total)
+    {
+      below += count[b++];
+    }
+    testCuts_.push_back(static_cast<double>(b) / static_cast<double>(kBins));
+  }
+}
+
+double SlabLayout::fraction(double x) const
+{
+  const double t = (x - lo_) / (hi_ - lo_);
+  return periodic_ ? t - std::floor(t) : t;
+}
+
+int SlabLayout::testerOf(double x) const
+{
+  if (ranks_ == 1 || !(hi_ > lo_))
+  {
+    return 0;
+  }
+  return static_cast<int>(std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
+}
+
+double SlabLayout::testerLo(int q) const
+{
+  const double t = q <= 0 ? 0.0 : q >= ranks_ ? 1.0 : testCuts_[static_cast<std::size_t>(q - 1)];
+  return lo_ + (hi_ - lo_) * t;
 }
 
 int SlabLayout::owner(const Fiber& f) const
@@ -241,13 +279,27 @@ int SlabLayout::owner(const Fiber& f) const
   }
   double a, b;
   extent(f, axis_, a, b);
-  double t = (0.5 * (a + b) - lo_) / (hi_ - lo_);
+  return slabOf(0.5 * (a + b));
+}
+
+int SlabLayout::slabOf(double x) const
+{
+  if (ranks_ == 1 || !(hi_ > lo_))
+  {
+    return 0;
+  }
+  double t = (x - lo_) / (hi_ - lo_);
   if (periodic_)
   {
     t -= std::floor(t);
   }
   const double slab = std::floor(t * ranks_);
   return slab < 0.0 ? 0 : slab >= ranks_ ? ranks_ - 1 : static_cast<int>(slab);
+}
+
+double SlabLayout::wrapShift(double x) const
+{
+  return periodic_ ? -(hi_ - lo_) * std::floor((x - lo_) / (hi_ - lo_)) : 0.0;
 }
 
 TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverComm& comm)
@@ -262,45 +314,7 @@ TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverCom
       keep[f] = 0;
     }
   }
-  return send(r, to, keep, true, comm);
-}
-
-void dropHalo(RankFibers& r)
-{
-  keepAndSort(r, r.owned);
-}
-
-TrafficCount addHalo(RankFibers& r, const SlabLayout& layout, const PeriodicCell& cell, double reach, SolverComm& comm)
-{
-  const int axis = layout.axis();
-  const std::size_t nr = static_cast<std::size_t>(comm.size());
-  const std::size_t me = static_cast<std::size_t>(comm.rank());
-  // Every rank's extent of its owned fibers (−lo, hi; empty: −∞, −∞).
-  std::vector<double> ext(2 * nr, -HUGE_VAL);
-  std::vector<double> lo(r.size()), hi(r.size());
-  for (std::size_t f = 0; f < r.size(); ++f)
-  {
-    extent(r.model.fibers[f], axis, lo[f], hi[f]);
-    if (r.owned[f] && !r.model.fibers[f].points.empty())
-    {
-      ext[2 * me] = std::max(ext[2 * me], -lo[f]);
-      ext[2 * me + 1] = std::max(ext[2 * me + 1], hi[f]);
-    }
-  }
-  comm.max(ext);
-  const double period = cell.enabled() ? cell.edge()[axis] : 0.0;
-  std::vector<std::vector<std::size_t>> to(nr);
-  for (std::size_t f = 0; f < r.size(); ++f)
-  {
-    if (!r.owned[f] || !r.state.active[f])
-      continue;
-    for (std::size_t q = 0; q < nr; ++q)
-    {
-      if (q != me && ext[2 * q + 1] > -HUGE_VAL && within(lo[f], hi[f], -ext[2 * q], ext[2 * q + 1], reach, period))
-        to[q].push_back(f);
-    }
-  }
-  return send(r, to, std::vector<char>(r.size(), 1), false, comm);
+  return send(r, to, keep, comm);
 }
 
 std::string agreeOnError(SolverComm& comm, const std::string& localError)

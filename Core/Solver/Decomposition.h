@@ -1,9 +1,9 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
 /// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
 /// run, the one along which the fibers are shortest) holds the fiber's reference point, the middle of its extent along that axis (in a
-/// periodic cell wrapped into the cell). Every rank keeps its owned fibers and, per step, a halo
-/// of the other ranks' fibers that can touch them, all in global fiber order; fibers travel
-/// between ranks as byte records through SolverComm::exchange.
+/// periodic cell wrapped into the cell). Every rank keeps its owned fibers, in global fiber order;
+/// fibers travel between ranks as byte records through SolverComm::exchange. The pair work goes
+/// by region (links, not fibers: Solver/LinkExchange.h).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
@@ -19,14 +19,12 @@
 namespace fiberpli
 {
 
-/// The rank's fibers (model), what the solver keeps per fiber (state: parallel vectors, global
-/// order) and which of them it owns (owned: 1 = owned, 0 = halo, a partner whose pushes are
-/// discarded; halo fibers carry no point state).
+/// The fibers a rank owns (model) and what the solver keeps per fiber (state: parallel vectors,
+/// global order).
 struct RankFibers
 {
   FiberModel& model;
   CollisionSolverState& state;
-  std::vector<char>& owned;
   std::size_t size() const { return model.fibers.size(); }
 };
 
@@ -39,13 +37,29 @@ public:
   static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
   /// Rank that owns the fiber (0 for a fiber without points).
   int owner(const Fiber& f) const;
+  /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
+  int slabOf(double x) const;
+  /// Rank testing the pairs of a link whose centre is at x along the axis (Solver/LinkExchange.h):
+  /// slabs cut so that each holds as many link centres of the start model as the others (the pair
+  /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
+  /// of it). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
+  int testerOf(double x) const;
+  /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
+  double testerLo(int q) const;
+  /// What wrapping x into the cell adds to it along the axis (0 without a cell).
+  double wrapShift(double x) const;
   int axis() const { return axis_; }
+  /// The cell's edge along the axis (0 without a cell).
+  double period() const { return periodic_ ? hi_ - lo_ : 0.0; }
 
 private:
   int axis_ = 0;
   double lo_ = 0.0, hi_ = 0.0;
   int ranks_ = 1;
   bool periodic_ = false;
+  std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
+  double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
+  void cutTesterSlabs(const FiberModel& local, SolverComm& comm); // collective
 };
 
 /// What a redistribution moved (this rank's share).
@@ -58,17 +72,6 @@ struct TrafficCount
 /// Sends every fiber whose destination (dest(index), a rank) is another rank there, receives the
 /// fibers others send here, keeps global order. Collective.
 TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
-
-/// Drops the halo fibers.
-void dropHalo(RankFibers& fibers);
-
-/// Adds to every rank, as halo, the other ranks' solved fibers whose extent along the slab axis
-/// comes within `reach` of the extent of its owned fibers (modulo the cell when periodic), so every
-/// partner of an owned fiber closer than reach along the slab axis is there. Two capsules collide
-/// only closer than 2·ρmax + gap; the solver passes 3·ρmax + gap (plus a rounding margin) because
-/// its minimum-gap probe looks one median radius (<= ρmax) further. Collective.
-TrafficCount addHalo(RankFibers& fibers, const SlabLayout& layout, const PeriodicCell& cell, double reach,
-  SolverComm& comm);
 
 /// "" when no rank failed, else the message of the lowest failing rank, on every rank. Collective.
 std::string agreeOnError(SolverComm& comm, const std::string& localError);

@@ -4,6 +4,7 @@
 // whose region is empty, fibers longer than a rank's region, fibers moving between ranks, and an
 // error or a stop on one rank only.
 #include "Solver/CollisionSolver.h"
+#include "Solver/Decomposition.h"
 
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -210,6 +212,41 @@ TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
   }
 }
 
+// The pair testers' slabs hold equal link counts (docs/solver.md §13), not equal widths: 30 fibers
+// crowd x in [0, 2], 10 spread over [2, 20] (all along y: x is the slab axis). Each rank computes
+// the same cuts from its own piece, and each slab gets N/R links to within one fiber's 10 links
+// (equal widths would give the first of 2 slabs 34 of the 40 fibers).
+TEST(DistributedSolver, TesterSlabsHoldEqualLinkCounts)
+{
+  FiberModel m;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double x = i < 30 ? 2.0 * i / 30.0 : 2.0 + 18.0 * (i - 30) / 9.0;
+    m.fibers.push_back(line({ x, 0.0, 0.0 }, { 0, 1.0, 0 }, 11, 0.3, i));
+  }
+  for (int ranks : { 2, 3 })
+  {
+    std::vector<std::vector<int>> testers(static_cast<std::size_t>(ranks));
+    runRanks(ranks, [&](SolverComm& comm) {
+      FiberModel piece;
+      for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += static_cast<std::size_t>(ranks))
+        piece.fibers.push_back(m.fibers[f]);
+      const SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+      ASSERT_EQ(layout.axis(), 0);
+      for (const Fiber& f : m.fibers) // every link of a fiber has its centre at the fiber's x
+        testers[static_cast<std::size_t>(comm.rank())].push_back(layout.testerOf(f.points[0].x));
+    });
+    std::vector<int> links(static_cast<std::size_t>(ranks), 0);
+    for (int t : testers[0])
+      links[static_cast<std::size_t>(t)] += 10;
+    for (int q = 0; q < ranks; ++q)
+    {
+      EXPECT_EQ(testers[static_cast<std::size_t>(q)], testers[0]) << "rank " << q << " cuts differently";
+      EXPECT_NEAR(links[static_cast<std::size_t>(q)], 400.0 / ranks, 10.0) << ranks << " ranks, slab " << q;
+    }
+  }
+}
+
 TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
 {
   FiberModel m = paperCube(1, 30, 2);
@@ -296,4 +333,127 @@ TEST(DistributedSolver, AStopOnOneRankStopsEveryRankAtTheSameStep)
   expectSerial(runs, serial, s, "stopped on rank 1");
   for (const RankRun& run : runs)
     EXPECT_TRUE(run.result.aborted);
+}
+
+namespace
+{
+// Links of `m` whose extent along `axis`, shifted by a multiple of the cell edge L, comes within
+// w of [lo, hi]: brute force over the shifts.
+std::size_t linksNear(const FiberModel& m, int axis, double lo, double hi, double w, double L)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      const double a = std::min(f.points[k][axis], f.points[k + 1][axis]);
+      const double b = std::max(f.points[k][axis], f.points[k + 1][axis]);
+      bool near = false;
+      for (int s = -3; s <= 3 && !near; ++s)
+        near = a + s * L <= hi + w && b + s * L >= lo - w;
+      n += near ? 1 : 0;
+    }
+  }
+  return n;
+}
+
+// Rank q's tester slab along `axis` as the solver cuts a cell of edge L centred at 0 (equal link
+// counts: a cut lies within one histogram bin, L/4096, above the centre it must have below it),
+// from the sorted link centres, widened by two bins each side.
+std::pair<double, double> testerSlab(const FiberModel& m, int axis, int q, int ranks, double L)
+{
+  std::vector<double> c;
+  for (const Fiber& f : m.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      const double x = 0.5 * (f.points[k][axis] + f.points[k + 1][axis]);
+      c.push_back(x - L * std::floor((x + 0.5 * L) / L));
+    }
+  }
+  std::sort(c.begin(), c.end());
+  const double bins = 2.0 * L / 4096.0;
+  const auto cut = [&](int k) { // the ceil(k·N/R)-th smallest centre
+    return c[(static_cast<std::size_t>(k) * c.size() + static_cast<std::size_t>(ranks) - 1) / ranks - 1];
+  };
+  return { q == 0 ? -0.5 * L : cut(q) - bins, q + 1 == ranks ? 0.5 * L : cut(q + 1) + bins };
+}
+
+std::size_t linkCount(const FiberModel& m)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+    n += f.size() > 1 ? f.size() - 1 : 0;
+  return n;
+}
+
+std::size_t pointCount(const FiberModel& m)
+{
+  std::size_t n = 0;
+  for (const Fiber& f : m.fibers)
+    n += f.size();
+  return n;
+}
+} // namespace
+
+// Three populations in a periodic cell: one of them runs along whichever axis the slabs cut, so
+// whole fibers span every slab. A rank must still hold only its share and the links near its
+// slab (not the whole model), and the result must be the serial one, on 2, 3 and 6 ranks.
+TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
+{
+  const CubeOptions c = periodicCube(3, 30.0, 0.3, 5);
+  const FiberModel in = generateCube(c);
+  const double L = c.edgeLength;
+  CollisionSolverOptions o;
+  o.periodicCell = cubeCell(c);
+  o.numberOfThreads = 1;
+  double rhoMax = 0.0, rMin = HUGE_VAL, longest = 0.0;
+  for (const Fiber& f : in.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.size(); ++k)
+    {
+      rhoMax = std::max(rhoMax, f.linkRadius(k));
+      rMin = std::min(rMin, std::min(f.radii[k], f.radii[k + 1]));
+      longest = std::max(longest, distance(f.points[k], f.points[k + 1]));
+    }
+  }
+  for (int steps : { 4, 40 })
+  {
+    o.maxSteps = steps;
+    // The short run keeps the input's links (no split/merge), so that brute force over the
+    // input bounds what a rank may hold.
+    o.segmentLength = steps < 10 ? -1.0 : 2.0;
+    FiberModel serial = in;
+    const CollisionSolverResult s = solveCollisions(serial, o);
+    ASSERT_EQ(s.error, "");
+    ASSERT_EQ(s.steps, steps);
+    const double links = static_cast<double>(linkCount(serial));
+    const double points = static_cast<double>(pointCount(serial));
+    // How far a held link can lie from a slab: half the longest link (its centre is in a test
+    // region), the pair reach 2·ρmax, and what the points moved.
+    const double w = 0.5 * longest + 2.0 * rhoMax + 2.0 * steps * o.maxDisplacement * rMin + 1e-6;
+    for (int ranks : { 2, 3, 6 }) // 6: slabs of 5 um, a link reaches only the nearby ones
+    {
+      const std::string what = std::to_string(ranks) + " ranks, " + std::to_string(steps) + " steps";
+      const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+      expectSerial(runs, serial, s, what);
+      for (int q = 0; q < ranks; ++q)
+      {
+        const CollisionSolverResult& r = runs[static_cast<std::size_t>(q)].result;
+        EXPECT_LT(static_cast<double>(r.peakHeldLinks), 0.8 * links) << what << ", rank " << q << " of " << links;
+        EXPECT_LT(static_cast<double>(r.peakRankPoints), 0.8 * points) << what << ", rank " << q << " of " << points;
+        if (steps < 10) // the geometry is still (nearly) the input's: bound it by brute force
+        {
+          std::size_t bound = 0;
+          for (int axis = 0; axis < 3; ++axis) // whichever axis the slabs cut
+          {
+            const std::pair<double, double> slab = testerSlab(in, axis, q, ranks, L);
+            bound = std::max(bound, linksNear(in, axis, slab.first, slab.second, w, L));
+          }
+          EXPECT_LE(r.peakHeldLinks, bound) << what << ", rank " << q;
+          EXPECT_GT(r.peakHaloPoints, 0u) << what;
+        }
+      }
+    }
+  }
 }

@@ -166,10 +166,9 @@ TEST(LatticeSeeding, DenseCellsSolveToZeroOverlapsAtTheRequestedFraction)
     ASSERT_EQ(r.error, "");
     EXPECT_TRUE(r.solved) << c.pops << " populations: " << r.collisions << " left";
     EXPECT_EQ(fiberpli_test::refPeriodicCount(m, c.edge), 0u) << c.pops;
-    // The count is the closest to the target: within half a fiber's volume of it.
-    const double halfFiber = 0.5 * M_PI * 0.8 * 0.8 / (c.edge * c.edge);
+    // The count is the smallest reaching the target, and closed fibers only get longer.
     const double mc = fiberpli_test::monteCarloFraction(m, c.edge, 20000);
-    EXPECT_GE(mc + 4.0 * std::sqrt(mc * (1 - mc) / 20000), c.phi - halfFiber) << c.pops << " populations";
+    EXPECT_GE(mc + 4.0 * std::sqrt(mc * (1 - mc) / 20000), c.phi) << c.pops << " populations";
   }
 }
 

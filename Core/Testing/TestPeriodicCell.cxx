@@ -59,14 +59,41 @@ TEST(PeriodicCube, FiberCountMatchesTheVolumeFraction)
   {
     const CubeOptions o = periodicCube(pops, 20.0, 0.6);
     const FiberModel m = generateCube(o);
-    // Σ π r² L = φ L³ → N = φ L² / (π r²), within half a fiber by construction.
-    const double expected = 0.6 * 400.0 / (M_PI * 0.64);
-    EXPECT_LE(std::fabs(double(m.fibers.size()) - expected), 0.5 + 1e-9);
+    // The smallest N with N π r² L ≥ φ L³: N = ⌈φ L² / (π r²)⌉ = ⌈119.37⌉.
+    EXPECT_EQ(m.fibers.size(), 120u);
     int count[3] = { 0, 0, 0 };
     for (const Fiber& f : m.fibers)
       ++count[f.bundle];
     for (int k = 1; k < pops; ++k)
       EXPECT_LE(std::abs(count[k] - count[0]), 1); // populations filled in turn
+  }
+  // A target that a count meets exactly gets that count, not one more.
+  EXPECT_EQ(generateCube(periodicCube(2, 20.0, 100 * M_PI * 0.64 / 400.0)).fibers.size(), 100u);
+}
+
+TEST(PeriodicCube, PolydisperseCountIsTheSmallestReachingTheFraction)
+{
+  for (int pops = 1; pops <= 3; ++pops)
+  {
+    CubeOptions o = periodicCube(pops, 20.0, 0.5, 7);
+    o.radiusDistribution = RadiusDistribution::Gamma;
+    o.radiusSpread = 0.5;
+    const FiberModel m = generateCube(o);
+    const double cell = 20.0 * 20.0 * 20.0;
+    double volume = 0.0;
+    for (const Fiber& f : m.fibers)
+      volume += M_PI * f.radii[0] * f.radii[0] * 20.0;
+    EXPECT_GE(volume, 0.5 * cell) << pops;
+    // Without the fiber added last (fibers are added to populations 0, 1, 2, 0, …, so it is the
+    // last fiber of population (N − 1) mod pops) the target is not reached.
+    const std::size_t n = m.fibers.size();
+    const int lastPopulation = static_cast<int>((n - 1) % static_cast<std::size_t>(pops));
+    const Fiber* last = nullptr;
+    for (const Fiber& f : m.fibers)
+      if (f.bundle == lastPopulation)
+        last = &f;
+    ASSERT_NE(last, nullptr);
+    EXPECT_LT(volume - M_PI * last->radii[0] * last->radii[0] * 20.0, 0.5 * cell) << pops;
   }
 }
 
@@ -180,11 +207,10 @@ TEST(PeriodicSolver, SmallCellsSolveToZeroOverlapsKeepingClosureRadiiAndFraction
     for (const Fiber& f : m.fibers)
       for (double x : f.radii)
         EXPECT_EQ(x, 0.8);
-    // generateCube stops adding fibers within ±½ fiber of the target, and the solver only
-    // lengthens closed fibers (each at least one period L long): the fraction is at least the
-    // target less half a one-period fiber, π r² L / 2 / L³.
-    const double L = c.edgeLength;
-    EXPECT_GE(r.volumeFraction, targets[pops - 1] - 0.5 * M_PI * 0.8 * 0.8 * L / (L * L * L));
+    // generateCube adds fibers until their straight volume reaches the target, and the solver
+    // only lengthens closed fibers (each at least one period L long): the fraction is at least
+    // the target.
+    EXPECT_GE(r.volumeFraction, targets[pops - 1]);
     const double mc = monteCarloFraction(m, c.edgeLength, 20000);
     EXPECT_NEAR(mc, r.volumeFraction, 4.0 * std::sqrt(mc * (1 - mc) / 20000) + 0.005);
     EXPECT_GE(r.minGap, 0.0);

@@ -67,6 +67,22 @@ FiberModel denseOpenCube()
   return generateCube(o);
 }
 
+// A finished 30-step solve of the dense open cube that wrote a checkpoint every 10 steps (the
+// file then holds step 30, its previous generation step 20): what the tests reading a file start from.
+struct CheckpointedRun
+{
+  const FiberModel in = denseOpenCube();
+  CollisionSolverOptions options;
+  TempFile file;
+  std::string error; ///< of the solve, "" when it ran
+  CheckpointedRun()
+  {
+    options.maxSteps = 30;
+    FiberModel m = in;
+    error = solveWithCheckpoints(m, options, { file.path, 10, false }).error;
+  }
+};
+
 // Uninterrupted, then: checkpoints every `interval` steps, "killed" (aborted) at step `killAt`,
 // resumed from the file; both must end identically, and the resumed run must begin right after
 // the last checkpoint before the kill.
@@ -193,12 +209,11 @@ TEST(SolverCheckpoint, ResumedPeriodicGrowthEqualsUninterruptedRun)
 
 TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
 {
-  const FiberModel in = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 30;
-  TempFile file;
-  FiberModel m = in;
-  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+  const CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  const FiberModel& in = run.in;
+  const CollisionSolverOptions& o = run.options;
+  const TempFile& file = run.file;
 
   FiberModel model;
   CollisionSolverState state;
@@ -252,7 +267,8 @@ TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
   EXPECT_EQ(e, "");
   EXPECT_EQ(firstStep, 21);
   std::remove(previousCheckpointPath(file.path).c_str());
-  e = solveWithCheckpoints(m, o, { file.path, 0, true }).error;
+  FiberModel noFile = in;
+  e = solveWithCheckpoints(noFile, o, { file.path, 0, true }).error;
   EXPECT_NE(e.find(file.path), std::string::npos) << e;
   EXPECT_NE(e.find("cannot be opened"), std::string::npos) << e;
 }
@@ -409,16 +425,54 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
 }
 
 
+// Rank 1's checkpoint reads (checksum, options and input fingerprint fine) but its state does not
+// fit its model: the refusal is agreed on before any other collective, so both ranks fail, naming
+// rank 1's file, and nobody waits for the other in the distribution (under a timeout).
+TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
+{
+  const FiberModel whole = denseOpenCube();
+  const CollisionSolverOptions o = twoRankOptions();
+  const auto piece = [&](int r) { return halfOf(whole, r); };
+  TempFile file;
+  const std::string own1 = file.path + ".1-of-2";
+  runRanksWithin(2, 120, [&](SolverComm& comm) {
+    FiberModel m = piece(comm.rank());
+    int last = 0;
+    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 25; },
+      [&](int step, const FiberModel&) { last = step; }, &comm);
+  });
+  FiberModel saved;
+  CollisionSolverState state;
+  const std::uint64_t fingerprint = modelFingerprint(piece(1));
+  ASSERT_EQ(readSolverCheckpoint(own1, o, fingerprint, saved, state), "");
+  ASSERT_FALSE(saved.fibers.empty());
+  saved.fibers[0].radii[0] = -1.0; // a radius the solver refuses (file and state still consistent)
+  ASSERT_EQ(writeSolverCheckpoint(own1, saved, state, o, fingerprint), "");
+  std::vector<CollisionSolverResult> results(2);
+  std::vector<FiberModel> out{ piece(0), piece(1) };
+  runRanksWithin(2, 120, [&](SolverComm& comm) {
+    const std::size_t r = static_cast<std::size_t>(comm.rank());
+    results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
+  });
+  for (int r = 0; r < 2; ++r)
+  {
+    const std::string& e = results[r].error;
+    EXPECT_NE(e.find("'" + own1 + "': does not fit"), std::string::npos) << "rank " << r << ": " << e;
+    EXPECT_NE(e.find("fiber " + std::to_string(state.global[0])), std::string::npos) << "rank " << r << ": " << e;
+    EXPECT_TRUE(bitwiseEqual(out[r], piece(r))) << "rank " << r << " must keep its own piece";
+  }
+  EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
+}
+
 // A resumed run that fails (here: its next checkpoint cannot be written, a directory stands where
 // the file was; the run resumed from the previous generation) leaves the caller's model as it was.
 TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
 {
-  const FiberModel in = denseOpenCube();
-  CollisionSolverOptions o;
-  o.maxSteps = 30;
-  TempFile file;
-  FiberModel m = in;
-  ASSERT_EQ(solveWithCheckpoints(m, o, { file.path, 10, false }).error, "");
+  const CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  const FiberModel& in = run.in;
+  const CollisionSolverOptions& o = run.options;
+  const TempFile& file = run.file;
   ASSERT_EQ(std::remove(file.path.c_str()), 0); // steps 30 gone, 20 kept as .prev
   ASSERT_EQ(::mkdir(file.path.c_str(), 0700), 0);
   FiberModel resumed = in;

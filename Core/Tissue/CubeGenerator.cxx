@@ -94,8 +94,9 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
 }
 
 // Fibers per population. With a volume fraction: fibers in turn over the populations (0, 1, 2,
-// 0, …) while adding one brings the volume closer to the target (each fiber's straight length is
-// one period L); only their radii are drawn, so every piece can count them all cheaply.
+// 0, …) until their volume (each fiber's straight length is one period L) reaches the target, so
+// the count is the smallest whose nominal fraction is at least the one asked for; only their radii
+// are drawn, so every piece can count them all cheaply.
 std::vector<int> populationCounts(const CubeOptions& o)
 {
   std::vector<int> counts(static_cast<std::size_t>(o.populations), 0);
@@ -109,17 +110,15 @@ std::vector<int> populationCounts(const CubeOptions& o)
   }
   const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength;
   const double bound = fiberCountEstimate(o);
+  // The relative 1e-12 absorbs rounding: a target that a count meets exactly (φ = N π r² / L²)
+  // gets N fibers, not N + 1.
+  const double reached = target * (1.0 - 1e-12);
   double volume = 0.0;
-  for (int i = 0; i < bound; ++i)
+  for (int i = 0; i < bound && volume < reached; ++i)
   {
     const int k = i % o.populations;
     const double r = cubeFiberRadius(o, k, i / o.populations);
-    const double v = M_PI * r * r * o.edgeLength;
-    if (volume + 0.5 * v > target)
-    {
-      break;
-    }
-    volume += v;
+    volume += M_PI * r * r * o.edgeLength;
     ++counts[static_cast<std::size_t>(k)];
   }
   return counts;

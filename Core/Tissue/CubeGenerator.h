@@ -34,8 +34,9 @@ struct CubeOptions
   std::uint64_t seed = 42;
   /// The cube is a periodic cell: fibers are closed through its faces (see above).
   bool periodic = false;
-  /// > 0: the fiber count is chosen so that Σ π r² · L (L = one period, the straight length of
-  /// every fiber) is this fraction of the cube volume; 0 = use numberOfFibers. Must be < 1.
+  /// > 0: the fiber count is the smallest for which Σ π r² · L (L = one period, the straight
+  /// length of every fiber) reaches at least this fraction of the cube volume; 0 = use
+  /// numberOfFibers. Must be < 1.
   double volumeFraction = 0.0;
   /// Radius spread s >= 0 (0 = constant FiberRadius) and its distribution (RadiusDistribution.h).
   double radiusSpread = 0.0;
@@ -60,7 +61,8 @@ int cubePopulationSize(const CubeOptions& options, int k);
 /// Generates the cube. Fiber ids are 0..N-1 in population order. The draws of fiber j of population
 /// k come from the stream (seed, k, j): transverse position (2), displacements point by point, then
 /// (only with radiusSpread > 0) the radius. With volumeFraction > 0, fibers j = 0, 1, … are added to the
-/// populations in turn (0, 1, 2, 0, …) while the fiber volume stays closest to the target.
+/// populations in turn (0, 1, 2, 0, …) until the fiber volume reaches the target (the smallest
+/// such count).
 /// Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece, pieces) are built, with
 /// their global ids; the counts (and with volumeFraction the radii of all fibers) are drawn by every
 /// piece, the points only for the piece's own fibers, so a piece holds its share of the memory.

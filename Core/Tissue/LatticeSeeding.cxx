@@ -33,6 +33,21 @@ double shortestVector(Vec2 u, Vec2 v)
   }
 }
 
+// A lattice of `populations` empty site lists at the given spacing, for a builder to fill.
+PeriodicLattice emptyLattice(double spacing, int populations)
+{
+  PeriodicLattice lattice;
+  lattice.spacing = spacing;
+  lattice.sites.resize(static_cast<std::size_t>(populations));
+  return lattice;
+}
+
+// The centre of the k-th of n equal intervals of [−L/2, L/2].
+double intervalCentre(double L, double k, double n)
+{
+  return L * (k + 0.5) / n - 0.5 * L;
+}
+
 // One population: every lattice containing the cell's period lattice L·Z² with N sites is, in
 // Hermite normal form, `rows` rows of N/rows sites (spacing L·rows/N) with row j shifted by
 // j·shift·L/N (0 <= shift < rows). Of all N in [count, count + 2 %], the largest spacing wins;
@@ -68,17 +83,15 @@ PeriodicLattice triangular(double L, int count)
       }
     }
   }
-  PeriodicLattice lattice;
-  lattice.spacing = best;
-  lattice.sites.resize(1);
+  PeriodicLattice lattice = emptyLattice(best, 1);
   const std::int64_t perRow = bestN / bestRows;
   for (std::int64_t j = 0; j < bestRows; ++j)
   {
     for (std::int64_t i = 0; i < perRow; ++i)
     {
       const std::int64_t u = (i * bestRows + j * bestShift) % bestN;
-      lattice.sites[0].push_back({ L * (double(u) + 0.5) / double(bestN) - 0.5 * L,
-        L * (double(j) + 0.5) / double(bestRows) - 0.5 * L });
+      lattice.sites[0].push_back(
+        { intervalCentre(L, double(u), double(bestN)), intervalCentre(L, double(j), double(bestRows)) });
     }
   }
   return lattice;
@@ -102,15 +115,13 @@ PeriodicLattice layers(double L, int count)
       bestN = n;
     }
   }
-  PeriodicLattice lattice;
-  lattice.spacing = best;
-  lattice.sites.resize(2);
+  PeriodicLattice lattice = emptyLattice(best, 2);
   const double h = L / (2.0 * bestM);
   for (int l = 0; l < bestM; ++l)
   {
     for (int i = 0; i < bestN; ++i)
     {
-      const double across = L * (i + 0.5) / bestN - 0.5 * L;
+      const double across = intervalCentre(L, i, bestN);
       // Population 0 (x): (t1, t2) = (y, z); population 1 (y): (t1, t2) = (z, x).
       lattice.sites[0].push_back({ across, (2 * l + 0.5) * h - 0.5 * L });
       lattice.sites[1].push_back({ (2 * l + 1.5) * h - 0.5 * L, across });
@@ -129,9 +140,7 @@ PeriodicLattice cubicRods(double L, int count)
     ++n;
   const double a = L / n;
   const double o = 0.25 * a - 0.5 * L;
-  PeriodicLattice lattice;
-  lattice.spacing = 0.5 * a;
-  lattice.sites.resize(3);
+  PeriodicLattice lattice = emptyLattice(0.5 * a, 3);
   for (int i = 0; i < n; ++i)
   {
     for (int j = 0; j < n; ++j)
@@ -253,11 +262,9 @@ PeriodicLattice bundledBlocks(double L, int count)
     const double mid = 0.5 * (lo + hi);
     (fitBlocks(L, mid, count, chosen) ? lo : hi) = mid;
   }
-  PeriodicLattice lattice;
   if (!(lo > 0.0) || !fitBlocks(L, lo, count, chosen))
-    return lattice;
-  lattice.spacing = lo;
-  lattice.sites.resize(3);
+    return {};
+  PeriodicLattice lattice = emptyLattice(lo, 3);
   // Free room along the coordinate blocks k and k + 1 share (t2 of k = t1 of k + 1), a quarter of
   // it before each block.
   double room[3];

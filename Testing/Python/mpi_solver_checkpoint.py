@@ -1,6 +1,7 @@
 """pvbatch --symmetric under mpiexec -n 2: FiberCollisionSolver checkpoints of the distributed solve
 (docs/solver.md §14). Every rank writes its own file <CheckpointFile>.<rank>-of-2; resuming from them
-gives the same output on every rank; a file only rank 1 cannot write (a directory stands in its
+gives the same output on every rank; a damaged file on rank 1 only fails the resume on both ranks
+naming it; a file only rank 1 cannot write (a directory stands in its
 place) fails the solve on both ranks at the same step, and nobody hangs (an alarm kills a hung
 rank long before the ctest timeout); the pipeline works again afterwards."""
 import os
@@ -41,6 +42,26 @@ own = "%s.%d-of-2" % (checkpoint, rank)
 check(os.path.exists(own), "rank %d: no checkpoint %s" % (rank, own))
 again, text = solve(CheckpointFile=checkpoint, ResumeFromCheckpoint=1)
 check(text == "" and again == first, "rank %d: the resumed output differs (%r)" % (rank, text))
+
+# Only rank 1's checkpoint is damaged (one byte changed, its previous generation removed): every
+# rank fails naming that file and nobody waits for the other (the alarm), rank 0 saying it was
+# rank 1.
+damaged = "%s.1-of-2" % checkpoint
+if rank == 1:
+    if os.path.exists(damaged + ".prev"):
+        os.remove(damaged + ".prev")
+    with open(damaged, "r+b") as f:
+        middle = os.path.getsize(damaged) // 2
+        f.seek(middle)
+        byte = f.read(1)[0]
+        f.seek(middle)
+        f.write(bytes([byte ^ 0xFF]))
+controller.Barrier()
+broken, text = solve(CheckpointFile=checkpoint, ResumeFromCheckpoint=1)
+check(broken == [], "rank %d: a failed resume gives no output" % rank)
+check(damaged in text and "damaged" in text, "rank %d must name rank 1's damaged file: %r" % (rank, text))
+if rank == 0:
+    check("rank 1" in text, "rank 0 must say that rank 1 failed: %r" % text)
 
 bad = os.path.join(out_dir, "bad.ckpt")
 blocked = bad + ".1-of-2"

@@ -1,0 +1,326 @@
+#include "Solver/LinkExchange.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <tuple>
+#include <type_traits>
+
+namespace fiberpli
+{
+
+namespace
+{
+// A run of consecutive links of one fiber as it travels: this header, then its count + 1 points
+// and their radii. The receiver rebuilds the capsules exactly as buildLinks made them (arc
+// lengths summed from the run's first one in the same order, the same radius formula).
+struct RunHeader
+{
+  std::uint32_t fiber; // global index
+  std::uint32_t k0;    // first link
+  std::uint32_t count; // links
+  double arc0;         // arc length at the run's first point
+  double closedLength;
+};
+// One side or both of a pair's pushes as they travel: this header, then a0, a1 (sides & 1) and
+// b0, b1 (sides & 2).
+struct PushHeader
+{
+  std::uint32_t fiberA, kA, fiberB, kB, sides;
+};
+
+template <class T> void append(std::vector<char>& out, const T* v, std::size_t n)
+{
+  const std::size_t at = out.size();
+  out.resize(at + n * sizeof(T));
+  if (n > 0)
+    std::memcpy(out.data() + at, v, n * sizeof(T));
+}
+
+class Reader
+{
+public:
+  explicit Reader(const std::vector<char>& in) : in_(in) {}
+  bool done() const { return at_ >= in_.size(); }
+  template <class T> void get(T* v, std::size_t n = 1)
+  {
+    if (n > 0)
+      std::memcpy(v, in_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+  }
+
+private:
+  const std::vector<char>& in_;
+  std::size_t at_ = 0;
+};
+
+// The all-to-all without copying this rank's own buffer through the communicator.
+std::vector<std::vector<char>> exchangeAll(std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
+{
+  const std::size_t me = static_cast<std::size_t>(comm.rank());
+  std::vector<char> self;
+  self.swap(out[me]);
+  for (const std::vector<char>& b : out)
+    sent.bytes += b.size();
+  std::vector<std::vector<char>> in = comm.exchange(out);
+  in[me] = std::move(self);
+  return in;
+}
+
+// Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
+// integer k with a − reach + kP <= d and b + reach + kP >= c.
+bool within(double a, double b, double c, double d, double reach, double period)
+{
+  if (period <= 0.0)
+  {
+    return a - reach <= d && b + reach >= c;
+  }
+  return std::floor((d - a + reach) / period) >= std::ceil((c - b - reach) / period);
+}
+
+double centre(const CapsuleLink& l, int axis)
+{
+  return 0.5 * (l.p0[axis] + l.p1[axis]);
+}
+
+// Calls f(q) for every tester slab q that [a, b] touches (modulo the cell) and one more on each
+// side (rounding). In a cell an interval shorter than the cell minus the widest slab cannot wrap
+// back into the slab it starts in, so its slabs run cyclically from a's to b's.
+// widest: the widest tester slab.
+template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
+{
+  const double period = layout.period();
+  if (period > 0.0 && b - a >= 0.999 * (period - widest))
+  {
+    for (int q = 0; q < ranks; ++q)
+      f(static_cast<std::size_t>(q));
+    return;
+  }
+  const int qa = layout.testerOf(a), qb = layout.testerOf(b);
+  if (period > 0.0)
+  {
+    const int n = std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
+    for (int j = 0; j < n; ++j)
+      f(static_cast<std::size_t>(((qa - 1 + j) % ranks + ranks) % ranks));
+    return;
+  }
+  for (int q = std::max(0, qa - 1); q <= std::min(ranks - 1, qb + 1); ++q)
+    f(static_cast<std::size_t>(q));
+}
+
+// Writes the run of own[first, first + count) (links of one fiber, consecutive).
+void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first, std::size_t count,
+  const FiberModel& model, const std::vector<std::int64_t>& global)
+{
+  const CapsuleLink& l = own[first];
+  const Fiber& fib = model.fibers[l.fiber];
+  const RunHeader h{ static_cast<std::uint32_t>(global[l.fiber]), l.k, static_cast<std::uint32_t>(count), l.arc0,
+    l.closedLength };
+  append(out, &h, 1);
+  append(out, fib.points.data() + l.k, count + 1);
+  append(out, fib.radii.data() + l.k, count + 1);
+}
+} // namespace
+
+double capsuleRadius(double r0, double r1, double scale)
+{
+  const double rho = r0 > r1 ? r0 : r1;
+  return scale == 1.0 ? rho : scale * rho;
+}
+
+TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
+  std::vector<CapsuleLink>& held, HeldLinkInfo& info)
+{
+  const int axis = layout.axis();
+  const std::size_t nr = static_cast<std::size_t>(comm.size());
+  const int me = comm.rank();
+  // Every rank's test region (−lo, hi; none: −∞, −∞) from the links of all owners.
+  std::vector<double> region(2 * nr, -HUGE_VAL);
+  for (const CapsuleLink& l : own)
+  {
+    const double c = centre(l, axis);
+    const std::size_t q = static_cast<std::size_t>(layout.testerOf(c));
+    const double shift = layout.wrapShift(c);
+    region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
+    region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
+  }
+  comm.max(region);
+  // Every region lies in its slab grown by `grow`: a link can only reach the regions of the slabs
+  // its extent grown by reach + grow touches (and, for rounding, one more on each side), so a
+  // link tests a few ranks, not all.
+  double grow = 0.0, widest = 0.0;
+  for (std::size_t q = 0; q < nr; ++q)
+  {
+    widest = std::max(widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
+    if (region[2 * q + 1] > -HUGE_VAL)
+    {
+      const int r = static_cast<int>(q);
+      grow = std::max(grow, std::max(layout.testerLo(r) + region[2 * q], region[2 * q + 1] - layout.testerLo(r + 1)));
+    }
+  }
+  grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
+  // Per destination, the run of links being collected (first link, length); `open`: those with
+  // a run, `stamp[q] == i`: link i goes to q.
+  std::vector<std::vector<char>> out(nr);
+  std::vector<std::size_t> first(nr), count(nr, 0), stamp(nr, SIZE_MAX), open, dests;
+  for (std::size_t i = 0; i < own.size(); ++i)
+  {
+    const CapsuleLink& l = own[i];
+    const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
+    dests.clear();
+    forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
+      if (region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+      {
+        dests.push_back(q);
+        stamp[q] = i;
+      }
+    });
+    const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
+    std::size_t kept = 0;
+    for (std::size_t q : open)
+    {
+      if (continues && stamp[q] == i)
+      {
+        open[kept++] = q;
+        continue;
+      }
+      writeRun(out[q], own, first[q], count[q], model, global);
+      count[q] = 0;
+    }
+    open.resize(kept);
+    for (std::size_t q : dests)
+    {
+      if (count[q]++ == 0)
+      {
+        first[q] = i;
+        open.push_back(q);
+      }
+    }
+  }
+  for (std::size_t q : open)
+    writeRun(out[q], own, first[q], count[q], model, global);
+  TrafficCount sent;
+  const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
+  held.clear();
+  info.pointRadius.clear();
+  std::vector<int> from;
+  for (std::size_t q = 0; q < nr; ++q)
+  {
+    Reader rd(in[q]);
+    std::vector<Vec3> p;
+    std::vector<double> r;
+    while (!rd.done())
+    {
+      RunHeader h;
+      rd.get(&h);
+      p.resize(h.count + 1);
+      r.resize(h.count + 1);
+      rd.get(p.data(), p.size());
+      rd.get(r.data(), r.size());
+      double arc = h.arc0;
+      for (std::uint32_t j = 0; j < h.count; ++j)
+      {
+        CapsuleLink l;
+        l.p0 = p[j];
+        l.p1 = p[j + 1];
+        l.rho = capsuleRadius(r[j], r[j + 1], scale);
+        l.fiber = h.fiber;
+        l.k = h.k0 + j;
+        l.arc0 = arc;
+        arc += distance(l.p0, l.p1);
+        l.arc1 = arc;
+        l.closedLength = h.closedLength;
+        held.push_back(l);
+        info.pointRadius.push_back(std::min(r[j], r[j + 1]));
+        from.push_back(static_cast<int>(q));
+      }
+    }
+  }
+  // Global link order: the pair list found among them is then the serial one's, restricted.
+  std::vector<std::size_t> order(held.size());
+  std::iota(order.begin(), order.end(), std::size_t{ 0 });
+  std::sort(order.begin(), order.end(), [&held](std::size_t a, std::size_t b) {
+    return std::tie(held[a].fiber, held[a].k) < std::tie(held[b].fiber, held[b].k);
+  });
+  const auto permute = [&order](auto& v) {
+    std::remove_reference_t<decltype(v)> sorted(v.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      sorted[i] = v[order[i]];
+    v.swap(sorted);
+  };
+  permute(held);
+  permute(info.pointRadius);
+  permute(from);
+  info.owner = std::move(from);
+  info.tested.resize(held.size());
+  for (std::size_t i = 0; i < held.size(); ++i)
+    info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
+  return sent;
+}
+
+std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent)
+{
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
+  const auto write = [&out](const LinkPairPush& p, int to, std::uint32_t sides) {
+    std::vector<char>& b = out[static_cast<std::size_t>(to)];
+    const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
+    append(b, &h, 1);
+    if (sides & 1)
+    {
+      append(b, &p.a0, 1);
+      append(b, &p.a1, 1);
+    }
+    if (sides & 2)
+    {
+      append(b, &p.b0, 1);
+      append(b, &p.b1, 1);
+    }
+  };
+  for (const LinkPairPush& p : tested)
+  {
+    if (p.ownerA == p.ownerB)
+    {
+      write(p, p.ownerA, 3);
+    }
+    else // each owner gets its side only
+    {
+      write(p, p.ownerA, 1);
+      write(p, p.ownerB, 2);
+    }
+  }
+  const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
+  std::vector<LinkPairPush> mine;
+  for (const std::vector<char>& buffer : in)
+  {
+    Reader rd(buffer);
+    while (!rd.done())
+    {
+      PushHeader h;
+      rd.get(&h);
+      LinkPairPush p; // a side not sent stays zero: its fiber is not this rank's
+      p.fiberA = h.fiberA;
+      p.kA = h.kA;
+      p.fiberB = h.fiberB;
+      p.kB = h.kB;
+      if (h.sides & 1)
+      {
+        rd.get(&p.a0);
+        rd.get(&p.a1);
+      }
+      if (h.sides & 2)
+      {
+        rd.get(&p.b0);
+        rd.get(&p.b1);
+      }
+      mine.push_back(p);
+    }
+  }
+  std::sort(mine.begin(), mine.end(), [](const LinkPairPush& x, const LinkPairPush& y) {
+    return std::tie(x.fiberA, x.kA, x.fiberB, x.kB) < std::tie(y.fiberA, y.kA, y.fiberB, y.kB);
+  });
+  return mine;
+}
+
+} // namespace fiberpli

@@ -1,0 +1,62 @@
+/// LinkExchange: the pair work of the distributed collision solver, by region (docs/solver.md §13).
+/// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
+/// each owner sends each of its links to every rank whose test region comes within reach of it.
+/// A pair is tested by exactly one rank, the one whose tester slab (SlabLayout::testerOf: slabs of
+/// equal link counts) holds the centre of its lower link (in global link order), which holds every
+/// partner of such a link. It sends the pair's pushes
+/// back to the owners of the two links, and they add them in pair order, as the serial solver
+/// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
+#pragma once
+
+#include "Index/CollisionGrid.h"
+#include "Model/FiberModel.h"
+#include "Solver/Decomposition.h"
+#include "Solver/SolverComm.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// What a rank knows of each link it holds, besides its capsule.
+struct HeldLinkInfo
+{
+  std::vector<double> pointRadius; ///< the smaller radius of the link's two points (unscaled)
+  std::vector<int> owner;          ///< the rank owning the link's fiber
+  std::vector<char> tested;        ///< 1: this rank tests the pairs whose lower link this is
+};
+
+/// A link's capsule radius from its points' radii at radius scale `scale` (radius growth); the
+/// solver's links and the received ones use this one formula, so they have the same bits.
+double capsuleRadius(double r0, double r1, double scale);
+
+/// Sends every owned link to every rank whose test region comes within `reach` of the link's
+/// extent along the slab axis (modulo the cell). A rank's test region is the extent of all links
+/// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
+/// own: the links of `model` (CapsuleLink::fiber = index in model); global: the fibers' global
+/// indices; scale: the capsule radius scale they were built with. Consecutive links of a fiber
+/// travel as one run of points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber =
+/// global fiber index, in global link order) and `info` what this rank receives: with reach at
+/// least 2·ρmax + gap every colliding partner of a link tested here is held here. Collective (a
+/// maximum of 2·R values, one exchange); returns what was sent to other ranks.
+TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
+  std::vector<CapsuleLink>& held, HeldLinkInfo& info);
+
+/// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
+/// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).
+struct LinkPairPush
+{
+  std::uint32_t fiberA = 0, kA = 0, fiberB = 0, kB = 0;
+  std::int32_t ownerA = 0, ownerB = 0; ///< the ranks owning the two fibers
+  Vec3 a0, a1, b0, b1;
+};
+
+/// Sends every tested pair's pushes to the owners of its two links (each owner its side; both
+/// sides once when one rank owns both) and returns those this rank receives, in pair order (a
+/// side not received is zero). Collective; `sent` counts what went to other ranks.
+std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm,
+  TrafficCount& sent);
+
+} // namespace fiberpli
