@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numeric>
 #include <tuple>
-#include <type_traits>
 
 namespace fiberpli
 {
@@ -203,64 +201,75 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     writeRun(out[q], own, first[q], count[q], model, global);
   TrafficCount sent;
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
+  // Each sender's runs come in its link order, which is global order (an owner's fibers are in
+  // global order), and no two senders send links of one fiber: taking the run with the lowest
+  // first link among the senders' next ones gives global link order without a sort.
   held.clear();
   info.pointRadius.clear();
-  std::vector<int> from;
+  info.owner.clear();
+  std::vector<Reader> readers;
+  readers.reserve(nr);
+  std::vector<RunHeader> next(nr);
+  std::vector<std::size_t> live; // senders with runs left; next[q] is q's next run
   for (std::size_t q = 0; q < nr; ++q)
   {
-    Reader rd(in[q]);
-    std::vector<Vec3> p;
-    std::vector<double> r;
-    while (!rd.done())
+    readers.emplace_back(in[q]);
+    if (!readers[q].done())
     {
-      RunHeader h;
-      rd.get(&h);
-      p.resize(h.count + 1);
-      r.resize(h.count + 1);
-      rd.get(p.data(), p.size());
-      rd.get(r.data(), r.size());
-      double arc = h.arc0;
-      for (std::uint32_t j = 0; j < h.count; ++j)
-      {
-        CapsuleLink l;
-        l.p0 = p[j];
-        l.p1 = p[j + 1];
-        l.rho = capsuleRadius(r[j], r[j + 1], scale);
-        l.fiber = h.fiber;
-        l.k = h.k0 + j;
-        l.arc0 = arc;
-        arc += distance(l.p0, l.p1);
-        l.arc1 = arc;
-        l.closedLength = h.closedLength;
-        held.push_back(l);
-        info.pointRadius.push_back(std::min(r[j], r[j + 1]));
-        from.push_back(static_cast<int>(q));
-      }
+      readers[q].get(&next[q]);
+      live.push_back(q);
     }
   }
-  // Global link order: the pair list found among them is then the serial one's, restricted.
-  std::vector<std::size_t> order(held.size());
-  std::iota(order.begin(), order.end(), std::size_t{ 0 });
-  std::sort(order.begin(), order.end(), [&held](std::size_t a, std::size_t b) {
-    return std::tie(held[a].fiber, held[a].k) < std::tie(held[b].fiber, held[b].k);
-  });
-  const auto permute = [&order](auto& v) {
-    std::remove_reference_t<decltype(v)> sorted(v.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-      sorted[i] = v[order[i]];
-    v.swap(sorted);
-  };
-  permute(held);
-  permute(info.pointRadius);
-  permute(from);
-  info.owner = std::move(from);
+  std::vector<Vec3> p;
+  std::vector<double> r;
+  while (!live.empty())
+  {
+    std::size_t j = 0;
+    for (std::size_t i = 1; i < live.size(); ++i)
+    {
+      const RunHeader &a = next[live[i]], &b = next[live[j]];
+      j = std::tie(a.fiber, a.k0) < std::tie(b.fiber, b.k0) ? i : j;
+    }
+    const std::size_t q = live[j];
+    const RunHeader h = next[q];
+    p.resize(h.count + 1);
+    r.resize(h.count + 1);
+    readers[q].get(p.data(), p.size());
+    readers[q].get(r.data(), r.size());
+    double arc = h.arc0;
+    for (std::uint32_t k = 0; k < h.count; ++k)
+    {
+      CapsuleLink l;
+      l.p0 = p[k];
+      l.p1 = p[k + 1];
+      l.rho = capsuleRadius(r[k], r[k + 1], scale);
+      l.fiber = h.fiber;
+      l.k = h.k0 + k;
+      l.arc0 = arc;
+      arc += distance(l.p0, l.p1);
+      l.arc1 = arc;
+      l.closedLength = h.closedLength;
+      held.push_back(l);
+      info.pointRadius.push_back(std::min(r[k], r[k + 1]));
+      info.owner.push_back(static_cast<int>(q));
+    }
+    if (readers[q].done())
+    {
+      live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
+    }
+    else
+    {
+      readers[q].get(&next[q]);
+    }
+  }
   info.tested.resize(held.size());
   for (std::size_t i = 0; i < held.size(); ++i)
     info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
   return sent;
 }
 
-std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent)
+void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
+  std::vector<LinkPairPush>& mine)
 {
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
   const auto write = [&out](const LinkPairPush& p, int to, std::uint32_t sides) {
@@ -291,36 +300,63 @@ std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, 
     }
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
-  std::vector<LinkPairPush> mine;
-  for (const std::vector<char>& buffer : in)
-  {
-    Reader rd(buffer);
-    while (!rd.done())
+  // A side not sent stays zero: its fiber is not this rank's.
+  const auto read = [](Reader& rd, LinkPairPush& p) {
+    PushHeader h;
+    rd.get(&h);
+    p = LinkPairPush{};
+    p.fiberA = h.fiberA;
+    p.kA = h.kA;
+    p.fiberB = h.fiberB;
+    p.kB = h.kB;
+    if (h.sides & 1)
     {
-      PushHeader h;
-      rd.get(&h);
-      LinkPairPush p; // a side not sent stays zero: its fiber is not this rank's
-      p.fiberA = h.fiberA;
-      p.kA = h.kA;
-      p.fiberB = h.fiberB;
-      p.kB = h.kB;
-      if (h.sides & 1)
-      {
-        rd.get(&p.a0);
-        rd.get(&p.a1);
-      }
-      if (h.sides & 2)
-      {
-        rd.get(&p.b0);
-        rd.get(&p.b1);
-      }
-      mine.push_back(p);
+      rd.get(&p.a0);
+      rd.get(&p.a1);
+    }
+    if (h.sides & 2)
+    {
+      rd.get(&p.b0);
+      rd.get(&p.b1);
+    }
+  };
+  // Every tester sends in its pair order, which is the global one (its held links are in global
+  // link order), and each pair comes from one tester only: merging the senders' lists by their
+  // next pair gives pair order without a sort.
+  const std::size_t nr = in.size();
+  std::vector<Reader> readers;
+  readers.reserve(nr);
+  std::vector<LinkPairPush> next(nr);
+  std::vector<std::size_t> live; // senders with pushes left; next[q] is q's next one
+  for (std::size_t q = 0; q < nr; ++q)
+  {
+    readers.emplace_back(in[q]);
+    if (!readers[q].done())
+    {
+      read(readers[q], next[q]);
+      live.push_back(q);
     }
   }
-  std::sort(mine.begin(), mine.end(), [](const LinkPairPush& x, const LinkPairPush& y) {
-    return std::tie(x.fiberA, x.kA, x.fiberB, x.kB) < std::tie(y.fiberA, y.kA, y.fiberB, y.kB);
-  });
-  return mine;
+  mine.clear();
+  while (!live.empty())
+  {
+    std::size_t j = 0;
+    for (std::size_t i = 1; i < live.size(); ++i)
+    {
+      const LinkPairPush &x = next[live[i]], &y = next[live[j]];
+      j = std::tie(x.fiberA, x.kA, x.fiberB, x.kB) < std::tie(y.fiberA, y.kA, y.fiberB, y.kB) ? i : j;
+    }
+    const std::size_t q = live[j];
+    mine.push_back(next[q]);
+    if (readers[q].done())
+    {
+      live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
+    }
+    else
+    {
+      read(readers[q], next[q]);
+    }
+  }
 }
 
 } // namespace fiberpli

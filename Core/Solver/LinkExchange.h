@@ -34,10 +34,11 @@ double capsuleRadius(double r0, double r1, double scale);
 /// Sends every owned link to every rank whose test region comes within `reach` of the link's
 /// extent along the slab axis (modulo the cell). A rank's test region is the extent of all links
 /// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
-/// own: the links of `model` (CapsuleLink::fiber = index in model); global: the fibers' global
-/// indices; scale: the capsule radius scale they were built with. Consecutive links of a fiber
+/// own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
+/// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius scale they were built with. Consecutive links of a fiber
 /// travel as one run of points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber =
-/// global fiber index, in global link order) and `info` what this rank receives: with reach at
+/// global fiber index, in global link order, merged from the senders' runs; the buffers' capacity
+/// is kept) and `info` what this rank receives: with reach at
 /// least 2·ρmax + gap every colliding partner of a link tested here is held here. Collective (a
 /// maximum of 2·R values, one exchange); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
@@ -54,9 +55,10 @@ struct LinkPairPush
 };
 
 /// Sends every tested pair's pushes to the owners of its two links (each owner its side; both
-/// sides once when one rank owns both) and returns those this rank receives, in pair order (a
-/// side not received is zero). Collective; `sent` counts what went to other ranks.
-std::vector<LinkPairPush> returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm,
-  TrafficCount& sent);
+/// sides once when one rank owns both) and returns in `mine` (its buffer reused) those this rank
+/// receives, in pair order (a side not received is zero). `tested` must be in pair order.
+/// Collective; `sent` counts what went to other ranks.
+void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
+  std::vector<LinkPairPush>& mine);
 
 } // namespace fiberpli
