@@ -1,5 +1,5 @@
 // The solver benchmarks' push-schedule flags (--overlap-push, --separation-speed,
-// --max-displacement, --drag): a value given on the command line replaces the solver's default,
+// --max-displacement, --drag, --push-boost): a value given on the command line replaces the solver's default,
 // an absent one (the sentinel) keeps it.
 #pragma once
 
@@ -14,6 +14,7 @@ struct PushOverrides
   double separationSpeed = -1.0; // used when > 0
   double maxDisplacement = -1.0; // used when > 0
   double drag = -1.0;            // used when >= 0
+  double pushBoost = -1.0;       // used when >= 1
 
   void apply(CollisionSolverOptions& o) const
   {
@@ -25,6 +26,8 @@ struct PushOverrides
       o.maxDisplacement = maxDisplacement;
     if (drag >= 0.0)
       o.drag = drag;
+    if (pushBoost >= 1.0)
+      o.pushBoost = pushBoost;
   }
 };
 

@@ -4,7 +4,7 @@
 // Usage: fiberpli_periodic_bench [--edge 30] [--pops 1,2,3] [--phi 0.85,0.72,0.58] [--threads 1,2]
 //        [--max-steps 20000] [--init-scale X] [--spread S] [--gamma] [--samples 1e6] [--seed 42]
 //        [--curvature 4] [--cap SECONDS] [--overlap-push X] [--separation-speed X]
-//        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
+//        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X] [--push-boost X]
 //        [--lattice (Seeding Lattice instead of Random)]
 #include "BenchUtil.h"
 #include "PushOverrides.h"
@@ -118,6 +118,8 @@ int main(int argc, char** argv)
       cap = std::atof(argv[++i]);
     else if (a == "--drag")
       push.drag = std::atof(argv[++i]);
+    else if (a == "--push-boost")
+      push.pushBoost = std::atof(argv[++i]);
     else if (a == "--displacement")
       displacement = std::atof(argv[++i]);
     else if (a == "--overlap-push")

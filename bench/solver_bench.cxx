@@ -3,7 +3,8 @@
 // Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|dense-b|quick|cube|dense|all]...
 //        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
 //        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
-//        [--end-points perpendicular|free|fixed] (solver knobs)
+//        [--push-boost X] [--end-points perpendicular|free|fixed] (solver knobs)
+//        [--seed N] (of the generated cube, 42) [--trace N] (collisions every N steps, to stderr)
 #include "BenchUtil.h"
 #include "PushOverrides.h"
 #include "CapsuleCells.h"
@@ -78,6 +79,8 @@ int main(int argc, char** argv)
   int endPoints = -1;
   double pushSpread = -1.0;
   long samples = 1000000;
+  int trace = 0;
+  unsigned seed = 42;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -104,8 +107,14 @@ int main(int argc, char** argv)
     }
     else if (a == "--push-spread" && i + 1 < argc)
       pushSpread = std::atof(argv[++i]);
+    else if (a == "--push-boost" && i + 1 < argc)
+      push.pushBoost = std::atof(argv[++i]);
     else if (a == "--drag" && i + 1 < argc)
       push.drag = std::atof(argv[++i]);
+    else if (a == "--seed" && i + 1 < argc)
+      seed = static_cast<unsigned>(std::atol(argv[++i]));
+    else if (a == "--trace" && i + 1 < argc)
+      trace = std::atoi(argv[++i]);
     else if (a == "--samples" && i + 1 < argc)
       samples = std::atol(argv[++i]);
     else
@@ -148,7 +157,7 @@ int main(int argc, char** argv)
       c.fiberRadius = 0.8;
       c.segmentLength = 2.0;
       c.displacement = 0.5;
-      c.seed = 42;
+      c.seed = seed;
       FiberModel m = generateCube(c);
       CollisionSolverOptions o;
       o.segmentLength = 2.0;
@@ -166,7 +175,10 @@ int main(int argc, char** argv)
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       };
       const CollisionSolverResult r =
-        solveCollisions(m, o, [&](double) { return elapsed() < cap; });
+        solveCollisions(m, o, [&](double) { return elapsed() < cap; }, [&](int step, const FiberModel& now) {
+          if (trace > 0 && step % trace == 0)
+            std::fprintf(stderr, "%s step %d: %zu collisions\n", w->name, step, countCollisions(now, 0.0, t));
+        });
       const double seconds = elapsed();
       const double cpu = bench::cpuSeconds() - cpu0;
       const double load = loadAverage();

@@ -21,7 +21,7 @@ namespace
 // input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
 // warnings, then the FNV-1a checksum of everything before it.
 const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2; // 2: PushBoost and the push scale
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
 
@@ -54,7 +54,7 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
   const PeriodicCell& c = o.periodicCell;
   return { { "SegmentLength", o.segmentLength }, { "MinCurvatureRadius", o.minCurvatureRadius },
     { "MaxSteps", o.maxSteps }, { "SeparationSpeed", o.separationSpeed }, { "overlapPush", o.overlapPush },
-    { "pushSpread", o.pushSpread }, { "maxDisplacement", o.maxDisplacement }, { "drag", o.drag },
+    { "pushSpread", o.pushSpread }, { "maxDisplacement", o.maxDisplacement }, { "pushBoost", o.pushBoost }, { "drag", o.drag },
     { "MinimumGap", o.minimumGap }, { "endPoints", static_cast<double>(o.endPoints) },
     { "stallSteps", o.stallSteps }, { "periodic_cell xmin", c.lo.x }, { "periodic_cell xmax", c.hi.x },
     { "periodic_cell ymin", c.lo.y }, { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
@@ -229,7 +229,7 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
       w.u64(static_cast<std::uint64_t>(f < st.global.size() ? st.global[f] : static_cast<std::int64_t>(f)));
       w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f < st.home.size() ? st.home[f] : 0)));
     }
-    for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.scale, st.done, st.reported })
+    for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.pushScale, st.scale, st.done, st.reported })
     {
       w.f64(v);
     }
@@ -325,7 +325,7 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
     st.global[f] = static_cast<std::int64_t>(r.u64());
     st.home[f] = static_cast<int>(static_cast<std::int64_t>(r.u64()));
   }
-  for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.scale, &st.done, &st.reported })
+  for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.pushScale, &st.scale, &st.done, &st.reported })
   {
     *v = r.f64();
   }

@@ -366,6 +366,10 @@ public:
 
   bool periodic() const { return o_.periodicCell.enabled(); }
 
+  // Largest move of a point per step, boosted with the pushes (PushBoost 2: fastPLI's 0.2·r); the
+  // curvature correction steps scale with it as in fastPLI.
+  double moveCap() const { return st_.vMax * (1.0 + 0.6 * (st_.pushScale - 1.0)); }
+
   // The last point of a closed fiber is its first point shifted by the closure, exactly.
   void close(std::size_t f)
   {
@@ -393,7 +397,7 @@ public:
       const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
       const Vec3* closure = closed ? &st_.closure[static_cast<std::size_t>(f)] : nullptr;
       bool c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2);
-      c = controlCurvature(fib, o_.minCurvatureRadius, st_.vMax, o_.endPoints, closure) || c;
+      c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
       close(static_cast<std::size_t>(f));
       changed |= c ? 1 : 0;
     }
@@ -593,7 +597,7 @@ public:
       const CapsuleLink& lb = links_[p.b];
       const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
       const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
-      const double sigma = std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
+      const double sigma = st_.pushScale * std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
       const Vec3 n = sigma * p.direction;
       LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
       out.fiberA = la.fiber;
@@ -651,7 +655,7 @@ public:
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
-    const double vMax = st_.vMax;
+    const double vMax = moveCap();
     const EndPointRule rule = o_.endPoints;
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::int64_t f = 0; f < nf; ++f)
@@ -976,6 +980,10 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "MaxDisplacement is " << o.maxDisplacement << ", must be > 0";
   }
+  else if (!std::isfinite(o.pushBoost) || o.pushBoost < 1.0 || o.pushBoost > 4.0)
+  {
+    msg << "PushBoost is " << o.pushBoost << ", must be in [1, 4] (1 = off)";
+  }
   else if (!std::isfinite(o.drag) || o.drag < 0.0 || o.drag >= 1.0)
   {
     msg << "Drag is " << o.drag << ", must be in [0, 1)";
@@ -1005,6 +1013,22 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
 
 namespace
 {
+// [ours] Push boost (option doc, docs/solver.md §4.1): colliding pairs per link at the first
+// detection from which pushes grow, and from which they get the full PushBoost.
+constexpr double kCrowdedPairsPerLink = 6.0;
+constexpr double kFullBoostPairsPerLink = 9.0;
+
+double pushScaleFor(std::size_t pairs, std::size_t links, double pushBoost)
+{
+  if (links == 0)
+  {
+    return 1.0;
+  }
+  const double q = static_cast<double>(pairs) / static_cast<double>(links);
+  const double ramp = (q - kCrowdedPairsPerLink) / (kFullBoostPairsPerLink - kCrowdedPairsPerLink);
+  return 1.0 + (pushBoost - 1.0) * std::min(1.0, std::max(0.0, ramp));
+}
+
 // [ours] Radius growth per step while the deepest overlap is below 5 % of the median radius, and
 // the move steps without growth after which growth gives up.
 constexpr double kGrowth = 0.002;
@@ -1318,6 +1342,7 @@ bool CollisionSolverRun::step()
   if (st.firstCount == static_cast<std::size_t>(-1))
   {
     st.firstCount = count;
+    st.pushScale = pushScaleFor(count, counts.links, o.pushBoost);
   }
   const double stepShare = r.stepShareAfter(st.steps);
   const double resolved = st.firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /

@@ -46,6 +46,13 @@ struct CollisionSolverOptions
   /// Largest move of a point per step, relative to the smallest radius of all fibers (§4.2).
   /// Default 0.125 = the paper's 0.1 µm at r = 0.8 µm (fastPLI 0.2).
   double maxDisplacement = 0.125;
+  /// [ours] Push boost for heavily overlapping input (docs/solver.md §4.1): when the first
+  /// detection finds q > 6 colliding pairs per link (the paper's cube has 4–5; q ≈ 6 × the
+  /// fibers' nominal volume fraction), pushes are multiplied by b = 1 + (PushBoost − 1)·min(1,
+  /// (q − 6)/3) for the whole run, the move cap and the curvature steps by 1 + 0.6·(b − 1)
+  /// (b = 2: fastPLI's push and cap). About half the steps on such input, but looser packings
+  /// (bench/README.md), so off by default. 1 = off. Default 1.
+  double pushBoost = 1.0;
   /// Velocity retention per step in [0, 1): 0 = no memory (paper, fastPLI default). Default 0.
   double drag = 0.0;
   /// Threads for detection, pushes and shape control; 0 = all cores. Default 0.
@@ -122,6 +129,7 @@ struct CollisionSolverState
   double segmentLength = -1.0;  ///< L̄ in use (µm, < 0 = no split/merge)
   double vMax = 0.0;            ///< largest move of a point per step (µm)
   double growthTolerance = 0.0; ///< radius growth: deepest overlap (µm at full size) that lets it grow
+  double pushScale = 1.0;       ///< push multiplier set at the first detection (PushBoost)
   // Changed by the steps.
   int steps = 0;                     ///< move steps done
   double scale = 1.0;                ///< capsule radii relative to the fibers' radii (radius growth)

@@ -754,3 +754,77 @@ TEST(CollisionSolver, ResumedRunEqualsUninterruptedRun)
   EXPECT_FALSE(wrong.step());
   EXPECT_FALSE(wrong.finish().error.empty());
 }
+
+// PushBoost (docs/solver.md §4.1): input at the paper's density (4–5 colliding pairs per link at
+// the first detection) is solved exactly as without the boost.
+TEST(CollisionSolver, PushBoostLeavesPaperDensityInputUnchanged)
+{
+  const FiberModel input = paperCube(2, 60, 7);
+  FiberModel plain = input;
+  FiberModel boosted = input;
+  CollisionSolverOptions o;
+  o.segmentLength = 2.0;
+  o.minCurvatureRadius = 4.0;
+  o.maxSteps = 60;
+  o.numberOfThreads = 1;
+  const CollisionSolverResult a = solveCollisions(plain, o);
+  o.pushBoost = 3.0;
+  CollisionSolverRun run(boosted, o);
+  ASSERT_TRUE(run.start());
+  while (run.step())
+  {
+  }
+  EXPECT_EQ(run.state().pushScale, 1.0);
+  const CollisionSolverResult b = run.finish();
+  ASSERT_TRUE(a.error.empty() && b.error.empty()) << a.error << b.error;
+  EXPECT_GT(a.steps, 0);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_TRUE(bitwiseEqual(plain, boosted));
+}
+
+// A bundle of 9 fibers almost on top of each other (every link collides with ~5 links of each of
+// the 8 others: far above 9 pairs per link) gets the full boost: pushes × PushBoost and the move
+// cap × (1 + 0.6·(PushBoost − 1)). The outer fibers are pushed far beyond the cap, so the
+// largest move of the first step is exactly the (boosted) cap.
+TEST(CollisionSolver, PushBoostRaisesPushAndCapOnCrowdedInput)
+{
+  FiberModel input;
+  for (int i = 0; i < 9; ++i)
+  {
+    input.fibers.push_back(line({ -10.0, 0.05 * (i % 3), 0.05 * (i / 3) }, { 1, 0, 0 }, 21, 1.0, i));
+  }
+  const auto firstMove = [&](double boost, double& scale) {
+    FiberModel m = input;
+    CollisionSolverOptions o;
+    o.segmentLength = 1.0;
+    o.pushBoost = boost;
+    o.numberOfThreads = 1;
+    CollisionSolverRun run(m, o);
+    EXPECT_TRUE(run.start());
+    EXPECT_TRUE(run.step());
+    scale = run.state().pushScale;
+    double largest = 0.0;
+    for (std::size_t f = 0; f < m.fibers.size(); ++f)
+      for (std::size_t i = 0; i < m.fibers[f].size(); ++i)
+        largest = std::max(largest, distance(m.fibers[f].points[i], input.fibers[f].points[i]));
+    return largest;
+  };
+  double plainScale = 0.0, boostedScale = 0.0;
+  const double plain = firstMove(1.0, plainScale);
+  const double boosted = firstMove(2.5, boostedScale);
+  EXPECT_EQ(plainScale, 1.0);
+  EXPECT_EQ(boostedScale, 2.5);
+  const double cap = CollisionSolverOptions{}.maxDisplacement * 1.0; // × the smallest radius
+  EXPECT_NEAR(plain, cap, 1e-12);
+  EXPECT_NEAR(boosted, cap * (1.0 + 0.6 * 1.5), 1e-12);
+}
+
+TEST(CollisionSolver, PushBoostOutOfRangeIsRefused)
+{
+  for (double bad : { 0.5, 4.5, std::numeric_limits<double>::quiet_NaN() })
+  {
+    CollisionSolverOptions o;
+    o.pushBoost = bad;
+    EXPECT_NE(validateCollisionSolverOptions(o).find("PushBoost"), std::string::npos) << bad;
+  }
+}

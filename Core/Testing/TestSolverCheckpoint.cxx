@@ -173,6 +173,29 @@ TEST(SolverCheckpoint, ResumedOpenCubeEqualsUninterruptedRun)
   expectResumeEqualsUninterrupted(denseOpenCube(), o, 20, 45);
 }
 
+TEST(SolverCheckpoint, ResumedBoostedRunEqualsUninterruptedRun)
+{
+  // Twice the paper cube's fibers in its cube: > 9 colliding pairs per link, so the push boost
+  // chosen at the first detection (part of the state) must survive the resume.
+  CubeOptions c;
+  c.populations = 2;
+  c.numberOfFibers = 100;
+  c.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(50 / 1000.0);
+  c.seed = 3;
+  CollisionSolverOptions o;
+  o.maxSteps = 90;
+  o.minCurvatureRadius = 4.0;
+  o.pushBoost = 2.0;
+  o.numberOfThreads = 2;
+  const FiberModel in = generateCube(c);
+  FiberModel probe = in;
+  CollisionSolverRun run(probe, o);
+  ASSERT_TRUE(run.start());
+  ASSERT_TRUE(run.step());
+  ASSERT_GT(run.state().pushScale, 1.0) << "the input must be crowded enough for the boost";
+  expectResumeEqualsUninterrupted(in, o, 20, 45);
+}
+
 TEST(SolverCheckpoint, ResumedPeriodicGrowthEqualsUninterruptedRun)
 {
   const CubeOptions c = fiberpli_test::periodicCube(2, 20.0, 0.35);
