@@ -1,15 +1,126 @@
 #include "FiberSolverComm.h"
 
 #include <vtkCommunicator.h>
+#include <vtkMPI.h>
+#include <vtkMPICommunicator.h>
 #include <vtkMultiProcessController.h>
+
+#include <algorithm>
 
 namespace fiberpli
 {
 
 namespace
 {
-constexpr int kExchangeTag = 48151; // the solver's point-to-point messages
+// The solver's point-to-point messages (FiberTileExchange uses 7701–7702; vtkMultiProcessController
+// reserves 1–4, vtkCommunicator 10–16).
+constexpr int kExchangeTag = 48151;
+constexpr int kSizeTag = 48152; // the sizes, only without MPI
+// vtkMPICommunicator's non-blocking calls take an int count: longer buffers go as several
+// messages, which MPI delivers in the order they were sent (same sender, tag and communicator).
+constexpr std::size_t kChunk = std::size_t(1) << 30;
+
+std::size_t Chunks(std::size_t bytes)
+{
+  return (bytes + kChunk - 1) / kChunk;
 }
+
+/// MPI: the sizes by MPI_Alltoall (each rank learns the R sizes addressed to it, O(R) memory),
+/// then every non-empty receive and send posted at once and one wait on all, so no rank waits
+/// for a pair it is not part of.
+void ExchangeMPI(vtkMPICommunicator& mpi, const std::vector<std::vector<char>>& send,
+  std::vector<std::vector<char>>& received)
+{
+  const int n = mpi.GetNumberOfProcesses();
+  const int me = mpi.GetLocalProcessId();
+  std::vector<long long> out(static_cast<std::size_t>(n)), in(static_cast<std::size_t>(n));
+  for (int q = 0; q < n; ++q)
+  {
+    out[static_cast<std::size_t>(q)] = static_cast<long long>(send[static_cast<std::size_t>(q)].size());
+  }
+  MPI_Alltoall(out.data(), 1, MPI_LONG_LONG, in.data(), 1, MPI_LONG_LONG, *mpi.GetMPIComm()->GetHandle());
+  std::size_t count = 0;
+  for (int q = 0; q < n; ++q)
+  {
+    if (q != me)
+    {
+      received[static_cast<std::size_t>(q)].resize(static_cast<std::size_t>(in[static_cast<std::size_t>(q)]));
+      count += Chunks(received[static_cast<std::size_t>(q)].size()) + Chunks(send[static_cast<std::size_t>(q)].size());
+    }
+  }
+  std::vector<vtkMPICommunicator::Request> requests(count);
+  std::size_t next = 0;
+  // Receives first, so that most messages find their buffer already posted.
+  for (int q = 0; q < n; ++q)
+  {
+    std::vector<char>& b = received[static_cast<std::size_t>(q)];
+    for (std::size_t at = 0; q != me && at < b.size(); at += kChunk)
+    {
+      const int length = static_cast<int>(std::min(kChunk, b.size() - at));
+      mpi.NoBlockReceive(b.data() + at, length, q, kExchangeTag, requests[next++]);
+    }
+  }
+  for (int q = 0; q < n; ++q)
+  {
+    const std::vector<char>& b = send[static_cast<std::size_t>(q)];
+    for (std::size_t at = 0; q != me && at < b.size(); at += kChunk)
+    {
+      const int length = static_cast<int>(std::min(kChunk, b.size() - at));
+      mpi.NoBlockSend(b.data() + at, length, q, kExchangeTag, requests[next++]);
+    }
+  }
+  if (count > 0)
+  {
+    mpi.WaitAll(static_cast<int>(count), requests.data());
+  }
+}
+
+/// Another controller with several processes (no non-blocking calls): every pair of ranks
+/// (i < j) in one global order, i sends then receives, j receives then sends, each message
+/// preceded by its size. Deadlock-free with blocking sends (the first unfinished pair has both
+/// ranks at it), O(R) memory, but a chain of waits.
+void ExchangePairwise(vtkMultiProcessController& c, const std::vector<std::vector<char>>& send,
+  std::vector<std::vector<char>>& received)
+{
+  const int n = c.GetNumberOfProcesses();
+  const int me = c.GetLocalProcessId();
+  const auto sendTo = [&](int q) {
+    const std::vector<char>& b = send[static_cast<std::size_t>(q)];
+    long long size = static_cast<long long>(b.size());
+    c.Send(&size, 1, q, kSizeTag);
+    if (size > 0)
+    {
+      c.Send(b.data(), static_cast<vtkIdType>(b.size()), q, kExchangeTag);
+    }
+  };
+  const auto receiveFrom = [&](int q) {
+    long long size = 0;
+    c.Receive(&size, 1, q, kSizeTag);
+    std::vector<char>& b = received[static_cast<std::size_t>(q)];
+    b.resize(static_cast<std::size_t>(size));
+    if (size > 0)
+    {
+      c.Receive(b.data(), static_cast<vtkIdType>(b.size()), q, kExchangeTag);
+    }
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = i + 1; j < n; ++j)
+    {
+      if (me == i)
+      {
+        sendTo(j);
+        receiveFrom(j);
+      }
+      else if (me == j)
+      {
+        receiveFrom(i);
+        sendTo(i);
+      }
+    }
+  }
+}
+} // namespace
 
 FiberSolverComm::FiberSolverComm(vtkMultiProcessController* controller) : Controller(controller) {}
 
@@ -39,48 +150,19 @@ void FiberSolverComm::max(std::vector<double>& values)
 
 std::vector<std::vector<char>> FiberSolverComm::exchange(const std::vector<std::vector<char>>& send)
 {
-  const int n = this->size();
-  const int me = this->rank();
-  // sizes[r * n + q]: bytes rank r sends to rank q.
-  std::vector<long long> mine(static_cast<std::size_t>(n)), sizes(static_cast<std::size_t>(n) * n);
-  for (int q = 0; q < n; ++q)
+  if (this->size() == 1) // vtkDummyController, or MPI on one rank
   {
-    mine[static_cast<std::size_t>(q)] = static_cast<long long>(send[static_cast<std::size_t>(q)].size());
+    return send;
   }
-  this->Controller->AllGather(mine.data(), sizes.data(), n);
-  std::vector<std::vector<char>> received(static_cast<std::size_t>(n));
-  received[static_cast<std::size_t>(me)] = send[static_cast<std::size_t>(me)];
-  const auto sendTo = [&](int q) {
-    const std::vector<char>& b = send[static_cast<std::size_t>(q)];
-    if (!b.empty())
-    {
-      this->Controller->Send(b.data(), static_cast<vtkIdType>(b.size()), q, kExchangeTag);
-    }
-  };
-  const auto receiveFrom = [&](int q) {
-    std::vector<char>& b = received[static_cast<std::size_t>(q)];
-    b.resize(static_cast<std::size_t>(sizes[static_cast<std::size_t>(q) * n + me]));
-    if (!b.empty())
-    {
-      this->Controller->Receive(b.data(), static_cast<vtkIdType>(b.size()), q, kExchangeTag);
-    }
-  };
-  // The pairs (i, j), i < j, in lexicographic order; each rank takes part in those with it.
-  for (int i = 0; i < n; ++i)
+  std::vector<std::vector<char>> received(send.size());
+  received[static_cast<std::size_t>(this->rank())] = send[static_cast<std::size_t>(this->rank())];
+  if (auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator()))
   {
-    for (int j = i + 1; j < n; ++j)
-    {
-      if (me == i)
-      {
-        sendTo(j);
-        receiveFrom(j);
-      }
-      else if (me == j)
-      {
-        receiveFrom(i);
-        sendTo(i);
-      }
-    }
+    ExchangeMPI(*mpi, send, received);
+  }
+  else
+  {
+    ExchangePairwise(*this->Controller, send, received);
   }
   return received;
 }

@@ -4,9 +4,10 @@
  *          vtkMultiProcessController
  *
  * Reductions are the controller's AllReduce (long long sums, double maxima: exact, the same on
- * every rank); the all-to-all first all-gathers the buffer sizes, then every pair of ranks (i < j)
- * exchanges in one global order (i sends then receives, j receives then sends), which cannot
- * deadlock with blocking sends: the first unfinished pair in that order always has both ranks at it.
+ * every rank). The all-to-all under MPI: MPI_Alltoall of the sizes (a rank learns only the R sizes
+ * addressed to it), then non-blocking receives and sends of the non-empty buffers and one wait on
+ * all (no R x R size matrix, no serial chain of rank pairs). Other multi-process controllers fall
+ * back to blocking pairwise sends in one global order; one rank returns its input.
  * docs/solver.md §13.
  */
 #ifndef FiberSolverComm_h
