@@ -76,12 +76,12 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
     }
-    if (closed && (*closed)[f])
+    // Every link gets its closedLength (0 = open): `links` is reused from the last step, and a
+    // stale length left on an open fiber's link would skip its real fold-back pairs.
+    const double closedLength = closed && (*closed)[f] ? arc : 0.0;
+    for (std::size_t k = 0; k < count; ++k)
     {
-      for (std::size_t k = 0; k < count; ++k)
-      {
-        links[linkOffset[f] + k].closedLength = arc;
-      }
+      links[linkOffset[f] + k].closedLength = closedLength;
     }
   }
 }
@@ -805,7 +805,14 @@ double smallestGap(Solver& s, double probe)
   std::vector<CapsulePair> near;
   if (s.periodic())
   {
-    if (!s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty())
+    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty();
+    // Each rank judges its own links (their widest radius); all must agree, or minGap would
+    // differ from the serial one. Called on every rank alike.
+    if (s.comm_)
+    {
+      tooSmall = anyRank(*s.comm_, tooSmall);
+    }
+    if (tooSmall)
     {
       near.clear(); // the cell is too small for this probe: no gap below it is known
     }

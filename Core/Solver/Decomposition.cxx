@@ -204,9 +204,14 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
     }
     reach[d] = sum.total(&comm);
   }
-  for (int d = 1; d < 3; ++d)
-    if (reach[d] < reach[s.axis_])
+  // Only axes the model spans: along a flat model's zero extent every fiber would be on rank 0.
+  for (int d = 0; d < 3; ++d)
+  {
+    const bool spans = hi[d] > lo[d];
+    const bool current = hi[s.axis_] > lo[s.axis_];
+    if (spans && (!current || reach[d] < reach[s.axis_]))
       s.axis_ = d;
+  }
   s.lo_ = lo[s.axis_];
   s.hi_ = hi[s.axis_];
   s.cutTesterSlabs(local, comm);
@@ -220,8 +225,10 @@ void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm)
   // balanced cut.
   constexpr std::size_t kBins = 4096;
   std::vector<std::int64_t> count(kBins, 0);
-  for (const Fiber& f : hi_ > lo_ ? local.fibers : std::vector<Fiber>{})
+  const std::size_t nf = hi_ > lo_ ? local.fibers.size() : 0; // (no copy of the piece)
+  for (std::size_t i = 0; i < nf; ++i)
   {
+    const Fiber& f = local.fibers[i];
     for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
     {
       const double t = fraction(0.5 * (f.points[k][axis_] + f.points[k + 1][axis_]));

@@ -148,6 +148,10 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // Every region lies in its slab grown by `grow`: a link can only reach the regions of the slabs
   // its extent grown by reach + grow touches (and, for rounding, one more on each side), so a
   // link tests a few ranks, not all.
+  // Without a period the outer sides of the first and last slab do not count: forNearbySlabs
+  // clamps a coordinate beyond them to that slab anyway (open-model fibers drifting outward
+  // would otherwise widen every link's search).
+  const bool aperiodic = layout.period() <= 0.0;
   double grow = 0.0, widest = 0.0;
   for (std::size_t q = 0; q < nr; ++q)
   {
@@ -155,7 +159,10 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     if (region[2 * q + 1] > -HUGE_VAL)
     {
       const int r = static_cast<int>(q);
-      grow = std::max(grow, std::max(layout.testerLo(r) + region[2 * q], region[2 * q + 1] - layout.testerLo(r + 1)));
+      if (!(aperiodic && q == 0))
+        grow = std::max(grow, layout.testerLo(r) + region[2 * q]);
+      if (!(aperiodic && q + 1 == nr))
+        grow = std::max(grow, region[2 * q + 1] - layout.testerLo(r + 1));
     }
   }
   grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
