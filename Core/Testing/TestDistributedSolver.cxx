@@ -121,7 +121,7 @@ void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o, st
       for (const RankRun& run : runs)
       {
         EXPECT_GT(run.result.rankFibers, 0u) << what;
-        EXPECT_EQ(run.result.peakHaloPoints > 0, ranks > 1) << what;
+        EXPECT_EQ(run.result.peakHaloLinks > 0, ranks > 1) << what;
         owned += run.result.rankFibers;
       }
       EXPECT_EQ(owned, in.fibers.size()) << what;
@@ -508,7 +508,7 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
         {
           const std::pair<double, double> slab = testerSlab(in, axis, q, ranks, L);
           EXPECT_LE(r.peakHeldLinks, linksNear(in, axis, slab.first, slab.second, w, L)) << what << ", rank " << q;
-          EXPECT_GT(r.peakHaloPoints, 0u) << what;
+          EXPECT_GT(r.peakHaloLinks, 0u) << what;
         }
       }
     }
