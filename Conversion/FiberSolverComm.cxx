@@ -12,7 +12,7 @@ namespace fiberpli
 
 namespace
 {
-// The solver's point-to-point messages (FiberTileExchange uses 7701–7702; vtkMultiProcessController
+// The point-to-point messages of the solver and of FiberTileExchange (vtkMultiProcessController
 // reserves 1–4, vtkCommunicator 10–16).
 constexpr int kExchangeTag = 48151;
 constexpr int kSizeTag = 48152; // the sizes, only without MPI
@@ -163,6 +163,30 @@ std::vector<std::vector<char>> FiberSolverComm::exchange(const std::vector<std::
   else
   {
     ExchangePairwise(*this->Controller, send, received);
+  }
+  return received;
+}
+
+std::vector<long long> FiberSolverComm::allToAll(const std::vector<long long>& send, int per)
+{
+  std::vector<long long> received(send.size());
+  if (auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator()))
+  {
+    MPI_Alltoall(send.data(), per, MPI_LONG_LONG, received.data(), per, MPI_LONG_LONG, *mpi->GetMPIComm()->GetHandle());
+    return received;
+  }
+  // Without MPI: the same through exchange().
+  const std::size_t n = static_cast<std::size_t>(this->size()), bytes = sizeof(long long) * static_cast<std::size_t>(per);
+  std::vector<std::vector<char>> out(n);
+  for (std::size_t q = 0; q < n; ++q)
+  {
+    out[q].resize(bytes);
+    std::copy_n(reinterpret_cast<const char*>(send.data() + q * per), bytes, out[q].data());
+  }
+  const std::vector<std::vector<char>> in = this->exchange(out);
+  for (std::size_t q = 0; q < n; ++q)
+  {
+    std::copy_n(in[q].data(), bytes, reinterpret_cast<char*>(received.data() + q * per));
   }
   return received;
 }

@@ -30,6 +30,9 @@ public:
   void sum(std::vector<std::int64_t>& values) override;
   void max(std::vector<double>& values) override;
   std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override;
+  /// send holds `per` numbers for each rank in rank order; returns the `per` numbers every rank
+  /// addressed to this one, in rank order (MPI_Alltoall under MPI; collective).
+  std::vector<long long> allToAll(const std::vector<long long>& send, int per);
 
 private:
   vtkMultiProcessController* Controller;

@@ -3,6 +3,7 @@
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
+#include "FiberSolverComm.h"
 #include "Util/MemoryBudget.h"
 
 #include <vtkAlgorithm.h>
@@ -26,9 +27,6 @@ namespace fiberpli
 
 namespace
 {
-// Message tags of the exchange (vtkMultiProcessController reserves 1–4, vtkCommunicator 10–16).
-constexpr int kHeaderTag = 7701;
-constexpr int kPointTag = 7702;
 // Per fiber: global index, fiber id, bundle id, number of points; per point x, y, z, radius.
 constexpr int kHeader = 4;
 constexpr int kPoint = 4;
@@ -180,33 +178,28 @@ long long Summarise(const std::vector<PieceSummary>& all, int myPiece, TileFiber
   return offset;
 }
 
-/// Sends to / receives from `peer` the fibers counted in `counts` (fibers, points per rank pair).
-void SendFibers(vtkMultiProcessController* c, int peer, const FiberModel& model, const std::vector<std::size_t>& which,
-  long long offset)
+/// The fibers `which` as one message: the header's bytes, then the points' bytes.
+std::vector<char> Message(const FiberModel& model, const std::vector<std::size_t>& which, long long offset)
 {
-  if (which.empty())
-  {
-    return;
-  }
   std::vector<long long> header;
   std::vector<double> points;
   Serialise(model, which, offset, header, points);
-  c->Send(header.data(), static_cast<vtkIdType>(header.size()), peer, kHeaderTag);
-  c->Send(points.data(), static_cast<vtkIdType>(points.size()), peer, kPointTag);
+  const std::size_t headerBytes = header.size() * sizeof(long long);
+  std::vector<char> message(headerBytes + points.size() * sizeof(double));
+  std::copy_n(reinterpret_cast<const char*>(header.data()), headerBytes, message.data());
+  std::copy_n(reinterpret_cast<const char*>(points.data()), message.size() - headerBytes, message.data() + headerBytes);
+  return message;
 }
 
-void ReceiveFibers(vtkMultiProcessController* c, int peer, long long fibers, long long points,
-  std::vector<std::pair<long long, Fiber>>& out)
+/// Appends the `fibers` fibers of a message to `out`.
+void UnpackFibers(const std::vector<char>& message, long long fibers, std::vector<std::pair<long long, Fiber>>& out)
 {
-  if (fibers == 0)
-  {
-    return;
-  }
+  const std::size_t headerBytes = static_cast<std::size_t>(fibers * kHeader) * sizeof(long long);
   std::vector<long long> header(static_cast<std::size_t>(fibers * kHeader));
-  std::vector<double> values(static_cast<std::size_t>(points * kPoint));
-  c->Receive(header.data(), static_cast<vtkIdType>(header.size()), peer, kHeaderTag);
-  c->Receive(values.data(), static_cast<vtkIdType>(values.size()), peer, kPointTag);
-  Deserialise(header, values, out);
+  std::vector<double> points((message.size() - headerBytes) / sizeof(double));
+  std::copy_n(message.data(), headerBytes, reinterpret_cast<char*>(header.data()));
+  std::copy_n(message.data() + headerBytes, message.size() - headerBytes, reinterpret_cast<char*>(points.data()));
+  Deserialise(header, points, out);
 }
 } // namespace
 
@@ -376,20 +369,21 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
       }
     }
   }
-  std::vector<long long> matrix(static_cast<std::size_t>(2 * ranks * ranks)); // [from][to][fibers, points]
-  c->AllGather(counts.data(), matrix.data(), 2 * ranks);
-  auto count = [&](int from, int toRank, int what) {
-    return matrix[static_cast<std::size_t>(2 * (from * ranks + toRank) + what)];
-  };
-  double incomingPoints = 0.0, incomingFibers = 0.0;
+  // What every rank sends to this one (fibers, points per sender): O(R) numbers per rank.
+  FiberSolverComm comm(c);
+  const std::vector<long long> incoming = comm.allToAll(counts, 2);
+  double incomingPoints = 0.0, incomingFibers = 0.0, messagePoints = 0.0, messageFibers = 0.0;
   for (int r = 0; r < ranks; ++r)
   {
-    incomingFibers += static_cast<double>(count(r, me, 0));
-    incomingPoints += static_cast<double>(count(r, me, 1));
+    incomingFibers += static_cast<double>(incoming[static_cast<std::size_t>(2 * r)]);
+    incomingPoints += static_cast<double>(incoming[static_cast<std::size_t>(2 * r + 1)]);
+    const bool other = r != me; // messages in and out, all alive during the exchange
+    messageFibers += other ? static_cast<double>(incoming[static_cast<std::size_t>(2 * r)] + counts[static_cast<std::size_t>(2 * r)]) : 0.0;
+    messagePoints += other ? static_cast<double>(incoming[static_cast<std::size_t>(2 * r + 1)] + counts[static_cast<std::size_t>(2 * r + 1)]) : 0.0;
   }
-  // The received model, plus one message buffer, must fit before anything is sent.
+  // The received model, plus the messages in and out, must fit before anything is sent.
   const double bytes = fiberModelBytes(incomingFibers, incomingPoints) +
-    incomingFibers * kHeader * sizeof(long long) + incomingPoints * kPoint * sizeof(double);
+    messageFibers * kHeader * sizeof(long long) + messagePoints * kPoint * sizeof(double);
   result.error = FiberCollective::AgreeOnError(outInfo, who,
     checkMemoryBudget(bytes, who + ": the " + std::to_string(static_cast<long long>(incomingFibers)) +
         " fibers that reach rank " + std::to_string(me) + "'s tile"));
@@ -398,26 +392,29 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
     return result;
   }
 
-  // 4. The exchange, pair by pair in one global order (a < b: a sends first), which cannot
-  //    deadlock with blocking sends: the lowest pair not yet done always has both ranks waiting.
+  // 4. The exchange (FiberSolverComm: non-blocking, partners only); the order of arrival does
+  //    not matter, step 5 sorts by global index.
   std::vector<std::pair<long long, Fiber>> received;
   for (std::size_t f : to[static_cast<std::size_t>(me)])
   {
     received.emplace_back(offset + static_cast<long long>(f), in.model.fibers[f]);
   }
-  for (int a = 0; a < ranks; ++a)
   {
-    for (int b = a + 1; b < ranks; ++b)
+    std::vector<std::vector<char>> messages(static_cast<std::size_t>(ranks));
+    for (int r = 0; r < ranks; ++r)
     {
-      if (me == a)
+      if (r != me)
       {
-        SendFibers(c, b, in.model, to[static_cast<std::size_t>(b)], offset);
-        ReceiveFibers(c, b, count(b, a, 0), count(b, a, 1), received);
+        messages[static_cast<std::size_t>(r)] = Message(in.model, to[static_cast<std::size_t>(r)], offset);
       }
-      else if (me == b)
+    }
+    const std::vector<std::vector<char>> arrived = comm.exchange(messages);
+    messages.clear();
+    for (int r = 0; r < ranks; ++r)
+    {
+      if (r != me)
       {
-        ReceiveFibers(c, a, count(a, b, 0), count(a, b, 1), received);
-        SendFibers(c, a, in.model, to[static_cast<std::size_t>(a)], offset);
+        UnpackFibers(arrived[static_cast<std::size_t>(r)], incoming[static_cast<std::size_t>(2 * r)], received);
       }
     }
   }
