@@ -398,7 +398,8 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
   {
     fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
-    fiberpli::AddFieldDoubles(output, "halo_points", { static_cast<double>(r.peakHaloPoints) });
+    fiberpli::AddFieldDoubles(output, "halo_links", { static_cast<double>(r.peakHaloLinks) });
+    fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
     fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
     fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
   }

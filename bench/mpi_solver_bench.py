@@ -84,7 +84,7 @@ for p in pieces:
     f = p.GetFieldData()
     if f.GetArray("rank_points"):
         share.append("%d fibers/%d pts/%d halo/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
-                     f.GetArray("halo_points").GetTuple1(0), f.GetArray("halo_bytes_per_step").GetTuple1(0)))
+                     f.GetArray("halo_links").GetTuple1(0), f.GetArray("halo_bytes_per_step").GetTuple1(0)))
 print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s | %s |" % (
     args.workload, ranks, args.threads, steps, wall, wall / (steps if steps > 0 else 1), int(fd.GetArray("collisions").GetTuple1(0)),
     "; ".join(share) if share else "-", "; ".join(memory), h.hexdigest()[:12]))

@@ -239,12 +239,12 @@ public:
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
-  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloPoints_ = 0, peakRankPoints_ = 0,
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
   RankFibers rankFibers() { return RankFibers{ model_, st_ }; }
 
-  // The slabs, the halo reach and every fiber to its owner (the run's first exchange).
+  // The slabs, the pair and probe reaches and every fiber to its owner (the run's first exchange).
   void startDistribution()
   {
     layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
@@ -264,7 +264,7 @@ public:
   }
   void resetTraffic()
   {
-    migrations_ = haloExchanges_ = haloBytes_ = peakHaloPoints_ = peakRankPoints_ = peakHeldLinks_ = 0;
+    migrations_ = haloExchanges_ = haloBytes_ = peakHaloLinks_ = peakRankPoints_ = peakHeldLinks_ = 0;
   }
 
   // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
@@ -308,8 +308,8 @@ public:
     for (int owner : held_.owner)
       halo += owner != comm_->rank() ? 1 : 0;
     peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
-    peakHaloPoints_ = std::max(peakHaloPoints_, halo);
-    peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo);
+    peakHaloLinks_ = std::max(peakHaloLinks_, halo);
+    peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
   }
 
   // Collisions and links of the whole model: a pair counts on the rank testing it.
@@ -1144,7 +1144,7 @@ struct CollisionSolverRun::Impl
     redistribute(fibers, s.st_.home, *s.comm_);
     result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
     result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
-    result.peakHaloPoints = s.peakHaloPoints_;
+    result.peakHaloLinks = s.peakHaloLinks_;
     result.peakRankPoints = s.peakRankPoints_;
     result.peakHeldLinks = s.peakHeldLinks_;
   }

@@ -101,8 +101,8 @@ struct CollisionSolverResult : Status
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   // Distributed runs (docs/solver.md §13; 0 otherwise): this rank's share and traffic.
   std::size_t rankFibers = 0;     ///< fibers this rank owned at the end (before they went home)
-  std::size_t peakRankPoints = 0; ///< most points this rank held in a step: owned + halo links
-  std::size_t peakHaloPoints = 0; ///< most halo links (of other ranks' fibers) it held in a step
+  std::size_t peakRankPoints = 0; ///< most it held in a step: owned points + halo links (one point each)
+  std::size_t peakHaloLinks = 0; ///< most halo links (of other ranks' fibers) it held in a step
   std::size_t peakHeldLinks = 0;  ///< most links (own or halo) it held for its pair tests in a step
   double haloBytesPerStep = 0.0;  ///< bytes it sent per step, mean: links out and pushes back
   std::size_t migrations = 0;     ///< fibers that changed rank during the solve (all ranks)

@@ -295,12 +295,7 @@ int SlabLayout::slabOf(double x) const
   {
     return 0;
   }
-  double t = (x - lo_) / (hi_ - lo_);
-  if (periodic_)
-  {
-    t -= std::floor(t);
-  }
-  const double slab = std::floor(t * ranks_);
+  const double slab = std::floor(fraction(x) * ranks_);
   return slab < 0.0 ? 0 : slab >= ranks_ ? ranks_ - 1 : static_cast<int>(slab);
 }
 

@@ -113,8 +113,13 @@ void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::
 {
   const CapsuleLink& l = own[first];
   const Fiber& fib = model.fibers[l.fiber];
-  const RunHeader h{ static_cast<std::uint32_t>(global[l.fiber]), l.k, static_cast<std::uint32_t>(count), l.arc0,
-    l.closedLength };
+  RunHeader h;
+  std::memset(&h, 0, sizeof h); // its padding bytes too: nothing uninitialised goes out
+  h.fiber = static_cast<std::uint32_t>(global[l.fiber]);
+  h.k0 = l.k;
+  h.count = static_cast<std::uint32_t>(count);
+  h.arc0 = l.arc0;
+  h.closedLength = l.closedLength;
   append(out, &h, 1);
   append(out, fib.points.data() + l.k, count + 1);
   append(out, fib.radii.data() + l.k, count + 1);

@@ -121,7 +121,7 @@ void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o, st
       for (const RankRun& run : runs)
       {
         EXPECT_GT(run.result.rankFibers, 0u) << what;
-        EXPECT_EQ(run.result.peakHaloPoints > 0, ranks > 1) << what;
+        EXPECT_EQ(run.result.peakHaloLinks > 0, ranks > 1) << what;
         owned += run.result.rankFibers;
       }
       EXPECT_EQ(owned, in.fibers.size()) << what;
@@ -139,6 +139,44 @@ TEST(DistributedSolver, OpenCubeBitIdenticalForAnyRanksAndThreads)
   o.segmentLength = 0.0; // automatic: the median radius of all ranks
   o.drag = 0.2;
   expectAnyRanksAnyThreads(paperCube(2, 100, 5), o);
+}
+
+// Without a cell the slabs cover the input's bounds only; pushed fibers leave them (the end
+// slabs own what lies beyond), on 4 and 5 ranks.
+TEST(DistributedSolver, OpenCubeFibersLeavingTheStartBoundsOnManyRanks)
+{
+  const FiberModel in = paperCube(2, 100, 5);
+  CollisionSolverOptions o;
+  o.maxSteps = 50;
+  o.minCurvatureRadius = 4.0;
+  o.segmentLength = 0.0;
+  o.drag = 0.2;
+  FiberModel serial = in;
+  ASSERT_EQ(solveCollisions(serial, o).error, "");
+  Vec3 lo0, hi0, lo1, hi1;
+  ASSERT_TRUE(modelBounds(in, false, lo0, hi0));
+  ASSERT_TRUE(modelBounds(serial, false, lo1, hi1));
+  int beyond = 0;
+  for (int d = 0; d < 3; ++d)
+    beyond += (lo1[d] < lo0[d] ? 1 : 0) + (hi1[d] > hi0[d] ? 1 : 0);
+  EXPECT_EQ(beyond, 6) << "the fibers leave the start bounds on every side";
+  expectAnyRanksAnyThreads(in, o, { 4, 5 });
+}
+
+// A flat model (every point at z = 0) spans no length along z: the slabs must cut x or y, else
+// every fiber would be on rank 0.
+TEST(DistributedSolver, AFlatModelIsSharedByTheRanks)
+{
+  FiberModel m;
+  for (int i = 0; i < 6; ++i)
+  {
+    m.fibers.push_back(line({ 0.0, 1.5 * i, 0.0 }, { 2.0, 0.0, 0.0 }, 11, 0.8, 2 * i)); // along x
+    m.fibers.push_back(line({ 1.5 * i + 0.3, -1.0, 0.0 }, { 0.0, 2.0, 0.0 }, 6, 0.8, 2 * i + 1)); // along y
+  }
+  CollisionSolverOptions o;
+  o.maxSteps = 30;
+  runRanks(1, [&](SolverComm& comm) { EXPECT_NE(SlabLayout::make(m, o.periodicCell, comm).axis(), 2); });
+  expectAnyRanksAnyThreads(m, o, { 2, 3 });
 }
 
 TEST(DistributedSolver, PeriodicCellBitIdenticalForAnyRanksAndThreads)
@@ -508,7 +546,7 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
         {
           const std::pair<double, double> slab = testerSlab(in, axis, q, ranks, L);
           EXPECT_LE(r.peakHeldLinks, linksNear(in, axis, slab.first, slab.second, w, L)) << what << ", rank " << q;
-          EXPECT_GT(r.peakHaloPoints, 0u) << what;
+          EXPECT_GT(r.peakHaloLinks, 0u) << what;
         }
       }
     }

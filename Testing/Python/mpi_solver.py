@@ -66,14 +66,16 @@ def solve(source, threads, **properties):
     for r, data in enumerate(pieces):
         fd = data.GetFieldData()
         if fd.GetArray("rank_points"):
-            print("mpi_solver: rank %d: %d fibers, peak %d points of which %d halo, %.0f halo bytes/step, "
+            print("mpi_solver: rank %d: %d fibers, peak %d points + halo links, %d halo links, %.0f halo bytes/step, "
                   "%d migrations" % (r, data.GetNumberOfLines(), fd.GetArray("rank_points").GetTuple1(0),
-                                     fd.GetArray("halo_points").GetTuple1(0),
+                                     fd.GetArray("halo_links").GetTuple1(0),
                                      fd.GetArray("halo_bytes_per_step").GetTuple1(0),
                                      fd.GetArray("migrations").GetTuple1(0)))
     if ranks > 1:
         check(all(p.GetNumberOfLines() > 0 for p in pieces), "every rank holds fibers of the output")
-        check(all(p.GetFieldData().GetArray("halo_points").GetTuple1(0) > 0 for p in pieces), "halos exchanged")
+        check(all(p.GetFieldData().GetArray("halo_links").GetTuple1(0) > 0 for p in pieces), "halos exchanged")
+        check(all(p.GetFieldData().GetArray("held_links").GetTuple1(0) >= p.GetFieldData().GetArray("halo_links").GetTuple1(0)
+                  for p in pieces), "a rank's held links include its halo links")
     Delete(solver)
     return digest(pieces)
 
