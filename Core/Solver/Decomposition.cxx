@@ -1,5 +1,7 @@
 #include "Solver/Decomposition.h"
 
+#include "Util/ByteBuffer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -10,56 +12,8 @@ namespace fiberpli
 
 namespace
 {
-// Byte records of fibers: plain copies of the values, read back in the order written.
-class Writer
-{
-public:
-  explicit Writer(std::vector<char>& out) : out_(out) {}
-  template <class T> void put(const T& v) { raw(&v, sizeof(T)); }
-  template <class T> void putVector(const std::vector<T>& v)
-  {
-    put<std::uint64_t>(v.size());
-    raw(v.data(), v.size() * sizeof(T));
-  }
-
-private:
-  void raw(const void* p, std::size_t n)
-  {
-    const std::size_t at = out_.size();
-    out_.resize(at + n);
-    if (n > 0)
-      std::memcpy(out_.data() + at, p, n);
-  }
-  std::vector<char>& out_;
-};
-
-class Reader
-{
-public:
-  explicit Reader(const std::vector<char>& in) : in_(in) {}
-  bool done() const { return at_ >= in_.size(); }
-  template <class T> T get()
-  {
-    T v;
-    std::memcpy(&v, in_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
-  }
-  template <class T> void getVector(std::vector<T>& v)
-  {
-    v.resize(get<std::uint64_t>());
-    if (!v.empty())
-      std::memcpy(v.data(), in_.data() + at_, v.size() * sizeof(T));
-    at_ += v.size() * sizeof(T);
-  }
-
-private:
-  const std::vector<char>& in_;
-  std::size_t at_ = 0;
-};
-
 // One fiber with its point state.
-void writeFiber(Writer& w, const RankFibers& r, std::size_t f)
+void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
 {
   const CollisionSolverState& st = r.state;
   const Fiber& fib = r.model.fibers[f];
@@ -76,7 +30,7 @@ void writeFiber(Writer& w, const RankFibers& r, std::size_t f)
   w.putVector(st.points[f].source);
 }
 
-void readFiber(Reader& rd, RankFibers& r)
+void readFiber(ByteReader& rd, RankFibers& r)
 {
   CollisionSolverState& st = r.state;
   Fiber fib;
@@ -140,7 +94,7 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
   for (std::size_t q = 0; q < to.size(); ++q)
   {
-    Writer w(out[q]);
+    ByteWriter w(out[q]);
     for (std::size_t f : to[q])
       writeFiber(w, r, f);
     t.fibers += to[q].size();
@@ -150,7 +104,7 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
   const std::vector<std::vector<char>> in = comm.exchange(out);
   for (const std::vector<char>& buffer : in)
   {
-    Reader rd(buffer);
+    ByteReader rd(buffer);
     while (!rd.done())
       readFiber(rd, r);
   }

@@ -1,5 +1,7 @@
 #include "Solver/LinkExchange.h"
 
+#include "Util/ByteBuffer.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -28,30 +30,7 @@ struct PushHeader
   std::uint32_t fiberA, kA, fiberB, kB, sides;
 };
 
-template <class T> void append(std::vector<char>& out, const T* v, std::size_t n)
-{
-  const std::size_t at = out.size();
-  out.resize(at + n * sizeof(T));
-  if (n > 0)
-    std::memcpy(out.data() + at, v, n * sizeof(T));
-}
-
-class Reader
-{
-public:
-  explicit Reader(const std::vector<char>& in) : in_(in) {}
-  bool done() const { return at_ >= in_.size(); }
-  template <class T> void get(T* v, std::size_t n = 1)
-  {
-    if (n > 0)
-      std::memcpy(v, in_.data() + at_, n * sizeof(T));
-    at_ += n * sizeof(T);
-  }
-
-private:
-  const std::vector<char>& in_;
-  std::size_t at_ = 0;
-};
+using Reader = ByteReader;
 
 // The all-to-all without copying this rank's own buffer through the communicator.
 std::vector<std::vector<char>> exchangeAll(std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
@@ -120,9 +99,9 @@ void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::
   h.count = static_cast<std::uint32_t>(count);
   h.arc0 = l.arc0;
   h.closedLength = l.closedLength;
-  append(out, &h, 1);
-  append(out, fib.points.data() + l.k, count + 1);
-  append(out, fib.radii.data() + l.k, count + 1);
+  appendBytes(out, &h, 1);
+  appendBytes(out, fib.points.data() + l.k, count + 1);
+  appendBytes(out, fib.radii.data() + l.k, count + 1);
 }
 } // namespace
 
@@ -287,16 +266,16 @@ void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, Tra
   const auto write = [&out](const LinkPairPush& p, int to, std::uint32_t sides) {
     std::vector<char>& b = out[static_cast<std::size_t>(to)];
     const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
-    append(b, &h, 1);
+    appendBytes(b, &h, 1);
     if (sides & 1)
     {
-      append(b, &p.a0, 1);
-      append(b, &p.a1, 1);
+      appendBytes(b, &p.a0, 1);
+      appendBytes(b, &p.a1, 1);
     }
     if (sides & 2)
     {
-      append(b, &p.b0, 1);
-      append(b, &p.b1, 1);
+      appendBytes(b, &p.b0, 1);
+      appendBytes(b, &p.b1, 1);
     }
   };
   for (const LinkPairPush& p : tested)
