@@ -1,8 +1,9 @@
 // The collision solver distributed over ranks (docs/solver.md §13), with threads as ranks
 // (ThreadComm.h): the pieces together must be bit for bit the serial solve of the whole model,
-// for 1, 2 and 3 ranks × 1 and 2 threads, in an open cube and in a periodic cell; with ranks
-// whose region is empty, fibers longer than a rank's region, fibers moving between ranks, and an
-// error or a stop on one rank only.
+// for 1, 2 and 3 ranks × 1 and 2 threads, in an open cube and in a periodic cell (also 6 ranks
+// with slabs thinner than the reach; 4 and 5 ranks with fibers leaving the open cube's start
+// bounds); with ranks whose region is empty, fibers longer than a rank's region, fibers moving
+// between ranks, a flat model, and an error or a stop on one rank only.
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 
