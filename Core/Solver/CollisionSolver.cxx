@@ -223,8 +223,7 @@ public:
   std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<LinkPairPush> push_; // per pair found here (serial: all), in pair order
-  std::vector<LinkPairPush> received_; // distributed: the pushes on this rank's links, in pair order
+  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
@@ -616,12 +615,15 @@ public:
     if (comm_)
     {
       TrafficCount sent;
-      returnPushes(push_, *comm_, sent, received_);
+      // Only one list is kept between steps: the peak memory is the pair search's, then.
+      std::vector<LinkPairPush> mine;
+      returnPushes(push_, *comm_, sent, mine);
+      push_.swap(mine);
       haloBytes_ += sent.bytes;
     }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (const LinkPairPush& p : comm_ ? received_ : push_)
+    for (const LinkPairPush& p : push_)
     {
       // A side whose fiber another rank owns is added there, in the same order.
       const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
