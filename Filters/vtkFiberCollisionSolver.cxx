@@ -224,6 +224,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   }
   options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
+  options.pushBoost = this->PushBoost;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
   options.maxSteps = this->MaxSteps;
@@ -418,6 +419,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumGap: " << this->MinimumGap << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
+  os << indent << "PushBoost: " << this->PushBoost << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
   os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";
