@@ -45,6 +45,44 @@ std::vector<std::vector<char>> exchangeAll(std::vector<std::vector<char>>& out, 
   return in;
 }
 
+// Merges the senders' streams of records, each already in ascending key order, into one ascending
+// order without a sort: repeatedly the sender whose next record has the least key (keys are unique
+// across senders) hands it to take(sender, record, reader), which may read the record's body.
+// read(reader, record) reads a record's head.
+template <class Record, class Read, class Key, class Take>
+void mergeSenders(const std::vector<std::vector<char>>& in, Read read, Key key, Take take)
+{
+  std::vector<Reader> readers;
+  readers.reserve(in.size());
+  std::vector<Record> next(in.size());
+  std::vector<std::size_t> live; // senders with records left; next[q] is q's next one
+  for (std::size_t q = 0; q < in.size(); ++q)
+  {
+    readers.emplace_back(in[q]);
+    if (!readers[q].done())
+    {
+      read(readers[q], next[q]);
+      live.push_back(q);
+    }
+  }
+  while (!live.empty())
+  {
+    std::size_t j = 0;
+    for (std::size_t i = 1; i < live.size(); ++i)
+      j = key(next[live[i]]) < key(next[live[j]]) ? i : j;
+    const std::size_t q = live[j];
+    take(q, next[q], readers[q]);
+    if (readers[q].done())
+    {
+      live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
+    }
+    else
+    {
+      read(readers[q], next[q]);
+    }
+  }
+}
+
 // Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
 // integer k with a − reach + kP <= d and b + reach + kP >= c.
 bool within(double a, double b, double c, double d, double reach, double period)
@@ -198,61 +236,34 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   held.clear();
   info.pointRadius.clear();
   info.owner.clear();
-  std::vector<Reader> readers;
-  readers.reserve(nr);
-  std::vector<RunHeader> next(nr);
-  std::vector<std::size_t> live; // senders with runs left; next[q] is q's next run
-  for (std::size_t q = 0; q < nr; ++q)
-  {
-    readers.emplace_back(in[q]);
-    if (!readers[q].done())
-    {
-      readers[q].get(&next[q]);
-      live.push_back(q);
-    }
-  }
   std::vector<Vec3> p;
   std::vector<double> r;
-  while (!live.empty())
-  {
-    std::size_t j = 0;
-    for (std::size_t i = 1; i < live.size(); ++i)
-    {
-      const RunHeader &a = next[live[i]], &b = next[live[j]];
-      j = std::tie(a.fiber, a.k0) < std::tie(b.fiber, b.k0) ? i : j;
-    }
-    const std::size_t q = live[j];
-    const RunHeader h = next[q];
-    p.resize(h.count + 1);
-    r.resize(h.count + 1);
-    readers[q].get(p.data(), p.size());
-    readers[q].get(r.data(), r.size());
-    double arc = h.arc0;
-    for (std::uint32_t k = 0; k < h.count; ++k)
-    {
-      CapsuleLink l;
-      l.p0 = p[k];
-      l.p1 = p[k + 1];
-      l.rho = capsuleRadius(r[k], r[k + 1], scale);
-      l.fiber = h.fiber;
-      l.k = h.k0 + k;
-      l.arc0 = arc;
-      arc += distance(l.p0, l.p1);
-      l.arc1 = arc;
-      l.closedLength = h.closedLength;
-      held.push_back(l);
-      info.pointRadius.push_back(std::min(r[k], r[k + 1]));
-      info.owner.push_back(static_cast<int>(q));
-    }
-    if (readers[q].done())
-    {
-      live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
-    }
-    else
-    {
-      readers[q].get(&next[q]);
-    }
-  }
+  mergeSenders<RunHeader>(
+    in, [](Reader& rd, RunHeader& h) { rd.get(&h); },
+    [](const RunHeader& h) { return std::make_tuple(h.fiber, h.k0); },
+    [&](std::size_t q, const RunHeader& h, Reader& rd) {
+      p.resize(h.count + 1);
+      r.resize(h.count + 1);
+      rd.get(p.data(), p.size());
+      rd.get(r.data(), r.size());
+      double arc = h.arc0;
+      for (std::uint32_t k = 0; k < h.count; ++k)
+      {
+        CapsuleLink l;
+        l.p0 = p[k];
+        l.p1 = p[k + 1];
+        l.rho = capsuleRadius(r[k], r[k + 1], scale);
+        l.fiber = h.fiber;
+        l.k = h.k0 + k;
+        l.arc0 = arc;
+        arc += distance(l.p0, l.p1);
+        l.arc1 = arc;
+        l.closedLength = h.closedLength;
+        held.push_back(l);
+        info.pointRadius.push_back(std::min(r[k], r[k + 1]));
+        info.owner.push_back(static_cast<int>(q));
+      }
+    });
   info.tested.resize(held.size());
   for (std::size_t i = 0; i < held.size(); ++i)
     info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
@@ -314,40 +325,10 @@ void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, Tra
   // Every tester sends in its pair order, which is the global one (its held links are in global
   // link order), and each pair comes from one tester only: merging the senders' lists by their
   // next pair gives pair order without a sort.
-  const std::size_t nr = in.size();
-  std::vector<Reader> readers;
-  readers.reserve(nr);
-  std::vector<LinkPairPush> next(nr);
-  std::vector<std::size_t> live; // senders with pushes left; next[q] is q's next one
-  for (std::size_t q = 0; q < nr; ++q)
-  {
-    readers.emplace_back(in[q]);
-    if (!readers[q].done())
-    {
-      read(readers[q], next[q]);
-      live.push_back(q);
-    }
-  }
   mine.clear();
-  while (!live.empty())
-  {
-    std::size_t j = 0;
-    for (std::size_t i = 1; i < live.size(); ++i)
-    {
-      const LinkPairPush &x = next[live[i]], &y = next[live[j]];
-      j = std::tie(x.fiberA, x.kA, x.fiberB, x.kB) < std::tie(y.fiberA, y.kA, y.fiberB, y.kB) ? i : j;
-    }
-    const std::size_t q = live[j];
-    mine.push_back(next[q]);
-    if (readers[q].done())
-    {
-      live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
-    }
-    else
-    {
-      read(readers[q], next[q]);
-    }
-  }
+  mergeSenders<LinkPairPush>(
+    in, read, [](const LinkPairPush& x) { return std::make_tuple(x.fiberA, x.kA, x.fiberB, x.kB); },
+    [&mine](std::size_t, const LinkPairPush& x, Reader&) { mine.push_back(x); });
 }
 
 } // namespace fiberpli
