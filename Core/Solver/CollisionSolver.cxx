@@ -223,7 +223,7 @@ public:
   std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
+  std::vector<LinkPairPush> push_; // per pair found here, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
@@ -612,21 +612,11 @@ public:
       out.b0 = -((1.0 - p.t) * n);
       out.b1 = -(p.t * n);
     }
-    if (comm_)
-    {
-      TrafficCount sent;
-      // Only one list is kept between steps: the peak memory is the pair search's, then.
-      std::vector<LinkPairPush> mine;
-      returnPushes(push_, *comm_, sent, mine);
-      push_.swap(mine);
-      haloBytes_ += sent.bytes;
-    }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (const LinkPairPush& p : push_)
-    {
-      // A side whose fiber another rank owns is added there, in the same order.
-      const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
+    // One pair's pushes onto the points of its links that this rank owns (fa, fb: the links'
+    // fibers in the model, SIZE_MAX: another rank's; that side is added there, in the same order).
+    const auto apply = [this, spread](const LinkPairPush& p, std::size_t fa, std::size_t fb) {
       if (fa != SIZE_MAX)
       {
         force_[pointOffset_[fa] + p.kA] += p.a0;
@@ -656,6 +646,27 @@ public:
           add(outerAfter(fb, p.kB), p.b1);
         }
       }
+    };
+    if (!comm_)
+    {
+      for (const LinkPairPush& p : push_)
+        apply(p, p.fiberA, p.fiberB);
+    }
+    else
+    {
+      TrafficCount sent;
+      // Per sender, the pushes others tested on this rank's links (not kept between steps: the
+      // peak memory stays the pair search's).
+      std::vector<std::vector<LinkPairPush>> received;
+      returnPushes(push_, *comm_, sent, received);
+      haloBytes_ += sent.bytes;
+      const auto own = [](std::uint32_t f) { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
+      forPushesInPairOrder(push_, comm_->rank(), received, [&](const LinkPairPush& p, std::size_t i) {
+        if (i != SIZE_MAX) // tested here: the held links know their fibers
+          apply(p, own(held_.local[pairs_[i].a]), own(held_.local[pairs_[i].b]));
+        else
+          apply(p, localFiber(p.fiberA), localFiber(p.fiberB));
+      });
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
