@@ -304,8 +304,8 @@ public:
     haloBytes_ += sent.bytes;
     ++haloExchanges_;
     std::size_t halo = 0;
-    for (int owner : held_.owner)
-      halo += owner != comm_->rank() ? 1 : 0;
+    for (std::uint32_t f : held_.local)
+      halo += f == kNotOwned ? 1 : 0;
     peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
     peakHaloLinks_ = std::max(peakHaloLinks_, halo);
     peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
@@ -341,8 +341,9 @@ public:
   std::int64_t leavingFibers() const
   {
     std::int64_t n = 0;
+    const int me = comm_->rank();
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
-      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+      n += layout_.owner(model_.fibers[f]) != me ? 1 : 0;
     return n;
   }
 

@@ -145,11 +145,15 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
   // Every rank's test region (−lo, hi; none: −∞, −∞) from the links of all owners.
+  // tester: per own link, the rank testing its pairs (kept for the held copy below).
   std::vector<double> region(2 * nr, -HUGE_VAL);
-  for (const CapsuleLink& l : own)
+  std::vector<int> tester(own.size());
+  for (std::size_t i = 0; i < own.size(); ++i)
   {
+    const CapsuleLink& l = own[i];
     const double c = centre(l, axis);
-    const std::size_t q = static_cast<std::size_t>(layout.testerOf(c));
+    tester[i] = layout.testerOf(c);
+    const std::size_t q = static_cast<std::size_t>(tester[i]);
     const double shift = layout.wrapShift(c);
     region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
@@ -234,6 +238,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   info.pointRadius.clear();
   info.owner.clear();
   info.local.clear();
+  info.tested.clear();
   std::vector<Reader> readers;
   readers.reserve(nr);
   for (const std::vector<char>& b : in)
@@ -268,6 +273,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
         info.pointRadius.push_back(std::min(radii[l.k], radii[l.k + 1]));
         info.owner.push_back(me);
         info.local.push_back(l.fiber);
+        info.tested.push_back(tester[i] == me ? 1 : 0);
         l.fiber = static_cast<std::uint32_t>(global[l.fiber]);
         held.push_back(l);
       }
@@ -295,12 +301,10 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
       info.pointRadius.push_back(std::min(r[k], r[k + 1]));
       info.owner.push_back(static_cast<int>(q));
       info.local.push_back(kNotOwned);
+      info.tested.push_back(layout.testerOf(centre(l, axis)) == me ? 1 : 0);
     }
   };
   mergeStreams<std::uint64_t>(nr, peek, take);
-  info.tested.resize(held.size());
-  for (std::size_t i = 0; i < held.size(); ++i)
-    info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
   return sent;
 }
 
