@@ -208,6 +208,9 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
   return d;
 }
 
+// Steps between re-cuts of the distributed solver's tester slabs (a histogram sum each time).
+constexpr int kBalanceSteps = 32;
+
 class Solver
 {
 public:
@@ -238,6 +241,7 @@ public:
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
+  std::uint64_t pairWork_ = 0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
@@ -260,6 +264,18 @@ public:
     }
     redistribute(r, dest, *comm_);
     migrationDue_ = false;
+    pairWork_ = 0;
+  }
+  // Every kBalanceSteps steps the tester slabs are re-cut at equal pair work of the steps since
+  // (the link counts they start with balance the links, not their pairs: the 1000-fiber cube's
+  // ranks did 52 / 48 % of the box tests).
+  void balanceTesters()
+  {
+    if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
+    {
+      layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
+      pairWork_ = 0;
+    }
   }
   void resetTraffic()
   {
@@ -500,6 +516,7 @@ public:
     {
       overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
     }
+    pairWork_ += periodic() ? periodic_.work() : grid_.work();
     if (!overflow)
     {
       return true;
@@ -1345,6 +1362,10 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
+  if (s.comm_)
+  {
+    s.balanceTesters();
+  }
   Solver::Counts counts;
   if (!s.detect(&counts, changed))
   {
