@@ -162,12 +162,14 @@ public:
   /// Checks options and model and prepares the fibers. False: finish() returns the error, the
   /// model is unchanged.
   bool start();
+  /// How the ranks agree on a refused state (collective): given this rank's refusal ("" = its
+  /// state fits), returns what this rank reports ("" = no rank refused).
+  using ResumeAgreement = std::function<std::string(const std::string& localMisfit)>;
   /// Instead of start(): continue from a state saved with the model now in the run (same
   /// options). Returns "" or an error naming what does not match (then finish() returns it).
-  std::string resume(const CollisionSolverState& saved);
-  /// What resume(saved) would refuse, checked on this rank alone ("" = fits; not collective, so
-  /// a distributed caller can name its file in the message before the ranks agree on it).
-  std::string checkResume(const CollisionSolverState& saved) const;
+  /// Distributed, the ranks agree on it before any other collective: by default every rank
+  /// reports the lowest refusing rank's message; `agree` lets a caller name its file first.
+  std::string resume(const CollisionSolverState& saved, const ResumeAgreement& agree = {});
   /// One iteration (§6): shape control, detection, the stop rules, one move. False when the run
   /// has ended (solved, MaxSteps, StallSteps, abort or error): then call finish().
   bool step();
@@ -188,7 +190,7 @@ private:
 /// mismatched radii, non-finite coordinates, radius <= 0) leave the model unchanged and name the
 /// option or the fiber and point. Memory is bounded: the points the split can make must fit the
 /// memory budget (Util/MemoryBudget.h), and the colliding pairs stored per step at most
-/// packingPairBound (Index/CollisionGrid.h) and what the budget allows; stacks of identical fibers
+/// packingPairBound (Solver/PairBound.h) and what the budget allows; stacks of identical fibers
 /// and gaps that make every link collide are refused with a message saying so (counting the exact
 /// copies). Never throws, never prints.
 ///
@@ -196,7 +198,10 @@ private:
 /// the whole model (the pieces in rank order are the whole model in its order). Every rank
 /// returns its piece's fibers solved, and the same result fields (sourceIndex: of its piece) and
 /// the same error; together the pieces are bit for bit what the serial solve of the whole model
-/// gives, for any rank count and thread count. A stop requested on one rank stops all.
+/// gives, for any rank count and thread count. A stop requested on one rank stops all. The memory
+/// guards are each rank's own (its budget against what it holds, never more than the serial run
+/// holds): a distributed run may solve a model too large for one process, and refuses only what
+/// the serial run would refuse too; the packing bound is the whole model's (§13).
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
   const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
 

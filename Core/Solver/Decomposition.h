@@ -52,7 +52,7 @@ public:
   void balanceTesterSlabs(const FiberModel& local, std::int64_t work, SolverComm& comm);
   /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
   double testerLo(int q) const;
-  /// What wrapping x into the cell adds to it along the axis (0 without a cell).
+  /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
   /// The cell's edge along the axis (0 without a cell).
@@ -63,6 +63,7 @@ private:
   double lo_ = 0.0, hi_ = 0.0;
   int ranks_ = 1;
   bool periodic_ = false;
+  PeriodicCell cell_; // wrapShift: the cell's own rule along axis_
   std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
   double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
