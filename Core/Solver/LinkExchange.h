@@ -2,7 +2,7 @@
 /// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
 /// each owner sends each of its links to every rank whose test region comes within reach of it.
 /// A pair is tested by exactly one rank, the one whose tester slab (SlabLayout::testerOf: slabs of
-/// equal link counts) holds the centre of its lower link (in global link order), which holds every
+/// equal pair work) holds the centre of its lower link (in global link order), which holds every
 /// partner of such a link. It sends the pair's pushes
 /// back to the owners of the two links, and they add them in pair order, as the serial solver
 /// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
