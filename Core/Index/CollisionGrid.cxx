@@ -94,34 +94,16 @@ inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnl
 }
 } // namespace
 
-double packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap)
+double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 {
-  double rhoMin = HUGE_VAL;
-  double rhoMax = 0.0;
-  double length = 0.0;
-  for (const CapsuleLink& l : links)
-  {
-    rhoMin = std::min(rhoMin, l.rho);
-    rhoMax = std::max(rhoMax, l.rho);
-    length += l.arc1 - l.arc0;
-  }
-  if (links.empty() || !(rhoMin > 0.0) || !(length > 0.0))
-  {
-    return 0.0;
-  }
-  const double b = rhoMin + 0.5 * minimumGap;
-  const double shortLink = (2.0 / 3.0) * length / static_cast<double>(links.size());
-  double sum = 0.0;
-  for (const CapsuleLink& l : links)
-  {
-    const double c = l.rho + rhoMax + minimumGap + b;
-    const double len = l.arc1 - l.arc0;
-    // passes: V(capsule of radius c and length len) / V(ball b) = (0.75·c²·len + c³) / b³
-    const double passes = (0.75 * c * c * len + c * c * c) / (b * b * b);
-    const double linksPerPass = (len + 2.0 * c) / shortLink + 2.0;
-    sum += passes * linksPerPass;
-  }
-  return 0.5 * sum;
+  const double g = scale.minimumGap;
+  const double b = scale.rhoMin + 0.5 * g;
+  const double c = a.rho + scale.rhoMax + g + b;
+  const double len = a.arc1 - a.arc0;
+  // passes: V(capsule of radius c and length len) / V(ball b) = (0.75·c²·len + c³) / b³
+  const double passes = (0.75 * c * c * len + c * c * c) / (b * b * b);
+  const double linksPerPass = (len + 2.0 * c) / scale.shortLink + 2.0;
+  return passes * linksPerPass;
 }
 
 double CollisionGrid::bytesPerLink()

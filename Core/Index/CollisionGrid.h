@@ -46,17 +46,27 @@ struct CapsulePair
 /// closed fiber the shorter way round counts, so its first and last links are adjacent).
 bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
 
-/// Upper bound of the colliding pairs among `links` in any state the solver can separate:
-/// Σ_a n_a / 2 with n_a = passes_a × linksPerPass_a. A partner fiber that passes link a (radius
-/// ρ_a, length ℓ_a) has its axis within R_a = ρ_a + ρ_max + g of a's axis; when fibers keep a gap
-/// g, balls of radius b = ρ_min + g/2 around one closest point per pass are disjoint and lie in
-/// the capsule of radius R_a + b around a, so passes_a <= V(that capsule) / V(ball b). A pass
-/// meets at most (ℓ_a + 2(R_a + b)) / ℓ_short + 2 links, ℓ_short = 2/3 of the mean link length
-/// (what split/merge keeps links above). The starting states the solver gets are denser than any
-/// packing, and the bound leaves room for that: random straight fibers at 4× the paper's density
-/// use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000 copies of a 10-point fiber
-/// 9×. (A gap much wider than the radii is no packing argument's business: the solver refuses it.)
-double packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap);
+/// The packing bound of the colliding pairs among a set of links in any state the solver can
+/// separate is Σ_a n_a / 2 over its links a, with n_a = passes_a × linksPerPass_a. A partner fiber
+/// that passes link a (radius ρ_a, length ℓ_a) has its axis within R_a = ρ_a + ρ_max + g of a's
+/// axis; when fibers keep a gap g, balls of radius b = ρ_min + g/2 around one closest point per pass
+/// are disjoint and lie in the capsule of radius R_a + b around a, so passes_a <= V(that capsule) /
+/// V(ball b). A pass meets at most (ℓ_a + 2(R_a + b)) / ℓ_short + 2 links, ℓ_short = 2/3 of the mean
+/// link length (what split/merge keeps links above). The starting states the solver gets are
+/// denser than any packing, and the bound leaves room for that: random straight fibers at 4× the
+/// paper's density use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000 copies of a
+/// 10-point fiber 9×. (A gap much wider than the radii is no packing argument's business: the
+/// solver refuses it.) The sum itself is Solver/CollisionSolver.h's packingPairBound (exact, over
+/// any split of the links); these are its parts.
+struct PackingScale
+{
+  double rhoMin = 0.0;    ///< smallest capsule radius of all links
+  double rhoMax = 0.0;    ///< largest capsule radius of all links
+  double shortLink = 0.0; ///< ℓ_short: 2/3 of the mean link length of all links
+  double minimumGap = 0.0;
+};
+/// n_a of link a (Σ_a n_a / 2 is the bound); every n_a >= 54, so the bound is >= 27 × the links.
+double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale);
 
 /// Uniform grid (§3.3). Reuse one object across solver steps: its buffers are kept.
 class CollisionGrid

@@ -4,6 +4,7 @@
 #include "Index/PeriodicPairs.h"
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
+#include "Solver/PairBound.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -439,16 +440,18 @@ public:
   }
 
   // False when the pairs cannot be found: a periodic cell too small for the links, or more pairs
-  // than their limit (packingPairBound or the memory budget); detectError_ says why. counts (if
-  // given): the global counts, with `changed` (shape control's) or-ed over the ranks.
-  bool detect(Counts* counts = nullptr, bool changed = false)
+  // than their limit (the whole model's packingPairBound or this process's memory budget);
+  // detectError_ says why. counts (if given): the global counts, with `changed` (shape control's)
+  // or-ed over the ranks. boundFirst: distributed, the packing bound is also computed before the
+  // search, so that a stack of fibers stops it early (the start; later steps check the count).
+  bool detect(Counts* counts = nullptr, bool changed = false, bool boundFirst = false)
   {
     if (comm_)
     {
       migrate();
     }
     gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
-    const bool found = findBoundedPairs();
+    const bool found = findBoundedPairs(boundFirst);
     if (!comm_)
     {
       if (counts)
@@ -468,6 +471,17 @@ public:
       return false;
     }
     detectError_.clear();
+    // The packing bound is at least 27 pairs per link (Index/CollisionGrid.h): below 26 the whole
+    // model's bound need not be summed (most steps: 4–9 pairs per link in dense cubes).
+    if (v[0] > 26 * v[1])
+    {
+      const PairBound bound = wholeModelPairBound();
+      if (static_cast<double>(v[0]) > bound.pairs)
+      {
+        detectError_ = packingMessage(bound);
+        return false;
+      }
+    }
     if (counts)
     {
       *counts = countsOf(v);
@@ -475,12 +489,37 @@ public:
     return true;
   }
 
-  bool findBoundedPairs()
+  // The packing bound of all links (of every rank: collective when distributed).
+  PairBound wholeModelPairBound() const
   {
-    const double bound = packingPairBound(links_, o_.minimumGap);
+    return packingPairBound(comm_ ? ownLinks_ : links_, o_.minimumGap, comm_);
+  }
+  std::string packingMessage(const PairBound& bound) const
+  {
+    std::ostringstream msg;
+    msg << "more than " << static_cast<std::size_t>(bound.pairs) << " capsule pairs of " << bound.links
+        << " links collide (MinimumGap " << o_.minimumGap << "), more than any packing of fibers of capsule radius up to "
+        << bound.rhoMax << " um can have: the fibers lie (nearly) on top of each other; spread them or lower the radii";
+    return msg.str();
+  }
+
+  // The pairs among links_ (docs/solver.md §8, §13). Two limits: the whole model's packing bound
+  // (a property of the model: decided alike for any rank count), and the pairs this process's
+  // memory budget affords beside the links it holds (a property of the process: a rank holds at
+  // most the serial run's links and pairs, so it refuses only what the serial run would refuse,
+  // and every rank reports the lowest refusing rank's message). Distributed, the packing bound is
+  // known before the search only with boundFirst; else detect() checks the summed count.
+  bool findBoundedPairs(bool boundFirst)
+  {
+    PairBound bound;
+    bound.pairs = HUGE_VAL; // not known yet
+    if (!comm_ || boundFirst)
+    {
+      bound = wholeModelPairBound();
+    }
     const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
     const double affordable = std::max(0.0, budget) / bytesPerPair();
-    const double limit = std::min(bound, affordable);
+    const double limit = std::min(bound.pairs, affordable);
     const auto maxPairs = static_cast<std::size_t>(limit);
     // Distributed: each pair is tested on one rank only, the one testing its lower link
     // (LinkExchange.h); the finder skips the others before their exact test.
@@ -503,18 +542,24 @@ public:
     {
       return true;
     }
-    std::ostringstream msg;
-    msg << "more than " << static_cast<std::size_t>(limit) << " capsule pairs of " << links_.size()
-        << " links collide (MinimumGap " << o_.minimumGap << ")";
-    if (limit == bound)
+    if (limit == bound.pairs)
     {
-      msg << ", more than any packing of fibers of radius up to " << largestRadius(model_) << " um can have: ";
-      msg << "the fibers lie (nearly) on top of each other; spread them or lower the radii";
+      detectError_ = packingMessage(bound);
+      return false;
     }
-    else
+    std::ostringstream msg;
+    msg << "more than " << maxPairs << " capsule pairs of " << links_.size() << " links";
+    if (comm_)
     {
-      msg << ": " << checkMemoryBudget(affordable * bytesPerPair() + 1.0, "storing them")
-          << "; lower the density or MinimumGap";
+      msg << " held on rank " << comm_->rank() << " of " << comm_->size();
+    }
+    msg << " collide (MinimumGap " << o_.minimumGap << "): "
+        << checkMemoryBudget((static_cast<double>(maxPairs) + 1.0) * bytesPerPair() +
+             bytesPerPoint() * static_cast<double>(links_.size()), "storing them beside the links")
+        << "; lower the density or MinimumGap";
+    if (comm_)
+    {
+      msg << ", or use more ranks";
     }
     detectError_ = msg.str();
     return false;
@@ -897,6 +942,7 @@ void configure(Solver& s, std::vector<std::string>& warnings)
 
 // §8: splitting makes up to (arc length / l_min) points per fiber; refuse sizes beyond the memory
 // budget before any allocation instead of running out of memory in the middle of a step.
+// Distributed: the fibers this rank owns (at most the serial run's), against its budget.
 std::string checkMemory(const Solver& s)
 {
   double length = 0.0;
@@ -919,6 +965,10 @@ std::string checkMemory(const Solver& s)
   std::ostringstream what;
   what << "SegmentLength " << s.st_.segmentLength << " with a total fiber length of " << length
        << " (up to " << estimate << " points)";
+  if (s.comm_) // each rank's own memory against its own budget (§13)
+  {
+    what << " on rank " << s.comm_->rank() << " of " << s.comm_->size();
+  }
   const std::string problem = checkMemoryBudget(bytes, what.str());
   return problem.empty() ? problem : problem + "; raise SegmentLength";
 }
@@ -1129,7 +1179,7 @@ struct CollisionSolverRun::Impl
     {
       model = input; // the cell is too small for the links, or distributed: keep the input
       result = CollisionSolverResult{};
-      result.error = s.detectError_;
+      result.error = s.detectError_ + (s.periodic() ? std::string() : where); // the serial text
     }
     else // the model is in this step's state
     {
@@ -1234,8 +1284,7 @@ bool CollisionSolverRun::start()
   {
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
-    s.gatherLinks(nullptr, nullptr, 1.0);
-    const bool found = s.findBoundedPairs();
+    const bool found = s.detect(nullptr, false, true);
     if (r.fail(found ? std::string() : s.detectError_))
     {
       return false;
@@ -1563,7 +1612,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   {
     buildLinks(model, nullptr, resolveThreadCount(numberOfThreads), links, nullptr);
   }
-  const double limit = std::min(packingPairBound(links, minimumGap),
+  const double limit = std::min(packingPairBound(links, minimumGap).pairs,
     std::max(0.0, memoryBudgetBytes()) / CollisionGrid::bytesPerPair());
   const auto maxPairs = static_cast<std::size_t>(limit);
   bool overflow = false;

@@ -188,7 +188,7 @@ private:
 /// mismatched radii, non-finite coordinates, radius <= 0) leave the model unchanged and name the
 /// option or the fiber and point. Memory is bounded: the points the split can make must fit the
 /// memory budget (Util/MemoryBudget.h), and the colliding pairs stored per step at most
-/// packingPairBound (Index/CollisionGrid.h) and what the budget allows; stacks of identical fibers
+/// packingPairBound (Solver/PairBound.h) and what the budget allows; stacks of identical fibers
 /// and gaps that make every link collide are refused with a message saying so (counting the exact
 /// copies). Never throws, never prints.
 ///
@@ -196,7 +196,10 @@ private:
 /// the whole model (the pieces in rank order are the whole model in its order). Every rank
 /// returns its piece's fibers solved, and the same result fields (sourceIndex: of its piece) and
 /// the same error; together the pieces are bit for bit what the serial solve of the whole model
-/// gives, for any rank count and thread count. A stop requested on one rank stops all.
+/// gives, for any rank count and thread count. A stop requested on one rank stops all. The memory
+/// guards are each rank's own (its budget against what it holds, never more than the serial run
+/// holds): a distributed run may solve a model too large for one process, and refuses only what
+/// the serial run would refuse too; the packing bound is the whole model's (§13).
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
   const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
 

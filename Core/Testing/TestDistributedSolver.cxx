@@ -10,6 +10,7 @@
 #include "BruteForceOverlap.h"
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
+#include "MemoryLimitGuard.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -552,4 +553,86 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
       }
     }
   }
+}
+
+namespace
+{
+// k copies of a 10-point fiber along x, 1 nm apart in y (no exact copies, so only the pair
+// limit can refuse them): every link collides with 3 links of every other copy, 25 pairs per
+// pair of copies. Then `sparse` fibers along x on a 3 um grid at y >= 5 um, colliding with
+// nothing. The slabs cut y (fibers along x have no extent across it).
+FiberModel stackAndSparseFibers(int k, int sparse)
+{
+  FiberModel m;
+  for (int i = 0; i < k; ++i)
+    m.fibers.push_back(line({ 0, 1e-3 * i, 0 }, { 2, 0, 0 }, 10, 0.8, i));
+  for (int i = 0; i < sparse; ++i)
+    m.fibers.push_back(line({ 0, 5.0 + 3.0 * (i % 20), 3.0 * (i / 20) }, { 2, 0, 0 }, 10, 0.8, k + i));
+  return m;
+}
+} // namespace
+
+// The pair limit (docs/solver.md §8, §13) is a property of the whole model, decided as the serial
+// run decides it for any rank count. Per-link bound here: 155.8 pairs (ρ 0.8 µm, links of 2 µm).
+// (a) 200 copies (497 500 pairs, 1 800 links) beside 320 sparse fibers (2 880 links): the whole
+// model's bound is 729 000, so the serial run solves it; a rank testing the copies' pairs holds
+// about half the links, whose own bound (~365 000) they exceed. (b) 130 copies alone (209 625
+// pairs, bound 182 300): the serial run refuses them, while rank 0 of 2 tests only 3/4 of the
+// pairs (157 000). Both must be the serial outcome on 2 and 3 ranks.
+TEST(DistributedSolver, ThePairLimitIsDecidedAsForTheWholeModel)
+{
+  CollisionSolverOptions o;
+  o.maxSteps = 2;
+  o.numberOfThreads = 2;
+  {
+    const FiberModel in = stackAndSparseFibers(200, 320);
+    FiberModel serial = in;
+    const CollisionSolverResult s = solveCollisions(serial, o);
+    ASSERT_EQ(s.error, "");
+    ASSERT_EQ(s.steps, 2);
+    ASSERT_GT(s.collisions, 400000u);
+    for (int ranks : { 2, 3 })
+      expectSerial(solveOnRanks(in, o, ranks), serial, s, "copies beside sparse fibers, " + std::to_string(ranks) + " ranks");
+  }
+  {
+    const FiberModel in = stackAndSparseFibers(130, 0);
+    FiberModel serial = in;
+    const std::string serialError = solveCollisions(serial, o).error;
+    ASSERT_NE(serialError.find("more than any packing"), std::string::npos) << serialError;
+    for (int ranks : { 2, 3 })
+    {
+      const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+      std::size_t f = 0;
+      for (const RankRun& run : runs)
+      {
+        EXPECT_EQ(run.result.error, serialError) << ranks << " ranks";
+        for (const Fiber& fib : run.model.fibers) // every piece as it came
+          EXPECT_TRUE(sameFiber(fib, in.fibers[f++])) << ranks << " ranks";
+      }
+      EXPECT_EQ(f, in.fibers.size());
+    }
+  }
+}
+
+// The memory guard is each rank's own (its budget against the links and pairs it holds): under a
+// 60 MiB budget the 497 500 pairs of 200 copies (232 bytes each) do not fit the rank testing them;
+// every rank then fails with that rank's message, naming the budget, and keeps its piece.
+TEST(DistributedSolver, ARankOutOfMemoryBudgetFailsEveryRank)
+{
+  const FiberModel in = stackAndSparseFibers(200, 320);
+  CollisionSolverOptions o;
+  o.maxSteps = 2;
+  fiberpli::testing::MemoryLimitGuard limit("60M");
+  const std::vector<RankRun> runs = solveOnRanks(in, o, 2);
+  std::size_t f = 0;
+  for (const RankRun& run : runs)
+  {
+    EXPECT_EQ(run.result.error, runs[0].result.error);
+    for (const Fiber& fib : run.model.fibers)
+      EXPECT_TRUE(sameFiber(fib, in.fibers[f++]));
+  }
+  const std::string& e = runs[0].result.error;
+  EXPECT_NE(e.find("links held on rank 0 of 2 collide (MinimumGap 0)"), std::string::npos) << e;
+  EXPECT_NE(e.find("FIBERPLI_MEMORY_LIMIT"), std::string::npos) << e;
+  EXPECT_NE(e.find("or use more ranks"), std::string::npos) << e;
 }
