@@ -644,17 +644,12 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   if (checkpoint.resume)
   {
     // The state is checked on each rank and agreed on with the failing rank's file named, so that
-    // every rank reports that file (resume() itself agrees on the bare message only).
-    const std::string misfit = run.checkResume(saved);
-    failed.error = agree(comm, misfit.empty() ? misfit : named(resumedFile, "does not fit: " + misfit));
+    // every rank reports that file.
+    failed.error = run.resume(saved, [&](const std::string& misfit) {
+      return agree(comm, misfit.empty() ? misfit : named(resumedFile, "does not fit: " + misfit));
+    });
     if (!failed.error.empty())
     {
-      return failed;
-    }
-    const std::string problem = run.resume(saved);
-    if (!problem.empty())
-    {
-      failed.error = named(resumedFile, "does not fit: " + problem);
       return failed;
     }
   }

@@ -25,14 +25,21 @@ struct PeriodicCell
     return e.x * e.y * e.z;
   }
 
+  /// The multiple t of the edge along `axis` that brings x + t into [lo, hi) along it: the one
+  /// wrap rule (the distributed solver's slabs, Solver/Decomposition.h, wrap one axis with it and
+  /// must agree bit for bit with the pair finder's images).
+  double wrapShift(double x, int axis) const
+  {
+    const double e = hi[axis] - lo[axis];
+    return -e * std::floor((x - lo[axis]) / e);
+  }
   /// The lattice vector t (integer multiples of the edges) that brings p + t into [lo, hi).
   Vec3 wrapShift(const Vec3& p) const
   {
-    const Vec3 e = edge();
     Vec3 t;
     for (int d = 0; d < 3; ++d)
     {
-      t[d] = -e[d] * std::floor((p[d] - lo[d]) / e[d]);
+      t[d] = wrapShift(p[d], d);
     }
     return t;
   }

@@ -1149,12 +1149,13 @@ struct CollisionSolverRun::Impl
     return v[0] == 0;
   }
   // Errors of one rank reach all (distributed runs restore the input piece).
-  bool fail(std::string error)
+  bool fail(const std::string& error)
   {
-    if (s.comm_)
-    {
-      error = agreeOnError(*s.comm_, error);
-    }
+    return failAgreed(s.comm_ ? agreeOnError(*s.comm_, error) : error);
+  }
+  // The same for an error the ranks have agreed on already.
+  bool failAgreed(const std::string& error)
+  {
     if (error.empty())
     {
       return false;
@@ -1168,6 +1169,7 @@ struct CollisionSolverRun::Impl
     phase = Phase::Failed;
     return true;
   }
+  std::string misfit(const CollisionSolverState& saved) const;
   double stepShareAfter(int steps) const
   {
     return options.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / options.maxSteps) : 1.0;
@@ -1305,9 +1307,10 @@ bool CollisionSolverRun::start()
   return true;
 }
 
-std::string CollisionSolverRun::checkResume(const CollisionSolverState& saved) const
+// What resume(saved) refuses, on this rank alone (not collective).
+std::string CollisionSolverRun::Impl::misfit(const CollisionSolverState& saved) const
 {
-  const Impl& r = *impl_;
+  const Impl& r = *this;
   std::string error = validateCollisionSolverOptions(r.options);
   const std::size_t nf = r.model.fibers.size();
   const bool serialState = saved.global.size() != nf || saved.home.size() != nf;
@@ -1339,7 +1342,7 @@ std::string CollisionSolverRun::checkResume(const CollisionSolverState& saved) c
   return error;
 }
 
-std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
+std::string CollisionSolverRun::resume(const CollisionSolverState& saved, const ResumeAgreement& agree)
 {
   Impl& r = *impl_;
   r.phase = Impl::Phase::Failed;
@@ -1349,7 +1352,8 @@ std::string CollisionSolverRun::resume(const CollisionSolverState& saved)
   }
   // Agreed over the ranks before any other collective: a rank refusing its state alone must not
   // leave the others waiting in the distribution below.
-  if (r.fail(checkResume(saved)))
+  const std::string misfit = r.misfit(saved);
+  if (agree ? r.failAgreed(agree(misfit)) : r.fail(misfit))
   {
     return r.result.error;
   }

@@ -162,12 +162,14 @@ public:
   /// Checks options and model and prepares the fibers. False: finish() returns the error, the
   /// model is unchanged.
   bool start();
+  /// How the ranks agree on a refused state (collective): given this rank's refusal ("" = its
+  /// state fits), returns what this rank reports ("" = no rank refused).
+  using ResumeAgreement = std::function<std::string(const std::string& localMisfit)>;
   /// Instead of start(): continue from a state saved with the model now in the run (same
   /// options). Returns "" or an error naming what does not match (then finish() returns it).
-  std::string resume(const CollisionSolverState& saved);
-  /// What resume(saved) would refuse, checked on this rank alone ("" = fits; not collective, so
-  /// a distributed caller can name its file in the message before the ranks agree on it).
-  std::string checkResume(const CollisionSolverState& saved) const;
+  /// Distributed, the ranks agree on it before any other collective: by default every rank
+  /// reports the lowest refusing rank's message; `agree` lets a caller name its file first.
+  std::string resume(const CollisionSolverState& saved, const ResumeAgreement& agree = {});
   /// One iteration (§6): shape control, detection, the stop rules, one move. False when the run
   /// has ended (solved, MaxSteps, StallSteps, abort or error): then call finish().
   bool step();

@@ -118,6 +118,7 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
   SlabLayout s;
   s.ranks_ = comm.size();
   s.periodic_ = cell.enabled();
+  s.cell_ = cell;
   Vec3 lo, hi;
   if (s.periodic_)
   {
@@ -255,7 +256,7 @@ int SlabLayout::slabOf(double x) const
 
 double SlabLayout::wrapShift(double x) const
 {
-  return periodic_ ? -(hi_ - lo_) * std::floor((x - lo_) / (hi_ - lo_)) : 0.0;
+  return periodic_ ? cell_.wrapShift(x, axis_) : 0.0;
 }
 
 TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverComm& comm)

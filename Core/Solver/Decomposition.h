@@ -46,7 +46,7 @@ public:
   int testerOf(double x) const;
   /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
   double testerLo(int q) const;
-  /// What wrapping x into the cell adds to it along the axis (0 without a cell).
+  /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
   /// The cell's edge along the axis (0 without a cell).
@@ -57,6 +57,7 @@ private:
   double lo_ = 0.0, hi_ = 0.0;
   int ranks_ = 1;
   bool periodic_ = false;
+  PeriodicCell cell_; // wrapShift: the cell's own rule along axis_
   std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
   double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
   void cutTesterSlabs(const FiberModel& local, SolverComm& comm); // collective

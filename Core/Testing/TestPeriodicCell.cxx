@@ -3,8 +3,11 @@
 // the cell) share no code with the solver: distances come from BruteForceOverlap.h.
 #include "BruteForceOverlap.h"
 #include "PeriodicReference.h"
+#include "SolverTestModels.h"
+#include "ThreadComm.h"
 #include "Model/PeriodicTiling.h"
 #include "Solver/CollisionSolver.h"
+#include "Solver/Decomposition.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
 
@@ -18,6 +21,7 @@ using namespace fiberpli;
 using fiberpli_test::monteCarloFraction;
 using fiberpli_test::periodicCube;
 using fiberpli_test::refPeriodicCount;
+using fiberpli_test::runRanks;
 
 namespace
 {
@@ -375,4 +379,32 @@ TEST(PeriodicDetection, ACellTooSmallForItsLinksIsNeverCountedAsOverlapFree)
   cell.hi = Vec3{ 2.5, 2.5, 2.5 };
   EXPECT_EQ(countCollisions(m, 0.0, 1), 1u); // open space: they cross
   EXPECT_EQ(countCollisions(m, 0.0, 1, cell), std::numeric_limits<std::size_t>::max());
+}
+
+// One wrap rule: the cell's wrap brings any point into [lo, hi) by whole edges, and the
+// distributed solver's slabs (one axis) shift a coordinate by exactly the same bits, so that a
+// link's test region and the pair finder's image of it agree.
+TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
+{
+  PeriodicCell cell;
+  cell.lo = { -5.0, 0.25, 10.0 };
+  cell.hi = { 7.0, 3.25, 10.5 }; // edges 12, 3, 0.5
+  FiberModel model; // straight along x and y: the slabs cut z
+  model.fibers.push_back(fiberpli_test::line({ -5, 0.25, 10.2 }, { 4, 1, 0 }, 4, 0.1, 0));
+  runRanks(2, [&](SolverComm& comm) {
+    const SlabLayout layout = SlabLayout::make(model, cell, comm);
+    ASSERT_EQ(layout.axis(), 2);
+    for (const Vec3 p : { Vec3{ -5, 0.25, 10 }, Vec3{ 7, 3.25, 10.5 }, Vec3{ -41.5, 100.1, -3.3 }, Vec3{ 1e3, -1e-9, 10.49 } })
+    {
+      const Vec3 t = cell.wrapShift(p);
+      for (int d = 0; d < 3; ++d)
+      {
+        const double e = cell.hi[d] - cell.lo[d];
+        EXPECT_EQ(t[d] / e, std::nearbyint(t[d] / e)) << "whole edges, axis " << d;
+        EXPECT_GE(p[d] + t[d], cell.lo[d]) << "axis " << d;
+        EXPECT_LT(p[d] + t[d], cell.hi[d] + 1e-12 * std::fabs(p[d])) << "axis " << d; // up to rounding
+      }
+      EXPECT_EQ(layout.wrapShift(p.z), t.z);
+    }
+  });
 }
