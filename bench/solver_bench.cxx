@@ -1,6 +1,6 @@
 // Collision solver benchmark (bench/README.md): the workloads of bench/README.md on cubes
 // from generateCube (seed 42), timed against the fastPLI reference figures (bench/README.md).
-// Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|dense-b|quick|cube|dense|all]...
+// Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|dense-b|chiasm-fat|quick|cube|dense|all]...
 //        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
 //        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
 //        [--push-boost X] [--end-points perpendicular|free|fixed] (solver knobs)
@@ -9,6 +9,7 @@
 #include "PushOverrides.h"
 #include "CapsuleCells.h"
 #include "Solver/CollisionSolver.h"
+#include "Tissue/BundleGenerator.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <algorithm>
@@ -31,13 +32,44 @@ struct Workload
   int fibers;
   double referenceSeconds; // fastPLI, 1 thread (bench/README.md); cube-b hit the 540 s cap; 0 = unknown
   double edge = 0.0;       // cube edge (µm); 0 = √3·30·√(fibers/1000), the paper's fiber density
+  double chiasmRadius = 0.0; // > 0: not a cube but FiberBundleSource's Chiasm with this fiber radius
 };
 
 const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200, 10.6 },
   { "quick-c", 3, 200, 9.0 }, { "cube-a", 1, 1000, 76.9 }, { "cube-b", 2, 1000, 540.0 },
   { "cube-c", 3, 1000, 491.1 },
   // Twice the quick cube's fibers in its cube: heavily overlapping input (fastPLI: 1 756 steps).
-  { "dense-b", 2, 400, 0.0, 23.24 } };
+  { "dense-b", 2, 400, 0.0, 23.24 },
+  // The examples' chiasm (Examples/bundle_chiasm.py: R 10 µm, fiber spacing 2 µm) with its fibers
+  // fattened from r 0.8 to 1.2 µm, so that every fiber overlaps its six neighbours by 0.4 µm and
+  // the nerves overlap where they cross (fastPLI's 399 steps were measured on its own chiasm model).
+  { "chiasm-fat", 0, 0, 0.0, 0.0, 1.2 } };
+
+// The model of a workload, its central cube's edge (for φ) and its shape control.
+FiberModel workloadModel(const Workload& w, unsigned seed, double& centralEdge, double& minCurvatureRadius)
+{
+  if (w.chiasmRadius > 0.0)
+  {
+    BundleOptions b;
+    b.shape = BundleShape::Chiasm;
+    b.fiberRadius = w.chiasmRadius;
+    b.seed = seed;
+    centralEdge = b.bundleRadius; // a cube inside both nerves where they cross
+    minCurvatureRadius = 0.0;     // as in the examples
+    return generateBundle(b, nullptr);
+  }
+  CubeOptions c;
+  c.populations = w.populations;
+  c.numberOfFibers = w.fibers;
+  c.edgeLength = w.edge > 0.0 ? w.edge : std::sqrt(3.0) * 30.0 * std::sqrt(w.fibers / 1000.0);
+  c.fiberRadius = 0.8;
+  c.segmentLength = 2.0;
+  c.displacement = 0.5;
+  c.seed = seed;
+  centralEdge = c.edgeLength / std::sqrt(3.0);
+  minCurvatureRadius = 4.0;
+  return generateCube(c);
+}
 
 // 1-minute load average of the machine (includes this process): a rough noise indicator.
 double loadAverage()
@@ -144,24 +176,18 @@ int main(int argc, char** argv)
   }
 
   std::printf("| workload | fibers | threads | steps | solve [s] | CPU [s] | ref 1-thread [s] | ratio | load after | peak RSS "
-              "[MB] | solved | collisions left | links | phi (MC) | central cube [um] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "[MB] | solved | collisions left | links | phi (MC) | central cube [um] | input pairs per link |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Workload* w : selected)
   {
     for (int t : threads)
     {
-      CubeOptions c;
-      c.populations = w->populations;
-      c.numberOfFibers = w->fibers;
-      c.edgeLength = w->edge > 0.0 ? w->edge : std::sqrt(3.0) * 30.0 * std::sqrt(w->fibers / 1000.0);
-      c.fiberRadius = 0.8;
-      c.segmentLength = 2.0;
-      c.displacement = 0.5;
-      c.seed = seed;
-      FiberModel m = generateCube(c);
+      double edge = 0.0;
       CollisionSolverOptions o;
+      FiberModel m = workloadModel(*w, seed, edge, o.minCurvatureRadius);
+      // Colliding pairs per link of the input: what PushBoost's gate sees (docs/solver.md §4.1).
+      const double q = static_cast<double>(countCollisions(m, 0.0, t)) / static_cast<double>(std::max<std::size_t>(1, m.numberOfLinks()));
       o.segmentLength = 2.0;
-      o.minCurvatureRadius = 4.0;
       o.maxSteps = maxSteps;
       o.numberOfThreads = t;
       push.apply(o);
@@ -187,12 +213,11 @@ int main(int argc, char** argv)
         std::printf("%s: error %s\n", w->name, r.error.c_str());
         continue;
       }
-      const double edge = c.edgeLength / std::sqrt(3.0);
       const double phi = volumeFraction(m, edge, samples);
-      std::printf("| %s | %d | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f |\n",
-        w->name, w->fibers, t, r.steps, seconds, cpu, w->referenceSeconds,
+      std::printf("| %s | %zu | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f | %.2f |\n",
+        w->name, m.fibers.size(), t, r.steps, seconds, cpu, w->referenceSeconds,
         w->referenceSeconds > 0.0 ? seconds / w->referenceSeconds : 0.0, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
-        m.numberOfLinks(), 100.0 * phi, edge);
+        m.numberOfLinks(), 100.0 * phi, edge, q);
       std::fflush(stdout);
     }
   }

@@ -870,18 +870,23 @@ double initialScale(const CollisionSolverOptions& o)
 
 // Smallest surface gap over pairs closer than probe (µm); probe when no pair is that close.
 // Distributed, the links are gathered again with the probe's reach (the pairs found before no
-// longer index them).
+// longer index them), and each rank examines only the pairs it tests (the minimum over the ranks
+// is the serial one). This search set a solve's peak memory (bench/README.md "Memory per rank"):
+// the step's pair and push lists, no longer needed, are released before it.
 double smallestGap(Solver& s, double probe)
 {
+  std::vector<CapsulePair>().swap(s.pairs_);
+  std::vector<LinkPairPush>().swap(s.push_);
   if (s.comm_)
   {
     s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
-    s.pairs_.clear();
   }
+  const std::vector<char>* lowerOnly = s.comm_ ? &s.held_.tested : nullptr;
   std::vector<CapsulePair> near;
   if (s.periodic())
   {
-    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty();
+    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near,
+      static_cast<std::size_t>(-1), nullptr, lowerOnly).empty();
     // Each rank judges its own links (their widest radius); all must agree, or minGap would
     // differ from the serial one. Called on every rank alike.
     if (s.comm_)
@@ -895,7 +900,19 @@ double smallestGap(Solver& s, double probe)
   }
   else
   {
-    s.grid_.findPairs(s.links_, probe, s.threads_, near);
+    // Widening: a pair found within gap g is nearer than every pair not found, so the first g
+    // (probe/16, probe/4, probe) that finds any pair on any rank gives the same minimum as the
+    // whole probe, and packed or still colliding fibers stop at the first: it stores a fraction
+    // of the ~11 pairs per link within one median radius of the 1000-fiber cubes.
+    for (double g = probe / 16.0;; g = std::min(probe, 4.0 * g))
+    {
+      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), lowerOnly);
+      const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
+      if (any || !(g < probe))
+      {
+        break;
+      }
+    }
   }
   double gap = probe;
   for (const CapsulePair& p : near)
