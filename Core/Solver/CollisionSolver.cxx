@@ -614,17 +614,6 @@ public:
     return std::min(fib.radii[l.k], fib.radii[l.k + 1]);
   }
 
-  // The model index of the fiber with this global index (SIZE_MAX: another rank owns it).
-  std::size_t localFiber(std::uint32_t global) const
-  {
-    if (!comm_)
-    {
-      return global;
-    }
-    const auto it = std::lower_bound(st_.global.begin(), st_.global.end(), static_cast<std::int64_t>(global));
-    return it != st_.global.end() && *it == global ? static_cast<std::size_t>(it - st_.global.begin()) : SIZE_MAX;
-  }
-
   // Largest factor s <= 1 with δ >= s·(ρa + ρb) + g for every colliding pair.
   double overlapFreeScale() const
   {
@@ -720,16 +709,12 @@ public:
       TrafficCount sent;
       // Per sender, the pushes others tested on this rank's links (not kept between steps: the
       // peak memory stays the pair search's).
-      std::vector<std::vector<LinkPairPush>> received;
-      returnPushes(push_, *comm_, sent, received);
+      std::vector<std::vector<ReceivedPush>> received;
+      returnPushes(push_, st_.global, *comm_, sent, received);
       haloBytes_ += sent.bytes;
       const auto own = [](std::uint32_t f) { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
-      forPushesInPairOrder(push_, comm_->rank(), received, [&](const LinkPairPush& p, std::size_t i) {
-        if (i != SIZE_MAX) // tested here: the held links know their fibers
-          apply(p, own(held_.local[pairs_[i].a]), own(held_.local[pairs_[i].b]));
-        else
-          apply(p, localFiber(p.fiberA), localFiber(p.fiberB));
-      });
+      forPushesInPairOrder(push_, pairs_, held_.local, received,
+        [&](const LinkPairPush& p, std::uint32_t fa, std::uint32_t fb) { apply(p, own(fa), own(fb)); });
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;

@@ -308,8 +308,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   return sent;
 }
 
-void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
-  std::vector<std::vector<LinkPairPush>>& received)
+void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
+  SolverComm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
@@ -360,72 +360,44 @@ void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, Tra
     });
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
-  // A side not sent stays zero: its fiber is not this rank's.
+  // A side not sent stays zero: its fiber is not this rank's. A sender's pairs come in pair
+  // order, so their first fibers ascend: one cursor through `global` finds them.
+  const auto localOf = [&global](std::uint32_t fiber) {
+    const auto it = std::lower_bound(global.begin(), global.end(), std::int64_t{ fiber });
+    return it != global.end() && *it == fiber ? static_cast<std::uint32_t>(it - global.begin()) : kNotOwned;
+  };
   received.resize(nr);
   for (std::size_t q = 0; q < nr; ++q)
   {
     received[q].clear();
     Reader rd(in[q]);
+    std::size_t cursor = 0;
     while (!rd.done())
     {
       PushHeader h;
       rd.get(&h);
-      LinkPairPush x;
-      x.fiberA = h.fiberA;
-      x.kA = h.kA;
-      x.fiberB = h.fiberB;
-      x.kB = h.kB;
+      ReceivedPush x;
+      x.push.fiberA = h.fiberA;
+      x.push.kA = h.kA;
+      x.push.fiberB = h.fiberB;
+      x.push.kB = h.kB;
       if (h.sides & 1)
       {
-        rd.get(&x.a0);
-        rd.get(&x.a1);
+        rd.get(&x.push.a0);
+        rd.get(&x.push.a1);
+        while (cursor < global.size() && global[cursor] < h.fiberA)
+          ++cursor;
+        x.localA = cursor < global.size() && global[cursor] == h.fiberA ? static_cast<std::uint32_t>(cursor) : kNotOwned;
       }
       if (h.sides & 2)
       {
-        rd.get(&x.b0);
-        rd.get(&x.b1);
+        rd.get(&x.push.b0);
+        rd.get(&x.push.b1);
+        x.localB = localOf(h.fiberB);
       }
       received[q].push_back(x);
     }
   }
-}
-
-void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, int me,
-  const std::vector<std::vector<LinkPairPush>>& received, const std::function<void(const LinkPairPush&, std::size_t)>& take)
-{
-  // Every tester sends in its pair order, which is the global one (its held links are in global
-  // link order), and each pair comes from one tester only: merging by the next pair of each
-  // stream (this rank's tested pairs on its links, each sender's list) gives pair order.
-  const std::size_t streams = received.size();
-  std::vector<std::size_t> at(streams, 0);
-  const auto mineAt = [&](std::size_t i) { return tested[i].ownerA == me || tested[i].ownerB == me; };
-  const std::size_t self = static_cast<std::size_t>(me);
-  mergeStreams<std::pair<std::uint64_t, std::uint64_t>>(
-    streams,
-    [&](std::size_t q, std::pair<std::uint64_t, std::uint64_t>& key) {
-      const LinkPairPush* x = nullptr;
-      if (q == self)
-      {
-        while (at[q] < tested.size() && !mineAt(at[q]))
-          ++at[q];
-        x = at[q] < tested.size() ? &tested[at[q]] : nullptr;
-      }
-      else
-      {
-        x = at[q] < received[q].size() ? &received[q][at[q]] : nullptr;
-      }
-      if (!x)
-        return false;
-      key = { linkKey(x->fiberA, x->kA), linkKey(x->fiberB, x->kB) };
-      return true;
-    },
-    [&](std::size_t q) {
-      const std::size_t i = at[q]++;
-      if (q == self)
-        take(tested[i], i);
-      else
-        take(received[q][i], SIZE_MAX);
-    });
 }
 
 } // namespace fiberpli

@@ -14,7 +14,7 @@
 #include "Solver/SolverComm.h"
 
 #include <cstdint>
-#include <functional>
+#include <utility>
 #include <vector>
 
 namespace fiberpli
@@ -60,19 +60,62 @@ struct LinkPairPush
   Vec3 a0, a1, b0, b1;
 };
 
+/// A push another tester sent here, with the model indices on this rank of its links' fibers
+/// (kNotOwned: that side was not sent here, its fiber is another rank's).
+struct ReceivedPush
+{
+  LinkPairPush push;
+  std::uint32_t localA = kNotOwned, localB = kNotOwned;
+};
+
 /// Sends every tested pair's pushes to the owners of its two links on other ranks (each owner
 /// its side; both sides once when one rank owns both) and returns in `received` (per sender, the
 /// buffers reused) the pushes other ranks tested on this rank's links, each sender's in pair
-/// order (a side not received is zero). `tested` must be in pair order. Collective; `sent`
-/// counts what went to other ranks.
-void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
-  std::vector<std::vector<LinkPairPush>>& received);
+/// order (a side not received is zero). `tested` must be in pair order; global: this rank's
+/// fibers' global indices, ascending. Collective; `sent` counts what went to other ranks.
+void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
+  SolverComm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received);
 
-/// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4): the
-/// pairs of `tested` with a link of `me` (take(push, its index in tested)) merged with those
-/// received from other ranks (take(push, SIZE_MAX)).
-void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, int me,
-  const std::vector<std::vector<LinkPairPush>>& received,
-  const std::function<void(const LinkPairPush&, std::size_t)>& take);
+/// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):
+/// take(push, fa, fb) with the model indices of its links' fibers (kNotOwned: another rank's).
+/// The pairs this rank tested (tested[i] of pairs[i], held links' HeldLinkInfo::local) with a
+/// link of `me` are merged with those received: every tester sends in pair order, the global
+/// one (its held links are in global link order), and each pair comes from one tester only.
+template <class Take>
+void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::vector<CapsulePair>& pairs,
+  const std::vector<std::uint32_t>& local, const std::vector<std::vector<ReceivedPush>>& received, Take take)
+{
+  const auto key = [](const LinkPairPush& x) {
+    return std::make_pair((std::uint64_t{ x.fiberA } << 32) | x.kA, (std::uint64_t{ x.fiberB } << 32) | x.kB);
+  };
+  std::vector<std::size_t> at(received.size(), 0); // next record of each sender
+  std::size_t i = 0;                                // next pair tested here
+  for (;;)
+  {
+    while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
+      ++i; // neither link is this rank's
+    std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
+    for (std::size_t q = 0; q < received.size(); ++q)
+    {
+      if (at[q] < received[q].size() && (from == SIZE_MAX || key(received[q][at[q]].push) < key(received[from][at[from]].push)))
+        from = q;
+    }
+    const bool mineFirst = i < tested.size() && (from == SIZE_MAX || key(tested[i]) < key(received[from][at[from]].push));
+    if (mineFirst)
+    {
+      take(tested[i], local[pairs[i].a], local[pairs[i].b]);
+      ++i;
+    }
+    else if (from != SIZE_MAX)
+    {
+      const ReceivedPush& r = received[from][at[from]++];
+      take(r.push, r.localA, r.localB);
+    }
+    else
+    {
+      return;
+    }
+  }
+}
 
 } // namespace fiberpli
