@@ -370,6 +370,7 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
   for (std::size_t q = 0; q < nr; ++q)
   {
     received[q].clear();
+    received[q].reserve(in[q].size() / (sizeof(PushHeader) + 2 * sizeof(Vec3))); // at most this many
     Reader rd(in[q]);
     std::size_t cursor = 0;
     while (!rd.done())
