@@ -209,6 +209,9 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
   return d;
 }
 
+// Steps between re-cuts of the distributed solver's tester slabs (a histogram sum each time).
+constexpr int kBalanceSteps = 32;
+
 class Solver
 {
 public:
@@ -224,7 +227,7 @@ public:
   std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
+  std::vector<LinkPairPush> push_; // per pair found here, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
@@ -239,6 +242,7 @@ public:
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
+  std::uint64_t pairWork_ = 0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
@@ -261,6 +265,18 @@ public:
     }
     redistribute(r, dest, *comm_);
     migrationDue_ = false;
+    pairWork_ = 0;
+  }
+  // Every kBalanceSteps steps the tester slabs are re-cut at equal pair work of the steps since
+  // (the link counts they start with balance the links, not their pairs: the 1000-fiber cube's
+  // ranks did 52 / 48 % of the box tests).
+  void balanceTesters()
+  {
+    if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
+    {
+      layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
+      pairWork_ = 0;
+    }
   }
   void resetTraffic()
   {
@@ -305,8 +321,8 @@ public:
     haloBytes_ += sent.bytes;
     ++haloExchanges_;
     std::size_t halo = 0;
-    for (int owner : held_.owner)
-      halo += owner != comm_->rank() ? 1 : 0;
+    for (std::uint32_t f : held_.local)
+      halo += f == kNotOwned ? 1 : 0;
     peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
     peakHaloLinks_ = std::max(peakHaloLinks_, halo);
     peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
@@ -342,8 +358,9 @@ public:
   std::int64_t leavingFibers() const
   {
     std::int64_t n = 0;
+    const int me = comm_->rank();
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
-      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+      n += layout_.owner(model_.fibers[f]) != me ? 1 : 0;
     return n;
   }
 
@@ -578,9 +595,11 @@ public:
     {
       detectError_ =
         periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
+      pairWork_ += periodic_.work();
       return detectError_.empty();
     }
     overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
+    pairWork_ += grid_.work();
     return true;
   }
 
@@ -676,21 +695,11 @@ public:
       out.b0 = -((1.0 - p.t) * n);
       out.b1 = -(p.t * n);
     }
-    if (comm_)
-    {
-      TrafficCount sent;
-      // Only one list is kept between steps: the peak memory is the pair search's, then.
-      std::vector<LinkPairPush> mine;
-      returnPushes(push_, *comm_, sent, mine);
-      push_.swap(mine);
-      haloBytes_ += sent.bytes;
-    }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (const LinkPairPush& p : push_)
-    {
-      // A side whose fiber another rank owns is added there, in the same order.
-      const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
+    // One pair's pushes onto the points of its links that this rank owns (fa, fb: the links'
+    // fibers in the model, SIZE_MAX: another rank's; that side is added there, in the same order).
+    const auto apply = [this, spread](const LinkPairPush& p, std::size_t fa, std::size_t fb) {
       if (fa != SIZE_MAX)
       {
         force_[pointOffset_[fa] + p.kA] += p.a0;
@@ -720,6 +729,27 @@ public:
           add(outerAfter(fb, p.kB), p.b1);
         }
       }
+    };
+    if (!comm_)
+    {
+      for (const LinkPairPush& p : push_)
+        apply(p, p.fiberA, p.fiberB);
+    }
+    else
+    {
+      TrafficCount sent;
+      // Per sender, the pushes others tested on this rank's links (not kept between steps: the
+      // peak memory stays the pair search's).
+      std::vector<std::vector<LinkPairPush>> received;
+      returnPushes(push_, *comm_, sent, received);
+      haloBytes_ += sent.bytes;
+      const auto own = [](std::uint32_t f) { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
+      forPushesInPairOrder(push_, comm_->rank(), received, [&](const LinkPairPush& p, std::size_t i) {
+        if (i != SIZE_MAX) // tested here: the held links know their fibers
+          apply(p, own(held_.local[pairs_[i].a]), own(held_.local[pairs_[i].b]));
+        else
+          apply(p, localFiber(p.fiberA), localFiber(p.fiberB));
+      });
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
@@ -1422,6 +1452,10 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
+  if (s.comm_)
+  {
+    s.balanceTesters();
+  }
   Solver::Counts counts;
   if (!s.detect(&counts, changed))
   {
