@@ -153,24 +153,31 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
     hi[d] = s.periodic_ ? cell.hi[d] : m[3 + d];
     room[d] = s.periodic_ ? hi[d] - lo[d] : std::max(0.0, m[9 + d] + m[6 + d]); // middles wrap in a cell
   }
-  // The axis with room for the most slabs that each own fibers and are wider than a fiber and its
-  // halo: the largest room_a / (e_a + 2·reach), e_a the mean fiber extent along a (a rank's own
-  // fibers reach e_a/2 out of its slab on each side, its held links the pair reach 2·ρmax beyond
-  // each face). In an equal-sided cell that is the axis of the shortest fibers (few reach into
-  // other slabs); in a section (1 cm × 1 cm × 60 µm, fibers in-plane and shorter than the
-  // section) an in-plane axis, not the thickness. Compared as room_a · need_b > room_b · need_a
-  // with need = S + 2·N·reach (the summed extent S of the N fibers; no division by zero), ties to
-  // the lower axis, from exact sums and maxima: every rank picks the same axis. Only axes the
-  // model spans: along a flat model's zero extent every link would be tested on rank 0.
+  // The axis with room for the most whole slabs that each own fibers and are wider than a fiber
+  // and its halo: floor(room_a / (e_a + 2·reach)), e_a the mean fiber extent along a (a rank's
+  // own fibers reach e_a/2 out of its slab on each side, its held links the pair reach 2·ρmax
+  // beyond each face). Equal counts go to the axis of the shortest fibers (least summed extent:
+  // fewest reach into other slabs), then to the lower axis. In an equal-sided cell that is
+  // always the axis of the shortest fibers; in a section (1 cm × 1 cm × 60 µm, fibers in-plane
+  // and shorter than the section) an in-plane axis, not the thickness. Whole slabs, because the
+  // count is an estimate: an open cube's sides differ by where its outermost points lie, which
+  // must not outweigh the fibers' extents. From exact sums and maxima: every rank picks the same
+  // axis. Only axes the model spans: along a flat model's zero extent every link would be tested
+  // on rank 0.
   const double reach = 2.0 * maxOverRanks(comm, largestRadius(local));
-  double need[3];
+  const double n = static_cast<double>(fibers[0]);
+  double slabs[3];
   for (int d = 0; d < 3; ++d)
-    need[d] = extentSum[d] + 2.0 * static_cast<double>(fibers[0]) * reach;
+  {
+    const double need = extentSum[d] + 2.0 * n * reach; // N · (e_a + 2·reach)
+    slabs[d] = need > 0.0 ? std::floor(room[d] * n / need) : 0.0;
+  }
   const auto spans = [&](int d) { return hi[d] > lo[d]; };
   for (int d = 1; d < 3; ++d)
   {
     const int c = s.axis_;
-    if (spans(d) && (!spans(c) || room[d] * need[c] > room[c] * need[d]))
+    const bool better = slabs[d] > slabs[c] || (slabs[d] == slabs[c] && extentSum[d] < extentSum[c]);
+    if (spans(d) && (!spans(c) || better))
       s.axis_ = d;
   }
   s.lo_ = lo[s.axis_];

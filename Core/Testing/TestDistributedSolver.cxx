@@ -635,8 +635,9 @@ TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestFibers)
 
 // A flat strip, 200 × 20 × 8 µm, of in-plane fibers 20 µm long (along x and y, each at one z):
 // the fibers are shortest along z (extent 0), but 8 µm cut into R slabs leaves slabs thinner
-// than a link and its halo. The slabs must cut the strip's long axis x (200 µm / (10 µm mean
-// extent + 2 × 1 µm reach): 16.7 fiber-and-halo widths, against 4 along z and 1.7 along y), and
+// than a link and its halo. The slabs must cut the strip's long axis x (the middles spread over
+// 195 µm, the mean extent is 9.6 µm, the reach 2·ρmax 1 µm: 16 whole fiber-and-halo widths,
+// against 3 along z (7.2 / 2) and 1 along y (18 / 12.4)), and
 // a rank of 2–4 then holds its share of the links plus those near its slab's two faces only
 // (≤ 1.10 × its share; cut along z it held 1.26–2.13 ×).
 TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
