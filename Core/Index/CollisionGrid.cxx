@@ -57,7 +57,7 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
 // Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
 // the result does not depend on which cell found the pair. lowerOnly: see findPairs.
 inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
-  double gap, std::vector<CapsulePair>& out)
+  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
@@ -79,6 +79,7 @@ inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnl
   {
     return;
   }
+  ++exactTests;
   const SegmentClosest c = closestPoints(la.p0, la.p1, lb.p0, lb.p1);
   if (c.distance < la.rho + lb.rho + gap)
   {
@@ -122,6 +123,7 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* lowerOnly)
 {
   pairs.clear();
+  work_ = 0;
   if (links.size() < 2)
   {
     return true;
@@ -384,6 +386,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   // Pairs found so far by all threads, published in chunks; once above maxPairs every thread
   // stops. Each pair is found once, so "stopped" means exactly "more than maxPairs pairs exist".
   std::atomic<std::size_t> found{ 0 };
+  std::atomic<std::uint64_t> work{ 0 };
   std::atomic<bool> overflow{ false };
   constexpr std::size_t kPublishChunk = 4096;
 
@@ -402,6 +405,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     std::vector<std::uint32_t> cand;
     std::vector<std::uint8_t> mask;
     std::size_t published = out.size();
+    std::uint64_t boxTests = 0, exactTests = 0;
     // Adds this thread's new pairs to the shared count; true when the limit is exceeded.
     auto publish = [&](bool force) {
       if (force || out.size() - published >= kPublishChunk)
@@ -429,6 +433,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         return;
       }
       const std::uint32_t len = qe - qb;
+      boxTests += len;
       if (mask.size() < len)
       {
         mask.resize(len);
@@ -457,7 +462,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       }
       for (std::size_t i = 0; i < nc; ++i)
       {
-        testPair(links, lowerOnly, order_[r], order_[cp[i]], minimumGap, out);
+        testPair(links, lowerOnly, order_[r], order_[cp[i]], minimumGap, out, exactTests);
         if ((i & 1023) == 1023 && publish(false))
         {
           return;
@@ -517,12 +522,13 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       }
       const std::uint32_t o = oversize_[static_cast<std::size_t>(oi)];
       const Box& bo = boxes_[o];
+      boxTests += nRegular + static_cast<std::uint64_t>(nOver - oi - 1);
       for (std::size_t r = 0; r < nRegular; ++r)
       {
         const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
         if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
-          testPair(links, lowerOnly, o, order_[r], minimumGap, out);
+          testPair(links, lowerOnly, o, order_[r], minimumGap, out, exactTests);
         }
       }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
@@ -530,12 +536,14 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
         if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
         {
-          testPair(links, lowerOnly, o, p, minimumGap, out);
+          testPair(links, lowerOnly, o, p, minimumGap, out, exactTests);
         }
       }
     }
     publish(true);
+    work += boxTests + kExactTestWork * exactTests;
   }
+  work_ = work.load();
   if (overflow.load())
   {
     for (auto& v : perThread_)

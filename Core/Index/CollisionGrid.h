@@ -83,6 +83,12 @@ public:
     std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1),
     const std::vector<char>* lowerOnly = nullptr);
 
+  /// The work of the last findPairs (broad-phase box tests + kExactTestWork × exact segment
+  /// tests; the same for any thread count): what the distributed solver balances its ranks by.
+  std::uint64_t work() const { return work_; }
+  /// An exact test costs about as much as this many box tests (1000-fiber cube profile).
+  static constexpr std::uint64_t kExactTestWork = 10;
+
   /// Bytes the grid keeps per link (its buffers), for memory estimates.
   static double bytesPerLink();
   /// Bytes one found pair takes while findPairs runs and in its result.
@@ -127,6 +133,7 @@ private:
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t> oversize_; // links queried against all links
   std::vector<std::vector<CapsulePair>> perThread_;
+  std::uint64_t work_ = 0;
 };
 
 } // namespace fiberpli

@@ -29,6 +29,9 @@ public:
     std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr,
     const std::vector<char>* lowerOnly = nullptr);
 
+  /// The work of the last findPairs (CollisionGrid::work of its grid over the images).
+  std::uint64_t work() const { return grid_.work(); }
+
 private:
   CollisionGrid grid_;
   std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts

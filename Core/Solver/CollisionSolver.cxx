@@ -210,6 +210,9 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
   return d;
 }
 
+// Steps between re-cuts of the distributed solver's tester slabs (a histogram sum each time).
+constexpr int kBalanceSteps = 32;
+
 class Solver
 {
 public:
@@ -225,7 +228,7 @@ public:
   std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<LinkPairPush> push_; // per pair; distributed: those of this rank's links, in pair order
+  std::vector<LinkPairPush> push_; // per pair found here, in pair order
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
@@ -240,6 +243,7 @@ public:
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
+  std::uint64_t pairWork_ = 0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
@@ -262,6 +266,18 @@ public:
     }
     redistribute(r, dest, *comm_);
     migrationDue_ = false;
+    pairWork_ = 0;
+  }
+  // Every kBalanceSteps steps the tester slabs are re-cut at equal pair work of the steps since
+  // (the link counts they start with balance the links, not their pairs: the 1000-fiber cube's
+  // ranks did 52 / 48 % of the box tests).
+  void balanceTesters()
+  {
+    if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
+    {
+      layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
+      pairWork_ = 0;
+    }
   }
   void resetTraffic()
   {
@@ -306,8 +322,8 @@ public:
     haloBytes_ += sent.bytes;
     ++haloExchanges_;
     std::size_t halo = 0;
-    for (int owner : held_.owner)
-      halo += owner != comm_->rank() ? 1 : 0;
+    for (std::uint32_t f : held_.local)
+      halo += f == kNotOwned ? 1 : 0;
     peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
     peakHaloLinks_ = std::max(peakHaloLinks_, halo);
     peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
@@ -343,8 +359,9 @@ public:
   std::int64_t leavingFibers() const
   {
     std::int64_t n = 0;
+    const int me = comm_->rank();
     for (std::size_t f = 0; f < model_.fibers.size(); ++f)
-      n += layout_.owner(model_.fibers[f]) != comm_->rank() ? 1 : 0;
+      n += layout_.owner(model_.fibers[f]) != me ? 1 : 0;
     return n;
   }
 
@@ -508,36 +525,36 @@ public:
   // (a property of the model: decided alike for any rank count), and the pairs this process's
   // memory budget affords beside the links it holds (a property of the process: a rank holds at
   // most the serial run's links and pairs, so it refuses only what the serial run would refuse,
-  // and every rank reports the lowest refusing rank's message). Distributed, the packing bound is
-  // known before the search only with boundFirst; else detect() checks the summed count.
+  // and every rank reports the lowest refusing rank's message). The bound is at least 27 pairs per
+  // link and costs an exact sum over all links (~3 ms per 32 000 links, a tenth of a step), so it
+  // is summed only when needed: serially when the pairs exceed 26 per link (then the search
+  // runs again up to it), distributed before the search only with boundFirst (the start, so that
+  // a stack stops early), otherwise detect() checks the summed count afterwards.
   bool findBoundedPairs(bool boundFirst)
   {
     PairBound bound;
     bound.pairs = HUGE_VAL; // not known yet
-    if (!comm_ || boundFirst)
+    if (comm_ && boundFirst)
     {
       bound = wholeModelPairBound();
     }
     const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
     const double affordable = std::max(0.0, budget) / bytesPerPair();
-    const double limit = std::min(bound.pairs, affordable);
-    const auto maxPairs = static_cast<std::size_t>(limit);
-    // Distributed: each pair is tested on one rank only, the one testing its lower link
-    // (LinkExchange.h); the finder skips the others before their exact test.
-    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
+    const double belowBound = comm_ ? HUGE_VAL : 26.0 * static_cast<double>(links_.size());
+    double limit = std::min({ bound.pairs, affordable, belowBound });
     bool overflow = false;
-    if (periodic())
+    if (!searchPairs(limit, overflow))
     {
-      detectError_ =
-        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
-      if (!detectError_.empty())
+      return false;
+    }
+    if (overflow && limit == belowBound && belowBound < affordable)
+    {
+      bound = wholeModelPairBound();
+      limit = std::min(bound.pairs, affordable);
+      if (!searchPairs(limit, overflow))
       {
         return false;
       }
-    }
-    else
-    {
-      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
     }
     if (!overflow)
     {
@@ -548,6 +565,7 @@ public:
       detectError_ = packingMessage(bound);
       return false;
     }
+    const auto maxPairs = static_cast<std::size_t>(limit);
     std::ostringstream msg;
     msg << "more than " << maxPairs << " capsule pairs of " << links_.size() << " links";
     if (comm_)
@@ -564,6 +582,26 @@ public:
     }
     detectError_ = msg.str();
     return false;
+  }
+  // One search of pairs_, stopping above `limit` pairs (overflow). False: the periodic cell is too
+  // small for the links (detectError_ says so). Distributed: each pair is tested on one rank only,
+  // the one testing its lower link (LinkExchange.h); the finder skips the others before their
+  // exact test.
+  bool searchPairs(double limit, bool& overflow)
+  {
+    const auto maxPairs = static_cast<std::size_t>(limit);
+    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
+    overflow = false;
+    if (periodic())
+    {
+      detectError_ =
+        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
+      pairWork_ += periodic_.work();
+      return detectError_.empty();
+    }
+    overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
+    pairWork_ += grid_.work();
+    return true;
   }
 
   // Point index (into force_) of the outer neighbour of the first (before) or second (after)
@@ -659,21 +697,11 @@ public:
       out.b0 = -((1.0 - p.t) * n);
       out.b1 = -(p.t * n);
     }
-    if (comm_)
-    {
-      TrafficCount sent;
-      // Only one list is kept between steps: the peak memory is the pair search's, then.
-      std::vector<LinkPairPush> mine;
-      returnPushes(push_, *comm_, sent, mine);
-      push_.swap(mine);
-      haloBytes_ += sent.bytes;
-    }
     force_.assign(pointOffset_.back(), Vec3{});
     const double spread = o_.pushSpread;
-    for (const LinkPairPush& p : push_)
-    {
-      // A side whose fiber another rank owns is added there, in the same order.
-      const std::size_t fa = localFiber(p.fiberA), fb = localFiber(p.fiberB);
+    // One pair's pushes onto the points of its links that this rank owns (fa, fb: the links'
+    // fibers in the model, SIZE_MAX: another rank's; that side is added there, in the same order).
+    const auto apply = [this, spread](const LinkPairPush& p, std::size_t fa, std::size_t fb) {
       if (fa != SIZE_MAX)
       {
         force_[pointOffset_[fa] + p.kA] += p.a0;
@@ -703,6 +731,27 @@ public:
           add(outerAfter(fb, p.kB), p.b1);
         }
       }
+    };
+    if (!comm_)
+    {
+      for (const LinkPairPush& p : push_)
+        apply(p, p.fiberA, p.fiberB);
+    }
+    else
+    {
+      TrafficCount sent;
+      // Per sender, the pushes others tested on this rank's links (not kept between steps: the
+      // peak memory stays the pair search's).
+      std::vector<std::vector<LinkPairPush>> received;
+      returnPushes(push_, *comm_, sent, received);
+      haloBytes_ += sent.bytes;
+      const auto own = [](std::uint32_t f) { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
+      forPushesInPairOrder(push_, comm_->rank(), received, [&](const LinkPairPush& p, std::size_t i) {
+        if (i != SIZE_MAX) // tested here: the held links know their fibers
+          apply(p, own(held_.local[pairs_[i].a]), own(held_.local[pairs_[i].b]));
+        else
+          apply(p, localFiber(p.fiberA), localFiber(p.fiberB));
+      });
     }
     const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
     const double drag = o_.drag;
@@ -843,18 +892,23 @@ double initialScale(const CollisionSolverOptions& o)
 
 // Smallest surface gap over pairs closer than probe (µm); probe when no pair is that close.
 // Distributed, the links are gathered again with the probe's reach (the pairs found before no
-// longer index them).
+// longer index them), and each rank examines only the pairs it tests (the minimum over the ranks
+// is the serial one). This search set a solve's peak memory (bench/README.md "Memory per rank"):
+// the step's pair and push lists, no longer needed, are released before it.
 double smallestGap(Solver& s, double probe)
 {
+  std::vector<CapsulePair>().swap(s.pairs_);
+  std::vector<LinkPairPush>().swap(s.push_);
   if (s.comm_)
   {
     s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
-    s.pairs_.clear();
   }
+  const std::vector<char>* lowerOnly = s.comm_ ? &s.held_.tested : nullptr;
   std::vector<CapsulePair> near;
   if (s.periodic())
   {
-    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near).empty();
+    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near,
+      static_cast<std::size_t>(-1), nullptr, lowerOnly).empty();
     // Each rank judges its own links (their widest radius); all must agree, or minGap would
     // differ from the serial one. Called on every rank alike.
     if (s.comm_)
@@ -868,7 +922,19 @@ double smallestGap(Solver& s, double probe)
   }
   else
   {
-    s.grid_.findPairs(s.links_, probe, s.threads_, near);
+    // Widening: a pair found within gap g is nearer than every pair not found, so the first g
+    // (probe/16, probe/4, probe) that finds any pair on any rank gives the same minimum as the
+    // whole probe, and packed or still colliding fibers stop at the first: it stores a fraction
+    // of the ~11 pairs per link within one median radius of the 1000-fiber cubes.
+    for (double g = probe / 16.0;; g = std::min(probe, 4.0 * g))
+    {
+      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), lowerOnly);
+      const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
+      if (any || !(g < probe))
+      {
+        break;
+      }
+    }
   }
   double gap = probe;
   for (const CapsulePair& p : near)
@@ -1372,6 +1438,10 @@ bool CollisionSolverRun::step()
   CollisionSolverState& st = s.st_;
   const CollisionSolverOptions& o = r.options;
   const bool changed = s.shapeControl();
+  if (s.comm_)
+  {
+    s.balanceTesters();
+  }
   Solver::Counts counts;
   if (!s.detect(&counts, changed))
   {

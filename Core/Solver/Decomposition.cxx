@@ -169,17 +169,19 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
   }
   s.lo_ = lo[s.axis_];
   s.hi_ = hi[s.axis_];
-  s.cutTesterSlabs(local, comm);
+  s.cutTesterSlabs(local, comm, -1);
   return s;
 }
 
-void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm)
+void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm, std::int64_t work)
 {
   // A histogram of all ranks' link centres (exact integer sums, the same on every rank), cut
   // where its running sum passes k/R of the links: within one bin (1/4096 of [lo, hi]) of the
-  // balanced cut.
+  // balanced cut. With the ranks' pair work (its R entries after the bins), each bin's links
+  // weigh their slab's work per link instead of 1.
   constexpr std::size_t kBins = 4096;
-  std::vector<std::int64_t> count(kBins, 0);
+  const std::size_t nr = static_cast<std::size_t>(ranks_);
+  std::vector<std::int64_t> count(kBins + nr, 0);
   const std::size_t nf = hi_ > lo_ ? local.fibers.size() : 0; // (no copy of the piece)
   for (std::size_t i = 0; i < nf; ++i)
   {
@@ -191,25 +193,57 @@ void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm)
       ++count[bin < 0.0 ? 0 : bin >= kBins ? kBins - 1 : static_cast<std::size_t>(bin)];
     }
   }
+  count[kBins + static_cast<std::size_t>(comm.rank())] = work;
   comm.sum(count);
-  const std::int64_t total = std::accumulate(count.begin(), count.end(), std::int64_t{ 0 });
+  // Weight of one link of bin b: 1, or its slab's work per link (the current cuts lie on bin
+  // edges, so a bin is in one slab). Every rank computes the same doubles in the same order.
+  std::vector<double> weight(kBins, 1.0);
+  if (work >= 0)
+  {
+    std::vector<std::int64_t> links(nr, 0);
+    const auto slabOfBin = [this](std::size_t b) {
+      return static_cast<std::size_t>(std::upper_bound(testCuts_.begin(), testCuts_.end(),
+        static_cast<double>(b) / static_cast<double>(kBins)) - testCuts_.begin());
+    };
+    for (std::size_t b = 0; b < kBins; ++b)
+      links[slabOfBin(b)] += count[b];
+    for (std::size_t q = 0; q < nr; ++q)
+    {
+      if (links[q] > 0 && count[kBins + q] <= 0)
+        return; // a slab with links and no measured work: keep the cuts
+    }
+    for (std::size_t b = 0; b < kBins; ++b)
+    {
+      const std::size_t q = slabOfBin(b);
+      weight[b] = links[q] > 0 ? static_cast<double>(count[kBins + q]) / static_cast<double>(links[q]) : 0.0;
+    }
+  }
+  double total = 0.0;
+  for (std::size_t b = 0; b < kBins; ++b)
+    total += weight[b] * static_cast<double>(count[b]);
   testCuts_.clear();
-  std::int64_t below = 0;
+  double below = 0.0;
   std::size_t b = 0;
   for (int k = 1; k < ranks_; ++k)
   {
     // The first bin edge b with below(b) >= k/R of all (equal widths when there are no links).
-    if (total == 0)
+    if (!(total > 0.0))
     {
       testCuts_.push_back(static_cast<double>(k) / ranks_);
       continue;
     }
     while (b < kBins && below * ranks_ < k * total)
     {
-      below += count[b++];
+      below += weight[b] * static_cast<double>(count[b]);
+      ++b;
     }
     testCuts_.push_back(static_cast<double>(b) / static_cast<double>(kBins));
   }
+}
+
+void SlabLayout::balanceTesterSlabs(const FiberModel& local, std::int64_t work, SolverComm& comm)
+{
+  cutTesterSlabs(local, comm, std::max<std::int64_t>(0, work));
 }
 
 double SlabLayout::fraction(double x) const

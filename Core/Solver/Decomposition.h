@@ -42,8 +42,14 @@ public:
   /// Rank testing the pairs of a link whose centre is at x along the axis (Solver/LinkExchange.h):
   /// slabs cut so that each holds as many link centres of the start model as the others (the pair
   /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
-  /// of it). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
+  /// of it), then re-cut during the run at equal measured work (balanceTesterSlabs). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
   int testerOf(double x) const;
+  /// Collective: re-cuts the tester slabs at equal pair work. work: this rank's pair-search work
+  /// since the last cut (CollisionGrid::work). A slab's current links each weigh its work per link
+  /// (a histogram of all ranks' link centres), so the slabs of costly links get narrower. Who
+  /// tests a pair never changes a result, only the balance; the cuts stay when a slab with links
+  /// reported no work.
+  void balanceTesterSlabs(const FiberModel& local, std::int64_t work, SolverComm& comm);
   /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
   double testerLo(int q) const;
   /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a cell).
@@ -60,7 +66,9 @@ private:
   PeriodicCell cell_; // wrapShift: the cell's own rule along axis_
   std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
   double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
-  void cutTesterSlabs(const FiberModel& local, SolverComm& comm); // collective
+  // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
+  // every rank) or its slab's measured work per link (every rank passes its work >= 0).
+  void cutTesterSlabs(const FiberModel& local, SolverComm& comm, std::int64_t work);
 };
 
 /// What a redistribution moved (this rank's share).

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <tuple>
+#include <utility>
 
 namespace fiberpli
 {
@@ -32,55 +32,43 @@ struct PushHeader
 
 using Reader = ByteReader;
 
-// The all-to-all without copying this rank's own buffer through the communicator.
-std::vector<std::vector<char>> exchangeAll(std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
+// The all-to-all of the buffers for other ranks (this rank's own links and pushes never go
+// into a buffer: out[me] stays empty).
+std::vector<std::vector<char>> exchangeAll(const std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
 {
-  const std::size_t me = static_cast<std::size_t>(comm.rank());
-  std::vector<char> self;
-  self.swap(out[me]);
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
-  std::vector<std::vector<char>> in = comm.exchange(out);
-  in[me] = std::move(self);
-  return in;
+  return comm.exchange(out);
 }
 
-// Merges the senders' streams of records, each already in ascending key order, into one ascending
-// order without a sort: repeatedly the sender whose next record has the least key (keys are unique
-// across senders) hands it to take(sender, record, reader), which may read the record's body.
-// read(reader, record) reads a record's head.
-template <class Record, class Read, class Key, class Take>
-void mergeSenders(const std::vector<std::vector<char>>& in, Read read, Key key, Take take)
+// Merges streams of records, each in ascending key order (keys unique across streams), into one
+// ascending order without a sort: repeatedly the stream whose next record has the least key
+// hands it over. peek(s, key) gives stream s's next key (false: s is done); take(s) consumes
+// that record. Each record is peeked once, then taken.
+template <class Key, class Peek, class Take> void mergeStreams(std::size_t streams, Peek peek, Take take)
 {
-  std::vector<Reader> readers;
-  readers.reserve(in.size());
-  std::vector<Record> next(in.size());
-  std::vector<std::size_t> live; // senders with records left; next[q] is q's next one
-  for (std::size_t q = 0; q < in.size(); ++q)
+  std::vector<Key> next(streams);
+  std::vector<std::size_t> live; // streams with records left
+  for (std::size_t s = 0; s < streams; ++s)
   {
-    readers.emplace_back(in[q]);
-    if (!readers[q].done())
-    {
-      read(readers[q], next[q]);
-      live.push_back(q);
-    }
+    if (peek(s, next[s]))
+      live.push_back(s);
   }
   while (!live.empty())
   {
     std::size_t j = 0;
     for (std::size_t i = 1; i < live.size(); ++i)
-      j = key(next[live[i]]) < key(next[live[j]]) ? i : j;
-    const std::size_t q = live[j];
-    take(q, next[q], readers[q]);
-    if (readers[q].done())
-    {
+      j = next[live[i]] < next[live[j]] ? i : j;
+    const std::size_t s = live[j];
+    take(s);
+    if (!peek(s, next[s]))
       live.erase(live.begin() + static_cast<std::ptrdiff_t>(j));
-    }
-    else
-    {
-      read(readers[q], next[q]);
-    }
   }
+}
+
+std::uint64_t linkKey(std::uint32_t fiber, std::uint32_t k)
+{
+  return (static_cast<std::uint64_t>(fiber) << 32) | k;
 }
 
 // Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
@@ -157,11 +145,15 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
   // Every rank's test region (−lo, hi; none: −∞, −∞) from the links of all owners.
+  // tester: per own link, the rank testing its pairs (kept for the held copy below).
   std::vector<double> region(2 * nr, -HUGE_VAL);
-  for (const CapsuleLink& l : own)
+  std::vector<int> tester(own.size());
+  for (std::size_t i = 0; i < own.size(); ++i)
   {
+    const CapsuleLink& l = own[i];
     const double c = centre(l, axis);
-    const std::size_t q = static_cast<std::size_t>(layout.testerOf(c));
+    tester[i] = layout.testerOf(c);
+    const std::size_t q = static_cast<std::size_t>(tester[i]);
     const double shift = layout.wrapShift(c);
     region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
     region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
@@ -189,9 +181,17 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   }
   grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
   // Per destination, the run of links being collected (first link, length); `open`: those with
-  // a run, `stamp[q] == i`: link i goes to q.
+  // a run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
   std::vector<std::vector<char>> out(nr);
   std::vector<std::size_t> first(nr), count(nr, 0), stamp(nr, SIZE_MAX), open, dests;
+  std::vector<std::pair<std::size_t, std::size_t>> mine;
+  const auto closeRun = [&](std::size_t q) {
+    if (q == static_cast<std::size_t>(me))
+      mine.emplace_back(first[q], count[q]);
+    else
+      writeRun(out[q], own, first[q], count[q], model, global);
+    count[q] = 0;
+  };
   for (std::size_t i = 0; i < own.size(); ++i)
   {
     const CapsuleLink& l = own[i];
@@ -213,8 +213,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
         open[kept++] = q;
         continue;
       }
-      writeRun(out[q], own, first[q], count[q], model, global);
-      count[q] = 0;
+      closeRun(q);
     }
     open.resize(kept);
     for (std::size_t q : dests)
@@ -227,108 +226,206 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     }
   }
   for (std::size_t q : open)
-    writeRun(out[q], own, first[q], count[q], model, global);
+    closeRun(q);
   TrafficCount sent;
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
   // Each sender's runs come in its link order, which is global order (an owner's fibers are in
   // global order), and no two senders send links of one fiber: taking the run with the lowest
-  // first link among the senders' next ones gives global link order without a sort.
+  // first link among the senders' next ones gives global link order without a sort. This
+  // rank's own links are copied from `own` as buildLinks made them (the receivers rebuild the
+  // same bits).
   held.clear();
   info.pointRadius.clear();
   info.owner.clear();
+  info.local.clear();
+  info.tested.clear();
+  std::vector<Reader> readers;
+  readers.reserve(nr);
+  for (const std::vector<char>& b : in)
+    readers.emplace_back(b);
+  std::vector<RunHeader> head(nr);
+  std::size_t nextMine = 0;
   std::vector<Vec3> p;
   std::vector<double> r;
-  mergeSenders<RunHeader>(
-    in, [](Reader& rd, RunHeader& h) { rd.get(&h); },
-    [](const RunHeader& h) { return std::make_tuple(h.fiber, h.k0); },
-    [&](std::size_t q, const RunHeader& h, Reader& rd) {
-      p.resize(h.count + 1);
-      r.resize(h.count + 1);
-      rd.get(p.data(), p.size());
-      rd.get(r.data(), r.size());
-      double arc = h.arc0;
-      for (std::uint32_t k = 0; k < h.count; ++k)
+  const auto peek = [&](std::size_t q, std::uint64_t& key) {
+    if (q == static_cast<std::size_t>(me))
+    {
+      if (nextMine == mine.size())
+        return false;
+      const CapsuleLink& l = own[mine[nextMine].first];
+      key = linkKey(static_cast<std::uint32_t>(global[l.fiber]), l.k);
+      return true;
+    }
+    if (readers[q].done())
+      return false;
+    readers[q].get(&head[q]);
+    key = linkKey(head[q].fiber, head[q].k0);
+    return true;
+  };
+  const auto take = [&](std::size_t q) {
+    if (q == static_cast<std::size_t>(me))
+    {
+      const auto [at, n] = mine[nextMine++];
+      for (std::size_t i = at; i < at + n; ++i)
       {
-        CapsuleLink l;
-        l.p0 = p[k];
-        l.p1 = p[k + 1];
-        l.rho = capsuleRadius(r[k], r[k + 1], scale);
-        l.fiber = h.fiber;
-        l.k = h.k0 + k;
-        l.arc0 = arc;
-        arc += distance(l.p0, l.p1);
-        l.arc1 = arc;
-        l.closedLength = h.closedLength;
+        CapsuleLink l = own[i];
+        const std::vector<double>& radii = model.fibers[l.fiber].radii;
+        info.pointRadius.push_back(std::min(radii[l.k], radii[l.k + 1]));
+        info.owner.push_back(me);
+        info.local.push_back(l.fiber);
+        info.tested.push_back(tester[i] == me ? 1 : 0);
+        l.fiber = static_cast<std::uint32_t>(global[l.fiber]);
         held.push_back(l);
-        info.pointRadius.push_back(std::min(r[k], r[k + 1]));
-        info.owner.push_back(static_cast<int>(q));
       }
-    });
-  info.tested.resize(held.size());
-  for (std::size_t i = 0; i < held.size(); ++i)
-    info.tested[i] = layout.testerOf(centre(held[i], axis)) == me ? 1 : 0;
+      return;
+    }
+    const RunHeader& h = head[q];
+    p.resize(h.count + 1);
+    r.resize(h.count + 1);
+    readers[q].get(p.data(), p.size());
+    readers[q].get(r.data(), r.size());
+    double arc = h.arc0;
+    for (std::uint32_t k = 0; k < h.count; ++k)
+    {
+      CapsuleLink l;
+      l.p0 = p[k];
+      l.p1 = p[k + 1];
+      l.rho = capsuleRadius(r[k], r[k + 1], scale);
+      l.fiber = h.fiber;
+      l.k = h.k0 + k;
+      l.arc0 = arc;
+      arc += distance(l.p0, l.p1);
+      l.arc1 = arc;
+      l.closedLength = h.closedLength;
+      held.push_back(l);
+      info.pointRadius.push_back(std::min(r[k], r[k + 1]));
+      info.owner.push_back(static_cast<int>(q));
+      info.local.push_back(kNotOwned);
+      info.tested.push_back(layout.testerOf(centre(l, axis)) == me ? 1 : 0);
+    }
+  };
+  mergeStreams<std::uint64_t>(nr, peek, take);
   return sent;
 }
 
 void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
-  std::vector<LinkPairPush>& mine)
+  std::vector<std::vector<LinkPairPush>>& received)
 {
-  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
-  const auto write = [&out](const LinkPairPush& p, int to, std::uint32_t sides) {
-    std::vector<char>& b = out[static_cast<std::size_t>(to)];
-    const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
-    appendBytes(b, &h, 1);
-    if (sides & 1)
-    {
-      appendBytes(b, &p.a0, 1);
-      appendBytes(b, &p.a1, 1);
-    }
-    if (sides & 2)
-    {
-      appendBytes(b, &p.b0, 1);
-      appendBytes(b, &p.b1, 1);
-    }
+  const std::size_t nr = static_cast<std::size_t>(comm.size());
+  const int me = comm.rank();
+  // Sizes first, so that every buffer is written once into its final place.
+  std::vector<std::size_t> size(nr, 0);
+  const auto bytes = [](std::uint32_t sides) {
+    return sizeof(PushHeader) + ((sides & 1) ? 2 * sizeof(Vec3) : 0) + ((sides & 2) ? 2 * sizeof(Vec3) : 0);
   };
-  for (const LinkPairPush& p : tested)
-  {
+  const auto route = [me](const LinkPairPush& p, auto send) {
     if (p.ownerA == p.ownerB)
     {
-      write(p, p.ownerA, 3);
+      if (p.ownerA != me)
+        send(p.ownerA, 3u);
     }
     else // each owner gets its side only
     {
-      write(p, p.ownerA, 1);
-      write(p, p.ownerB, 2);
+      if (p.ownerA != me)
+        send(p.ownerA, 1u);
+      if (p.ownerB != me)
+        send(p.ownerB, 2u);
     }
+  };
+  for (const LinkPairPush& p : tested)
+    route(p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
+  std::vector<std::vector<char>> out(nr);
+  for (std::size_t q = 0; q < nr; ++q)
+    out[q].resize(size[q]);
+  std::fill(size.begin(), size.end(), 0); // now: bytes written
+  for (const LinkPairPush& p : tested)
+  {
+    route(p, [&](int to, std::uint32_t sides) {
+      char* at = out[static_cast<std::size_t>(to)].data() + size[static_cast<std::size_t>(to)];
+      const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
+      std::memcpy(at, &h, sizeof h);
+      at += sizeof h;
+      if (sides & 1)
+      {
+        std::memcpy(at, &p.a0, sizeof(Vec3));
+        std::memcpy(at + sizeof(Vec3), &p.a1, sizeof(Vec3));
+        at += 2 * sizeof(Vec3);
+      }
+      if (sides & 2)
+      {
+        std::memcpy(at, &p.b0, sizeof(Vec3));
+        std::memcpy(at + sizeof(Vec3), &p.b1, sizeof(Vec3));
+      }
+      size[static_cast<std::size_t>(to)] += bytes(sides);
+    });
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
   // A side not sent stays zero: its fiber is not this rank's.
-  const auto read = [](Reader& rd, LinkPairPush& p) {
-    PushHeader h;
-    rd.get(&h);
-    p = LinkPairPush{};
-    p.fiberA = h.fiberA;
-    p.kA = h.kA;
-    p.fiberB = h.fiberB;
-    p.kB = h.kB;
-    if (h.sides & 1)
+  received.resize(nr);
+  for (std::size_t q = 0; q < nr; ++q)
+  {
+    received[q].clear();
+    Reader rd(in[q]);
+    while (!rd.done())
     {
-      rd.get(&p.a0);
-      rd.get(&p.a1);
+      PushHeader h;
+      rd.get(&h);
+      LinkPairPush x;
+      x.fiberA = h.fiberA;
+      x.kA = h.kA;
+      x.fiberB = h.fiberB;
+      x.kB = h.kB;
+      if (h.sides & 1)
+      {
+        rd.get(&x.a0);
+        rd.get(&x.a1);
+      }
+      if (h.sides & 2)
+      {
+        rd.get(&x.b0);
+        rd.get(&x.b1);
+      }
+      received[q].push_back(x);
     }
-    if (h.sides & 2)
-    {
-      rd.get(&p.b0);
-      rd.get(&p.b1);
-    }
-  };
+  }
+}
+
+void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, int me,
+  const std::vector<std::vector<LinkPairPush>>& received, const std::function<void(const LinkPairPush&, std::size_t)>& take)
+{
   // Every tester sends in its pair order, which is the global one (its held links are in global
-  // link order), and each pair comes from one tester only: merging the senders' lists by their
-  // next pair gives pair order without a sort.
-  mine.clear();
-  mergeSenders<LinkPairPush>(
-    in, read, [](const LinkPairPush& x) { return std::make_tuple(x.fiberA, x.kA, x.fiberB, x.kB); },
-    [&mine](std::size_t, const LinkPairPush& x, Reader&) { mine.push_back(x); });
+  // link order), and each pair comes from one tester only: merging by the next pair of each
+  // stream (this rank's tested pairs on its links, each sender's list) gives pair order.
+  const std::size_t streams = received.size();
+  std::vector<std::size_t> at(streams, 0);
+  const auto mineAt = [&](std::size_t i) { return tested[i].ownerA == me || tested[i].ownerB == me; };
+  const std::size_t self = static_cast<std::size_t>(me);
+  mergeStreams<std::pair<std::uint64_t, std::uint64_t>>(
+    streams,
+    [&](std::size_t q, std::pair<std::uint64_t, std::uint64_t>& key) {
+      const LinkPairPush* x = nullptr;
+      if (q == self)
+      {
+        while (at[q] < tested.size() && !mineAt(at[q]))
+          ++at[q];
+        x = at[q] < tested.size() ? &tested[at[q]] : nullptr;
+      }
+      else
+      {
+        x = at[q] < received[q].size() ? &received[q][at[q]] : nullptr;
+      }
+      if (!x)
+        return false;
+      key = { linkKey(x->fiberA, x->kA), linkKey(x->fiberB, x->kB) };
+      return true;
+    },
+    [&](std::size_t q) {
+      const std::size_t i = at[q]++;
+      if (q == self)
+        take(tested[i], i);
+      else
+        take(received[q][i], SIZE_MAX);
+    });
 }
 
 } // namespace fiberpli

@@ -2,7 +2,7 @@
 /// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
 /// each owner sends each of its links to every rank whose test region comes within reach of it.
 /// A pair is tested by exactly one rank, the one whose tester slab (SlabLayout::testerOf: slabs of
-/// equal link counts) holds the centre of its lower link (in global link order), which holds every
+/// equal pair work) holds the centre of its lower link (in global link order), which holds every
 /// partner of such a link. It sends the pair's pushes
 /// back to the owners of the two links, and they add them in pair order, as the serial solver
 /// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
@@ -14,16 +14,21 @@
 #include "Solver/SolverComm.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace fiberpli
 {
+
+/// HeldLinkInfo::local of a link whose fiber another rank owns.
+constexpr std::uint32_t kNotOwned = UINT32_MAX;
 
 /// What a rank knows of each link it holds, besides its capsule.
 struct HeldLinkInfo
 {
   std::vector<double> pointRadius; ///< the smaller radius of the link's two points (unscaled)
   std::vector<int> owner;          ///< the rank owning the link's fiber
+  std::vector<std::uint32_t> local; ///< the fiber's index in this rank's model, or kNotOwned
   std::vector<char> tested;        ///< 1: this rank tests the pairs whose lower link this is
 };
 
@@ -36,7 +41,8 @@ double capsuleRadius(double r0, double r1, double scale);
 /// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
 /// own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
 /// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius scale they were built with. Consecutive links of a fiber
-/// travel as one run of points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber =
+/// travel as one run of points (about 32 bytes a link); the links a rank keeps of its own are
+/// copied, not serialised. Returns in `held` (CapsuleLink::fiber =
 /// global fiber index, in global link order, merged from the senders' runs; the buffers' capacity
 /// is kept) and `info` what this rank receives: with reach at
 /// least 2·ρmax + gap every colliding partner of a link tested here is held here. Collective (a
@@ -54,11 +60,19 @@ struct LinkPairPush
   Vec3 a0, a1, b0, b1;
 };
 
-/// Sends every tested pair's pushes to the owners of its two links (each owner its side; both
-/// sides once when one rank owns both) and returns in `mine` (its buffer reused) those this rank
-/// receives, in pair order (a side not received is zero). `tested` must be in pair order.
-/// Collective; `sent` counts what went to other ranks.
+/// Sends every tested pair's pushes to the owners of its two links on other ranks (each owner
+/// its side; both sides once when one rank owns both) and returns in `received` (per sender, the
+/// buffers reused) the pushes other ranks tested on this rank's links, each sender's in pair
+/// order (a side not received is zero). `tested` must be in pair order. Collective; `sent`
+/// counts what went to other ranks.
 void returnPushes(const std::vector<LinkPairPush>& tested, SolverComm& comm, TrafficCount& sent,
-  std::vector<LinkPairPush>& mine);
+  std::vector<std::vector<LinkPairPush>>& received);
+
+/// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4): the
+/// pairs of `tested` with a link of `me` (take(push, its index in tested)) merged with those
+/// received from other ranks (take(push, SIZE_MAX)).
+void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, int me,
+  const std::vector<std::vector<LinkPairPush>>& received,
+  const std::function<void(const LinkPairPush&, std::size_t)>& take);
 
 } // namespace fiberpli

@@ -829,3 +829,29 @@ TEST(CollisionSolver, PushBoostOutOfRangeIsRefused)
     EXPECT_NE(validateCollisionSolverOptions(o).find("PushBoost"), std::string::npos) << bad;
   }
 }
+
+// min_gap (§9) is the smallest surface gap of any two capsules, looked for up to one median
+// radius (0.8 µm here): parallel straight fibers of radius 0.8 whose axes are 1.6 + g apart, with
+// the smallest g at each stage of the widening search (0.05, 0.2, 0.8 µm) and beyond the probe.
+TEST(CollisionSolver, MinGapIsTheSmallestSurfaceGapUpToTheProbe)
+{
+  for (const std::vector<double>& gaps : { std::vector<double>{ 0.5, 0.03, 0.7 }, std::vector<double>{ 0.5, 0.1 },
+         std::vector<double>{ 0.6, 0.5 }, std::vector<double>{ 1.0, 2.0 } })
+  {
+    FiberModel m;
+    double y = 0.0;
+    m.fibers.push_back(line({ 0, y, 0 }, { 2, 0, 0 }, 8, 0.8, 0));
+    for (double g : gaps)
+    {
+      y += 1.6 + g;
+      m.fibers.push_back(line({ 0, y, 0 }, { 2, 0, 0 }, 8, 0.8, static_cast<std::int64_t>(m.fibers.size())));
+    }
+    CollisionSolverOptions o;
+    o.maxSteps = 0;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    ASSERT_EQ(r.error, "");
+    EXPECT_EQ(r.minGapProbe, 0.8);
+    const double smallest = *std::min_element(gaps.begin(), gaps.end());
+    EXPECT_NEAR(r.minGap, std::min(smallest, 0.8), 1e-12) << "smallest gap " << smallest;
+  }
+}

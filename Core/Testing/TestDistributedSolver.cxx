@@ -347,6 +347,38 @@ TEST(DistributedSolver, TesterSlabsHoldEqualLinkCounts)
   }
 }
 
+TEST(DistributedSolver, TesterSlabsRecutAtEqualWork)
+{
+  // 40 fibers along y at x = 0, 0.5, …, 19.5, 10 links each, all centres at the fiber's x: the
+  // start cut gives each of 2 ranks 20 fibers. When rank 0 reports 3× the work of rank 1 its
+  // links weigh 3000/200 = 15 against 5: half of the total 4000 is passed after 14 of its fibers
+  // (2100; 13 give 1950). The other way round, rank 0's 20 fibers give 1000 and 7 of rank 1's
+  // (1050) pass the half: 27. Equal work or a rank without work keeps the cut.
+  FiberModel m;
+  for (int i = 0; i < 40; ++i)
+    m.fibers.push_back(line({ 0.5 * i, 0.0, 0.0 }, { 0, 1.0, 0 }, 11, 0.3, i));
+  const auto testedByRank0 = [&](std::int64_t work0, std::int64_t work1) {
+    std::vector<std::vector<int>> counts(2);
+    runRanks(2, [&](SolverComm& comm) {
+      FiberModel piece;
+      for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += 2)
+        piece.fibers.push_back(m.fibers[f]);
+      SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+      layout.balanceTesterSlabs(piece, comm.rank() == 0 ? work0 : work1, comm);
+      int n = 0;
+      for (const Fiber& f : m.fibers)
+        n += layout.testerOf(f.points[0].x) == 0 ? 1 : 0;
+      counts[static_cast<std::size_t>(comm.rank())].push_back(n);
+    });
+    EXPECT_EQ(counts[0], counts[1]) << "the ranks cut differently";
+    return counts[0].at(0);
+  };
+  EXPECT_EQ(testedByRank0(1000, 1000), 20);
+  EXPECT_EQ(testedByRank0(3000, 1000), 14);
+  EXPECT_EQ(testedByRank0(1000, 3000), 27);
+  EXPECT_EQ(testedByRank0(0, 1000), 20);
+}
+
 TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
 {
   FiberModel m = paperCube(1, 30, 2);
