@@ -5,6 +5,7 @@
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
 #include "Solver/PairBound.h"
+#include "Solver/PushBoost.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -681,7 +682,8 @@ public:
       const CapsuleLink& lb = links_[p.b];
       const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
       const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
-      const double sigma = st_.pushScale * std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
+      const double sigma =
+        boostedPush(std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap), st_.pushScale, overlap);
       const Vec3 n = sigma * p.direction;
       LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
       out.fiberA = la.fiber;
@@ -1133,22 +1135,6 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
 
 namespace
 {
-// [ours] Push boost (option doc, docs/solver.md §4.1): colliding pairs per link at the first
-// detection from which pushes grow, and from which they get the full PushBoost.
-constexpr double kCrowdedPairsPerLink = 6.0;
-constexpr double kFullBoostPairsPerLink = 9.0;
-
-double pushScaleFor(std::size_t pairs, std::size_t links, double pushBoost)
-{
-  if (links == 0)
-  {
-    return 1.0;
-  }
-  const double q = static_cast<double>(pairs) / static_cast<double>(links);
-  const double ramp = (q - kCrowdedPairsPerLink) / (kFullBoostPairsPerLink - kCrowdedPairsPerLink);
-  return 1.0 + (pushBoost - 1.0) * std::min(1.0, std::max(0.0, ramp));
-}
-
 // [ours] Radius growth per step while the deepest overlap is below 5 % of the median radius, and
 // the move steps without growth after which growth gives up.
 constexpr double kGrowth = 0.002;
