@@ -112,10 +112,10 @@ public:
   ///@{
   /**
    * Push boost for heavily overlapping input, 1 to 4 (1 = off): when the first detection finds
-   * more than 6 colliding pairs per link, pushes and the move cap grow for the whole run (2 gives
-   * fastPLI's push and cap). About half the steps on such input but looser packings
-   * (docs/solver.md §4.1); input like the paper's cube is solved exactly as without it.
-   * Default is 1.
+   * more than 6 colliding pairs per link, pushes and the move cap grow for the whole run, a
+   * pair's push up to half its overlap (docs/solver.md §4.1). About half the steps on such input
+   * at the same density; input like the paper's cube is solved exactly as without it.
+   * Default is 3.
    */
   vtkSetMacro(PushBoost, double);
   vtkGetMacro(PushBoost, double);
@@ -204,7 +204,7 @@ private:
   double MinimumGap = 0.0;
   int NumberOfThreads = 0;
   double InitialRadiusScale = 0.0;
-  double PushBoost = 1.0;
+  double PushBoost = 3.0;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
   int MaximumSnapshots = 100;

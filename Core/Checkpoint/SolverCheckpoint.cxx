@@ -21,7 +21,7 @@ namespace
 // input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
 // warnings, then the FNV-1a checksum of everything before it.
 const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
-constexpr std::uint32_t kVersion = 2; // 2: PushBoost and the push scale
+constexpr std::uint32_t kVersion = 3; // 2: PushBoost and the push scale; 3: its pair cap (another push rule)
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
 

@@ -5,6 +5,7 @@
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
 #include "Solver/PairBound.h"
+#include "Solver/PushBoost.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
 
@@ -524,38 +525,37 @@ public:
   // (a property of the model: decided alike for any rank count), and the pairs this process's
   // memory budget affords beside the links it holds (a property of the process: a rank holds at
   // most the serial run's links and pairs, so it refuses only what the serial run would refuse,
-  // and every rank reports the lowest refusing rank's message). Distributed, the packing bound is
-  // known before the search only with boundFirst; else detect() checks the summed count.
+  // and every rank reports the lowest refusing rank's message). The bound is at least 27 pairs per
+  // link and costs an exact sum over all links (~3 ms per 32 000 links, a tenth of a step), so it
+  // is summed only when needed: serially when the pairs exceed 26 per link (then the search
+  // runs again up to it), distributed before the search only with boundFirst (the start, so that
+  // a stack stops early), otherwise detect() checks the summed count afterwards.
   bool findBoundedPairs(bool boundFirst)
   {
     PairBound bound;
     bound.pairs = HUGE_VAL; // not known yet
-    if (!comm_ || boundFirst)
+    if (comm_ && boundFirst)
     {
       bound = wholeModelPairBound();
     }
     const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
     const double affordable = std::max(0.0, budget) / bytesPerPair();
-    const double limit = std::min(bound.pairs, affordable);
-    const auto maxPairs = static_cast<std::size_t>(limit);
-    // Distributed: each pair is tested on one rank only, the one testing its lower link
-    // (LinkExchange.h); the finder skips the others before their exact test.
-    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
+    const double belowBound = comm_ ? HUGE_VAL : 26.0 * static_cast<double>(links_.size());
+    double limit = std::min({ bound.pairs, affordable, belowBound });
     bool overflow = false;
-    if (periodic())
+    if (!searchPairs(limit, overflow))
     {
-      detectError_ =
-        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
-      if (!detectError_.empty())
+      return false;
+    }
+    if (overflow && limit == belowBound && belowBound < affordable)
+    {
+      bound = wholeModelPairBound();
+      limit = std::min(bound.pairs, affordable);
+      if (!searchPairs(limit, overflow))
       {
         return false;
       }
     }
-    else
-    {
-      overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
-    }
-    pairWork_ += periodic() ? periodic_.work() : grid_.work();
     if (!overflow)
     {
       return true;
@@ -565,6 +565,7 @@ public:
       detectError_ = packingMessage(bound);
       return false;
     }
+    const auto maxPairs = static_cast<std::size_t>(limit);
     std::ostringstream msg;
     msg << "more than " << maxPairs << " capsule pairs of " << links_.size() << " links";
     if (comm_)
@@ -581,6 +582,26 @@ public:
     }
     detectError_ = msg.str();
     return false;
+  }
+  // One search of pairs_, stopping above `limit` pairs (overflow). False: the periodic cell is too
+  // small for the links (detectError_ says so). Distributed: each pair is tested on one rank only,
+  // the one testing its lower link (LinkExchange.h); the finder skips the others before their
+  // exact test.
+  bool searchPairs(double limit, bool& overflow)
+  {
+    const auto maxPairs = static_cast<std::size_t>(limit);
+    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
+    overflow = false;
+    if (periodic())
+    {
+      detectError_ =
+        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
+      pairWork_ += periodic_.work();
+      return detectError_.empty();
+    }
+    overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
+    pairWork_ += grid_.work();
+    return true;
   }
 
   // Point index (into force_) of the outer neighbour of the first (before) or second (after)
@@ -650,7 +671,8 @@ public:
       const CapsuleLink& lb = links_[p.b];
       const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
       const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
-      const double sigma = st_.pushScale * std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap);
+      const double sigma =
+        boostedPush(std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap), st_.pushScale, overlap);
       const Vec3 n = sigma * p.direction;
       LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
       out.fiberA = la.fiber;
@@ -1098,22 +1120,6 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
 
 namespace
 {
-// [ours] Push boost (option doc, docs/solver.md §4.1): colliding pairs per link at the first
-// detection from which pushes grow, and from which they get the full PushBoost.
-constexpr double kCrowdedPairsPerLink = 6.0;
-constexpr double kFullBoostPairsPerLink = 9.0;
-
-double pushScaleFor(std::size_t pairs, std::size_t links, double pushBoost)
-{
-  if (links == 0)
-  {
-    return 1.0;
-  }
-  const double q = static_cast<double>(pairs) / static_cast<double>(links);
-  const double ramp = (q - kCrowdedPairsPerLink) / (kFullBoostPairsPerLink - kCrowdedPairsPerLink);
-  return 1.0 + (pushBoost - 1.0) * std::min(1.0, std::max(0.0, ramp));
-}
-
 // [ours] Radius growth per step while the deepest overlap is below 5 % of the median radius, and
 // the move steps without growth after which growth gives up.
 constexpr double kGrowth = 0.002;

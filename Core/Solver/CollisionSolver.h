@@ -49,10 +49,11 @@ struct CollisionSolverOptions
   /// [ours] Push boost for heavily overlapping input (docs/solver.md §4.1): when the first
   /// detection finds q > 6 colliding pairs per link (the paper's cube has 4–5; q ≈ 6 × the
   /// fibers' nominal volume fraction), pushes are multiplied by b = 1 + (PushBoost − 1)·min(1,
-  /// (q − 6)/3) for the whole run, the move cap and the curvature steps by 1 + 0.6·(b − 1)
-  /// (b = 2: fastPLI's push and cap). About half the steps on such input, but looser packings
-  /// (bench/README.md), so off by default. 1 = off. Default 1.
-  double pushBoost = 1.0;
+  /// (q − 6)/3) for the whole run, but a pair's push never exceeds half its overlap (nor falls
+  /// below the unboosted push), and the move cap and the curvature steps grow by 1 + 0.6·(b − 1).
+  /// On the 400-fiber two-population cube: half the steps at the same density over 20 inputs
+  /// (bench/README.md). Input with q <= 6 is solved bit for bit as with 1 = off. Default 3.
+  double pushBoost = 3.0;
   /// Velocity retention per step in [0, 1): 0 = no memory (paper, fastPLI default). Default 0.
   double drag = 0.0;
   /// Threads for detection, pushes and shape control; 0 = all cores. Default 0.

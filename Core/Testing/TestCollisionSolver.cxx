@@ -755,8 +755,8 @@ TEST(CollisionSolver, ResumedRunEqualsUninterruptedRun)
   EXPECT_FALSE(wrong.finish().error.empty());
 }
 
-// PushBoost (docs/solver.md §4.1): input at the paper's density (4–5 colliding pairs per link at
-// the first detection) is solved exactly as without the boost.
+// PushBoost (docs/solver.md §4.1, default 3): input at the paper's density (4–5 colliding pairs
+// per link at the first detection) is solved exactly as without the boost (1 = off).
 TEST(CollisionSolver, PushBoostLeavesPaperDensityInputUnchanged)
 {
   const FiberModel input = paperCube(2, 60, 7);
@@ -767,6 +767,7 @@ TEST(CollisionSolver, PushBoostLeavesPaperDensityInputUnchanged)
   o.minCurvatureRadius = 4.0;
   o.maxSteps = 60;
   o.numberOfThreads = 1;
+  o.pushBoost = 1.0;
   const CollisionSolverResult a = solveCollisions(plain, o);
   o.pushBoost = 3.0;
   CollisionSolverRun run(boosted, o);
@@ -783,8 +784,8 @@ TEST(CollisionSolver, PushBoostLeavesPaperDensityInputUnchanged)
 }
 
 // A bundle of 9 fibers almost on top of each other (every link collides with ~5 links of each of
-// the 8 others: far above 9 pairs per link) gets the full boost: pushes × PushBoost and the move
-// cap × (1 + 0.6·(PushBoost − 1)). The outer fibers are pushed far beyond the cap, so the
+// the 8 others: far above 9 pairs per link) gets the full boost: pushes × PushBoost (far below
+// half their overlaps of almost two radii) and the move cap × (1 + 0.6·(PushBoost − 1)). The outer fibers are pushed far beyond the cap, so the
 // largest move of the first step is exactly the (boosted) cap.
 TEST(CollisionSolver, PushBoostRaisesPushAndCapOnCrowdedInput)
 {

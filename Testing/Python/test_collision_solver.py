@@ -30,33 +30,35 @@ for c in range(30):
     check(out.GetCellData().GetArray("fiber_id").GetValue(c) == inp.GetCellData().GetArray("fiber_id").GetValue(c),
           "fiber order changed")
 
-# PushBoost: input at the paper's density (< 6 colliding pairs per link) is solved exactly as
-# without it; heavily overlapping input is boosted and still solved; a bad value names the property.
+# PushBoost (default 3): input at the paper's density (< 6 colliding pairs per link) is solved
+# exactly as without it (1 = off); heavily overlapping input is boosted and still solved; a bad
+# value names the property.
 def points(proxy):
     data = servermanager.Fetch(proxy).GetPoints().GetData()
     return [data.GetValue(i) for i in range(data.GetNumberOfValues())]
 
 
+check(solver.PushBoost == 3.0, "PushBoost default must be 3, is %g" % solver.PushBoost)
 plain = points(solver)
-solver.PushBoost = 2.0
+solver.PushBoost = 1.0
 solver.UpdatePipeline()
 check(points(solver) == plain, "PushBoost changed a paper-density solve")
 crowded = FiberCubeSource(Populations=2, NumberOfFibers=60, EdgeLength=9.0, FiberRadius=0.8,
                           SegmentLength=2.0, Displacement=0.5, Seed=3)
 runs = {}
-for boost in (1.0, 2.0):
+for boost in (1.0, 3.0):
     crowd = FiberCollisionSolver(Input=crowded, SegmentLength=2.0, MinCurvatureRadius=4.0, MaxSteps=20000,
                                  NumberOfThreads=2, PushBoost=boost)
     crowd.UpdatePipeline()
     check(field(crowd, "solved") == 1 and field(crowd, "collisions") == 0, "crowded cube not solved (%g)" % boost)
     runs[boost] = (field(crowd, "steps"), points(crowd))
-print("crowded cube steps: PushBoost 1 -> %d, 2 -> %d" % (runs[1.0][0], runs[2.0][0]))
-check(runs[1.0][1] != runs[2.0][1], "PushBoost 2 had no effect on heavily overlapping input")
+print("crowded cube steps: PushBoost 1 -> %d, 3 -> %d" % (runs[1.0][0], runs[3.0][0]))
+check(runs[1.0][1] != runs[3.0][1], "PushBoost 3 had no effect on heavily overlapping input")
 catcher = ErrorCatcher(solver)
 solver.PushBoost = 5.0
 solver.UpdatePipeline()
 check("PushBoost" in catcher.text() and "5" in catcher.text(), "error must name PushBoost: %r" % catcher.text())
-solver.PushBoost = 1.0
+solver.PushBoost = 3.0
 solver.UpdatePipeline()
 check(field(solver, "solved") == 1 and points(solver) == plain, "pipeline must recover after a bad PushBoost")
 
