@@ -119,52 +119,65 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
   s.ranks_ = comm.size();
   s.periodic_ = cell.enabled();
   s.cell_ = cell;
-  Vec3 lo, hi;
-  if (s.periodic_)
-  {
-    lo = cell.lo;
-    hi = cell.hi;
-  }
-  else
-  {
-    std::vector<double> m(6, -HUGE_VAL); // −lo, hi per axis
-    Vec3 l, h;
-    if (modelBounds(local, false, l, h))
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        m[d] = -l[d];
-        m[3 + d] = h[d];
-      }
-    }
-    comm.max(m);
-    for (int d = 0; d < 3; ++d)
-    {
-      lo[d] = -m[d];
-      hi[d] = m[3 + d];
-    }
-  }
-  // The axis along which the fibers are shortest (least summed extent, exactly over all ranks):
-  // a fiber reaches other slabs, and so halos, mostly along its length.
-  double reach[3];
+  // Per axis: the fibers' summed extent (exactly over all ranks), the domain [lo, hi] the slabs
+  // cut and the width `room` over which the fibers' middles, which decide the owners, spread.
+  std::vector<std::int64_t> fibers{ 0 }; // with points, on all ranks
+  for (const Fiber& f : local.fibers)
+    fibers[0] += f.points.empty() ? 0 : 1;
+  double extentSum[3];
+  std::vector<double> m(12, -HUGE_VAL); // −lo, hi, −lowest middle, highest middle per axis
   for (int d = 0; d < 3; ++d)
   {
     ExactSum sum;
     for (const Fiber& f : local.fibers)
     {
+      if (f.points.empty())
+        continue;
       double a, b;
       extent(f, d, a, b);
-      if (!f.points.empty())
-        sum.add(b - a);
+      sum.add(b - a);
+      m[d] = std::max(m[d], -a);
+      m[3 + d] = std::max(m[3 + d], b);
+      m[6 + d] = std::max(m[6 + d], -0.5 * (a + b));
+      m[9 + d] = std::max(m[9 + d], 0.5 * (a + b));
     }
-    reach[d] = sum.total(&comm);
+    extentSum[d] = sum.total(&comm);
   }
-  // Only axes the model spans: along a flat model's zero extent every fiber would be on rank 0.
+  comm.sum(fibers);
+  comm.max(m);
+  Vec3 lo, hi;
+  double room[3];
   for (int d = 0; d < 3; ++d)
   {
-    const bool spans = hi[d] > lo[d];
-    const bool current = hi[s.axis_] > lo[s.axis_];
-    if (spans && (!current || reach[d] < reach[s.axis_]))
+    lo[d] = s.periodic_ ? cell.lo[d] : -m[d];
+    hi[d] = s.periodic_ ? cell.hi[d] : m[3 + d];
+    room[d] = s.periodic_ ? hi[d] - lo[d] : std::max(0.0, m[9 + d] + m[6 + d]); // middles wrap in a cell
+  }
+  // The axis with room for the most whole slabs that each own fibers and are wider than a fiber
+  // and its halo: floor(room_a / (e_a + 2·reach)), e_a the mean fiber extent along a (a rank's
+  // own fibers reach e_a/2 out of its slab on each side, its held links the pair reach 2·ρmax
+  // beyond each face). Equal counts go to the axis of the shortest fibers (least summed extent:
+  // fewest reach into other slabs), then to the lower axis. In an equal-sided cell that is
+  // always the axis of the shortest fibers; in a section (1 cm × 1 cm × 60 µm, fibers in-plane
+  // and shorter than the section) an in-plane axis, not the thickness. Whole slabs, because the
+  // count is an estimate: an open cube's sides differ by where its outermost points lie, which
+  // must not outweigh the fibers' extents. From exact sums and maxima: every rank picks the same
+  // axis. Only axes the model spans: along a flat model's zero extent every link would be tested
+  // on rank 0.
+  const double reach = 2.0 * maxOverRanks(comm, largestRadius(local));
+  const double n = static_cast<double>(fibers[0]);
+  double slabs[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    const double need = extentSum[d] + 2.0 * n * reach; // N · (e_a + 2·reach)
+    slabs[d] = need > 0.0 ? std::floor(room[d] * n / need) : 0.0;
+  }
+  const auto spans = [&](int d) { return hi[d] > lo[d]; };
+  for (int d = 1; d < 3; ++d)
+  {
+    const int c = s.axis_;
+    const bool better = slabs[d] > slabs[c] || (slabs[d] == slabs[c] && extentSum[d] < extentSum[c]);
+    if (spans(d) && (!spans(c) || better))
       s.axis_ = d;
   }
   s.lo_ = lo[s.axis_];

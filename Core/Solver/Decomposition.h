@@ -1,6 +1,6 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
 /// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
-/// run, the one along which the fibers are shortest) holds the fiber's reference point, the middle of its extent along that axis (in a
+/// run, the one with room for the most fiber-and-halo widths) holds the fiber's reference point, the middle of its extent along that axis (in a
 /// periodic cell wrapped into the cell). Every rank keeps its owned fibers, in global fiber order;
 /// fibers travel between ranks as byte records through SolverComm::exchange. The pair work goes
 /// by region (links, not fibers: Solver/LinkExchange.h).
@@ -32,8 +32,12 @@ struct RankFibers
 class SlabLayout
 {
 public:
-  /// Collective: slabs along the axis in which all ranks' fibers are shortest (least summed
-  /// extent; ties: the lower axis), cutting the cell, or else the global bounds of all points.
+  /// Collective: slabs along the axis with room for the most whole slabs that each own fibers
+  /// and are wider than a fiber and its halo, floor(room_a / (e_a + 2·reach)) (room_a: the cell's
+  /// edge, or else the width over which the fibers' middles spread; e_a: all ranks' mean fiber
+  /// extent along a; reach: 2·ρmax), equal counts to the axis of least summed fiber extent, then
+  /// the lower axis; cutting the cell, or else the global bounds of all points. In an equal-sided
+  /// cell, the axis of the shortest fibers.
   static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
   /// Rank that owns the fiber (0 for a fiber without points).
   int owner(const Fiber& f) const;

@@ -3,7 +3,8 @@
 // for 1, 2 and 3 ranks × 1 and 2 threads, in an open cube and in a periodic cell (also 6 ranks
 // with slabs thinner than the reach; 4 and 5 ranks with fibers leaving the open cube's start
 // bounds); with ranks whose region is empty, fibers longer than a rank's region, fibers moving
-// between ranks, a flat model, and an error or a stop on one rank only.
+// between ranks, a flat model, a flat strip (cut along its long axis), and an error or a stop on
+// one rank only.
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 
@@ -589,10 +590,108 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
 
 namespace
 {
+// The axis of least summed fiber extent (ties: the lower one), by brute force: the slab axis
+// before the domain's width counted (docs/solver.md §13).
+int shortestFiberAxis(const FiberModel& m)
+{
+  double sum[3] = { 0, 0, 0 };
+  for (const Fiber& f : m.fibers)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      for (const Vec3& p : f.points)
+      {
+        lo = std::min(lo, p[d]);
+        hi = std::max(hi, p[d]);
+      }
+      sum[d] += hi - lo;
+    }
+  }
+  return sum[0] <= sum[1] && sum[0] <= sum[2] ? 0 : sum[1] <= sum[2] ? 1 : 2;
+}
+} // namespace
+
+// In an equal-sided cell the domain's width does not tell the axes apart: the slabs cut the axis
+// along which the fibers are shortest, as before the width counted.
+TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestFibers)
+{
+  for (int pops : { 1, 2, 3 })
+  {
+    for (std::uint64_t seed : { 5u, 6u })
+    {
+      const CubeOptions c = periodicCube(pops, 30.0, 0.3, seed);
+      const FiberModel in = generateCube(c);
+      const int expected = shortestFiberAxis(in);
+      runRanks(2, [&](SolverComm& comm) {
+        FiberModel piece;
+        for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < in.fibers.size(); f += 2)
+          piece.fibers.push_back(in.fibers[f]);
+        EXPECT_EQ(SlabLayout::make(piece, cubeCell(c), comm).axis(), expected) << pops << " populations, seed " << seed;
+      });
+    }
+  }
+}
+
+// A flat strip, 200 × 20 × 8 µm, of in-plane fibers 20 µm long (along x and y, each at one z):
+// the fibers are shortest along z (extent 0), but 8 µm cut into R slabs leaves slabs thinner
+// than a link and its halo. The slabs must cut the strip's long axis x (the middles spread over
+// 195 µm, the mean extent is 9.6 µm, the reach 2·ρmax 1 µm: 16 whole fiber-and-halo widths,
+// against 3 along z (7.2 / 2) and 1 along y (18 / 12.4)), and
+// a rank of 2–4 then holds its share of the links plus those near its slab's two faces only
+// (≤ 1.10 × its share; cut along z it held 1.26–2.13 ×).
+TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
+{
+  FiberModel in;
+  std::int64_t id = 0;
+  for (int i = 0; i < 37; ++i) // along x, 10 links of 2 µm
+    in.fibers.push_back(line({ 5.0 * i, 1.0 + 2.0 * (i % 10), 0.5 + (i % 8) }, { 2.0, 0, 0 }, 11, 0.5, id++));
+  for (int i = 0; i < 40; ++i) // along y, across the strip
+    in.fibers.push_back(line({ 2.5 + 5.0 * i, 0.0, 0.3 + (i % 8) }, { 0, 2.0, 0 }, 11, 0.5, id++));
+  ASSERT_EQ(shortestFiberAxis(in), 2) << "the rule of the shortest fibers would cut the thickness";
+  CollisionSolverOptions o;
+  o.maxSteps = 4;
+  o.segmentLength = -1.0; // keep the input's links, so that brute force over them bounds a rank's
+  o.numberOfThreads = 1;
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  const double links = static_cast<double>(linkCount(in));
+  // How far a held link can lie from its rank's tester slab: a link (2 µm; its centre is in a
+  // test region), the pair reach 2·ρmax and what the points moved (margin included).
+  const double w = 2.0 + 2.0 * 0.5 + 2.0 * o.maxSteps * o.maxDisplacement * 0.5 + 1e-6;
+  for (int ranks : { 2, 3, 4 })
+  {
+    std::vector<double> cuts(static_cast<std::size_t>(ranks) + 1);
+    runRanks(ranks, [&](SolverComm& comm) { // the pieces solveOnRanks gives
+      FiberModel piece;
+      const std::size_t n = in.fibers.size(), r = static_cast<std::size_t>(comm.rank());
+      for (std::size_t f = n * r / ranks; f < n * (r + 1) / ranks; ++f)
+        piece.fibers.push_back(in.fibers[f]);
+      const SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+      EXPECT_EQ(layout.axis(), 0) << ranks << " ranks";
+      if (comm.rank() == 0)
+        for (int q = 0; q <= ranks; ++q)
+          cuts[static_cast<std::size_t>(q)] = layout.testerLo(q);
+    });
+    const std::string what = std::to_string(ranks) + " ranks";
+    const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+    expectSerial(runs, serial, s, what);
+    for (int q = 0; q < ranks; ++q)
+    {
+      const std::size_t held = runs[static_cast<std::size_t>(q)].result.peakHeldLinks;
+      EXPECT_LE(held, linksNear(in, 0, cuts[q], cuts[q + 1], w, 0.0)) << what << ", rank " << q;
+      EXPECT_LT(static_cast<double>(held), 1.15 * links / ranks) << what << ", rank " << q << " of " << links;
+    }
+  }
+}
+
+namespace
+{
 // k copies of a 10-point fiber along x, 1 nm apart in y (no exact copies, so only the pair
 // limit can refuse them): every link collides with 3 links of every other copy, 25 pairs per
 // pair of copies. Then `sparse` fibers along x on a 3 um grid at y >= 5 um, colliding with
-// nothing. The slabs cut y (fibers along x have no extent across it).
+// nothing. The slabs cut y (fibers along x have no extent across y or z, and y is the wider).
 FiberModel stackAndSparseFibers(int k, int sparse)
 {
   FiberModel m;
