@@ -387,6 +387,22 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   // stops. Each pair is found once, so "stopped" means exactly "more than maxPairs pairs exist".
   std::atomic<std::size_t> found{ 0 };
   std::atomic<std::uint64_t> work{ 0 };
+  // lowerOnly: whether a cell holds a link whose pairs are tested here. A row whose link is not
+  // tested finds, against a cell without one, only pairs that are skipped anyway (a pair is tested
+  // by its lower link): it is left out before its box tests, the same pairs result.
+  const auto cellTested = [&](std::int64_t c) { return cellTested_[static_cast<std::size_t>(c)] != 0; };
+  if (lowerOnly)
+  {
+    cellTested_.assign(cellKeys_.size(), 0);
+    for (std::size_t c = 0; c < cellKeys_.size(); ++c)
+    {
+      for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1] && !cellTested_[c]; ++r)
+        cellTested_[c] = lowerOnly[order_[r]] ? 1 : 0;
+    }
+  }
+  const auto skipRow = [&](std::uint32_t r, std::int64_t against) {
+    return lowerOnly && !lowerOnly[order_[r]] && !cellTested(against);
+  };
   std::atomic<bool> overflow{ false };
   constexpr std::size_t kPublishChunk = 4096;
 
@@ -484,7 +500,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
       for (std::uint32_t r = begin; r < end && !publish(false); ++r)
       {
-        scan(r, r + 1, end, cand);
+        if (!skipRow(r, ci))
+          scan(r, r + 1, end, cand);
       }
       for (const auto& off : kForward)
       {
@@ -507,7 +524,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t e2 = cellStart_[cj + 1];
         for (std::uint32_t r = begin; r < end && !publish(false); ++r)
         {
-          scan(r, b2, e2, cand);
+          if (!skipRow(r, static_cast<std::int64_t>(cj)))
+            scan(r, b2, e2, cand);
         }
       }
     }

@@ -132,6 +132,7 @@ private:
   std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t> oversize_; // links queried against all links
+  std::vector<char> cellTested_;        // lowerOnly: per occupied cell, whether a link of it is tested
   std::vector<std::vector<CapsulePair>> perThread_;
   std::uint64_t work_ = 0;
 };
