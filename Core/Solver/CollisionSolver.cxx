@@ -244,6 +244,8 @@ public:
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
   std::uint64_t pairWork_ = 0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
+  std::size_t testerRecuts_ = 0; // balanceTesters calls that moved a cut ...
+  double testerCutMove_ = 0.0;   // ... and the largest move, as a fraction of the axis' span
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
               peakHeldLinks_ = 0;
 
@@ -275,13 +277,25 @@ public:
   {
     if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
     {
+      const SlabLayout before = layout_;
       layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
       pairWork_ = 0;
+      const double span = layout_.testerLo(comm_->size()) - layout_.testerLo(0);
+      double moved = 0.0;
+      for (int q = 1; q < comm_->size(); ++q)
+        moved = std::max(moved, std::abs(layout_.testerLo(q) - before.testerLo(q)));
+      if (moved > 0.0)
+      {
+        ++testerRecuts_;
+        testerCutMove_ = std::max(testerCutMove_, moved / span);
+      }
     }
   }
   void resetTraffic()
   {
     migrations_ = haloExchanges_ = haloBytes_ = peakHaloLinks_ = peakRankPoints_ = peakHeldLinks_ = 0;
+    testerRecuts_ = 0;
+    testerCutMove_ = 0.0;
   }
 
   // Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
@@ -1238,6 +1252,8 @@ struct CollisionSolverRun::Impl
     result.peakHaloLinks = s.peakHaloLinks_;
     result.peakRankPoints = s.peakRankPoints_;
     result.peakHeldLinks = s.peakHeldLinks_;
+    result.testerRecuts = s.testerRecuts_;
+    result.testerCutMove = s.testerCutMove_;
   }
   std::int64_t sumOverRanks(std::int64_t v)
   {

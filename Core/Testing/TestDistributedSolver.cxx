@@ -3,8 +3,8 @@
 // for 1, 2 and 3 ranks × 1 and 2 threads, in an open cube and in a periodic cell (also 6 ranks
 // with slabs thinner than the reach; 4 and 5 ranks with fibers leaving the open cube's start
 // bounds); with ranks whose region is empty, fibers longer than a rank's region, fibers moving
-// between ranks, a flat model, a flat strip (cut along its long axis), and an error or a stop on
-// one rank only.
+// between ranks, a flat model, a flat strip (cut along its long axis), tester slabs re-cut during
+// the run (also across a resume), and an error or a stop on one rank only.
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 
@@ -378,6 +378,116 @@ TEST(DistributedSolver, TesterSlabsRecutAtEqualWork)
   EXPECT_EQ(testedByRank0(3000, 1000), 14);
   EXPECT_EQ(testedByRank0(1000, 3000), 27);
   EXPECT_EQ(testedByRank0(0, 1000), 20);
+}
+
+// A dense cluster beside a sparse one (the same link count at 1/8 of the volume, apart along
+// every axis, so along whichever axis the slabs run): the start cut balances links, so the
+// dense slab's ranks do most of the pair work and the re-cuts every 32 steps must move the
+// cuts. Who tests a pair never changes a result: bit for bit serial over >= 2 re-cuts, and a
+// run resumed at step 40 (its slabs re-cut from link counts, its pair work reset) ends as the
+// uninterrupted one.
+namespace
+{
+FiberModel denseBesideSparse()
+{
+  CubeOptions c;
+  c.numberOfFibers = 60;
+  c.edgeLength = 18.0;
+  c.seed = 11;
+  FiberModel m = generateCube(c);
+  c.edgeLength = 36.0;
+  c.seed = 12;
+  for (Fiber f : generateCube(c).fibers)
+  {
+    for (Vec3& p : f.points)
+      p = p + Vec3{ 40.0, 40.0, 40.0 };
+    f.id += 1000;
+    m.fibers.push_back(std::move(f));
+  }
+  return m;
+}
+
+CollisionSolverOptions recutOptions()
+{
+  CollisionSolverOptions o;
+  o.maxSteps = 70; // re-cuts after steps 32 and 64
+  o.segmentLength = -1.0;
+  return o;
+}
+
+} // namespace
+
+TEST(DistributedSolver, ReCutsThatMoveTheTesterSlabsKeepTheSerialResult)
+{
+  const FiberModel in = denseBesideSparse();
+  CollisionSolverOptions o = recutOptions();
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.steps, 64) << "the run must pass two re-cuts";
+  for (int ranks : { 2, 3 })
+  {
+    for (int threads : { 1, 2 })
+    {
+      o.numberOfThreads = threads;
+      const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+      const std::string what = std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
+      expectSerial(runs, serial, s, what);
+      for (const RankRun& run : runs)
+      {
+        EXPECT_EQ(run.result.testerRecuts, 2u) << what << ": both re-cuts must move the cuts";
+        EXPECT_GT(run.result.testerCutMove, 0.1) << what; // (~0.02 in the even paper cube)
+      }
+    }
+  }
+}
+
+TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
+{
+  const FiberModel in = denseBesideSparse();
+  const CollisionSolverOptions o = recutOptions();
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.steps, 64);
+  for (int ranks : { 2, 3 })
+  {
+    std::vector<RankRun> runs(static_cast<std::size_t>(ranks));
+    for (int r = 0; r < ranks; ++r)
+    {
+      const std::size_t n = in.fibers.size();
+      runs[r].model.fibers.assign(in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
+    }
+    std::vector<int> recutsBefore(static_cast<std::size_t>(ranks), -1);
+    runRanks(ranks, [&](SolverComm& comm) {
+      RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
+      FiberModel model;
+      CollisionSolverState state;
+      {
+        CollisionSolverRun first(run.model, o, {}, {}, &comm);
+        ASSERT_TRUE(first.start());
+        while (first.state().steps < 40 && first.step())
+        {
+        }
+        ASSERT_EQ(first.state().steps, 40);
+        model = run.model; // the fibers this rank owns at step 40
+        state = first.state();
+      } // (the first run is dropped unfinished, as a killed job)
+      CollisionSolverRun second(model, o, {}, {}, &comm);
+      ASSERT_EQ(second.resume(state), "");
+      while (second.step())
+      {
+      }
+      run.result = second.finish();
+      run.model = std::move(model);
+    });
+    expectSerial(runs, serial, s, "resumed at step 40 on " + std::to_string(ranks) + " ranks");
+    for (const RankRun& run : runs)
+    {
+      EXPECT_EQ(run.result.testerRecuts, 1u) << "the re-cut after step 64 must move the resumed run's cuts";
+      EXPECT_GT(run.result.testerCutMove, 0.05) << ranks << " ranks";
+    }
+  }
 }
 
 TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
