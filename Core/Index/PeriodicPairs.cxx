@@ -23,11 +23,43 @@ double boxEdge(const CapsuleLink& l, double gap)
 }
 } // namespace
 
+// Reach w: two boxes that overlap have centres closer than w on every axis.
+double PeriodicPairs::reach(const std::vector<CapsuleLink>& links, double minimumGap)
+{
+  double w = 0.0;
+  for (const CapsuleLink& l : links)
+  {
+    w = std::max(w, boxEdge(l, minimumGap));
+  }
+  return w;
+}
+
+std::string PeriodicPairs::cellTooSmall(double w, const PeriodicCell& cell)
+{
+  const Vec3 e = cell.edge();
+  const double eMin = std::min(e.x, std::min(e.y, e.z));
+  if (2.0 * w < eMin)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << w
+      << " um (segment extent + 2 x radius): use a larger cell or a shorter SegmentLength";
+  return msg.str();
+}
+
+std::string PeriodicPairs::cellTooSmall(
+  const std::vector<CapsuleLink>& links, const PeriodicCell& cell, double minimumGap)
+{
+  return links.empty() ? std::string() : cellTooSmall(reach(links, minimumGap), cell);
+}
+
 std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
   double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow,
   const std::vector<char>* lowerOnly)
 {
   pairs.clear();
+  work_ = 0;
   if (overflow)
   {
     *overflow = false;
@@ -37,20 +69,12 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
   {
     return {};
   }
-  // Reach w: two boxes that overlap have centres closer than w on every axis.
-  double w = 0.0;
-  for (const CapsuleLink& l : links)
-  {
-    w = std::max(w, boxEdge(l, minimumGap));
-  }
+  const double w = reach(links, minimumGap);
   const Vec3 e = cell.edge();
-  const double eMin = std::min(e.x, std::min(e.y, e.z));
-  if (!(2.0 * w < eMin))
+  const std::string tooSmall = cellTooSmall(w, cell);
+  if (!tooSmall.empty())
   {
-    std::ostringstream msg;
-    msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << w
-        << " um (segment extent + 2 x radius): use a larger cell or a shorter SegmentLength";
-    return msg.str();
+    return tooSmall;
   }
   images_.resize(n);
   source_.clear();
@@ -96,16 +120,24 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
       }
     }
   }
-  // The raw pairs include images of the physical ones (ghosts exist only near faces): allow twice
-  // the limit there, then check the physical count.
+  // Only pairs whose lower id is a real link are tested (a real link's own lowerOnly entry, 1
+  // serially), never two ghosts: such a pair is an image of one found elsewhere. Each physical
+  // pair then has at most two raw copies (real a with the ghost of b, real b with the ghost of
+  // a), so more than twice the limit of raw pairs means more than the limit of physical ones, and
+  // the physical count is checked after the deduplication below.
   const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
-  // A kept raw pair's lower id is its lower real link (see below); ghost-ghost pairs are dropped.
   if (lowerOnly)
   {
     imageLowerOnly_.assign(lowerOnly->begin(), lowerOnly->end());
-    imageLowerOnly_.resize(images_.size(), 0);
   }
-  if (!grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, lowerOnly ? &imageLowerOnly_ : nullptr))
+  else
+  {
+    imageLowerOnly_.assign(n, 1);
+  }
+  imageLowerOnly_.resize(images_.size(), 0);
+  const bool within = grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, &imageLowerOnly_);
+  work_ = grid_.work();
+  if (!within)
   {
     if (overflow)
     {
@@ -113,8 +145,8 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
     }
     return {};
   }
-  // raw_ pairs have a < b; real ids are < n, ghosts >= n. A pair of two ghosts is an image of a
-  // pair found elsewhere; (real a, ghost of b) and (real b, ghost of a) are the same pair: keep the
+  // raw_ pairs have a < b; real ids are < n, ghosts >= n (no pair of two ghosts is tested);
+  // (real a, ghost of b) and (real b, ghost of a) are the same pair: keep the
   // one whose real link has the smaller id, evaluated with it first (as a real pair would be).
   pairs.reserve(raw_.size());
   for (const CapsulePair& p : raw_)

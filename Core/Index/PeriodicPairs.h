@@ -29,14 +29,24 @@ public:
     std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr,
     const std::vector<char>* lowerOnly = nullptr);
 
-  /// The work of the last findPairs (CollisionGrid::work of its grid over the images).
-  std::uint64_t work() const { return grid_.work(); }
+  /// The work of the last findPairs (CollisionGrid::work of its grid over the images; 0 when it
+  /// returned before searching).
+  std::uint64_t work() const { return work_; }
+
+  /// The error findPairs gives when the cell is too small for the links at this gap, or "" (the
+  /// reach grows with the gap: too small at a gap means too small at every larger one).
+  static std::string cellTooSmall(
+    const std::vector<CapsuleLink>& links, const PeriodicCell& cell, double minimumGap);
 
 private:
+  static double reach(const std::vector<CapsuleLink>& links, double minimumGap);
+  static std::string cellTooSmall(double w, const PeriodicCell& cell);
+
   CollisionGrid grid_;
+  std::uint64_t work_ = 0;
   std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts
   std::vector<std::uint32_t> source_; // real id of every ghost
-  std::vector<char> imageLowerOnly_;  // lowerOnly for images_: the real links', 0 for ghosts
+  std::vector<char> imageLowerOnly_;  // the grid's lowerOnly: the real links' (1 serially), 0 for ghosts
   std::vector<CapsulePair> raw_;
 };
 

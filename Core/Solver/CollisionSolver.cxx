@@ -904,35 +904,38 @@ double smallestGap(Solver& s, double probe)
   }
   const std::vector<char>* lowerOnly = s.comm_ ? &s.held_.tested : nullptr;
   std::vector<CapsulePair> near;
+  bool tooSmall = false;
   if (s.periodic())
   {
-    bool tooSmall = !s.periodic_.findPairs(s.links_, s.o_.periodicCell, probe, s.threads_, near,
-      static_cast<std::size_t>(-1), nullptr, lowerOnly).empty();
-    // Each rank judges its own links (their widest radius); all must agree, or minGap would
-    // differ from the serial one. Called on every rank alike.
+    // Too small for the whole probe: no gap below it is known (judged at the probe, not per
+    // stage, so the answer does not depend on the stage that finds a pair). Each rank judges its
+    // own links (their widest radius); all must agree, or minGap would differ from the serial
+    // one. Called on every rank alike.
+    tooSmall = !PeriodicPairs::cellTooSmall(s.links_, s.o_.periodicCell, probe).empty();
     if (s.comm_)
     {
       tooSmall = anyRank(*s.comm_, tooSmall);
     }
-    if (tooSmall)
-    {
-      near.clear(); // the cell is too small for this probe: no gap below it is known
-    }
   }
-  else
+  // Widening: a pair found within gap g is nearer than every pair not found, so the first g
+  // (probe/16, probe/4, probe) that finds any pair on any rank gives the same minimum as the
+  // whole probe, and packed or still colliding fibers stop at the first: it stores a fraction
+  // of the ~11 pairs per link within one median radius of the 1000-fiber cubes.
+  for (double g = probe / 16.0; !tooSmall; g = std::min(probe, 4.0 * g))
   {
-    // Widening: a pair found within gap g is nearer than every pair not found, so the first g
-    // (probe/16, probe/4, probe) that finds any pair on any rank gives the same minimum as the
-    // whole probe, and packed or still colliding fibers stop at the first: it stores a fraction
-    // of the ~11 pairs per link within one median radius of the 1000-fiber cubes.
-    for (double g = probe / 16.0;; g = std::min(probe, 4.0 * g))
+    if (s.periodic())
+    {
+      s.periodic_.findPairs(
+        s.links_, s.o_.periodicCell, g, s.threads_, near, static_cast<std::size_t>(-1), nullptr, lowerOnly);
+    }
+    else
     {
       s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), lowerOnly);
-      const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
-      if (any || !(g < probe))
-      {
-        break;
-      }
+    }
+    const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
+    if (any || !(g < probe))
+    {
+      break;
     }
   }
   double gap = probe;

@@ -37,6 +37,14 @@ std::vector<CapsuleLink> linksOf(const FiberModel& m)
   return out;
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> pairIds(const std::vector<CapsulePair>& pairs)
+{
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (const CapsulePair& p : pairs)
+    out.emplace_back(p.a, p.b);
+  return out;
+}
+
 std::vector<std::pair<std::size_t, std::size_t>> gridPairs(const FiberModel& m, int threads = 1, double gap = 0.0)
 {
   CollisionGrid grid;
@@ -220,18 +228,12 @@ TEST(CollisionGrid, LowerOnlyFindsExactlyThePairsWhoseLowerLinkIsMarked)
     if (marked[p.first])
       expected.push_back(p);
   ASSERT_GT(expected.size(), 50u);
-  const auto ids = [](const std::vector<CapsulePair>& pairs) {
-    std::vector<std::pair<std::size_t, std::size_t>> out;
-    for (const CapsulePair& p : pairs)
-      out.emplace_back(p.a, p.b);
-    return out;
-  };
   for (int threads : { 1, 2 })
   {
     CollisionGrid grid;
     std::vector<CapsulePair> pairs;
     EXPECT_TRUE(grid.findPairs(links, 0.0, threads, pairs, expected.size(), &marked));
-    EXPECT_EQ(ids(pairs), expected);
+    EXPECT_EQ(pairIds(pairs), expected);
     EXPECT_FALSE(grid.findPairs(links, 0.0, threads, pairs, expected.size() - 1, &marked));
   }
   PeriodicCell cell;
@@ -244,11 +246,11 @@ TEST(CollisionGrid, LowerOnlyFindsExactlyThePairsWhoseLowerLinkIsMarked)
   ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, all), "");
   ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, some, static_cast<std::size_t>(-1), nullptr, &marked), "");
   std::vector<std::pair<std::size_t, std::size_t>> restricted;
-  for (const auto& p : ids(all))
+  for (const auto& p : pairIds(all))
     if (marked[p.first])
       restricted.push_back(p);
   EXPECT_GT(restricted.size(), expected.size()); // pairs across the faces too
-  EXPECT_EQ(ids(some), restricted);
+  EXPECT_EQ(pairIds(some), restricted);
   for (std::size_t i = 0; i < some.size(); ++i) // the same closest points as unrestricted
   {
     const auto it = std::find_if(all.begin(), all.end(),
@@ -278,4 +280,54 @@ TEST(CollisionGrid, PackingBoundAdmitsDenseStartsButNotStacks)
   const std::vector<CapsuleLink> stackLinks = linksOf(stack);
   const double stackCount = static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(stack)).size());
   EXPECT_GT(stackCount, packingPairBound(stackLinks, 0.0).pairs);
+}
+
+// lowerOnly (with the row skip of untested links) finds exactly the unrestricted pairs whose
+// lower link is flagged, for masks by id, by position and in blocks, on 1 and 2 threads; in a
+// periodic cell likewise, the lower link being the smaller real id.
+TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
+{
+  CubeOptions o;
+  o.numberOfFibers = 300;
+  o.populations = 3;
+  o.edgeLength = 25.0;
+  o.seed = 7;
+  const std::vector<CapsuleLink> links = linksOf(generateCube(o));
+  PeriodicCell cell;
+  cell.lo = { -12.5, -12.5, -12.5 };
+  cell.hi = { 12.5, 12.5, 12.5 };
+  CollisionGrid grid;
+  PeriodicPairs finder;
+  std::vector<CapsulePair> all, allPeriodic;
+  ASSERT_TRUE(grid.findPairs(links, 0.0, 2, all));
+  ASSERT_EQ(finder.findPairs(links, cell, 0.0, 2, allPeriodic), "");
+  const auto filtered = [](const std::vector<CapsulePair>& pairs, const std::vector<char>& mask) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (const auto& p : pairIds(pairs))
+      if (mask[std::min(p.first, p.second)])
+        out.push_back(p);
+    return out;
+  };
+  for (int pattern = 0; pattern < 4; ++pattern)
+  {
+    std::vector<char> mask(links.size());
+    for (std::size_t i = 0; i < links.size(); ++i)
+      mask[i] = pattern == 0 ? (i % 7 == 0)
+        : pattern == 1       ? (links[i].p0.x + links[i].p1.x < 0.0)
+        : pattern == 2       ? (i % 2)
+                             : (i < 40);
+    for (int threads : { 1, 2 })
+    {
+      const std::string what = "pattern " + std::to_string(pattern) + " threads " + std::to_string(threads);
+      std::vector<CapsulePair> got;
+      ASSERT_TRUE(grid.findPairs(links, 0.0, threads, got, static_cast<std::size_t>(-1), &mask));
+      const auto expected = filtered(all, mask);
+      EXPECT_GT(expected.size(), 0u) << what;
+      EXPECT_EQ(pairIds(got), expected) << what;
+      ASSERT_EQ(finder.findPairs(links, cell, 0.0, threads, got, static_cast<std::size_t>(-1), nullptr, &mask), "");
+      const auto expectedPeriodic = filtered(allPeriodic, mask);
+      EXPECT_GT(expectedPeriodic.size(), expected.size()) << what; // pairs across the faces too
+      EXPECT_EQ(pairIds(got), expectedPeriodic) << what;
+    }
+  }
 }

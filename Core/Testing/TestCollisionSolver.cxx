@@ -855,3 +855,25 @@ TEST(CollisionSolver, MinGapIsTheSmallestSurfaceGapUpToTheProbe)
     EXPECT_NEAR(r.minGap, std::min(smallest, 0.8), 1e-12) << "smallest gap " << smallest;
   }
 }
+
+// The same in a periodic cell, the smallest gap g being across the y faces: six fibers 1 µm
+// apart (beyond the probe) and a period of 5 × 2.6 + 1.6 + g, so that the last fiber's image
+// lies 1.6 + g from the first one; g at each stage of the widening search and beyond the probe.
+TEST(CollisionSolver, MinGapInAPeriodicCellIsTheSmallestGapAcrossTheFaces)
+{
+  for (double g : { 0.03, 0.1, 0.5, 1.5 })
+  {
+    FiberModel m;
+    for (int i = 0; i < 6; ++i)
+      m.fibers.push_back(line({ 0, 2.6 * i, 0 }, { 2, 0, 0 }, 8, 0.8, i));
+    CollisionSolverOptions o;
+    o.maxSteps = 0;
+    const double period = 5 * 2.6 + 1.6 + g;
+    o.periodicCell.lo = { -20, -0.8 - 0.5 * g, -8 };
+    o.periodicCell.hi = { 40, period - 0.8 - 0.5 * g, 8 };
+    const CollisionSolverResult r = solveCollisions(m, o);
+    ASSERT_EQ(r.error, "");
+    EXPECT_EQ(r.minGapProbe, 0.8);
+    EXPECT_NEAR(r.minGap, std::min(g, 0.8), 1e-12) << "gap across the faces " << g;
+  }
+}

@@ -877,3 +877,47 @@ TEST(DistributedSolver, ARankOutOfMemoryBudgetFailsEveryRank)
   EXPECT_NE(e.find("FIBERPLI_MEMORY_LIMIT"), std::string::npos) << e;
   EXPECT_NE(e.find("or use more ranks"), std::string::npos) << e;
 }
+
+// The packing limit counts physical pairs in a periodic cell too, never the images of a pair
+// near an edge or corner (up to 8 copies): 100 near-copies of a fiber along x at the corner edge
+// y = z = lo + 0.5 collide in as many pairs as in open space (their images across the faces are
+// 20 um away), which is below the packing bound, so the run does its step serially and on 2 and 3
+// ranks alike.
+// With 120 copies the physical pairs exceed the bound: every rank count refuses alike, and the
+// message's count is true.
+TEST(DistributedSolver, APeriodicCornerStackIsBoundedByItsPhysicalPairs)
+{
+  const auto cornerStack = [](int copies) {
+    FiberModel m;
+    for (int i = 0; i < copies; ++i)
+      m.fibers.push_back(line({ 0.5, -9.5 + 1e-3 * i, -9.5 }, { 2, 0, 0 }, 10, 0.8, i));
+    return m;
+  };
+  const FiberModel in = cornerStack(100);
+  CollisionSolverOptions o;
+  o.maxSteps = 1;
+  o.numberOfThreads = 1;
+  o.segmentLength = -1.0;
+  o.periodicCell.lo = { -10, -10, -10 };
+  o.periodicCell.hi = { 10, 10, 10 };
+  const std::size_t open = fiberpli_test::refCollisionCount(in);
+  EXPECT_EQ(countCollisions(in, 0.0, 1), open);
+  EXPECT_EQ(countCollisions(in, 0.0, 1, o.periodicCell), open);
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_EQ(s.steps, 1);
+  EXPECT_EQ(s.collisions, open);
+  for (int ranks : { 2, 3 })
+    expectSerial(solveOnRanks(in, o, ranks), serial, s, "corner stack, " + std::to_string(ranks) + " ranks");
+
+  const FiberModel over = cornerStack(120);
+  FiberModel serialOver = over;
+  const std::string error = solveCollisions(serialOver, o).error;
+  ASSERT_NE(error.find("more than any packing"), std::string::npos) << error;
+  const std::size_t claimed = std::stoul(error.substr(std::strlen("more than ")));
+  EXPECT_GT(fiberpli_test::refCollisionCount(over), claimed) << error; // brute force, open space
+  for (int ranks : { 2, 3 })
+    for (const RankRun& run : solveOnRanks(over, o, ranks))
+      EXPECT_EQ(run.result.error, error) << ranks << " ranks";
+}
