@@ -1,7 +1,7 @@
 // Solver checkpoints (docs/solver.md §14): a run stopped after a checkpoint and resumed from the
 // file ends bit for bit like the uninterrupted run (open cube with drag and curvature; periodic
 // cell with radius growth), the resumed run really starts at the saved step, and a file that does
-// not belong to the run (other options, other input, damaged, not a checkpoint, missing) is an
+// not belong to the run (other options, other input, an older version, damaged, not a checkpoint, missing) is an
 // error naming the file and what differs.
 #include "Checkpoint/SolverCheckpoint.h"
 #include "PeriodicReference.h"
@@ -271,6 +271,33 @@ TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
   e = solveWithCheckpoints(noFile, o, { file.path, 0, true }).error;
   EXPECT_NE(e.find(file.path), std::string::npos) << e;
   EXPECT_NE(e.find("cannot be opened"), std::string::npos) << e;
+}
+
+// A file of the previous format (version 2: another push rule, so it would not resume bit for
+// bit) is refused naming the file and both versions, and the caller's model stays as it was.
+TEST(SolverCheckpoint, AVersion2FileIsRefusedNamingFileAndVersions)
+{
+  const CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  for (const std::string& file : { run.file.path, previousCheckpointPath(run.file.path) })
+  {
+    std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(16); // after the 16-byte magic: the version, a little-endian u64
+    const unsigned char two[8] = { 2, 0, 0, 0, 0, 0, 0, 0 };
+    f.write(reinterpret_cast<const char*>(two), sizeof two);
+    ASSERT_TRUE(f.good()) << file;
+  }
+  FiberModel model;
+  CollisionSolverState state;
+  const std::string e = readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), model, state);
+  EXPECT_NE(e.find(run.file.path), std::string::npos) << e;
+  EXPECT_NE(e.find("has version 2, this FiberPLI reads version 3"), std::string::npos) << e;
+
+  FiberModel resumed = run.in;
+  const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 10, true });
+  EXPECT_EQ(r.error, e); // the newest generation's message (the previous one is version 2 too)
+  EXPECT_EQ(r.steps, 0);
+  EXPECT_TRUE(bitwiseEqual(resumed, run.in)) << "the caller's model must be unchanged";
 }
 
 TEST(SolverCheckpoint, AnUnwritableCheckpointStopsTheSolveNamingTheFile)
