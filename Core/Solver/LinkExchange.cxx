@@ -66,11 +66,6 @@ template <class Key, class Peek, class Take> void mergeStreams(std::size_t strea
   }
 }
 
-std::uint64_t linkKey(std::uint32_t fiber, std::uint32_t k)
-{
-  return (static_cast<std::uint64_t>(fiber) << 32) | k;
-}
-
 // Intervals [a, b] and [c, d] closer than reach, modulo period when period > 0: there is an
 // integer k with a − reach + kP <= d and b + reach + kP >= c.
 bool within(double a, double b, double c, double d, double reach, double period)

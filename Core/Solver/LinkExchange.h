@@ -23,6 +23,13 @@ namespace fiberpli
 /// HeldLinkInfo::local of a link whose fiber another rank owns.
 constexpr std::uint32_t kNotOwned = UINT32_MAX;
 
+/// Global link order (of fiber, then link index), as one integer: the merge of held links
+/// (exchangeLinks) and the merge of pushes (forPushesInPairOrder) must agree on it.
+inline std::uint64_t linkKey(std::uint32_t fiber, std::uint32_t k)
+{
+  return (static_cast<std::uint64_t>(fiber) << 32) | k;
+}
+
 /// What a rank knows of each link it holds, besides its capsule.
 struct HeldLinkInfo
 {
@@ -86,7 +93,7 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::ve
   const std::vector<std::uint32_t>& local, const std::vector<std::vector<ReceivedPush>>& received, Take take)
 {
   const auto key = [](const LinkPairPush& x) {
-    return std::make_pair((std::uint64_t{ x.fiberA } << 32) | x.kA, (std::uint64_t{ x.fiberB } << 32) | x.kB);
+    return std::make_pair(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB));
   };
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
   std::size_t i = 0;                                // next pair tested here
