@@ -749,7 +749,8 @@ TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestFibers)
 // 195 µm, the mean extent is 9.6 µm, the reach 2·ρmax 1 µm: 16 whole fiber-and-halo widths,
 // against 3 along z (7.2 / 2) and 1 along y (18 / 12.4)), and
 // a rank of 2–4 then holds its share of the links plus those near its slab's two faces only
-// (≤ 1.10 × its share; cut along z it held 1.26–2.13 ×).
+// (measured: at most 1.10 × its share, 1.099 on 3 ranks; asserted below 1.15 × so that a small
+// change of the moves does not fail it; cut along z it held 1.26–2.13 ×).
 TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
 {
   FiberModel in;
