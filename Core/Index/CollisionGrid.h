@@ -56,7 +56,7 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
 /// denser than any packing, and the bound leaves room for that: random straight fibers at 4× the
 /// paper's density use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000 copies of a
 /// 10-point fiber 9×. (A gap much wider than the radii is no packing argument's business: the
-/// solver refuses it.) The sum itself is Solver/CollisionSolver.h's packingPairBound (exact, over
+/// solver refuses it.) The sum itself is Solver/PairBound.h's packingPairBound (exact, over
 /// any split of the links); these are its parts.
 struct PackingScale
 {
