@@ -212,6 +212,9 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
 
 // Steps between re-cuts of the distributed solver's tester slabs (a histogram sum each time).
 constexpr int kBalanceSteps = 32;
+// Pairs per link below which the packing bound (>= 27 per link, Index/CollisionGrid.h) cannot be
+// exceeded, so its exact sum over all links is skipped.
+constexpr int kPairsPerLinkBelowBound = 26;
 
 class Solver
 {
@@ -503,9 +506,9 @@ public:
       return false;
     }
     detectError_.clear();
-    // The packing bound is at least 27 pairs per link (Index/CollisionGrid.h): below 26 the whole
-    // model's bound need not be summed (most steps: 4–9 pairs per link in dense cubes).
-    if (v[0] > 26 * v[1])
+    // Below kPairsPerLinkBelowBound the whole model's bound need not be summed (most steps: 4–9
+    // pairs per link in dense cubes).
+    if (v[0] > kPairsPerLinkBelowBound * v[1])
     {
       const PairBound bound = wholeModelPairBound();
       if (static_cast<double>(v[0]) > bound.pairs)
@@ -554,7 +557,7 @@ public:
     }
     const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
     const double affordable = std::max(0.0, budget) / bytesPerPair();
-    const double belowBound = comm_ ? HUGE_VAL : 26.0 * static_cast<double>(links_.size());
+    const double belowBound = comm_ ? HUGE_VAL : kPairsPerLinkBelowBound * static_cast<double>(links_.size());
     double limit = std::min({ bound.pairs, affordable, belowBound });
     bool overflow = false;
     if (!searchPairs(limit, overflow))
@@ -1343,7 +1346,7 @@ bool CollisionSolverRun::start()
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
     const bool found = s.detect(nullptr, false, true);
-    if (r.fail(found ? std::string() : s.detectError_))
+    if (r.failAgreed(found ? std::string() : s.detectError_)) // detect() agrees on it over the ranks
     {
       return false;
     }
