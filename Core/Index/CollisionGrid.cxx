@@ -54,19 +54,11 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
     bhi.z > alo.z;
 }
 
-// Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
-// the result does not depend on which cell found the pair. lowerOnly: see findPairs.
-inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
+// Narrow phase on an AABB-overlapping candidate: links la, lb with ids a < b, always evaluated
+// in that order so the result does not depend on which cell found the pair.
+inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::uint32_t a, std::uint32_t b,
   double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
-  const std::uint32_t a = i < j ? i : j;
-  const std::uint32_t b = i < j ? j : i;
-  if (lowerOnly && !lowerOnly[a])
-  {
-    return;
-  }
-  const CapsuleLink& la = links[a];
-  const CapsuleLink& lb = links[b];
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
   {
     return;
@@ -93,6 +85,19 @@ inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnl
     out.push_back(p);
   }
 }
+
+// The same for links i, j of `links` in either order; lowerOnly: see findPairs.
+inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
+  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+{
+  const std::uint32_t a = i < j ? i : j;
+  const std::uint32_t b = i < j ? j : i;
+  if (lowerOnly && !lowerOnly[a])
+  {
+    return;
+  }
+  testOrderedPair(links[a], links[b], a, b, gap, out, exactTests);
+}
 } // namespace
 
 double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
@@ -109,9 +114,11 @@ double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 
 double CollisionGrid::bytesPerLink()
 {
-  // boxes_, edges_, sortKeys_, order_, prevOrder_ and the six float bound arrays.
+  // boxes_, edges_, order_, the six float bound arrays, the sorted copy of the link and its
+  // lowerOnly entry, and 3 words for the sort: the keys (2) and last order of a sparse grid, or
+  // the cells and counters (at most 2 per link) of a dense one.
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    2 * sizeof(std::uint32_t) + 6 * sizeof(float));
+    2 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char));
 }
 
 double CollisionGrid::bytesPerPair()
@@ -132,8 +139,9 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const Layout grid = chooseCells(links.size(), boundLinks(links, 0.5 * minimumGap, nThreads));
   collectOversize(grid);
   sortByCell(grid, nThreads);
-  buildCellArrays(nThreads);
-  if (!collectPairs(links, lowerOnly ? lowerOnly->data() : nullptr, minimumGap, grid, nThreads, maxPairs))
+  const char* tested = lowerOnly ? lowerOnly->data() : nullptr;
+  buildCellArrays(links, tested, nThreads);
+  if (!collectPairs(links, tested, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
   }
@@ -252,15 +260,114 @@ void CollisionGrid::collectOversize(const Layout& grid)
   }
 }
 
-// Phase 4: regular links sorted by (cell, id) into sortKeys_; prevOrder_ keeps the order for the
-// next call.
+// Linear index of the grid cell holding the centre of box bx.
+std::uint32_t CollisionGrid::cellOf(const Box& bx, const Layout& grid)
+{
+  std::int64_t c[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
+    c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
+  }
+  c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
+  c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
+  c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
+  return static_cast<std::uint32_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
+}
+
+// Phase 4: the regular links' ids sorted by (cell, id) into order_, the occupied cells ascending
+// into cellKeys_ and their starts into cellStart_. Both ways give exactly this order.
 void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
+{
+  const double cells = static_cast<double>(grid.nx) * static_cast<double>(grid.ny) * static_cast<double>(grid.nz);
+  if (cells <= 2.0 * static_cast<double>(edges_.size()))
+  {
+    countByCell(grid, static_cast<std::size_t>(cells), nThreads);
+  }
+  else
+  {
+    sortKeysByCell(grid, nThreads);
+  }
+}
+
+// Dense grids (at most 2 cells per link, the usual case): a stable counting sort, O(links +
+// cells) and parallel. Each of C chunks of consecutive ids counts its links per cell; a cell's
+// links then go chunk after chunk, each chunk's in id order, which is id order.
+void CollisionGrid::countByCell(const Layout& grid, std::size_t nCells, int nThreads)
 {
   const std::size_t n = edges_.size();
   const std::int64_t nn = static_cast<std::int64_t>(n);
-  // Links keep their ids between solver steps unless shape control changed a fiber, and move
-  // little: visiting them in last step's order makes the key array nearly sorted, and an
-  // insertion sort then costs O(N) instead of O(N log N). Any order gives the same sorted result.
+  constexpr std::uint32_t kOversizeCell = ~std::uint32_t(0);
+  cellOf_.resize(n);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    cellOf_[i] = grid.nOversize > 0 && edges_[i] > grid.limit ? kOversizeCell : cellOf(boxes_[i], grid);
+  }
+  // The counters take at most one 32-bit word per link (chunks × cells <= links, or one chunk).
+  const std::size_t chunks =
+    std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(nThreads), n / std::max<std::size_t>(1, nCells)));
+  count_.assign(chunks * nCells, 0);
+  const auto chunkBegin = [n, chunks](std::size_t c) { return n * c / chunks; };
+  const std::int64_t nChunks = static_cast<std::int64_t>(chunks);
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t cc = 0; cc < nChunks; ++cc)
+  {
+    const std::size_t c = static_cast<std::size_t>(cc);
+    std::uint32_t* count = count_.data() + c * nCells;
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    {
+      if (cellOf_[i] != kOversizeCell)
+        ++count[cellOf_[i]];
+    }
+  }
+  // Counts to starts (cell by cell, chunk by chunk), and the occupied cells.
+  cellKeys_.clear();
+  cellStart_.clear();
+  std::uint32_t at = 0;
+  for (std::size_t cell = 0; cell < nCells; ++cell)
+  {
+    const std::uint32_t first = at;
+    for (std::size_t c = 0; c < chunks; ++c)
+    {
+      const std::uint32_t k = count_[c * nCells + cell];
+      count_[c * nCells + cell] = at;
+      at += k;
+    }
+    if (at > first)
+    {
+      cellKeys_.push_back(cell);
+      cellStart_.push_back(first);
+    }
+  }
+  cellStart_.push_back(at);
+  order_.resize(at);
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t cc = 0; cc < nChunks; ++cc)
+  {
+    const std::size_t c = static_cast<std::size_t>(cc);
+    std::uint32_t* next = count_.data() + c * nCells;
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    {
+      if (cellOf_[i] != kOversizeCell)
+        order_[next[cellOf_[i]]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  std::vector<std::uint64_t>().swap(sortKeys_); // the other way's buffers are not kept beside
+  std::vector<std::uint32_t>().swap(prevOrder_);
+}
+
+// Sparse grids: keys (cell << 32) | id sorted. Links keep their ids between solver steps unless
+// shape control changed a fiber, and move little: visiting them in last call's order
+// (prevOrder_) makes the key array nearly sorted, and an insertion sort then costs O(N) instead
+// of O(N log N). Any order gives the same sorted result.
+void CollisionGrid::sortKeysByCell(const Layout& grid, int nThreads)
+{
+  const std::size_t n = edges_.size();
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+  std::vector<std::uint32_t>().swap(cellOf_);
+  std::vector<std::uint32_t>().swap(count_);
   const bool reuse = prevOrder_.size() == n && grid.nOversize == 0;
   if (!reuse)
   {
@@ -281,17 +388,7 @@ void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
       sortKeys_[static_cast<std::size_t>(jj)] = kOversizeKey; // sorts last, then dropped
       continue;
     }
-    const Box& bx = boxes_[i];
-    std::int64_t c[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
-      c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
-    }
-    c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
-    c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
-    c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
-    const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
+    const std::uint64_t cell = cellOf(boxes_[i], grid);
     sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
   }
   bool inOrder = false;
@@ -322,44 +419,14 @@ void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
   {
     std::sort(sortKeys_.begin(), sortKeys_.end());
   }
-  sortKeys_.resize(n - oversize_.size());
-  for (std::size_t r = 0; r < sortKeys_.size(); ++r)
-  {
-    prevOrder_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
-  }
-  if (!oversize_.empty())
-  {
-    prevOrder_.clear(); // no reuse next time
-  }
-}
-
-// Phase 5: the sorted link ids, their boxes as float SoA in that order, and the occupied cells.
-void CollisionGrid::buildCellArrays(int nThreads)
-{
-  const std::size_t nRegular = sortKeys_.size();
+  const std::size_t nRegular = n - oversize_.size();
   order_.resize(nRegular);
-  for (int d = 0; d < 3; ++d)
-  {
-    lo_[d].resize(nRegular);
-    hi_[d].resize(nRegular);
-  }
-  const std::int64_t nr = static_cast<std::int64_t>(nRegular);
-#pragma omp parallel for num_threads(nThreads) schedule(static)
-  for (std::int64_t rr = 0; rr < nr; ++rr)
-  {
-    const std::size_t r = static_cast<std::size_t>(rr);
-    const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
-    order_[r] = id;
-    for (int d = 0; d < 3; ++d)
-    {
-      lo_[d][r] = floatBelow(boxes_[id].lo[d]);
-      hi_[d][r] = floatAbove(boxes_[id].hi[d]);
-    }
-  }
   cellKeys_.clear();
   cellStart_.clear();
   for (std::size_t r = 0; r < nRegular; ++r)
   {
+    order_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+    prevOrder_[r] = order_[r];
     const std::uint64_t cell = sortKeys_[r] >> 32;
     if (cellKeys_.empty() || cellKeys_.back() != cell)
     {
@@ -368,6 +435,40 @@ void CollisionGrid::buildCellArrays(int nThreads)
     }
   }
   cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
+  if (!oversize_.empty())
+  {
+    prevOrder_.clear(); // no reuse next time
+  }
+}
+
+// Phase 5: the boxes as float SoA, the links and their lowerOnly entries in order_'s order.
+void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const char* lowerOnly, int nThreads)
+{
+  const std::size_t nRegular = order_.size();
+  for (int d = 0; d < 3; ++d)
+  {
+    lo_[d].resize(nRegular);
+    hi_[d].resize(nRegular);
+  }
+  sorted_.resize(nRegular);
+  sortedTested_.resize(lowerOnly ? nRegular : 0);
+  const std::int64_t nr = static_cast<std::int64_t>(nRegular);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t rr = 0; rr < nr; ++rr)
+  {
+    const std::size_t r = static_cast<std::size_t>(rr);
+    const std::uint32_t id = order_[r];
+    for (int d = 0; d < 3; ++d)
+    {
+      lo_[d][r] = floatBelow(boxes_[id].lo[d]);
+      hi_[d][r] = floatAbove(boxes_[id].hi[d]);
+    }
+    sorted_[r] = links[id];
+    if (lowerOnly)
+    {
+      sortedTested_[r] = lowerOnly[id];
+    }
+  }
 }
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
@@ -397,11 +498,11 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     for (std::size_t c = 0; c < cellKeys_.size(); ++c)
     {
       for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1] && !cellTested_[c]; ++r)
-        cellTested_[c] = lowerOnly[order_[r]] ? 1 : 0;
+        cellTested_[c] = sortedTested_[r];
     }
   }
   const auto skipRow = [&](std::uint32_t r, std::int64_t against) {
-    return lowerOnly && !lowerOnly[order_[r]] && !cellTested(against);
+    return lowerOnly && !sortedTested_[r] && !cellTested(against);
   };
   std::atomic<bool> overflow{ false };
   constexpr std::size_t kPublishChunk = 4096;
@@ -476,9 +577,24 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         cp[nc] = qb + j;
         nc += mk[j];
       }
+      // The links in sorted order: the candidates of a row lie in its and the neighbouring
+      // cells, near each other in memory (the model's order scatters them).
+      const std::uint32_t ir = order_[r];
+      const CapsuleLink& lr = sorted_[r];
+      const bool rTested = !lowerOnly || sortedTested_[r];
       for (std::size_t i = 0; i < nc; ++i)
       {
-        testPair(links, lowerOnly, order_[r], order_[cp[i]], minimumGap, out, exactTests);
+        const std::uint32_t q = cp[i];
+        const std::uint32_t iq = order_[q];
+        if (ir < iq)
+        {
+          if (rTested)
+            testOrderedPair(lr, sorted_[q], ir, iq, minimumGap, out, exactTests);
+        }
+        else if (!lowerOnly || sortedTested_[q])
+        {
+          testOrderedPair(sorted_[q], lr, iq, ir, minimumGap, out, exactTests);
+        }
         if ((i & 1023) == 1023 && publish(false))
         {
           return;
