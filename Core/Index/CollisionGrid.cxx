@@ -55,13 +55,13 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
 }
 
 // Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
-// the result does not depend on which cell found the pair. lowerOnly: see findPairs.
-inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
-  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+// the result does not depend on which cell found the pair. tested, rule: see findPairs.
+inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, std::uint32_t i,
+  std::uint32_t j, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
-  if (lowerOnly && !lowerOnly[a])
+  if (tested && !tested[a] && (rule == TestedPairs::LowerLink || !tested[b]))
   {
     return;
   }
@@ -120,7 +120,7 @@ double CollisionGrid::bytesPerPair()
 }
 
 bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
-  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* lowerOnly)
+  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* tested, TestedPairs rule)
 {
   pairs.clear();
   work_ = 0;
@@ -131,9 +131,10 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const int nThreads = resolveThreadCount(threads);
   const Layout grid = chooseCells(links.size(), boundLinks(links, 0.5 * minimumGap, nThreads));
   collectOversize(grid);
-  sortByCell(grid, nThreads);
+  const char* flags = tested ? tested->data() : nullptr;
+  sortByCell(grid, flags, nThreads);
   buildCellArrays(nThreads);
-  if (!collectPairs(links, lowerOnly ? lowerOnly->data() : nullptr, minimumGap, grid, nThreads, maxPairs))
+  if (!collectPairs(links, flags, rule, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
   }
@@ -221,9 +222,9 @@ CollisionGrid::Layout CollisionGrid::chooseCells(std::size_t n, const Layout& bo
   {
     dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
   }
-  // The linear cell index must fit 32 bits (sort key = cell << 32 | id): coarser cells stay
-  // correct, only slower.
-  while (dims[0] * dims[1] * dims[2] >= 4.0e9)
+  // The linear cell index must fit 31 bits (sort key = cell << 33 | flag << 32 | id): coarser
+  // cells stay correct, only slower.
+  while (dims[0] * dims[1] * dims[2] >= 2.0e9)
   {
     h *= 2.0;
     for (int d = 0; d < 3; ++d)
@@ -252,9 +253,9 @@ void CollisionGrid::collectOversize(const Layout& grid)
   }
 }
 
-// Phase 4: regular links sorted by (cell, id) into sortKeys_; prevOrder_ keeps the order for the
-// next call.
-void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
+// Phase 4: regular links sorted by (cell, not flagged, id) into sortKeys_; prevOrder_ keeps the
+// order for the next call.
+void CollisionGrid::sortByCell(const Layout& grid, const char* tested, int nThreads)
 {
   const std::size_t n = edges_.size();
   const std::int64_t nn = static_cast<std::int64_t>(n);
@@ -292,7 +293,8 @@ void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
     c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
     c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
     const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
-    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
+    const std::uint64_t unflagged = tested && !tested[i] ? 1 : 0;
+    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 33) | (unflagged << 32) | static_cast<std::uint64_t>(i);
   }
   bool inOrder = false;
   if (reuse)
@@ -333,7 +335,8 @@ void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
   }
 }
 
-// Phase 5: the sorted link ids, their boxes as float SoA in that order, and the occupied cells.
+// Phase 5: the sorted link ids, their boxes as float SoA in that order, and the occupied cells
+// with the offset of each one's first unflagged link.
 void CollisionGrid::buildCellArrays(int nThreads)
 {
   const std::size_t nRegular = sortKeys_.size();
@@ -358,22 +361,33 @@ void CollisionGrid::buildCellArrays(int nThreads)
   }
   cellKeys_.clear();
   cellStart_.clear();
+  cellUnflagged_.clear();
   for (std::size_t r = 0; r < nRegular; ++r)
   {
-    const std::uint64_t cell = sortKeys_[r] >> 32;
+    const std::uint64_t cell = sortKeys_[r] >> 33;
+    const bool unflagged = (sortKeys_[r] >> 32) & 1;
     if (cellKeys_.empty() || cellKeys_.back() != cell)
     {
       cellKeys_.push_back(cell);
       cellStart_.push_back(static_cast<std::uint32_t>(r));
+      cellUnflagged_.push_back(static_cast<std::uint32_t>(unflagged ? r : nRegular));
+    }
+    else if (unflagged && cellUnflagged_.back() == nRegular)
+    {
+      cellUnflagged_.back() = static_cast<std::uint32_t>(r);
     }
   }
   cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
+  for (std::size_t c = 0; c < cellKeys_.size(); ++c)
+  {
+    cellUnflagged_[c] = std::min(cellUnflagged_[c], cellStart_[c + 1]); // all flagged: the cell's end
+  }
 }
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
 // (lists emptied) as soon as more than maxPairs pairs exist.
-bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* lowerOnly, double minimumGap,
-  const Layout& grid, int nThreads, std::size_t maxPairs)
+bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
+  double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs)
 {
   const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
@@ -387,22 +401,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   // stops. Each pair is found once, so "stopped" means exactly "more than maxPairs pairs exist".
   std::atomic<std::size_t> found{ 0 };
   std::atomic<std::uint64_t> work{ 0 };
-  // lowerOnly: whether a cell holds a link whose pairs are tested here. A row whose link is not
-  // tested finds, against a cell without one, only pairs that are skipped anyway (a pair is tested
-  // by its lower link): it is left out before its box tests, the same pairs result.
-  const auto cellTested = [&](std::int64_t c) { return cellTested_[static_cast<std::size_t>(c)] != 0; };
-  if (lowerOnly)
-  {
-    cellTested_.assign(cellKeys_.size(), 0);
-    for (std::size_t c = 0; c < cellKeys_.size(); ++c)
-    {
-      for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1] && !cellTested_[c]; ++r)
-        cellTested_[c] = lowerOnly[order_[r]] ? 1 : 0;
-    }
-  }
-  const auto skipRow = [&](std::uint32_t r, std::int64_t against) {
-    return lowerOnly && !lowerOnly[order_[r]] && !cellTested(against);
-  };
+  // A pair of two unflagged links is never tested (either rule): a cell's unflagged rows (its
+  // tail, from cellUnflagged_) are box-tested against the flagged head of a cell only.
   std::atomic<bool> overflow{ false };
   constexpr std::size_t kPublishChunk = 4096;
 
@@ -478,7 +478,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       }
       for (std::size_t i = 0; i < nc; ++i)
       {
-        testPair(links, lowerOnly, order_[r], order_[cp[i]], minimumGap, out, exactTests);
+        testPair(links, tested, rule, order_[r], order_[cp[i]], minimumGap, out, exactTests);
         if ((i & 1023) == 1023 && publish(false))
         {
           return;
@@ -498,10 +498,10 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
       const std::uint32_t begin = cellStart_[static_cast<std::size_t>(ci)];
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
-      for (std::uint32_t r = begin; r < end && !publish(false); ++r)
+      const std::uint32_t split = cellUnflagged_[static_cast<std::size_t>(ci)];
+      for (std::uint32_t r = begin; r < split && !publish(false); ++r)
       {
-        if (!skipRow(r, ci))
-          scan(r, r + 1, end, cand);
+        scan(r, r + 1, end, cand); // the unflagged rows after split would meet only unflagged ones
       }
       for (const auto& off : kForward)
       {
@@ -522,10 +522,10 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::size_t cj = static_cast<std::size_t>(it - cellKeys_.begin());
         const std::uint32_t b2 = cellStart_[cj];
         const std::uint32_t e2 = cellStart_[cj + 1];
+        const std::uint32_t split2 = cellUnflagged_[cj];
         for (std::uint32_t r = begin; r < end && !publish(false); ++r)
         {
-          if (!skipRow(r, static_cast<std::int64_t>(cj)))
-            scan(r, b2, e2, cand);
+          scan(r, b2, r < split ? e2 : split2, cand);
         }
       }
     }
@@ -546,7 +546,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
         if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
-          testPair(links, lowerOnly, o, order_[r], minimumGap, out, exactTests);
+          testPair(links, tested, rule, o, order_[r], minimumGap, out, exactTests);
         }
       }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
@@ -554,7 +554,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
         if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
         {
-          testPair(links, lowerOnly, o, p, minimumGap, out, exactTests);
+          testPair(links, tested, rule, o, p, minimumGap, out, exactTests);
         }
       }
     }
