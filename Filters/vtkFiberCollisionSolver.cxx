@@ -403,6 +403,8 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
     fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
     fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
+    fiberpli::AddFieldDoubles(output, "tester_recuts", { static_cast<double>(r.testerRecuts) });
+    fiberpli::AddFieldDoubles(output, "tester_cut_move", { r.testerCutMove });
   }
   this->UpdateProgress(1.0);
   return 1;
