@@ -54,19 +54,11 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
     bhi.z > alo.z;
 }
 
-// Narrow phase on an AABB-overlapping candidate; always evaluated as (smaller id, larger id) so
-// the result does not depend on which cell found the pair. tested, rule: see findPairs.
-inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, std::uint32_t i,
-  std::uint32_t j, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+// Narrow phase on an AABB-overlapping candidate: links la, lb with ids a < b, always evaluated
+// in that order so the result does not depend on which cell found the pair.
+inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::uint32_t a, std::uint32_t b,
+  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
-  const std::uint32_t a = i < j ? i : j;
-  const std::uint32_t b = i < j ? j : i;
-  if (tested && !tested[a] && (rule == TestedPairs::LowerLink || !tested[b]))
-  {
-    return;
-  }
-  const CapsuleLink& la = links[a];
-  const CapsuleLink& lb = links[b];
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
   {
     return;
@@ -93,6 +85,19 @@ inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, 
     out.push_back(p);
   }
 }
+
+// The same for links i, j of `links` in either order; tested, rule: see findPairs.
+inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, std::uint32_t i,
+  std::uint32_t j, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+{
+  const std::uint32_t a = i < j ? i : j;
+  const std::uint32_t b = i < j ? j : i;
+  if (tested && !tested[a] && (rule == TestedPairs::LowerLink || !tested[b]))
+  {
+    return;
+  }
+  testOrderedPair(links[a], links[b], a, b, gap, out, exactTests);
+}
 } // namespace
 
 double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
@@ -109,9 +114,11 @@ double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 
 double CollisionGrid::bytesPerLink()
 {
-  // boxes_, edges_, sortKeys_, order_, prevOrder_ and the six float bound arrays.
+  // boxes_, edges_, order_ and its reordering by flags, the six float bound arrays, the sorted
+  // copy of the link and its tested flag, and 3 words for the sort: the keys (2) and last order
+  // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one.
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    2 * sizeof(std::uint32_t) + 6 * sizeof(float));
+    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char));
 }
 
 double CollisionGrid::bytesPerPair()
@@ -131,9 +138,10 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const int nThreads = resolveThreadCount(threads);
   const Layout grid = chooseCells(links.size(), boundLinks(links, 0.5 * minimumGap, nThreads));
   collectOversize(grid);
+  sortByCell(grid, nThreads);
   const char* flags = tested ? tested->data() : nullptr;
-  sortByCell(grid, flags, nThreads);
-  buildCellArrays(nThreads);
+  flaggedFirst(flags);
+  buildCellArrays(links, flags, nThreads);
   if (!collectPairs(links, flags, rule, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
@@ -222,9 +230,9 @@ CollisionGrid::Layout CollisionGrid::chooseCells(std::size_t n, const Layout& bo
   {
     dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
   }
-  // The linear cell index must fit 31 bits (sort key = cell << 33 | flag << 32 | id): coarser
-  // cells stay correct, only slower.
-  while (dims[0] * dims[1] * dims[2] >= 2.0e9)
+  // The linear cell index must fit 32 bits (sort key = cell << 32 | id): coarser cells stay
+  // correct, only slower.
+  while (dims[0] * dims[1] * dims[2] >= 4.0e9)
   {
     h *= 2.0;
     for (int d = 0; d < 3; ++d)
@@ -253,15 +261,114 @@ void CollisionGrid::collectOversize(const Layout& grid)
   }
 }
 
-// Phase 4: regular links sorted by (cell, not flagged, id) into sortKeys_; prevOrder_ keeps the
-// order for the next call.
-void CollisionGrid::sortByCell(const Layout& grid, const char* tested, int nThreads)
+// Linear index of the grid cell holding the centre of box bx.
+std::uint32_t CollisionGrid::cellOf(const Box& bx, const Layout& grid)
+{
+  std::int64_t c[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
+    c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
+  }
+  c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
+  c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
+  c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
+  return static_cast<std::uint32_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
+}
+
+// Phase 4: the regular links' ids sorted by (cell, id) into order_, the occupied cells ascending
+// into cellKeys_ and their starts into cellStart_. Both ways give exactly this order.
+void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
+{
+  const double cells = static_cast<double>(grid.nx) * static_cast<double>(grid.ny) * static_cast<double>(grid.nz);
+  if (cells <= 2.0 * static_cast<double>(edges_.size()))
+  {
+    countByCell(grid, static_cast<std::size_t>(cells), nThreads);
+  }
+  else
+  {
+    sortKeysByCell(grid, nThreads);
+  }
+}
+
+// Dense grids (at most 2 cells per link, the usual case): a stable counting sort, O(links +
+// cells) and parallel. Each of C chunks of consecutive ids counts its links per cell; a cell's
+// links then go chunk after chunk, each chunk's in id order, which is id order.
+void CollisionGrid::countByCell(const Layout& grid, std::size_t nCells, int nThreads)
 {
   const std::size_t n = edges_.size();
   const std::int64_t nn = static_cast<std::int64_t>(n);
-  // Links keep their ids between solver steps unless shape control changed a fiber, and move
-  // little: visiting them in last step's order makes the key array nearly sorted, and an
-  // insertion sort then costs O(N) instead of O(N log N). Any order gives the same sorted result.
+  constexpr std::uint32_t kOversizeCell = ~std::uint32_t(0);
+  cellOf_.resize(n);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    cellOf_[i] = grid.nOversize > 0 && edges_[i] > grid.limit ? kOversizeCell : cellOf(boxes_[i], grid);
+  }
+  // The counters take at most one 32-bit word per link (chunks × cells <= links, or one chunk).
+  const std::size_t chunks =
+    std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(nThreads), n / std::max<std::size_t>(1, nCells)));
+  count_.assign(chunks * nCells, 0);
+  const auto chunkBegin = [n, chunks](std::size_t c) { return n * c / chunks; };
+  const std::int64_t nChunks = static_cast<std::int64_t>(chunks);
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t cc = 0; cc < nChunks; ++cc)
+  {
+    const std::size_t c = static_cast<std::size_t>(cc);
+    std::uint32_t* count = count_.data() + c * nCells;
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    {
+      if (cellOf_[i] != kOversizeCell)
+        ++count[cellOf_[i]];
+    }
+  }
+  // Counts to starts (cell by cell, chunk by chunk), and the occupied cells.
+  cellKeys_.clear();
+  cellStart_.clear();
+  std::uint32_t at = 0;
+  for (std::size_t cell = 0; cell < nCells; ++cell)
+  {
+    const std::uint32_t first = at;
+    for (std::size_t c = 0; c < chunks; ++c)
+    {
+      const std::uint32_t k = count_[c * nCells + cell];
+      count_[c * nCells + cell] = at;
+      at += k;
+    }
+    if (at > first)
+    {
+      cellKeys_.push_back(cell);
+      cellStart_.push_back(first);
+    }
+  }
+  cellStart_.push_back(at);
+  order_.resize(at);
+#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
+  for (std::int64_t cc = 0; cc < nChunks; ++cc)
+  {
+    const std::size_t c = static_cast<std::size_t>(cc);
+    std::uint32_t* next = count_.data() + c * nCells;
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    {
+      if (cellOf_[i] != kOversizeCell)
+        order_[next[cellOf_[i]]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  std::vector<std::uint64_t>().swap(sortKeys_); // the other way's buffers are not kept beside
+  std::vector<std::uint32_t>().swap(prevOrder_);
+}
+
+// Sparse grids: keys (cell << 32) | id sorted. Links keep their ids between solver steps unless
+// shape control changed a fiber, and move little: visiting them in last call's order
+// (prevOrder_) makes the key array nearly sorted, and an insertion sort then costs O(N) instead
+// of O(N log N). Any order gives the same sorted result.
+void CollisionGrid::sortKeysByCell(const Layout& grid, int nThreads)
+{
+  const std::size_t n = edges_.size();
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+  std::vector<std::uint32_t>().swap(cellOf_);
+  std::vector<std::uint32_t>().swap(count_);
   const bool reuse = prevOrder_.size() == n && grid.nOversize == 0;
   if (!reuse)
   {
@@ -282,19 +389,8 @@ void CollisionGrid::sortByCell(const Layout& grid, const char* tested, int nThre
       sortKeys_[static_cast<std::size_t>(jj)] = kOversizeKey; // sorts last, then dropped
       continue;
     }
-    const Box& bx = boxes_[i];
-    std::int64_t c[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
-      c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
-    }
-    c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
-    c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);
-    c[2] = std::min(std::max<std::int64_t>(c[2], 0), grid.nz - 1);
-    const std::uint64_t cell = static_cast<std::uint64_t>(c[0] + grid.nx * (c[1] + grid.ny * c[2]));
-    const std::uint64_t unflagged = tested && !tested[i] ? 1 : 0;
-    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 33) | (unflagged << 32) | static_cast<std::uint64_t>(i);
+    const std::uint64_t cell = cellOf(boxes_[i], grid);
+    sortKeys_[static_cast<std::size_t>(jj)] = (cell << 32) | static_cast<std::uint64_t>(i);
   }
   bool inOrder = false;
   if (reuse)
@@ -324,63 +420,85 @@ void CollisionGrid::sortByCell(const Layout& grid, const char* tested, int nThre
   {
     std::sort(sortKeys_.begin(), sortKeys_.end());
   }
-  sortKeys_.resize(n - oversize_.size());
-  for (std::size_t r = 0; r < sortKeys_.size(); ++r)
+  const std::size_t nRegular = n - oversize_.size();
+  order_.resize(nRegular);
+  cellKeys_.clear();
+  cellStart_.clear();
+  for (std::size_t r = 0; r < nRegular; ++r)
   {
-    prevOrder_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+    order_[r] = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
+    prevOrder_[r] = order_[r];
+    const std::uint64_t cell = sortKeys_[r] >> 32;
+    if (cellKeys_.empty() || cellKeys_.back() != cell)
+    {
+      cellKeys_.push_back(cell);
+      cellStart_.push_back(static_cast<std::uint32_t>(r));
+    }
   }
+  cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
   if (!oversize_.empty())
   {
     prevOrder_.clear(); // no reuse next time
   }
 }
 
-// Phase 5: the sorted link ids, their boxes as float SoA in that order, and the occupied cells
-// with the offset of each one's first unflagged link.
-void CollisionGrid::buildCellArrays(int nThreads)
+// Phase 5: in each cell the flagged links first (each part in id order), and where its unflagged
+// ones begin (all flagged, or no flags: the cell's end).
+void CollisionGrid::flaggedFirst(const char* tested)
 {
-  const std::size_t nRegular = sortKeys_.size();
-  order_.resize(nRegular);
+  const std::size_t nCells = cellKeys_.size();
+  cellUnflagged_.resize(nCells);
+  if (!tested)
+  {
+    std::copy(cellStart_.begin() + 1, cellStart_.end(), cellUnflagged_.begin());
+    return;
+  }
+  scratch_.resize(order_.size());
+  for (std::size_t c = 0; c < nCells; ++c)
+  {
+    std::uint32_t at = cellStart_[c];
+    for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1]; ++r)
+    {
+      if (tested[order_[r]])
+        scratch_[at++] = order_[r];
+    }
+    cellUnflagged_[c] = at;
+    for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1]; ++r)
+    {
+      if (!tested[order_[r]])
+        scratch_[at++] = order_[r];
+    }
+  }
+  order_.swap(scratch_);
+}
+
+// Phase 6: the boxes as float SoA, the links and their tested flags in order_'s order.
+void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads)
+{
+  const std::size_t nRegular = order_.size();
   for (int d = 0; d < 3; ++d)
   {
     lo_[d].resize(nRegular);
     hi_[d].resize(nRegular);
   }
+  sorted_.resize(nRegular);
+  sortedTested_.resize(tested ? nRegular : 0);
   const std::int64_t nr = static_cast<std::int64_t>(nRegular);
 #pragma omp parallel for num_threads(nThreads) schedule(static)
   for (std::int64_t rr = 0; rr < nr; ++rr)
   {
     const std::size_t r = static_cast<std::size_t>(rr);
-    const std::uint32_t id = static_cast<std::uint32_t>(sortKeys_[r] & 0xFFFFFFFFu);
-    order_[r] = id;
+    const std::uint32_t id = order_[r];
     for (int d = 0; d < 3; ++d)
     {
       lo_[d][r] = floatBelow(boxes_[id].lo[d]);
       hi_[d][r] = floatAbove(boxes_[id].hi[d]);
     }
-  }
-  cellKeys_.clear();
-  cellStart_.clear();
-  cellUnflagged_.clear();
-  for (std::size_t r = 0; r < nRegular; ++r)
-  {
-    const std::uint64_t cell = sortKeys_[r] >> 33;
-    const bool unflagged = (sortKeys_[r] >> 32) & 1;
-    if (cellKeys_.empty() || cellKeys_.back() != cell)
+    sorted_[r] = links[id];
+    if (tested)
     {
-      cellKeys_.push_back(cell);
-      cellStart_.push_back(static_cast<std::uint32_t>(r));
-      cellUnflagged_.push_back(static_cast<std::uint32_t>(unflagged ? r : nRegular));
+      sortedTested_[r] = tested[id];
     }
-    else if (unflagged && cellUnflagged_.back() == nRegular)
-    {
-      cellUnflagged_.back() = static_cast<std::uint32_t>(r);
-    }
-  }
-  cellStart_.push_back(static_cast<std::uint32_t>(nRegular));
-  for (std::size_t c = 0; c < cellKeys_.size(); ++c)
-  {
-    cellUnflagged_[c] = std::min(cellUnflagged_[c], cellStart_[c + 1]); // all flagged: the cell's end
   }
 }
 
@@ -476,9 +594,26 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         cp[nc] = qb + j;
         nc += mk[j];
       }
+      // The links in sorted order: the candidates of a row lie in its and the neighbouring
+      // cells, near each other in memory (the model's order scatters them).
+      const std::uint32_t ir = order_[r];
+      const CapsuleLink& lr = sorted_[r];
+      const bool rTested = !tested || sortedTested_[r];
+      const bool either = rule == TestedPairs::EitherLink;
       for (std::size_t i = 0; i < nc; ++i)
       {
-        testPair(links, tested, rule, order_[r], order_[cp[i]], minimumGap, out, exactTests);
+        const std::uint32_t q = cp[i];
+        const std::uint32_t iq = order_[q];
+        const bool qTested = !tested || sortedTested_[q];
+        if (ir < iq)
+        {
+          if (rTested || (either && qTested))
+            testOrderedPair(lr, sorted_[q], ir, iq, minimumGap, out, exactTests);
+        }
+        else if (qTested || (either && rTested))
+        {
+          testOrderedPair(sorted_[q], lr, iq, ir, minimumGap, out, exactTests);
+        }
         if ((i & 1023) == 1023 && publish(false))
         {
           return;

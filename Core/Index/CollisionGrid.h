@@ -122,23 +122,33 @@ private:
   Layout boundLinks(const std::vector<CapsuleLink>& links, double halfGap, int nThreads);
   Layout chooseCells(std::size_t n, const Layout& bounds) const;
   void collectOversize(const Layout& grid);
-  void sortByCell(const Layout& grid, const char* tested, int nThreads);
-  void buildCellArrays(int nThreads);
+  void sortByCell(const Layout& grid, int nThreads);
+  void countByCell(const Layout& grid, std::size_t nCells, int nThreads);
+  void sortKeysByCell(const Layout& grid, int nThreads);
+  static std::uint32_t cellOf(const Box& bx, const Layout& grid);
+  void flaggedFirst(const char* tested);
+  void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads);
   bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, double minimumGap,
     const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
 
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
-  // (linear cell index << 33) | (link not flagged << 32) | link id, regular links: in a cell
-  // the flagged links come first
+  std::vector<std::uint32_t> order_;    // regular link ids sorted by (cell, flagged first, id)
+  std::vector<std::uint32_t> scratch_;  // flaggedFirst's reordering
+  // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
+  std::vector<std::uint32_t> cellOf_;
+  std::vector<std::uint32_t> count_;
+  // Sparse grids: (linear cell index << 32) | link id of the regular links, and last call's
+  // order (a nearly sorted start for this call).
   std::vector<std::uint64_t> sortKeys_;
-  std::vector<std::uint32_t> order_;    // link ids sorted by (cell, id)
-  std::vector<std::uint32_t> prevOrder_; // last call's order: nearly sorted start for this call
+  std::vector<std::uint32_t> prevOrder_;
   std::vector<double> edges_;           // per link largest box edge
   // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
   // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
   std::vector<float> lo_[3];
   std::vector<float> hi_[3];
+  std::vector<CapsuleLink> sorted_; // the regular links in 'order_' order (the exact tests read them)
+  std::vector<char> sortedTested_;  // the tested flags in 'order_' order
   std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t> cellUnflagged_; // per occupied cell, the offset of its first unflagged link

@@ -1,5 +1,7 @@
 #include "Index/PeriodicPairs.h"
 
+#include "Util/Threads.h"
+
 #include <algorithm>
 #include <sstream>
 
@@ -76,20 +78,17 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
   {
     return tooSmall;
   }
+  // The links wrapped into the cell (ids 0..n-1), then their ghosts: every combination of the
+  // faces a wrapped link is within w of (at most one face per axis since the cell exceeds 2w),
+  // the zero shift excluded, in the order of their links. Counted per link first, so that both
+  // are written in parallel.
   images_.resize(n);
-  source_.clear();
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const CapsuleLink& l = links[i];
-    images_[i] = shifted(l, cell.wrapShift(0.5 * (l.p0 + l.p1)));
-  }
-  // Ghosts: every combination of the faces a wrapped link is within w of (at most one face per
-  // axis since the cell exceeds 2w), the zero shift excluded.
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Vec3 c = 0.5 * (images_[i].p0 + images_[i].p1);
-    double options[3][2];
-    int count[3];
+  ghostStart_.resize(n + 1);
+  const std::int64_t nn = static_cast<std::int64_t>(n);
+  const int nThreads = resolveThreadCount(threads);
+  const auto faceShifts = [&cell, &e, w](const CapsuleLink& wrapped, double (&options)[3][2], int (&count)[3]) {
+    const Vec3 c = 0.5 * (wrapped.p0 + wrapped.p1);
+    int ghosts = 1;
     for (int d = 0; d < 3; ++d)
     {
       options[d][0] = 0.0;
@@ -102,7 +101,36 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
       {
         options[d][count[d]++] = -e[d];
       }
+      ghosts *= count[d];
     }
+    return ghosts - 1;
+  };
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const CapsuleLink& l = links[i];
+    images_[i] = shifted(l, cell.wrapShift(0.5 * (l.p0 + l.p1)));
+    double options[3][2];
+    int count[3];
+    ghostStart_[i + 1] = static_cast<std::size_t>(faceShifts(images_[i], options, count));
+  }
+  ghostStart_[0] = n;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ghostStart_[i + 1] += ghostStart_[i];
+  }
+  images_.resize(ghostStart_[n]);
+  source_.resize(ghostStart_[n] - n);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const CapsuleLink& real = images_[i];
+    double options[3][2];
+    int count[3];
+    faceShifts(real, options, count);
+    std::size_t next = ghostStart_[i];
     for (int ix = 0; ix < count[0]; ++ix)
     {
       for (int iy = 0; iy < count[1]; ++iy)
@@ -114,8 +142,9 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
             continue;
           }
           const Vec3 t{ options[0][ix], options[1][iy], options[2][iz] };
-          images_.push_back(shifted(images_[i], t));
-          source_.push_back(static_cast<std::uint32_t>(i));
+          images_[next] = shifted(real, t);
+          source_[next - n] = static_cast<std::uint32_t>(i);
+          ++next;
         }
       }
     }

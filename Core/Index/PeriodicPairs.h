@@ -45,6 +45,7 @@ private:
   CollisionGrid grid_;
   std::uint64_t work_ = 0;
   std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts
+  std::vector<std::size_t> ghostStart_; // per real link, where its ghosts start in images_
   std::vector<std::uint32_t> source_; // real id of every ghost
   std::vector<char> imageLowerOnly_;  // the grid's lowerOnly: the real links' (1 serially), 0 for ghosts
   std::vector<CapsulePair> raw_;

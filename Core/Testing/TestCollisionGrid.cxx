@@ -180,6 +180,38 @@ TEST(CollisionGrid, ReusedGridGivesTheSameAnswerAsAFreshOne)
   }
 }
 
+TEST(CollisionGrid, SparseAndDenseGridsGiveTheBruteForcePairs)
+{
+  // Links sort by cell by counting when the grid has at most 2 cells per link, else by keys
+  // (docs/solver.md §3.3). Two clusters 1 mm apart make a grid of ~10^6 cells for 600 links
+  // (keys); one cluster alone a dense one (counting). One grid object alternates between them.
+  const auto cluster = [](FiberModel& m, const Vec3& at, std::uint64_t seed) {
+    RandomStream rng(seed, 0, 0);
+    for (int i = 0; i < 300; ++i)
+    {
+      const Vec3 a = at + Vec3{ rng.uniform(0, 15), rng.uniform(0, 15), rng.uniform(0, 15) };
+      const Vec3 d{ rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2) };
+      m.fibers.push_back(fiber({ a, a + d, a + 2.0 * d }, rng.uniform(0.2, 0.6), static_cast<std::int64_t>(m.fibers.size())));
+    }
+  };
+  FiberModel dense, sparse;
+  cluster(dense, { 0, 0, 0 }, 5);
+  cluster(sparse, { 0, 0, 0 }, 5);
+  cluster(sparse, { 1000, 1000, 1000 }, 6);
+  CollisionGrid grid;
+  for (const FiberModel* m : { &dense, &sparse, &dense, &sparse })
+  {
+    const auto ref = fiberpli_test::refPairs(fiberpli_test::refLinks(*m));
+    ASSERT_GT(ref.size(), 50u);
+    for (int threads : { 1, 2 })
+    {
+      std::vector<CapsulePair> pairs;
+      ASSERT_TRUE(grid.findPairs(linksOf(*m), 0.0, threads, pairs));
+      EXPECT_EQ(pairIds(pairs), ref) << m->fibers.size() << " fibers, " << threads << " threads";
+    }
+  }
+}
+
 TEST(CollisionGrid, StopsExactlyWhenThePairsExceedTheLimit)
 {
   // 20 parallel fibers 1 µm apart with radius 0.8: every neighbour pair collides. The reference
