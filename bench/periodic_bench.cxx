@@ -5,7 +5,8 @@
 //        [--max-steps 20000] [--init-scale X] [--spread S] [--gamma] [--samples 1e6] [--seed 42]
 //        [--curvature 4] [--cap SECONDS] [--overlap-push X] [--separation-speed X]
 //        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X] [--push-boost X]
-//        [--lattice (Seeding Lattice instead of Random)]
+//        [--lattice (Seeding Lattice instead of Random)] [--uniform (Uniform radii, mean 1 um)]
+//        [--radius R (FiberRadius: 0.8 um, with --gamma / --uniform the mean 1 um)]
 #include "BenchUtil.h"
 #include "PushOverrides.h"
 #include "CapsuleCells.h"
@@ -82,16 +83,22 @@ int main(int argc, char** argv)
   bench::PushOverrides push;
   double displacement = 0.5;
   bool lattice = false;
+  bool uniform = false;
+  double radius = 0.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
-    if (i + 1 >= argc && a != "--gamma" && a != "--lattice")
+    if (i + 1 >= argc && a != "--gamma" && a != "--lattice" && a != "--uniform")
     {
       std::fprintf(stderr, "missing value after %s\n", a.c_str());
       return 2;
     }
     if (a == "--lattice")
       lattice = true;
+    else if (a == "--uniform")
+      uniform = true;
+    else if (a == "--radius")
+      radius = std::atof(argv[++i]);
     else if (a == "--edge")
       edge = std::atof(argv[++i]);
     else if (a == "--pops")
@@ -137,8 +144,8 @@ int main(int argc, char** argv)
   std::printf("seeding: %s, displacement %.2f um\n", lattice ? "Lattice" : "Random", displacement);
   std::printf("| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | CPU [s] | "
               "load after | peak RSS [MB] | solved | collisions | radius scale | phi solver | phi MC "
-              "(27 images) | min gap [um] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "(27 images) | min gap [um] | generate [s] |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (std::size_t k = 0; k < pops.size(); ++k)
   {
     const double phi = phis[std::min(k, phis.size() - 1)];
@@ -153,16 +160,22 @@ int main(int argc, char** argv)
       c.seed = static_cast<std::uint64_t>(seed);
       c.radiusSpread = spread;
       c.seeding = lattice ? CubeSeeding::Lattice : CubeSeeding::Random;
-      c.radiusDistribution = gamma ? RadiusDistribution::Gamma : RadiusDistribution::LogNormal;
-      if (gamma)
-        c.fiberRadius = 1.0; // α = 1/s², β = s² (µm): s = 0.5 is MEDUSA's α = 4, β = 0.25
+      c.radiusDistribution = gamma ? RadiusDistribution::Gamma
+        : uniform                  ? RadiusDistribution::Uniform
+                                   : RadiusDistribution::LogNormal;
+      if (gamma || uniform)
+        c.fiberRadius = 1.0; // Gamma: α = 1/s², β = s² (µm): s = 0.5 is MEDUSA's α = 4, β = 0.25
+      if (radius > 0.0)
+        c.fiberRadius = radius;
       const std::string bad = validateCubeOptions(c);
       if (!bad.empty())
       {
         std::printf("error: %s\n", bad.c_str());
         return 1;
       }
+      const double g0 = bench::seconds();
       FiberModel m = generateCube(c);
+      const double generate = bench::seconds() - g0;
       CollisionSolverOptions o;
       o.segmentLength = 2.0;
       o.minCurvatureRadius = curvature;
@@ -190,12 +203,12 @@ int main(int argc, char** argv)
         continue;
       }
       const double mc = periodicFraction(m, edge, samples);
-      const char* radii = spread > 0.0 ? (gamma ? "gamma" : "lognormal") : "0.8";
+      const char* radii = spread > 0.0 ? (gamma ? "gamma" : uniform ? "uniform" : "lognormal") : "0.8";
       std::printf("| %.0f | %d | %.3f | %s | %d | %zu | %zu | %d | %.1f | %.1f | %.1f | %.0f | %d%s | %zu | %.3f | "
-                  "%.1f %% | %.1f %% | %.4f |\n",
+                  "%.1f %% | %.1f %% | %.4f | %.2f |\n",
         edge, c.populations, phi, radii, static_cast<int>(t), m.fibers.size(), m.numberOfLinks(), r.steps,
         seconds, cpu, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
-        r.radiusScale, 100.0 * r.volumeFraction, 100.0 * mc, r.minGap);
+        r.radiusScale, 100.0 * r.volumeFraction, 100.0 * mc, r.minGap, generate);
       for (const std::string& w : r.warnings)
         std::printf("  warning: %s\n", w.c_str());
       std::fflush(stdout);

@@ -1,6 +1,7 @@
 #include "Tissue/CubeGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/DiskPacking.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
@@ -147,6 +148,53 @@ std::vector<std::vector<LatticeSite>> shuffledSites(const CubeOptions& o, const 
   return all;
 }
 
+// Radii differ from fiber to fiber (a spread with a distribution that uses it).
+bool polydisperse(const CubeOptions& o)
+{
+  return o.radiusSpread > 0.0 && o.radiusDistribution != RadiusDistribution::Constant;
+}
+
+// Lattice seeding with polydisperse radii, 1 or 2 populations (docs/periodic-cells.md,
+// "Polydisperse seeding"): one site per fiber (fiber j of population k at sites[k][j]) from a
+// disk packing of the actual radii (Tissue/DiskPacking.h, stream (seed, 6 + k, 0)). One
+// population: the periodic cross-section. Two: population 0 (x-fibers, sites (y, z)) in the slab
+// z in [−L/2, −L/2 + h0], population 1 (y-fibers, sites (z, x)) in the rest, h0 / L = the share
+// of population 0 in the fiber cross-section; a slab is periodic along its fibers' other
+// transverse axis and walled along z, so that no x-fiber crosses a y-fiber closer than their
+// radii.
+std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const std::vector<int>& counts)
+{
+  const double L = o.edgeLength;
+  const double half = 0.5 * L;
+  std::vector<std::vector<double>> radii(counts.size());
+  std::vector<double> area(counts.size(), 0.0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    for (int j = 0; j < counts[k]; ++j)
+    {
+      radii[k].push_back(cubeFiberRadius(o, static_cast<int>(k), j));
+      area[k] += radii[k].back() * radii[k].back();
+    }
+  }
+  std::vector<std::vector<LatticeSite>> sites(counts.size());
+  if (counts.size() == 1)
+  {
+    const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6);
+    for (const Seed2D& c : p.centres)
+      sites[0].push_back({ c.x - half, c.y - half });
+    return sites;
+  }
+  const double total = area[0] + area[1];
+  const double h0 = total > 0.0 ? L * area[0] / total : half;
+  const DiskPacking p0 = packDisks(radii[0], DiskDomain{ L, h0, false }, o.seed, 6);
+  const DiskPacking p1 = packDisks(radii[1], DiskDomain{ L, L - h0, false }, o.seed, 7);
+  for (const Seed2D& c : p0.centres)
+    sites[0].push_back({ c.x - half, c.y - half });
+  for (const Seed2D& c : p1.centres)
+    sites[1].push_back({ c.y - half + h0, c.x - half });
+  return sites;
+}
+
 // Moves fiber j of population k from its drawn transverse position (the first two draws of its
 // stream) to its site, jittered uniformly in the disc of radius max(0, spacing/2 − r) by the
 // stream (seed, 3 + k, 1 + j).
@@ -266,9 +314,11 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces)
     total += static_cast<std::size_t>(c);
   }
   const FiberRange range = pieceRange(total, piece, pieces);
+  // Packed sites are not jittered (spacing 0 leaves no room).
   double spacing = 0.0;
-  const std::vector<std::vector<LatticeSite>> sites =
-    o.seeding == CubeSeeding::Lattice ? shuffledSites(o, counts, spacing) : std::vector<std::vector<LatticeSite>>{};
+  std::vector<std::vector<LatticeSite>> sites;
+  if (o.seeding == CubeSeeding::Lattice)
+    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts) : shuffledSites(o, counts, spacing);
   FiberModel model;
   model.fibers.reserve(range.size());
   // Global order: population by population, fiber j of population k at first(k) + j.
