@@ -7,7 +7,7 @@ MinCurvatureRadius 4) and cell (the (100 µm)³ periodic cell, 2 populations, Vo
 Seeding Lattice, displacement 0.5 µm). The source makes the pieces; rank 0 times the solver's
 update (the source is updated first and not timed) and prints one line: ranks, threads, steps, wall
 seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
-halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
+the most links held for its pair tests, halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
 memory before the solve (VmRSS after the source), and a hash of the joined output (the same for
 every R and T)."""
 import argparse
@@ -83,8 +83,9 @@ share = []
 for p in pieces:
     f = p.GetFieldData()
     if f.GetArray("rank_points"):
-        share.append("%d fibers/%d pts/%d halo/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
-                     f.GetArray("halo_links").GetTuple1(0), f.GetArray("halo_bytes_per_step").GetTuple1(0)))
+        share.append("%d fibers/%d pts/%d halo/%d held/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
+                     f.GetArray("halo_links").GetTuple1(0), f.GetArray("held_links").GetTuple1(0),
+                     f.GetArray("halo_bytes_per_step").GetTuple1(0)))
 print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s | %s |" % (
     args.workload, ranks, args.threads, steps, wall, wall / (steps if steps > 0 else 1), int(fd.GetArray("collisions").GetTuple1(0)),
     "; ".join(share) if share else "-", "; ".join(memory), h.hexdigest()[:12]))

@@ -86,13 +86,13 @@ inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::u
   }
 }
 
-// The same for links i, j of `links` in either order; lowerOnly: see findPairs.
-inline void testPair(const std::vector<CapsuleLink>& links, const char* lowerOnly, std::uint32_t i, std::uint32_t j,
-  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+// The same for links i, j of `links` in either order; tested, rule: see findPairs.
+inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, std::uint32_t i,
+  std::uint32_t j, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
-  if (lowerOnly && !lowerOnly[a])
+  if (tested && !tested[a] && (rule == TestedPairs::LowerLink || !tested[b]))
   {
     return;
   }
@@ -114,11 +114,11 @@ double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 
 double CollisionGrid::bytesPerLink()
 {
-  // boxes_, edges_, order_, the six float bound arrays, the sorted copy of the link and its
-  // lowerOnly entry, and 3 words for the sort: the keys (2) and last order of a sparse grid, or
-  // the cells and counters (at most 2 per link) of a dense one.
+  // boxes_, edges_, order_ and its reordering by flags, the six float bound arrays, the sorted
+  // copy of the link and its tested flag, and 3 words for the sort: the keys (2) and last order
+  // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one.
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    2 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char));
+    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char));
 }
 
 double CollisionGrid::bytesPerPair()
@@ -127,7 +127,7 @@ double CollisionGrid::bytesPerPair()
 }
 
 bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
-  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* lowerOnly)
+  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* tested, TestedPairs rule)
 {
   pairs.clear();
   work_ = 0;
@@ -139,9 +139,10 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   const Layout grid = chooseCells(links.size(), boundLinks(links, 0.5 * minimumGap, nThreads));
   collectOversize(grid);
   sortByCell(grid, nThreads);
-  const char* tested = lowerOnly ? lowerOnly->data() : nullptr;
-  buildCellArrays(links, tested, nThreads);
-  if (!collectPairs(links, tested, minimumGap, grid, nThreads, maxPairs))
+  const char* flags = tested ? tested->data() : nullptr;
+  flaggedFirst(flags);
+  buildCellArrays(links, flags, nThreads);
+  if (!collectPairs(links, flags, rule, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
   }
@@ -441,8 +442,38 @@ void CollisionGrid::sortKeysByCell(const Layout& grid, int nThreads)
   }
 }
 
-// Phase 5: the boxes as float SoA, the links and their lowerOnly entries in order_'s order.
-void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const char* lowerOnly, int nThreads)
+// Phase 5: in each cell the flagged links first (each part in id order), and where its unflagged
+// ones begin (all flagged, or no flags: the cell's end).
+void CollisionGrid::flaggedFirst(const char* tested)
+{
+  const std::size_t nCells = cellKeys_.size();
+  cellUnflagged_.resize(nCells);
+  if (!tested)
+  {
+    std::copy(cellStart_.begin() + 1, cellStart_.end(), cellUnflagged_.begin());
+    return;
+  }
+  scratch_.resize(order_.size());
+  for (std::size_t c = 0; c < nCells; ++c)
+  {
+    std::uint32_t at = cellStart_[c];
+    for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1]; ++r)
+    {
+      if (tested[order_[r]])
+        scratch_[at++] = order_[r];
+    }
+    cellUnflagged_[c] = at;
+    for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1]; ++r)
+    {
+      if (!tested[order_[r]])
+        scratch_[at++] = order_[r];
+    }
+  }
+  order_.swap(scratch_);
+}
+
+// Phase 6: the boxes as float SoA, the links and their tested flags in order_'s order.
+void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads)
 {
   const std::size_t nRegular = order_.size();
   for (int d = 0; d < 3; ++d)
@@ -451,7 +482,7 @@ void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const
     hi_[d].resize(nRegular);
   }
   sorted_.resize(nRegular);
-  sortedTested_.resize(lowerOnly ? nRegular : 0);
+  sortedTested_.resize(tested ? nRegular : 0);
   const std::int64_t nr = static_cast<std::int64_t>(nRegular);
 #pragma omp parallel for num_threads(nThreads) schedule(static)
   for (std::int64_t rr = 0; rr < nr; ++rr)
@@ -464,17 +495,17 @@ void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const
       hi_[d][r] = floatAbove(boxes_[id].hi[d]);
     }
     sorted_[r] = links[id];
-    if (lowerOnly)
+    if (tested)
     {
-      sortedTested_[r] = lowerOnly[id];
+      sortedTested_[r] = tested[id];
     }
   }
 }
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
 // (lists emptied) as soon as more than maxPairs pairs exist.
-bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* lowerOnly, double minimumGap,
-  const Layout& grid, int nThreads, std::size_t maxPairs)
+bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
+  double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs)
 {
   const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
@@ -488,22 +519,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   // stops. Each pair is found once, so "stopped" means exactly "more than maxPairs pairs exist".
   std::atomic<std::size_t> found{ 0 };
   std::atomic<std::uint64_t> work{ 0 };
-  // lowerOnly: whether a cell holds a link whose pairs are tested here. A row whose link is not
-  // tested finds, against a cell without one, only pairs that are skipped anyway (a pair is tested
-  // by its lower link): it is left out before its box tests, the same pairs result.
-  const auto cellTested = [&](std::int64_t c) { return cellTested_[static_cast<std::size_t>(c)] != 0; };
-  if (lowerOnly)
-  {
-    cellTested_.assign(cellKeys_.size(), 0);
-    for (std::size_t c = 0; c < cellKeys_.size(); ++c)
-    {
-      for (std::uint32_t r = cellStart_[c]; r < cellStart_[c + 1] && !cellTested_[c]; ++r)
-        cellTested_[c] = sortedTested_[r];
-    }
-  }
-  const auto skipRow = [&](std::uint32_t r, std::int64_t against) {
-    return lowerOnly && !sortedTested_[r] && !cellTested(against);
-  };
+  // A pair of two unflagged links is never tested (either rule): a cell's unflagged rows (its
+  // tail, from cellUnflagged_) are box-tested against the flagged head of a cell only.
   std::atomic<bool> overflow{ false };
   constexpr std::size_t kPublishChunk = 4096;
 
@@ -581,17 +598,19 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       // cells, near each other in memory (the model's order scatters them).
       const std::uint32_t ir = order_[r];
       const CapsuleLink& lr = sorted_[r];
-      const bool rTested = !lowerOnly || sortedTested_[r];
+      const bool rTested = !tested || sortedTested_[r];
+      const bool either = rule == TestedPairs::EitherLink;
       for (std::size_t i = 0; i < nc; ++i)
       {
         const std::uint32_t q = cp[i];
         const std::uint32_t iq = order_[q];
+        const bool qTested = !tested || sortedTested_[q];
         if (ir < iq)
         {
-          if (rTested)
+          if (rTested || (either && qTested))
             testOrderedPair(lr, sorted_[q], ir, iq, minimumGap, out, exactTests);
         }
-        else if (!lowerOnly || sortedTested_[q])
+        else if (qTested || (either && rTested))
         {
           testOrderedPair(sorted_[q], lr, iq, ir, minimumGap, out, exactTests);
         }
@@ -614,10 +633,10 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
       const std::uint32_t begin = cellStart_[static_cast<std::size_t>(ci)];
       const std::uint32_t end = cellStart_[static_cast<std::size_t>(ci) + 1];
-      for (std::uint32_t r = begin; r < end && !publish(false); ++r)
+      const std::uint32_t split = cellUnflagged_[static_cast<std::size_t>(ci)];
+      for (std::uint32_t r = begin; r < split && !publish(false); ++r)
       {
-        if (!skipRow(r, ci))
-          scan(r, r + 1, end, cand);
+        scan(r, r + 1, end, cand); // the unflagged rows after split would meet only unflagged ones
       }
       for (const auto& off : kForward)
       {
@@ -638,10 +657,10 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::size_t cj = static_cast<std::size_t>(it - cellKeys_.begin());
         const std::uint32_t b2 = cellStart_[cj];
         const std::uint32_t e2 = cellStart_[cj + 1];
+        const std::uint32_t split2 = cellUnflagged_[cj];
         for (std::uint32_t r = begin; r < end && !publish(false); ++r)
         {
-          if (!skipRow(r, static_cast<std::int64_t>(cj)))
-            scan(r, b2, e2, cand);
+          scan(r, b2, r < split ? e2 : split2, cand);
         }
       }
     }
@@ -662,7 +681,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
         if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
-          testPair(links, lowerOnly, o, order_[r], minimumGap, out, exactTests);
+          testPair(links, tested, rule, o, order_[r], minimumGap, out, exactTests);
         }
       }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
@@ -670,7 +689,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
         if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
         {
-          testPair(links, lowerOnly, o, p, minimumGap, out, exactTests);
+          testPair(links, tested, rule, o, p, minimumGap, out, exactTests);
         }
       }
     }

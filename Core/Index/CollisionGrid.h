@@ -68,6 +68,13 @@ struct PackingScale
 /// n_a of link a (Σ_a n_a / 2 is the bound); every n_a >= 54, so the bound is >= 27 × the links.
 double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale);
 
+/// Which pairs a rank of the distributed solver tests, given a flag per link (docs/solver.md §13).
+enum class TestedPairs
+{
+  LowerLink, ///< the pairs whose lower link (smaller id) is flagged
+  EitherLink ///< the pairs with at least one flagged link
+};
+
 /// Uniform grid (§3.3). Reuse one object across solver steps: its buffers are kept.
 class CollisionGrid
 {
@@ -76,12 +83,13 @@ public:
   /// (a, b). threads: 0 = all cores. Links must have finite coordinates. Stops as soon as more
   /// than maxPairs pairs are found: returns false and leaves `pairs` empty (whether it stops
   /// does not depend on the thread count: it is "the true count exceeds maxPairs").
-  /// lowerOnly (one entry per link, or null): only the pairs whose lower link a has a nonzero
-  /// entry are tested, kept and counted; the others are skipped before the exact test (a rank of
-  /// the distributed solver finds only the pairs it tests, docs/solver.md §13).
+  /// tested (one entry per link, or null): only the pairs that `rule` picks by these flags are
+  /// tested, kept and counted (a rank of the distributed solver finds only the pairs it tests,
+  /// docs/solver.md §13); a pair of two unflagged links is not even box-tested, the others are
+  /// skipped before the exact test.
   bool findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
     std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1),
-    const std::vector<char>* lowerOnly = nullptr);
+    const std::vector<char>* tested = nullptr, TestedPairs rule = TestedPairs::LowerLink);
 
   /// The work of the last findPairs (broad-phase box tests + kExactTestWork × exact segment
   /// tests; the same for any thread count): what the distributed solver balances its ranks by.
@@ -118,13 +126,15 @@ private:
   void countByCell(const Layout& grid, std::size_t nCells, int nThreads);
   void sortKeysByCell(const Layout& grid, int nThreads);
   static std::uint32_t cellOf(const Box& bx, const Layout& grid);
-  void buildCellArrays(const std::vector<CapsuleLink>& links, const char* lowerOnly, int nThreads);
-  bool collectPairs(const std::vector<CapsuleLink>& links, const char* lowerOnly, double minimumGap,
+  void flaggedFirst(const char* tested);
+  void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads);
+  bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, double minimumGap,
     const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
 
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
-  std::vector<std::uint32_t> order_;    // regular link ids sorted by (cell, id)
+  std::vector<std::uint32_t> order_;    // regular link ids sorted by (cell, flagged first, id)
+  std::vector<std::uint32_t> scratch_;  // flaggedFirst's reordering
   // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
   std::vector<std::uint32_t> cellOf_;
   std::vector<std::uint32_t> count_;
@@ -138,11 +148,11 @@ private:
   std::vector<float> lo_[3];
   std::vector<float> hi_[3];
   std::vector<CapsuleLink> sorted_; // the regular links in 'order_' order (the exact tests read them)
-  std::vector<char> sortedTested_;  // lowerOnly in 'order_' order
+  std::vector<char> sortedTested_;  // the tested flags in 'order_' order
   std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
+  std::vector<std::uint32_t> cellUnflagged_; // per occupied cell, the offset of its first unflagged link
   std::vector<std::uint32_t> oversize_; // links queried against all links
-  std::vector<char> cellTested_;        // lowerOnly: per occupied cell, whether a link of it is tested
   std::vector<std::vector<CapsulePair>> perThread_;
   std::uint64_t work_ = 0;
 };

@@ -22,8 +22,8 @@ public:
   /// Same contract as CollisionGrid::findPairs (pairs sorted by (a, b), identical for any thread
   /// count) with distances by minimum image. Returns an error (pairs empty) when the cell is too
   /// small for the links. More than maxPairs pairs: *overflow (if given) is set, pairs empty.
-  /// lowerOnly: as for CollisionGrid::findPairs (per real link; a pair's lower link is its
-  /// smaller real id).
+  /// lowerOnly: CollisionGrid::findPairs' `tested` with TestedPairs::LowerLink (per real link; a
+  /// pair's lower link is its smaller real id).
   std::string findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
     double minimumGap, int threads, std::vector<CapsulePair>& pairs,
     std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr,

@@ -601,22 +601,21 @@ public:
     return false;
   }
   // One search of pairs_, stopping above `limit` pairs (overflow). False: the periodic cell is too
-  // small for the links (detectError_ says so). Distributed: each pair is tested on one rank only,
-  // the one testing its lower link (LinkExchange.h); the finder skips the others before their
-  // exact test.
+  // small for the links (detectError_ says so). Distributed: each pair is tested on one rank only
+  // (LinkExchange.h, testedPairs); the finder skips the others before their exact test.
   bool searchPairs(double limit, bool& overflow)
   {
     const auto maxPairs = static_cast<std::size_t>(limit);
-    const std::vector<char>* lowerOnly = comm_ ? &held_.tested : nullptr;
+    const std::vector<char>* tested = comm_ ? &held_.tested : nullptr;
     overflow = false;
     if (periodic())
     {
       detectError_ =
-        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, lowerOnly);
+        periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, tested);
       pairWork_ += periodic_.work();
       return detectError_.empty();
     }
-    overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, lowerOnly);
+    overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, tested, testedPairs(layout_));
     pairWork_ += grid_.work();
     return true;
   }
@@ -905,7 +904,7 @@ double smallestGap(Solver& s, double probe)
   {
     s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
   }
-  const std::vector<char>* lowerOnly = s.comm_ ? &s.held_.tested : nullptr;
+  const std::vector<char>* tested = s.comm_ ? &s.held_.tested : nullptr;
   std::vector<CapsulePair> near;
   bool tooSmall = false;
   if (s.periodic())
@@ -929,11 +928,11 @@ double smallestGap(Solver& s, double probe)
     if (s.periodic())
     {
       s.periodic_.findPairs(
-        s.links_, s.o_.periodicCell, g, s.threads_, near, static_cast<std::size_t>(-1), nullptr, lowerOnly);
+        s.links_, s.o_.periodicCell, g, s.threads_, near, static_cast<std::size_t>(-1), nullptr, tested);
     }
     else
     {
-      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), lowerOnly);
+      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), tested, testedPairs(s.layout_));
     }
     const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
     if (any || !(g < probe))

@@ -161,6 +161,9 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // clamps a coordinate beyond them to that slab anyway (open-model fibers drifting outward
   // would otherwise widen every link's search).
   const bool aperiodic = layout.period() <= 0.0;
+  // Without a cell a pair is tested by the lower of its links' tester slabs: a link goes to no
+  // rank above its own.
+  const bool downOnly = testedPairs(layout) == TestedPairs::EitherLink;
   double grow = 0.0, widest = 0.0;
   for (std::size_t q = 0; q < nr; ++q)
   {
@@ -193,7 +196,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
     dests.clear();
     forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
-      if (region[2 * q + 1] > -HUGE_VAL && within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+      if ((!downOnly || static_cast<int>(q) <= tester[i]) && region[2 * q + 1] > -HUGE_VAL &&
+        within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
       {
         dests.push_back(q);
         stamp[q] = i;

@@ -1,9 +1,10 @@
 /// LinkExchange: the pair work of the distributed collision solver, by region (docs/solver.md §13).
 /// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
 /// each owner sends each of its links to every rank whose test region comes within reach of it.
-/// A pair is tested by exactly one rank, the one whose tester slab (SlabLayout::testerOf: slabs of
-/// equal pair work) holds the centre of its lower link (in global link order), which holds every
-/// partner of such a link. It sends the pair's pushes
+/// A pair is tested by exactly one rank (testedPairs): without a cell the lower of its two links'
+/// tester slabs (SlabLayout::testerOf: slabs of equal pair work, by the link's centre), so a rank
+/// needs the links of the slabs above it only; in a periodic cell the slab of its lower link (in
+/// global link order). That rank holds every partner of its links. It sends the pair's pushes
 /// back to the owners of the two links, and they add them in pair order, as the serial solver
 /// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
 #pragma once
@@ -39,12 +40,22 @@ struct HeldLinkInfo
   std::vector<char> tested;        ///< 1: this rank tests the pairs whose lower link this is
 };
 
+/// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester
+/// slab's): without a cell every pair with a flagged link (a rank holds besides them only links of
+/// higher slabs, exchangeLinks), in a periodic cell those whose lower link is flagged (the cell
+/// has no lowest slab; its ghost images rely on that rule, Index/PeriodicPairs.h).
+inline TestedPairs testedPairs(const SlabLayout& layout)
+{
+  return layout.period() > 0.0 ? TestedPairs::LowerLink : TestedPairs::EitherLink;
+}
+
 /// A link's capsule radius from its points' radii at radius scale `scale` (radius growth); the
 /// solver's links and the received ones use this one formula, so they have the same bits.
 double capsuleRadius(double r0, double r1, double scale);
 
 /// Sends every owned link to every rank whose test region comes within `reach` of the link's
-/// extent along the slab axis (modulo the cell). A rank's test region is the extent of all links
+/// extent along the slab axis (modulo the cell), without a cell only to the ranks of its own
+/// tester slab and the lower ones (testedPairs). A rank's test region is the extent of all links
 /// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
 /// own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
 /// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius scale they were built with. Consecutive links of a fiber

@@ -314,9 +314,10 @@ TEST(CollisionGrid, PackingBoundAdmitsDenseStartsButNotStacks)
   EXPECT_GT(stackCount, packingPairBound(stackLinks, 0.0).pairs);
 }
 
-// lowerOnly (with the row skip of untested links) finds exactly the unrestricted pairs whose
-// lower link is flagged, for masks by id, by position and in blocks, on 1 and 2 threads; in a
-// periodic cell likewise, the lower link being the smaller real id.
+// The tested flags (with the box tests of two unflagged links left out) find exactly the
+// unrestricted pairs whose lower link is flagged (LowerLink) or that have a flagged link
+// (EitherLink), for masks by id, by position and in blocks, on 1 and 2 threads; in a periodic
+// cell (LowerLink) likewise, the lower link being the smaller real id.
 TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
 {
   CubeOptions o;
@@ -333,10 +334,10 @@ TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
   std::vector<CapsulePair> all, allPeriodic;
   ASSERT_TRUE(grid.findPairs(links, 0.0, 2, all));
   ASSERT_EQ(finder.findPairs(links, cell, 0.0, 2, allPeriodic), "");
-  const auto filtered = [](const std::vector<CapsulePair>& pairs, const std::vector<char>& mask) {
+  const auto filtered = [](const std::vector<CapsulePair>& pairs, const std::vector<char>& mask, bool either = false) {
     std::vector<std::pair<std::size_t, std::size_t>> out;
     for (const auto& p : pairIds(pairs))
-      if (mask[std::min(p.first, p.second)])
+      if (mask[std::min(p.first, p.second)] || (either && mask[std::max(p.first, p.second)]))
         out.push_back(p);
     return out;
   };
@@ -356,6 +357,13 @@ TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
       const auto expected = filtered(all, mask);
       EXPECT_GT(expected.size(), 0u) << what;
       EXPECT_EQ(pairIds(got), expected) << what;
+      ASSERT_TRUE(grid.findPairs(links, 0.0, threads, got, static_cast<std::size_t>(-1), &mask, TestedPairs::EitherLink));
+      const auto expectedEither = filtered(all, mask, true);
+      if (pattern != 3) // the first 40 flagged: a flagged link's partner below it is flagged too
+      {
+        EXPECT_GT(expectedEither.size(), expected.size()) << what;
+      }
+      EXPECT_EQ(pairIds(got), expectedEither) << what;
       ASSERT_EQ(finder.findPairs(links, cell, 0.0, threads, got, static_cast<std::size_t>(-1), nullptr, &mask), "");
       const auto expectedPeriodic = filtered(allPeriodic, mask);
       EXPECT_GT(expectedPeriodic.size(), expected.size()) << what; // pairs across the faces too

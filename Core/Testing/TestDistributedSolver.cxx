@@ -144,6 +144,61 @@ TEST(DistributedSolver, OpenCubeBitIdenticalForAnyRanksAndThreads)
   expectAnyRanksAnyThreads(paperCube(2, 100, 5), o);
 }
 
+// Without a cell a pair is tested by the lower of its links' tester slabs (docs/solver.md §13): a
+// rank holds the links of its tester slab and, as halo, links of the slabs above only. At the
+// start (MaxSteps 0, no split or merge, so the links are the input's) the last rank holds exactly
+// the links whose centre is in its slab, every other rank more than its own and fewer than its
+// own and all above it; bit for bit serial, three populations (fibers cross every cut).
+TEST(DistributedSolver, AnOpenModelsHaloIsOneSided)
+{
+  const FiberModel in = paperCube(3, 300, 9);
+  CollisionSolverOptions o;
+  o.maxSteps = 0;
+  o.segmentLength = -1.0;
+  o.numberOfThreads = 1;
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.collisions, 0u);
+  for (int ranks : { 2, 3 })
+  {
+    const std::string what = std::to_string(ranks) + " ranks";
+    const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
+    expectSerial(runs, serial, s, what);
+    // The links per tester slab at the start (the cut is of all ranks' link centres, whatever
+    // the pieces: here rank 0 passes the whole model).
+    std::vector<std::size_t> perSlab(static_cast<std::size_t>(ranks), 0);
+    runRanks(ranks, [&](SolverComm& comm) {
+      const SlabLayout layout = SlabLayout::make(comm.rank() == 0 ? in : FiberModel{}, PeriodicCell{}, comm);
+      if (comm.rank() != 0)
+        return;
+      const int a = layout.axis();
+      for (const Fiber& f : in.fibers)
+      {
+        for (std::size_t k = 0; k + 1 < f.size(); ++k)
+          ++perSlab[static_cast<std::size_t>(layout.testerOf(0.5 * (f.points[k][a] + f.points[k + 1][a])))];
+      }
+    });
+    std::size_t above = 0; // links of the slabs above q
+    for (int q = ranks - 1; q >= 0; --q)
+    {
+      const std::size_t own = perSlab[static_cast<std::size_t>(q)];
+      const std::size_t held = runs[static_cast<std::size_t>(q)].result.peakHeldLinks;
+      ASSERT_GT(own, 0u) << what;
+      if (q == ranks - 1)
+      {
+        EXPECT_EQ(held, own) << what << ": the last rank has no halo";
+      }
+      else
+      {
+        EXPECT_GT(held, own) << what << ", rank " << q;
+        EXPECT_LT(held, own + above) << what << ", rank " << q;
+      }
+      above += own;
+    }
+  }
+}
+
 // Without a cell the slabs cover the input's bounds only; pushed fibers leave them (the end
 // slabs own what lies beyond), on 4 and 5 ranks.
 TEST(DistributedSolver, OpenCubeFibersLeavingTheStartBoundsOnManyRanks)
