@@ -225,6 +225,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
   options.pushBoost = this->PushBoost;
+  options.maxDisplacement = this->MaxDisplacement;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
   options.maxSteps = this->MaxSteps;
@@ -422,6 +423,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
   os << indent << "PushBoost: " << this->PushBoost << "\n";
+  os << indent << "MaxDisplacement: " << this->MaxDisplacement << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
   os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";

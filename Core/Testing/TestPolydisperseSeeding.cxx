@@ -168,3 +168,25 @@ TEST(PolydisperseSeeding, DenseGammaCellsSolveToZeroOverlaps)
     EXPECT_GE(mc + 4.0 * std::sqrt(mc * (1 - mc) / 10000), c.phi) << c.pops << " populations";
   }
 }
+
+TEST(PolydisperseSeeding, InfeasibleTargetKeepsEveryFiberWithItsRadius)
+{
+  // 0.93 is beyond what these disks pack to (~0.89): the least-overlapping arrangement is used,
+  // nothing is dropped or shrunk, and the straight fibers overlap (the solver then reports how
+  // far it got, PeriodicSolver.InfeasibleTargetStopsBoundedWithAWarning).
+  CubeOptions o = gammaCube(1, 14.0, 0.93, 3);
+  o.displacement = 0.0;
+  const FiberModel seeded = generateCube(o);
+  CubeOptions random = o;
+  random.seeding = CubeSeeding::Random;
+  const FiberModel drawn = generateCube(random);
+  ASSERT_EQ(seeded.fibers.size(), drawn.fibers.size());
+  double area = 0.0;
+  for (std::size_t f = 0; f < seeded.fibers.size(); ++f)
+  {
+    EXPECT_EQ(seeded.fibers[f].radii, drawn.fibers[f].radii) << f;
+    area += M_PI * seeded.fibers[f].radii.front() * seeded.fibers[f].radii.front();
+  }
+  EXPECT_GE(area, 0.93 * 14.0 * 14.0);
+  EXPECT_LT(smallestStraightGap(seeded, o.edgeLength), 0.0);
+}

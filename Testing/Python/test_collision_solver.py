@@ -62,6 +62,25 @@ solver.PushBoost = 3.0
 solver.UpdatePipeline()
 check(field(solver, "solved") == 1 and points(solver) == plain, "pipeline must recover after a bad PushBoost")
 
+# MaxDisplacement (default 0.125 of the smallest radius): a bad value names the property; 0.4
+# solves a dense periodic cell with Gamma radii (smallest ~0.25 µm) seeded for its radii
+# (docs/periodic-cells.md, "Polydisperse seeding").
+check(abs(solver.MaxDisplacement - 0.125) < 1e-12, "MaxDisplacement default must be 0.125, is %g" % solver.MaxDisplacement)
+solver.MaxDisplacement = 0.0
+solver.UpdatePipeline()
+check("MaxDisplacement" in catcher.text(), "error must name MaxDisplacement: %r" % catcher.text())
+solver.MaxDisplacement = 0.125
+solver.UpdatePipeline()
+check(field(solver, "solved") == 1 and points(solver) == plain, "pipeline must recover after a bad MaxDisplacement")
+gamma = FiberCubeSource(Populations=1, EdgeLength=20.0, FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma",
+                        Periodic=1, VolumeFraction=0.85, Seeding="Lattice", SegmentLength=2.0, Displacement=0.5, Seed=11)
+dense = FiberCollisionSolver(Input=gamma, SegmentLength=2.0, MinCurvatureRadius=4.0, MaxSteps=3000, NumberOfThreads=2,
+                             MaxDisplacement=0.4)
+dense.UpdatePipeline()
+check(field(dense, "solved") == 1 and field(dense, "collisions") == 0,
+      "Gamma cell at 0.85 not solved: %d pairs left" % field(dense, "collisions"))
+check(field(dense, "volume_fraction") >= 0.85, "Gamma cell fraction %g" % field(dense, "volume_fraction"))
+
 # Iterations as time: the animation starts from the input and ends solved.
 solver.IterationsAsTime = 1
 solver.TimeStepInterval = 10
