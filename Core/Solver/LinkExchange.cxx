@@ -178,6 +178,12 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     }
   }
   grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
+  // Down-only routing without a cell: below[t] is the highest top of the regions of the slabs
+  // below t, so a link of slab t whose extent lies more than reach above it goes to t alone
+  // (most links; the general search below would find the same).
+  std::vector<double> below(nr, -HUGE_VAL);
+  for (std::size_t q = 1; downOnly && q < nr; ++q)
+    below[q] = std::max(below[q - 1], region[2 * (q - 1) + 1]);
   // Per destination, the run of links being collected (first link, length); `open`: those with
   // a run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
   std::vector<std::vector<char>> out(nr);
@@ -195,14 +201,23 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     const CapsuleLink& l = own[i];
     const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
     dests.clear();
-    forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
-      if ((!downOnly || static_cast<int>(q) <= tester[i]) && region[2 * q + 1] > -HUGE_VAL &&
-        within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
-      {
-        dests.push_back(q);
-        stamp[q] = i;
-      }
-    });
+    const std::size_t t = static_cast<std::size_t>(tester[i]);
+    if (downOnly && lo - reach > below[t])
+    {
+      dests.push_back(t); // its own region holds it
+      stamp[t] = i;
+    }
+    else
+    {
+      forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
+        if ((!downOnly || q <= t) && region[2 * q + 1] > -HUGE_VAL &&
+          within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+        {
+          dests.push_back(q);
+          stamp[q] = i;
+        }
+      });
+    }
     const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
     std::size_t kept = 0;
     for (std::size_t q : open)

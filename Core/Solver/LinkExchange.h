@@ -103,11 +103,19 @@ template <class Take>
 void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::vector<CapsulePair>& pairs,
   const std::vector<std::uint32_t>& local, const std::vector<std::vector<ReceivedPush>>& received, Take take)
 {
-  const auto key = [](const LinkPairPush& x) {
-    return std::make_pair(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB));
-  };
+  using Key = std::pair<std::uint64_t, std::uint64_t>;
+  const auto key = [](const LinkPairPush& x) { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
+  // Each record's key is computed once: the senders' next ones are kept, as is the next own one.
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
-  std::size_t i = 0;                                // next pair tested here
+  std::vector<Key> next(received.size());           // its key
+  for (std::size_t q = 0; q < received.size(); ++q)
+  {
+    if (!received[q].empty())
+      next[q] = key(received[q][0].push);
+  }
+  std::size_t i = 0;       // next pair tested here
+  std::size_t keyed = SIZE_MAX; // the pair whose key mine holds
+  Key mine;
   for (;;)
   {
     while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
@@ -115,11 +123,15 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::ve
     std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
     for (std::size_t q = 0; q < received.size(); ++q)
     {
-      if (at[q] < received[q].size() && (from == SIZE_MAX || key(received[q][at[q]].push) < key(received[from][at[from]].push)))
+      if (at[q] < received[q].size() && (from == SIZE_MAX || next[q] < next[from]))
         from = q;
     }
-    const bool mineFirst = i < tested.size() && (from == SIZE_MAX || key(tested[i]) < key(received[from][at[from]].push));
-    if (mineFirst)
+    if (i < tested.size() && keyed != i)
+    {
+      mine = key(tested[i]);
+      keyed = i;
+    }
+    if (i < tested.size() && (from == SIZE_MAX || mine < next[from]))
     {
       take(tested[i], local[pairs[i].a], local[pairs[i].b]);
       ++i;
@@ -127,6 +139,8 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::ve
     else if (from != SIZE_MAX)
     {
       const ReceivedPush& r = received[from][at[from]++];
+      if (at[from] < received[from].size())
+        next[from] = key(received[from][at[from]].push);
       take(r.push, r.localA, r.localB);
     }
     else
