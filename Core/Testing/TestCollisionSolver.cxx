@@ -575,6 +575,30 @@ TEST(CollisionSolver, AbsurdSegmentLengthIsRefusedBeforeAllocating)
   EXPECT_TRUE(bitwiseEqual(m, in));
 }
 
+TEST(CollisionSolver, ThinFibersAmongThickOnesWarnOfTheSlowStepCap)
+{
+  // The step cap is MaxDisplacement x the smallest radius: one 0.2 µm fiber beside 1 µm ones slows
+  // every fiber, and the warning names the option and the resulting step; equal radii do not warn.
+  const auto solveWithRadii = [](double thin) {
+    FiberModel m;
+    for (int i = 0; i < 4; ++i)
+      m.fibers.push_back(line({ -5, 3.0 * i, 0 }, { 1, 0, 0 }, 11, i == 0 ? thin : 1.0, i));
+    CollisionSolverOptions o;
+    o.segmentLength = 1.0;
+    return solveCollisions(m, o);
+  };
+  const auto mentions = [](const CollisionSolverResult& r, const std::string& text) {
+    for (const std::string& w : r.warnings)
+      if (w.find(text) != std::string::npos)
+        return true;
+    return false;
+  };
+  const CollisionSolverResult thin = solveWithRadii(0.2);
+  EXPECT_TRUE(mentions(thin, "MaxDisplacement 0.125")) << ::testing::PrintToString(thin.warnings);
+  EXPECT_TRUE(mentions(thin, "= 0.025")) << ::testing::PrintToString(thin.warnings);
+  EXPECT_FALSE(mentions(solveWithRadii(1.0), "MaxDisplacement"));
+}
+
 TEST(CollisionSolver, MixedRadiiWithOneThickFiber)
 {
   // Random directions and radii 0.4–1.2 µm plus one 4 µm fiber (boxes 4× the median: the grid's
