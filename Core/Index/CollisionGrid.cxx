@@ -115,10 +115,11 @@ double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 double CollisionGrid::bytesPerLink()
 {
   // boxes_, edges_, order_ and its reordering by flags, the six float bound arrays, the sorted
-  // copy of the link and its tested flag, and 3 words for the sort: the keys (2) and last order
-  // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one.
+  // copy of the link and its tested flag, 3 words for the sort: the keys (2) and last order
+  // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one, and the
+  // end of its pairs (mergePairs).
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char));
+    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char) + sizeof(std::size_t));
 }
 
 double CollisionGrid::bytesPerPair()
@@ -146,7 +147,7 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   {
     return false;
   }
-  mergePairs(nThreads, pairs);
+  mergePairs(links.size(), nThreads, pairs);
   return true;
 }
 
@@ -708,32 +709,36 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   return true;
 }
 
-// Phase 7: the per-thread lists, each sorted by (a, b), merged into one.
-void CollisionGrid::mergePairs(int nThreads, std::vector<CapsulePair>& pairs)
+// Phase 7: the per-thread lists merged into one sorted by (a, b). Each pair is found exactly
+// once, so the order is independent of the schedule. A counting sort by a, O(pairs + links),
+// then each link's few partners sorted by b: a comparison sort of the whole lists cost about
+// 6 % of a distributed solver step on the 1000-fiber cube.
+void CollisionGrid::mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs)
 {
-  // Each pair is found exactly once, so the sorted list is independent of the schedule: every
-  // thread sorts its own part (in parallel), then the parts are merged.
-  auto less = [](const CapsulePair& x, const CapsulePair& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  };
-  const std::int64_t nParts = static_cast<std::int64_t>(perThread_.size());
-#pragma omp parallel for num_threads(nThreads) schedule(static, 1)
-  for (std::int64_t t = 0; t < nParts; ++t)
-  {
-    auto& v = perThread_[static_cast<std::size_t>(t)];
-    std::sort(v.begin(), v.end(), less);
-  }
+  pairEnd_.assign(nLinks + 1, 0);
   std::size_t total = 0;
   for (const auto& v : perThread_)
   {
     total += v.size();
+    for (const CapsulePair& p : v)
+      ++pairEnd_[p.a + 1];
   }
-  pairs.reserve(total);
+  for (std::size_t i = 0; i < nLinks; ++i)
+    pairEnd_[i + 1] += pairEnd_[i]; // now the start of link i's pairs
+  pairs.resize(total);
   for (const auto& v : perThread_)
   {
-    const std::size_t mid = pairs.size();
-    pairs.insert(pairs.end(), v.begin(), v.end());
-    std::inplace_merge(pairs.begin(), pairs.begin() + static_cast<long>(mid), pairs.end(), less);
+    for (const CapsulePair& p : v)
+      pairs[pairEnd_[p.a]++] = p; // afterwards pairEnd_[i] is the end of link i's pairs
+  }
+  const std::int64_t nn = static_cast<std::int64_t>(nLinks);
+#pragma omp parallel for num_threads(nThreads) schedule(static)
+  for (std::int64_t ii = 0; ii < nn; ++ii)
+  {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const auto first = pairs.begin() + static_cast<std::ptrdiff_t>(i == 0 ? 0 : pairEnd_[i - 1]);
+    const auto last = pairs.begin() + static_cast<std::ptrdiff_t>(pairEnd_[i]);
+    std::sort(first, last, [](const CapsulePair& x, const CapsulePair& y) { return x.b < y.b; });
   }
 }
 

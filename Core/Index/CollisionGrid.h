@@ -130,7 +130,7 @@ private:
   void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads);
   bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, double minimumGap,
     const Layout& grid, int nThreads, std::size_t maxPairs);
-  void mergePairs(int nThreads, std::vector<CapsulePair>& pairs);
+  void mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs);
 
   std::vector<Box> boxes_;              // per link, grown by rho + gap/2
   std::vector<std::uint32_t> order_;    // regular link ids sorted by (cell, flagged first, id)
@@ -154,6 +154,7 @@ private:
   std::vector<std::uint32_t> cellUnflagged_; // per occupied cell, the offset of its first unflagged link
   std::vector<std::uint32_t> oversize_; // links queried against all links
   std::vector<std::vector<CapsulePair>> perThread_;
+  std::vector<std::size_t> pairEnd_;    // per link, the end of the merged pairs with a <= it
   std::uint64_t work_ = 0;
 };
 
