@@ -58,7 +58,7 @@ std::string PeriodicPairs::cellTooSmall(
 
 std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
   double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow,
-  const std::vector<char>* lowerOnly)
+  const std::vector<char>* tested)
 {
   pairs.clear();
   work_ = 0;
@@ -149,22 +149,22 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
       }
     }
   }
-  // Only pairs whose lower id is a real link are tested (a real link's own lowerOnly entry, 1
+  // Only pairs whose lower id is a real link are tested (a real link's own tested entry, 1
   // serially), never two ghosts: such a pair is an image of one found elsewhere. Each physical
   // pair then has at most two raw copies (real a with the ghost of b, real b with the ghost of
   // a), so more than twice the limit of raw pairs means more than the limit of physical ones, and
   // the physical count is checked after the deduplication below.
   const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
-  if (lowerOnly)
+  if (tested)
   {
-    imageLowerOnly_.assign(lowerOnly->begin(), lowerOnly->end());
+    imageTested_.assign(tested->begin(), tested->end());
   }
   else
   {
-    imageLowerOnly_.assign(n, 1);
+    imageTested_.assign(n, 1);
   }
-  imageLowerOnly_.resize(images_.size(), 0);
-  const bool within = grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, &imageLowerOnly_);
+  imageTested_.resize(images_.size(), 0);
+  const bool within = grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, &imageTested_);
   work_ = grid_.work();
   if (!within)
   {

@@ -22,12 +22,12 @@ public:
   /// Same contract as CollisionGrid::findPairs (pairs sorted by (a, b), identical for any thread
   /// count) with distances by minimum image. Returns an error (pairs empty) when the cell is too
   /// small for the links. More than maxPairs pairs: *overflow (if given) is set, pairs empty.
-  /// lowerOnly: CollisionGrid::findPairs' `tested` with TestedPairs::LowerLink (per real link; a
+  /// tested: CollisionGrid::findPairs' `tested` with TestedPairs::LowerLink (per real link; a
   /// pair's lower link is its smaller real id).
   std::string findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
     double minimumGap, int threads, std::vector<CapsulePair>& pairs,
     std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr,
-    const std::vector<char>* lowerOnly = nullptr);
+    const std::vector<char>* tested = nullptr);
 
   /// The work of the last findPairs (CollisionGrid::work of its grid over the images; 0 when it
   /// returned before searching).
@@ -47,7 +47,7 @@ private:
   std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts
   std::vector<std::size_t> ghostStart_; // per real link, where its ghosts start in images_
   std::vector<std::uint32_t> source_; // real id of every ghost
-  std::vector<char> imageLowerOnly_;  // the grid's lowerOnly: the real links' (1 serially), 0 for ghosts
+  std::vector<char> imageTested_;  // the grid's tested: the real links' (1 serially), 0 for ghosts
   std::vector<CapsulePair> raw_;
 };
 

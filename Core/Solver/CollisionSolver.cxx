@@ -982,13 +982,19 @@ void configure(Solver& s, std::vector<std::string>& warnings)
   // The step cap follows the smallest radius (a thin fiber must not be jumped over), so broadly
   // polydisperse radii slow every fiber down; dense cells of them need a larger MaxDisplacement
   // (0.4 where the default leaves collisions, docs/solver.md §4.2).
-  if (rMin < 0.5 * rMedian)
+  if (rMin < 0.5 * rMedian && s.o_.maxDisplacement < 0.4)
   {
     warnings.push_back("smallest radius " + std::to_string(rMin) +
       " is below 1/2 of the median radius " + std::to_string(rMedian) +
       ": every point moves at most MaxDisplacement " + std::to_string(s.o_.maxDisplacement) +
       " x this radius = " + std::to_string(s.o_.maxDisplacement * rMin) +
       " um per step (slow; dense targets of such radii may need MaxDisplacement 0.4)");
+  }
+  if (s.o_.maxDisplacement > 1.0)
+  {
+    warnings.push_back("MaxDisplacement " + std::to_string(s.o_.maxDisplacement) +
+      " is above 1: a point may move farther than the thinnest fiber's radius per step, so fibers can "
+      "pass through each other unseen");
   }
   s.st_.vMax = s.o_.maxDisplacement * rMin;
   // Parameter sanity (§5.2): warn, do not fail.

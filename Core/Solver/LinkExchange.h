@@ -37,7 +37,7 @@ struct HeldLinkInfo
   std::vector<double> pointRadius; ///< the smaller radius of the link's two points (unscaled)
   std::vector<int> owner;          ///< the rank owning the link's fiber
   std::vector<std::uint32_t> local; ///< the fiber's index in this rank's model, or kNotOwned
-  std::vector<char> tested;        ///< 1: this rank tests the pairs whose lower link this is
+  std::vector<char> tested;        ///< 1: a link of this rank's tester slab (testedPairs says which of its pairs the rank tests)
 };
 
 /// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester

@@ -579,12 +579,13 @@ TEST(CollisionSolver, ThinFibersAmongThickOnesWarnOfTheSlowStepCap)
 {
   // The step cap is MaxDisplacement x the smallest radius: one 0.2 µm fiber beside 1 µm ones slows
   // every fiber, and the warning names the option and the resulting step; equal radii do not warn.
-  const auto solveWithRadii = [](double thin) {
+  const auto solveWithRadii = [](double thin, double maxDisplacement = 0.125) {
     FiberModel m;
     for (int i = 0; i < 4; ++i)
       m.fibers.push_back(line({ -5, 3.0 * i, 0 }, { 1, 0, 0 }, 11, i == 0 ? thin : 1.0, i));
     CollisionSolverOptions o;
     o.segmentLength = 1.0;
+    o.maxDisplacement = maxDisplacement;
     return solveCollisions(m, o);
   };
   const auto mentions = [](const CollisionSolverResult& r, const std::string& text) {
@@ -597,6 +598,9 @@ TEST(CollisionSolver, ThinFibersAmongThickOnesWarnOfTheSlowStepCap)
   EXPECT_TRUE(mentions(thin, "MaxDisplacement 0.125")) << ::testing::PrintToString(thin.warnings);
   EXPECT_TRUE(mentions(thin, "= 0.025")) << ::testing::PrintToString(thin.warnings);
   EXPECT_FALSE(mentions(solveWithRadii(1.0), "MaxDisplacement"));
+  // Already at the advised cap: no advice; above 1 (a step beyond the thinnest radius): a warning.
+  EXPECT_FALSE(mentions(solveWithRadii(0.2, 0.4), "MaxDisplacement"));
+  EXPECT_TRUE(mentions(solveWithRadii(1.0, 1.5), "MaxDisplacement 1.5"));
 }
 
 TEST(CollisionSolver, MixedRadiiWithOneThickFiber)
