@@ -71,7 +71,12 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   }
 
   this->UpdateProgress(0.0);
-  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces);
+  std::string warning;
+  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning);
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< "FiberCubeSource: " << warning);
+  }
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(model, output);
 

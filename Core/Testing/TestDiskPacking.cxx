@@ -120,3 +120,34 @@ TEST(DiskPacking, EmptyInputGivesAnEmptyPacking)
   EXPECT_TRUE(packDisks({}, DiskDomain{ 10.0, 10.0, true }, 1, 1).centres.empty());
   EXPECT_TRUE(packDisks({ 1.0 }, DiskDomain{ 0.0, 10.0, true }, 1, 1).centres.empty());
 }
+
+TEST(DiskPacking, RadiiThatAreNotFiniteAndPositiveGiveAnEmptyPacking)
+{
+  const DiskDomain square{ 10.0, 10.0, true };
+  for (const double bad : { std::nan(""), HUGE_VAL, 0.0, -1.0 })
+  {
+    const DiskPacking p = packDisks({ 1.0, bad }, square, 1, 1);
+    EXPECT_TRUE(p.centres.empty()) << bad;
+    EXPECT_EQ(p.scale, 0.0) << bad;
+  }
+  EXPECT_TRUE(packDisks({ 1.0 }, DiskDomain{ HUGE_VAL, 10.0, true }, 1, 1).centres.empty());
+}
+
+TEST(DiskPacking, FewDisksInAHugeDomainUseAGridBoundedByTheDiskCount)
+{
+  // A grid of cells of 2 r̄ would have 2.5·10⁹ cells here (std::bad_alloc); bounded by the count it
+  // has a few. Two disks of radius 1 and 1.5 in (10⁵)² are far apart: the scale is the cap 1.1.
+  const std::vector<double> r{ 1.0, 1.5 };
+  const DiskDomain square{ 1e5, 1e5, true };
+  const DiskPacking p = packDisks(r, square, 1, 1);
+  ASSERT_EQ(p.centres.size(), 2u);
+  EXPECT_GE(bruteScale(r, p.centres, square), 1.0) << "no overlap";
+  EXPECT_EQ(p.scale, std::min(1.1, bruteScale(r, p.centres, square)));
+  // A walled slab 4 high and 10⁵ wide (a grid along its width only).
+  const DiskDomain slab{ 1e5, 4.0, false };
+  const DiskPacking q = packDisks(r, slab, 1, 1);
+  ASSERT_EQ(q.centres.size(), 2u);
+  EXPECT_GE(bruteScale(r, q.centres, slab), 1.0);
+  EXPECT_GE(q.scale, 1.0);
+  EXPECT_LT(diskPackingBytes(2.0), 4096.0);
+}

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 using namespace fiberpli;
 
@@ -140,8 +142,8 @@ TEST(PolydisperseSeeding, ConstantRadiiKeepTheLattice)
 TEST(PolydisperseSeeding, DenseGammaCellsSolveToZeroOverlaps)
 {
   // One population at 0.85 in a (20 µm)³ cell and two at 0.72 in (16 µm)³ with Gamma radii; on
-  // the lattice of the mean cross-section the two-population cell still had 709
-  // overlapping pairs after 3 000 steps (bench/README.md). The step cap is 0.4 × the smallest
+  // the lattice of the mean cross-section the (30 µm)³ cells of bench/README.md ("Polydisperse
+  // seeding") still had 7 625 (one population) and 2 331 (two) overlapping pairs after 3 000 steps. The step cap is 0.4 × the smallest
   // radius (0.25 µm here): the default 0.125 moves a point 0.03 µm per step, too little to iron
   // out the displacements of a cell at 0.85.
   struct Case
@@ -154,7 +156,9 @@ TEST(PolydisperseSeeding, DenseGammaCellsSolveToZeroOverlaps)
   {
     CubeOptions cube = gammaCube(c.pops, c.edge, c.phi, c.seed);
     cube.displacement = 0.5; // the bench's cells
-    FiberModel m = generateCube(cube);
+    std::string warning = "unset";
+    FiberModel m = generateCube(cube, 0, 1, &warning);
+    EXPECT_EQ(warning, "") << "the packing separates the disks";
     CollisionSolverOptions o;
     o.periodicCell = cubeCell(cube);
     o.minCurvatureRadius = 4.0;
@@ -171,12 +175,17 @@ TEST(PolydisperseSeeding, DenseGammaCellsSolveToZeroOverlaps)
 
 TEST(PolydisperseSeeding, InfeasibleTargetKeepsEveryFiberWithItsRadius)
 {
-  // 0.93 is beyond what these disks pack to (~0.89): the least-overlapping arrangement is used,
-  // nothing is dropped or shrunk, and the straight fibers overlap (the solver then reports how
-  // far it got, PeriodicSolver.InfeasibleTargetStopsBoundedWithAWarning).
+  // 0.93 is beyond what the packing reaches for these disks: the arrangement with the largest
+  // scale is used, nothing is dropped or shrunk, the straight fibers overlap and the generator
+  // says so (the solver then reports how far it got,
+  // PeriodicSolver.InfeasibleTargetStopsBoundedWithAWarning).
   CubeOptions o = gammaCube(1, 14.0, 0.93, 3);
   o.displacement = 0.0;
-  const FiberModel seeded = generateCube(o);
+  std::string warning;
+  const FiberModel seeded = generateCube(o, 0, 1, &warning);
+  EXPECT_NE(warning.find("Seeding Lattice: the radii could not be separated in the cross-section"), std::string::npos)
+    << warning;
+  EXPECT_NE(warning.find("VolumeFraction 0.93"), std::string::npos) << warning;
   CubeOptions random = o;
   random.seeding = CubeSeeding::Random;
   const FiberModel drawn = generateCube(random);
@@ -189,4 +198,43 @@ TEST(PolydisperseSeeding, InfeasibleTargetKeepsEveryFiberWithItsRadius)
   }
   EXPECT_GE(area, 0.93 * 14.0 * 14.0);
   EXPECT_LT(smallestStraightGap(seeded, o.edgeLength), 0.0);
+}
+
+TEST(PolydisperseSeeding, TwoPopulationSlabThinnerThanAFiberWarns)
+{
+  // A (4 µm)³ cell with two Gamma populations: the slabs are about 2 µm thick, thinner than the
+  // diameter of any fiber of radius > 1 µm, so such a fiber cannot lie in its slab.
+  const CubeOptions o = gammaCube(2, 4.0, 0.5, 5);
+  std::string warning;
+  const FiberModel m = generateCube(o, 0, 1, &warning);
+  double area[2] = { 0.0, 0.0 }, widest[2] = { 0.0, 0.0 };
+  for (const Fiber& f : m.fibers)
+  {
+    const double r = f.radii.front();
+    area[f.bundle] += r * r;
+    widest[f.bundle] = std::max(widest[f.bundle], 2.0 * r);
+  }
+  const double h0 = 4.0 * area[0] / (area[0] + area[1]);
+  ASSERT_TRUE(widest[0] > h0 || widest[1] > 4.0 - h0) << "the case this test is about";
+  EXPECT_NE(warning.find("thinner than its largest fiber's diameter"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("EdgeLength 4"), std::string::npos) << warning;
+}
+
+TEST(PolydisperseSeeding, ThePackingsMemoryIsCheckedOnEveryPiece)
+{
+  // 10⁶ fibers of 3 points in 8 pieces: a piece's share of the model fits 200 MB, the packing of
+  // all 10⁶ disks, which every piece computes, does not (diskPackingBytes).
+  CubeOptions o = gammaCube(1, 2000.0, 0.0, 1);
+  o.volumeFraction = 0.0;
+  o.numberOfFibers = 1000000;
+  o.segmentLength = 2000.0;
+  setenv("FIBERPLI_MEMORY_LIMIT", "200M", 1);
+  const std::string e = validateCubeOptions(o, 8);
+  o.seeding = CubeSeeding::Random;
+  const std::string random = validateCubeOptions(o, 8);
+  unsetenv("FIBERPLI_MEMORY_LIMIT");
+  EXPECT_NE(e.find("Seeding Lattice with RadiusSpread 0.5"), std::string::npos) << e;
+  EXPECT_NE(e.find("NumberOfFibers 1000000 with EdgeLength 2000"), std::string::npos) << e;
+  EXPECT_NE(e.find("memory budget"), std::string::npos) << e;
+  EXPECT_EQ(random, "") << "the model alone fits";
 }

@@ -154,6 +154,21 @@ bool polydisperse(const CubeOptions& o)
   return o.radiusSpread > 0.0 && o.radiusDistribution != RadiusDistribution::Constant;
 }
 
+// Empty when packing p separated its disks, else the warning that the solver starts from overlaps.
+// (An empty population has nothing to separate.)
+std::string overlapWarning(const CubeOptions& o, const DiskPacking& p, const std::string& where)
+{
+  if (p.centres.empty() || p.scale >= 1.0)
+    return {};
+  std::ostringstream w;
+  w << "Seeding Lattice: the radii could not be separated in " << where << " (packing scale " << p.scale
+    << " < 1 reached, RadiusSpread " << o.radiusSpread << ", " << p.centres.size() << " fibers";
+  if (o.volumeFraction > 0.0)
+    w << ", VolumeFraction " << o.volumeFraction;
+  w << "); the solver starts from overlapping fibers";
+  return w.str();
+}
+
 // Lattice seeding with polydisperse radii, 1 or 2 populations (docs/periodic-cells.md,
 // "Polydisperse seeding"): one site per fiber (fiber j of population k at sites[k][j]) from a
 // disk packing of the actual radii (Tissue/DiskPacking.h, stream (seed, 6 + k, 0)). One
@@ -161,8 +176,9 @@ bool polydisperse(const CubeOptions& o)
 // z in [−L/2, −L/2 + h0], population 1 (y-fibers, sites (z, x)) in the rest, h0 / L = the share
 // of population 0 in the fiber cross-section; a slab is periodic along its fibers' other
 // transverse axis and walled along z, so that no x-fiber crosses a y-fiber closer than their
-// radii.
-std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const std::vector<int>& counts)
+// radii. warning: what is left overlapping (empty when every packing separates its disks).
+std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const std::vector<int>& counts,
+  std::string& warning)
 {
   const double L = o.edgeLength;
   const double half = 0.5 * L;
@@ -180,6 +196,7 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   if (counts.size() == 1)
   {
     const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6);
+    warning = overlapWarning(o, p, "the cross-section");
     for (const Seed2D& c : p.centres)
       sites[0].push_back({ c.x - half, c.y - half });
     return sites;
@@ -188,6 +205,24 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   const double h0 = total > 0.0 ? L * area[0] / total : half;
   const DiskPacking p0 = packDisks(radii[0], DiskDomain{ L, h0, false }, o.seed, 6);
   const DiskPacking p1 = packDisks(radii[1], DiskDomain{ L, L - h0, false }, o.seed, 7);
+  warning = overlapWarning(o, p0, "the slab of population 0");
+  if (warning.empty())
+    warning = overlapWarning(o, p1, "the slab of population 1");
+  // A fiber wider than its slab cannot lie in it without crossing the other population.
+  const double heights[2] = { h0, L - h0 };
+  for (int k = 0; k < 2; ++k)
+  {
+    const double widest = radii[k].empty() ? 0.0 : 2.0 * *std::max_element(radii[k].begin(), radii[k].end());
+    if (widest > heights[k])
+    {
+      std::ostringstream w;
+      w << "Seeding Lattice: the slab of population " << k << " is " << heights[k]
+        << " thick, thinner than its largest fiber's diameter " << widest << " (EdgeLength " << L
+        << " is too small for two populations with RadiusSpread " << o.radiusSpread
+        << "); the solver starts from overlapping fibers";
+      warning = w.str();
+    }
+  }
   for (const Seed2D& c : p0.centres)
     sites[0].push_back({ c.x - half, c.y - half });
   for (const Seed2D& c : p1.centres)
@@ -296,6 +331,19 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     {
       msg << problem << "; it would need too many points";
     }
+    else if (o.seeding == CubeSeeding::Lattice && polydisperse(o) && o.populations <= 2)
+    {
+      // Every piece packs all fibers' disks.
+      std::ostringstream packing;
+      packing << "Seeding Lattice with RadiusSpread " << o.radiusSpread << " (a disk packing of " << fibers
+              << " fibers, ";
+      if (o.volumeFraction > 0.0)
+        packing << "VolumeFraction " << o.volumeFraction;
+      else
+        packing << "NumberOfFibers " << o.numberOfFibers;
+      packing << " with EdgeLength " << o.edgeLength << ", on every piece)";
+      msg << checkMemoryBudget(diskPackingBytes(fibers), packing.str());
+    }
   }
   return msg.str();
 }
@@ -305,7 +353,7 @@ int cubePopulationSize(const CubeOptions& o, int k)
   return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
 }
 
-FiberModel generateCube(const CubeOptions& o, int piece, int pieces)
+FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning)
 {
   const std::vector<int> counts = populationCounts(o);
   std::size_t total = 0;
@@ -317,8 +365,11 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces)
   // Packed sites are not jittered (spacing 0 leaves no room).
   double spacing = 0.0;
   std::vector<std::vector<LatticeSite>> sites;
+  std::string packed;
   if (o.seeding == CubeSeeding::Lattice)
-    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts) : shuffledSites(o, counts, spacing);
+    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts, packed) : shuffledSites(o, counts, spacing);
+  if (warning)
+    *warning = packed;
   FiberModel model;
   model.fibers.reserve(range.size());
   // Global order: population by population, fiber j of population k at first(k) + j.

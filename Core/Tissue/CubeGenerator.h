@@ -67,6 +67,8 @@ int cubePopulationSize(const CubeOptions& options, int k);
 /// their global ids; the counts (and with volumeFraction the radii of all fibers) are drawn by every
 /// piece, the points only for the piece's own fibers, so a piece holds its share of the memory.
 /// Precondition: validateCubeOptions(options, pieces) is empty.
-FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1);
+/// warning (if given): empty, or why the polydisperse Lattice seeding leaves fibers overlapping
+/// (docs/periodic-cells.md, "Polydisperse seeding"); the same on every piece.
+FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1, std::string* warning = nullptr);
 
 } // namespace fiberpli

@@ -18,8 +18,9 @@ constexpr double kOvercompression = 1.06;
 // Compress–swap–decompress cycles, each compressed from the scale the previous one reached, and
 // swap sweeps per cycle (each followed by a relaxation; they stop earlier when no swap helps).
 // The 3-D solve is sensitive to the last 0.5 % of the scale: one cycle of 20 sweeps reaches
-// 1.018 / 1.022 (seeds 42 / 7) at a third of the cost, and the (30 µm)³ Gamma cell at 0.85 no
-// longer solves in 3 000 steps (1 890 pairs left) where two cycles of 60 solve it in 392.
+// 1.018 / 1.022 (seeds 42 / 7) at a third of the cost, too little for the (30 µm)³ Gamma cell at
+// 0.85 to solve in 3 000 steps, which two cycles of 60 solve in 410 (bench/README.md,
+// "Polydisperse seeding").
 constexpr int kCycles = 2;
 constexpr int kSwapRounds = 60;
 // A scale this large leaves room enough (the dense targets' packings reach 1.02): no further
@@ -57,6 +58,11 @@ public:
       rMax_ = std::max(rMax_, r);
     }
     rMean_ = sum / static_cast<double>(r_.size());
+    // The grid is sized by the disks, but never finer than 4 cells per disk on average (nor
+    // along one axis): a few disks in a large domain would otherwise allocate (domain / radius)²
+    // cells. Dense packings (cells of 2 r̄ ≥ this bound) keep their grid.
+    const double n = 4.0 * static_cast<double>(r_.size());
+    minCell_ = std::max(std::sqrt(d_.width * d_.height / n), std::max(d_.width, d_.height) / n);
   }
 
   void randomStart(RandomStream& rng)
@@ -360,7 +366,7 @@ private:
 
   void buildGrid()
   {
-    const double cell = std::max(2.0 * rMean_ * scale_, 1e-9 * d_.width);
+    const double cell = std::max(2.0 * rMean_ * scale_, minCell_);
     nx_ = std::max(1, static_cast<int>(d_.width / cell));
     ny_ = std::max(1, static_cast<int>(d_.height / cell));
     cells_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), {});
@@ -438,7 +444,7 @@ private:
   std::vector<double> r_, a_;
   DiskDomain d_;
   std::vector<Vec> p_, built_;
-  double rMax_ = 0.0, rMean_ = 0.0, scale_ = 1.0;
+  double rMax_ = 0.0, rMean_ = 0.0, scale_ = 1.0, minCell_ = 0.0;
   int nx_ = 1, ny_ = 1;
   std::vector<std::vector<std::size_t>> cells_;
   std::vector<double> cellMax_; // largest current radius in each cell (an upper bound after swaps)
@@ -447,12 +453,25 @@ private:
 };
 } // namespace
 
+double diskPackingBytes(double disks)
+{
+  // Per disk: radii (2), positions (current, at the last pair build, kept), velocities and forces
+  // (2 doubles each), cell and slot (2), its swap energy, ~4 grid cells (a vector and a maximum
+  // each) and ~4 near pairs (2 indices each).
+  constexpr double perDisk = 8.0 * (2 + 5 * 2 + 2 + 1) + 4.0 * (24.0 + 8.0) + 4.0 * 16.0;
+  return perDisk * disks;
+}
+
 DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
   std::uint64_t key)
 {
   DiskPacking out;
-  if (radii.empty() || !(domain.width > 0.0) || !(domain.height > 0.0))
+  if (radii.empty() || !(domain.width > 0.0) || !(domain.height > 0.0) || !std::isfinite(domain.width) ||
+    !std::isfinite(domain.height))
     return out;
+  for (double r : radii)
+    if (!(r > 0.0) || !std::isfinite(r))
+      return out;
   Packer packer(radii, domain);
   RandomStream rng(seed, key, 0);
   packer.randomStart(rng);

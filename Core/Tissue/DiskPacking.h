@@ -36,10 +36,16 @@ struct DiskPacking
 };
 
 /// Packs the disks, deterministic for (seed, key) (the random start and the distant swap partners
-/// are the stream (seed, key, 0)), at as large a scale as it finds. Below 1 the disks could not be
-/// separated and the least-overlapping arrangement found at full size is returned. Radii must be
-/// > 0; an empty list or an empty domain gives an empty packing.
+/// are the stream (seed, key, 0)), at as large a scale as it finds: of the arrangements it reaches
+/// (one per compress–swap–decompress cycle) it returns the one with the largest scale, i.e. the
+/// smallest overlap relative to the radii. Below 1 the disks could not be separated and overlap
+/// (the caller should say so). An empty list, an empty or infinite domain, or any radius that is
+/// not finite and > 0 gives an empty packing (no centres, scale 0). The cost grows with the disk
+/// count (docs/periodic-cells.md, "Polydisperse seeding"); the memory is diskPackingBytes.
 DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
   std::uint64_t key);
+
+/// An upper estimate of the bytes packDisks allocates for this many disks (for a memory guard).
+double diskPackingBytes(double disks);
 
 } // namespace fiberpli

@@ -76,6 +76,23 @@ bad.VolumeFraction = 1.5
 bad.UpdatePipeline()
 check("VolumeFraction is 1.5" in catcher.text(), "no VolumeFraction error: %s" % catcher.text())
 
+# Polydisperse Lattice seeding (docs/periodic-cells.md, "Polydisperse seeding"): a target the
+# disk packing cannot separate warns and still gives every fiber; two fibers in a huge cell are
+# packed at once (the packing's grid is bounded by the fiber count).
+dense = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=14.0, FiberRadius=1.0, RadiusSpread=0.5,
+                        RadiusDistribution="Gamma", VolumeFraction=0.93, Seed=3)
+catcher = ErrorCatcher(dense)
+dense.UpdatePipeline()
+check(any("the radii could not be separated" in w for w in catcher.warnings),
+      "no infeasible seeding warning: %s" % catcher.warnings)
+check(dense.GetDataInformation().GetNumberOfCells() > 40, "fibers dropped")
+huge = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=1e5, SegmentLength=5e4, NumberOfFibers=2,
+                       FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma")
+catcher = ErrorCatcher(huge)
+huge.UpdatePipeline()
+check(huge.GetDataInformation().GetNumberOfCells() == 2 and not catcher.errors and not catcher.warnings,
+      "two fibers in a (1e5)^3 cell: %s %s" % (catcher.errors, catcher.warnings))
+
 tubes = FiberTubes(Input=solver, NumberOfSides=8)
 compare_image(tubes, "bundle_id", position=(30, 24, 36))
 print("test_periodic_cell passed")
