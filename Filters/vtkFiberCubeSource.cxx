@@ -72,7 +72,17 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
 
   this->UpdateProgress(0.0);
   std::string warning;
-  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning);
+  bool aborted = false;
+  // Progress and abort over the polydisperse Lattice seeding's disk packing (the long part).
+  const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this, 0.0, 0.7);
+  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning, [&](double f) {
+    aborted = !progress(f);
+    return !aborted;
+  });
+  if (aborted)
+  {
+    return 1; // an aborted source passes nothing on (AbortScope marks the output)
+  }
   if (!warning.empty())
   {
     vtkWarningMacro(<< "FiberCubeSource: " << warning);

@@ -151,3 +151,31 @@ TEST(DiskPacking, FewDisksInAHugeDomainUseAGridBoundedByTheDiskCount)
   EXPECT_GE(q.scale, 1.0);
   EXPECT_LT(diskPackingBytes(2.0), 4096.0);
 }
+
+TEST(DiskPacking, ProgressRisesAndAStopReturnsAnAbortedEmptyPacking)
+{
+  const DiskDomain square{ 30.0, 30.0, true };
+  const std::vector<double> r = gammaRadii(900.0, 0.85, 42);
+  std::vector<double> seen;
+  const DiskPacking whole = packDisks(r, square, 42, 6, [&](double f) {
+    seen.push_back(f);
+    return true;
+  });
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GE(seen.front(), 0.0);
+  EXPECT_LE(seen.back(), 1.0);
+  EXPECT_FALSE(whole.aborted);
+  // A callback that only watches changes nothing.
+  const DiskPacking plain = packDisks(r, square, 42, 6);
+  ASSERT_EQ(plain.centres.size(), whole.centres.size());
+  for (std::size_t i = 0; i < plain.centres.size(); ++i)
+    EXPECT_TRUE(plain.centres[i].x == whole.centres[i].x && plain.centres[i].y == whole.centres[i].y) << i;
+  EXPECT_EQ(plain.scale, whole.scale);
+  int calls = 0;
+  const DiskPacking stopped = packDisks(r, square, 42, 6, [&](double) { return ++calls < 3; });
+  EXPECT_EQ(calls, 3);
+  EXPECT_TRUE(stopped.aborted);
+  EXPECT_TRUE(stopped.centres.empty());
+  EXPECT_EQ(stopped.scale, 0.0);
+}

@@ -238,3 +238,21 @@ TEST(PolydisperseSeeding, ThePackingsMemoryIsCheckedOnEveryPiece)
   EXPECT_NE(e.find("memory budget"), std::string::npos) << e;
   EXPECT_EQ(random, "") << "the model alone fits";
 }
+
+TEST(PolydisperseSeeding, AStopDuringThePackingGivesAnEmptyModel)
+{
+  for (const int pops : { 1, 2 })
+  {
+    const CubeOptions o = gammaCube(pops, 14.0, 0.7, 8);
+    int calls = 0;
+    const FiberModel m = generateCube(o, 0, 1, nullptr, [&](double) { return ++calls < 2; });
+    EXPECT_EQ(calls, 2) << pops;
+    EXPECT_TRUE(m.fibers.empty()) << pops;
+    const FiberModel full = generateCube(o, 0, 1, nullptr, [](double) { return true; });
+    EXPECT_FALSE(full.fibers.empty()) << pops;
+    const FiberModel plain = generateCube(o);
+    ASSERT_EQ(full.fibers.size(), plain.fibers.size()) << pops;
+    for (std::size_t f = 0; f < full.fibers.size(); ++f)
+      EXPECT_TRUE(full.fibers[f].points == plain.fibers[f].points) << pops << " " << f;
+  }
+}

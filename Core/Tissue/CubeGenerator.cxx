@@ -177,8 +177,9 @@ std::string overlapWarning(const CubeOptions& o, const DiskPacking& p, const std
 // of population 0 in the fiber cross-section; a slab is periodic along its fibers' other
 // transverse axis and walled along z, so that no x-fiber crosses a y-fiber closer than their
 // radii. warning: what is left overlapping (empty when every packing separates its disks).
+// Progress over the packings; when it asks to stop, no sites (and aborted).
 std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const std::vector<int>& counts,
-  std::string& warning)
+  std::string& warning, const ProgressFn& progress, bool& aborted)
 {
   const double L = o.edgeLength;
   const double half = 0.5 * L;
@@ -195,7 +196,10 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   std::vector<std::vector<LatticeSite>> sites(counts.size());
   if (counts.size() == 1)
   {
-    const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6);
+    const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6, progress);
+    aborted = p.aborted;
+    if (aborted)
+      return {};
     warning = overlapWarning(o, p, "the cross-section");
     for (const Seed2D& c : p.centres)
       sites[0].push_back({ c.x - half, c.y - half });
@@ -203,8 +207,20 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   }
   const double total = area[0] + area[1];
   const double h0 = total > 0.0 ? L * area[0] / total : half;
-  const DiskPacking p0 = packDisks(radii[0], DiskDomain{ L, h0, false }, o.seed, 6);
-  const DiskPacking p1 = packDisks(radii[1], DiskDomain{ L, L - h0, false }, o.seed, 7);
+  const auto half0 = [&](double f) { return reportProgress(progress, 0.5 * f); };
+  const auto half1 = [&](double f) { return reportProgress(progress, 0.5 + 0.5 * f); };
+  const DiskPacking p0 = packDisks(radii[0], DiskDomain{ L, h0, false }, o.seed, 6, half0);
+  if (p0.aborted)
+  {
+    aborted = true;
+    return {};
+  }
+  const DiskPacking p1 = packDisks(radii[1], DiskDomain{ L, L - h0, false }, o.seed, 7, half1);
+  if (p1.aborted)
+  {
+    aborted = true;
+    return {};
+  }
   warning = overlapWarning(o, p0, "the slab of population 0");
   if (warning.empty())
     warning = overlapWarning(o, p1, "the slab of population 1");
@@ -353,7 +369,7 @@ int cubePopulationSize(const CubeOptions& o, int k)
   return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
 }
 
-FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning)
+FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning, const ProgressFn& progress)
 {
   const std::vector<int> counts = populationCounts(o);
   std::size_t total = 0;
@@ -366,10 +382,14 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   double spacing = 0.0;
   std::vector<std::vector<LatticeSite>> sites;
   std::string packed;
+  bool aborted = false;
   if (o.seeding == CubeSeeding::Lattice)
-    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts, packed) : shuffledSites(o, counts, spacing);
+    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts, packed, progress, aborted)
+                                                  : shuffledSites(o, counts, spacing);
   if (warning)
     *warning = packed;
+  if (aborted)
+    return {};
   FiberModel model;
   model.fibers.reserve(range.size());
   // Global order: population by population, fiber j of population k at first(k) + j.

@@ -9,6 +9,7 @@
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Util/Progress.h"
 
 #include <cstdint>
 #include <string>
@@ -69,6 +70,9 @@ int cubePopulationSize(const CubeOptions& options, int k);
 /// Precondition: validateCubeOptions(options, pieces) is empty.
 /// warning (if given): empty, or why the polydisperse Lattice seeding leaves fibers overlapping
 /// (docs/periodic-cells.md, "Polydisperse seeding"); the same on every piece.
-FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1, std::string* warning = nullptr);
+/// progress (Util/Progress.h): over that seeding's disk packing, the only long part; when it
+/// returns false the generator stops and returns an empty model.
+FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1, std::string* warning = nullptr,
+  const ProgressFn& progress = {});
 
 } // namespace fiberpli

@@ -463,7 +463,7 @@ double diskPackingBytes(double disks)
 }
 
 DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
-  std::uint64_t key)
+  std::uint64_t key, const ProgressFn& progress)
 {
   DiskPacking out;
   if (radii.empty() || !(domain.width > 0.0) || !(domain.height > 0.0) || !std::isfinite(domain.width) ||
@@ -477,6 +477,11 @@ DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain
   packer.randomStart(rng);
   double best = 0.0;
   std::vector<Vec> kept = packer.positions();
+  // Progress after every relaxation and at the end of every cycle: cycle by cycle, 90 % of a cycle for its swap rounds, the rest
+  // for the decompression. It only reads the state, so the packing does not depend on it.
+  const auto goOn = [&](int cycle, double withinCycle) {
+    return reportProgress(progress, (cycle + std::min(1.0, withinCycle)) / kCycles);
+  };
   for (int cycle = 0; cycle < kCycles && best < kAmpleScale; ++cycle)
   {
     // Past jamming, swap until no exchange lowers the energy (or the rounds run out) …
@@ -484,13 +489,19 @@ DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain
     packer.setScale(top);
     packer.relax(kRelaxIterations);
     for (int round = 0; round < kSwapRounds && packer.swapSweep(rng) > 0; ++round)
+    {
       packer.relax(kRelaxIterations);
+      if (!goOn(cycle, 0.9 * (round + 1) / kSwapRounds))
+        return DiskPacking{ {}, 0.0, true };
+    }
     // … then down to the first scale at which the disks separate (or to 1, overlapping).
     for (double s = top;; s -= kScaleStep)
     {
       packer.setScale(std::max(1.0, s));
       if (packer.relax(kRelaxIterations) || s <= 1.0)
         break;
+      if (!goOn(cycle, 0.9 + 0.1 * (top - s) / (top - 1.0)))
+        return DiskPacking{ {}, 0.0, true };
     }
     const double reached = packer.exactScale();
     if (reached > best)
@@ -498,6 +509,8 @@ DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain
       best = reached;
       kept = packer.positions();
     }
+    if (!goOn(cycle, 1.0))
+      return DiskPacking{ {}, 0.0, true };
   }
   packer.setPositions(kept);
   out.scale = best;

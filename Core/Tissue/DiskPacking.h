@@ -9,6 +9,7 @@
 #pragma once
 
 #include "Tissue/Seeds.h"
+#include "Util/Progress.h"
 
 #include <cstdint>
 #include <vector>
@@ -33,6 +34,8 @@ struct DiskPacking
   /// (minimum image) nor cross a wall, up to 1.1 (larger values are reported as 1.1); >= 1 means
   /// the requested disks are overlap-free.
   double scale = 0.0;
+  /// The progress callback asked to stop: no centres, scale 0.
+  bool aborted = false;
 };
 
 /// Packs the disks, deterministic for (seed, key) (the random start and the distant swap partners
@@ -42,8 +45,10 @@ struct DiskPacking
 /// (the caller should say so). An empty list, an empty or infinite domain, or any radius that is
 /// not finite and > 0 gives an empty packing (no centres, scale 0). The cost grows with the disk
 /// count (docs/periodic-cells.md, "Polydisperse seeding"); the memory is diskPackingBytes.
+/// progress (Util/Progress.h) is called after every relaxation and at the end of every cycle;
+/// false stops the packing (aborted).
 DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
-  std::uint64_t key);
+  std::uint64_t key, const ProgressFn& progress = {});
 
 /// An upper estimate of the bytes packDisks allocates for this many disks (for a memory guard).
 double diskPackingBytes(double disks);

@@ -93,6 +93,28 @@ huge.UpdatePipeline()
 check(huge.GetDataInformation().GetNumberOfCells() == 2 and not catcher.errors and not catcher.warnings,
       "two fibers in a (1e5)^3 cell: %s %s" % (catcher.errors, catcher.warnings))
 
+# The packing reports progress and honours an abort: no output, and the next update packs again.
+packed = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=30.0, FiberRadius=1.0, RadiusSpread=0.5,
+                         RadiusDistribution="Gamma", VolumeFraction=0.85, Seed=42)
+source = packed.GetClientSideObject()
+calls = {"n": 0}
+
+
+def abort_once(obj, event):
+    if calls["n"] == 0 and 0.0 < obj.GetProgress() < 0.7:
+        obj.SetAbortExecute(1)
+        calls["n"] += 1
+
+
+tag = source.AddObserver("ProgressEvent", abort_once)
+source.Update()
+source.RemoveObserver(tag)
+check(calls["n"] == 1, "the packing reported no progress")
+check(source.GetOutputDataObject(0).GetNumberOfCells() == 0, "an aborted seeding passes nothing on")
+check(not source.GetAbortExecute(), "the abort request must end with the execution")
+source.Update()
+check(source.GetOutputDataObject(0).GetNumberOfCells() > 150, "the update after an abort must pack again")
+
 tubes = FiberTubes(Input=solver, NumberOfSides=8)
 compare_image(tubes, "bundle_id", position=(30, 24, 36))
 print("test_periodic_cell passed")
