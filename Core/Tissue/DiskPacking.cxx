@@ -203,10 +203,13 @@ public:
       {
         exchange(i, best);
         ++swaps;
+        // Around each place, the neighbours of the disk that left it as well as of the one that
+        // came: reach of the larger of the two radii.
+        const double reach = std::max(a_[i], a_[best]);
         for (const std::size_t m : { i, best })
         {
           own[m] = energyAt(m, p_[m], a_[m], m);
-          visit(p_[m], a_[m], 0.0, [&](std::size_t k) { own[k] = energyAt(k, p_[k], a_[k], k); });
+          visit(p_[m], reach, 0.0, [&](std::size_t k) { own[k] = energyAt(k, p_[k], a_[k], k); });
         }
       }
     }
