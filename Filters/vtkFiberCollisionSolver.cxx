@@ -8,6 +8,7 @@
 #include "FiberSolverComm.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
+#include "Solver/SolverSnapshots.h"
 #include "Util/MemoryBudget.h"
 
 #include <vtkDoubleArray.h>
@@ -35,15 +36,14 @@ bool FirstPiece(vtkInformation* outInfo)
 }
 } // namespace
 
-// The states of one solve at steps 0, Δ, 2Δ, … (at most MaximumSnapshots: when full, every
-// second one is dropped and Δ doubles), then the final state; kept while input and properties
-// are unchanged.
+// The states of one solve (fiberpli::SolverSnapshots: the final state alone, or with
+// IterationsAsTime the snapshots of evenly spaced steps too) and its result; kept while input and
+// properties are unchanged.
 struct vtkFiberCollisionSolver::Snapshots
 {
   vtkMTimeType inputTime = 0;
   vtkMTimeType filterTime = 0;
-  std::vector<fiberpli::FiberModel> models; // snapshots, then the final state (result.sourceIndex)
-  std::vector<int> steps;                   // the solver step of each entry of models
+  fiberpli::SolverSnapshots states; // the last one is the final state (result.sourceIndex)
   fiberpli::CollisionSolverResult result;
   fiberpli::FiberConversion input;
   fiberpli::PeriodicCell cell; // the input's periodic_cell (off without one)
@@ -81,7 +81,8 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
   {
     return 1; // an error is reported (again by RequestData, which makes no output); or aborted
   }
-  std::vector<double> times(this->Cache->steps.begin(), this->Cache->steps.end());
+  const std::vector<int>& steps = this->Cache->states.steps;
+  std::vector<double> times(steps.begin(), steps.end());
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
@@ -254,36 +255,10 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
 {
   fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;
-  int interval = this->TimeStepInterval;
   if (this->IterationsAsTime)
   {
-    cache.models.push_back(model);
-    cache.steps.push_back(0);
-    const std::size_t maxSnapshots = static_cast<std::size_t>(this->MaximumSnapshots);
-    observer = [&cache, &interval, maxSnapshots](int step, const fiberpli::FiberModel& current) {
-      if (step % interval != 0)
-      {
-        return;
-      }
-      if (cache.models.size() == maxSnapshots) // full: keep steps 0, 2Δ, 4Δ, … and double Δ
-      {
-        std::size_t kept = 0;
-        for (std::size_t i = 0; i < cache.models.size(); i += 2, ++kept)
-        {
-          cache.models[kept] = std::move(cache.models[i]);
-          cache.steps[kept] = cache.steps[i];
-        }
-        cache.models.resize(kept);
-        cache.steps.resize(kept);
-        interval *= 2;
-        if (step % interval != 0)
-        {
-          return;
-        }
-      }
-      cache.models.push_back(current);
-      cache.steps.push_back(step);
-    };
+    cache.states.start(model, this->TimeStepInterval, static_cast<std::size_t>(this->MaximumSnapshots));
+    observer = [&cache](int step, const fiberpli::FiberModel& current) { cache.states.observe(step, current); };
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
@@ -304,14 +279,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
   {
     vtkWarningMacro(<< "FiberCollisionSolver: " << w);
   }
-  // The final state replaces a snapshot of its own step (taken before the last shape control).
-  if (!cache.steps.empty() && cache.steps.back() == cache.result.steps)
-  {
-    cache.models.pop_back();
-    cache.steps.pop_back();
-  }
-  cache.models.push_back(std::move(model));
-  cache.steps.push_back(cache.result.steps);
+  cache.states.finish(std::move(model), cache.result.steps);
   return {};
 }
 
@@ -345,21 +313,19 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
   }
 
   // Which state to show: the last one, or the last snapshot at or before the requested time.
-  std::size_t shown = this->Cache->models.size() - 1;
+  const fiberpli::SolverSnapshots& states = this->Cache->states;
+  std::size_t shown = states.models.size() - 1;
   if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
   {
     const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    const std::vector<int>& steps = this->Cache->steps;
-    const auto after = std::upper_bound(steps.begin(), steps.end(), t + 1e-9,
-      [](double time, int step) { return time < static_cast<double>(step); });
-    shown = after == steps.begin() ? 0 : static_cast<std::size_t>(after - steps.begin()) - 1;
+    shown = states.atTime(t);
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
   }
-  const int shownStep = this->IterationsAsTime ? this->Cache->steps[shown] : this->Cache->result.steps;
+  const int shownStep = this->IterationsAsTime ? states.steps[shown] : this->Cache->result.steps;
 
-  const fiberpli::FiberModel& model = this->Cache->models[shown];
+  const fiberpli::FiberModel& model = states.models[shown];
   const fiberpli::CollisionSolverResult& r = this->Cache->result;
-  const bool final = shown + 1 == this->Cache->models.size();
+  const bool final = shown + 1 == states.models.size();
   fiberpli::FiberPolyData::FromModel(model, output);
   // The final state knows where each point came from. Snapshots do not: their point arrays are
   // passed (unchanged points) only while no fiber has been split or merged yet.

@@ -8,7 +8,7 @@
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
-#include "Solver/CollisionSolver.h"
+#include "Solver/SolverState.h"
 #include "Solver/SolverComm.h"
 
 #include <cstddef>

@@ -1,0 +1,213 @@
+#include "Solver/SolverChecks.h"
+
+#include "Solver/SolverEngine.h"
+#include "Util/MemoryBudget.h"
+#include "Util/Threads.h"
+
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <unordered_map>
+
+namespace fiberpli
+{
+
+namespace
+{
+// Exact copies of fibers (same points and radii): how many fibers repeat an earlier one, and the
+// id and copy count of the largest stack. Hash first, then compare bytes.
+struct DuplicateStacks
+{
+  std::size_t copies = 0;
+  std::size_t largest = 0;
+  std::int64_t largestId = 0;
+};
+
+// A few exact copies separate like any overlap; a stack of many is a data error (tractography
+// output repeating a streamline) whose pairs grow with the square of its height.
+constexpr std::size_t kMaxExactCopies = 16;
+// Gaps beyond a few radii make every link collide with the links of all fibers nearby.
+constexpr double kMaxGapRadii = 10.0;
+DuplicateStacks findDuplicateStacks(const FiberModel& model)
+{
+  DuplicateStacks d;
+  std::unordered_multimap<std::size_t, std::size_t> seen;
+  std::vector<std::size_t> count(model.fibers.size(), 0);
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fib = model.fibers[f];
+    std::size_t h = fib.points.size();
+    const auto mix = [&h](const void* data, std::size_t bytes) {
+      const auto* c = static_cast<const unsigned char*>(data);
+      for (std::size_t i = 0; i < bytes; ++i)
+        h = h * 1099511628211ull + c[i];
+    };
+    mix(fib.points.data(), fib.points.size() * sizeof(Vec3));
+    mix(fib.radii.data(), fib.radii.size() * sizeof(double));
+    bool copy = false;
+    const auto range = seen.equal_range(h);
+    for (auto it = range.first; it != range.second && !copy; ++it)
+    {
+      const Fiber& o = model.fibers[it->second];
+      if (o.points.size() == fib.points.size() &&
+        std::memcmp(o.points.data(), fib.points.data(), fib.points.size() * sizeof(Vec3)) == 0 &&
+        std::memcmp(o.radii.data(), fib.radii.data(), fib.radii.size() * sizeof(double)) == 0)
+      {
+        copy = true;
+        ++d.copies;
+        if (++count[it->second] > d.largest)
+        {
+          d.largest = count[it->second];
+          d.largestId = o.id;
+        }
+      }
+    }
+    if (!copy)
+    {
+      seen.emplace(h, f);
+    }
+  }
+  return d;
+}
+
+} // namespace
+
+std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
+{
+  std::ostringstream msg;
+  if (!std::isfinite(o.segmentLength))
+  {
+    msg << "SegmentLength is " << o.segmentLength << ", must be finite (0 = auto, < 0 = off)";
+  }
+  else if (!std::isfinite(o.minCurvatureRadius) || o.minCurvatureRadius < 0.0)
+  {
+    msg << "MinCurvatureRadius is " << o.minCurvatureRadius << ", must be >= 0 (0 = off)";
+  }
+  else if (o.maxSteps < 0)
+  {
+    msg << "MaxSteps is " << o.maxSteps << ", must be >= 0";
+  }
+  else if (!std::isfinite(o.separationSpeed) || o.separationSpeed <= 0.0 || o.separationSpeed > 1.0)
+  {
+    msg << "SeparationSpeed is " << o.separationSpeed << ", must be in (0, 1]";
+  }
+  else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
+  {
+    msg << "OverlapPush is " << o.overlapPush << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.pushSpread) || o.pushSpread < 0.0 || o.pushSpread > 1.0)
+  {
+    msg << "PushSpread is " << o.pushSpread << ", must be in [0, 1]";
+  }
+  else if (!std::isfinite(o.maxDisplacement) || o.maxDisplacement <= 0.0)
+  {
+    msg << "MaxDisplacement is " << o.maxDisplacement << ", must be > 0";
+  }
+  else if (!std::isfinite(o.pushBoost) || o.pushBoost < 1.0 || o.pushBoost > 4.0)
+  {
+    msg << "PushBoost is " << o.pushBoost << ", must be in [1, 4] (1 = off)";
+  }
+  else if (!std::isfinite(o.drag) || o.drag < 0.0 || o.drag >= 1.0)
+  {
+    msg << "Drag is " << o.drag << ", must be in [0, 1)";
+  }
+  else if (!validateThreadCount(o.numberOfThreads).empty())
+  {
+    msg << validateThreadCount(o.numberOfThreads);
+  }
+  else if (!std::isfinite(o.minimumGap) || o.minimumGap < 0.0)
+  {
+    msg << "MinimumGap is " << o.minimumGap << ", must be >= 0";
+  }
+  else if (o.stallSteps < 0)
+  {
+    msg << "StallSteps is " << o.stallSteps << ", must be >= 0 (0 = off)";
+  }
+  else if (!std::isfinite(o.initialRadiusScale) || o.initialRadiusScale < 0.0 || o.initialRadiusScale > 1.0)
+  {
+    msg << "InitialRadiusScale is " << o.initialRadiusScale << ", must be in [0, 1] (0 = automatic, 1 = off)";
+  }
+  else if (!isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
+  {
+    msg << "the periodic cell has a non-finite bound";
+  }
+  return msg.str();
+}
+
+// validateModel (short fibers allowed: they are copied through), the fiber named by its global
+// index (global[i] of piece fiber i; none given: the piece index), so a distributed run's message
+// is the serial one for any rank count.
+std::string validatePiece(const FiberModel& piece, const std::vector<std::int64_t>& global)
+{
+  std::size_t bad = 0;
+  std::string error = validateModel(piece, &bad, ShortFibers::Allowed);
+  const std::string local = "fiber " + std::to_string(bad);
+  if (!error.empty() && bad < global.size() && error.compare(0, local.size(), local) == 0)
+  {
+    error = "fiber " + std::to_string(global[bad]) + error.substr(local.size());
+  }
+  return error;
+}
+
+// §8: splitting makes up to (arc length / l_min) points per fiber; refuse sizes beyond the memory
+// budget before any allocation instead of running out of memory in the middle of a step.
+// Distributed: the fibers this rank owns (at most the serial run's), against its budget.
+std::string checkMemory(const SolverEngine& s)
+{
+  double length = 0.0;
+  double points = 0.0;
+  for (const Fiber& f : s.model_.fibers)
+  {
+    for (std::size_t i = 0; i + 1 < f.size(); ++i)
+    {
+      length += distance(f.points[i], f.points[i + 1]);
+    }
+    points += static_cast<double>(f.size());
+  }
+  const double estimate = s.st_.segmentLength > 0.0 ? points + length / (s.st_.segmentLength * (2.0 / 3.0)) : points;
+  // Colliding pairs per link at the start of a dense run: a partner fiber crosses a link's reach
+  // of ~4 radii with 1 + 4ρ/L̄ of its links; 2 partners per link at the paper's density (measured:
+  // 5 pairs per link at L̄ = 2.5ρ, 40 at L̄ = ρ/8).
+  const double meanLink = s.st_.segmentLength > 0.0 ? s.st_.segmentLength : length / std::max(1.0, points);
+  const double pairsPerLink = meanLink > 0.0 ? 2.0 * (1.0 + 4.0 * medianRadius(s.model_) / meanLink) : 2.0;
+  const double bytes = estimate * (bytesPerPoint() + pairsPerLink * bytesPerPair());
+  std::ostringstream what;
+  what << "SegmentLength " << s.st_.segmentLength << " with a total fiber length of " << length
+       << " (up to " << estimate << " points)";
+  if (s.comm_) // each rank's own memory against its own budget (§13)
+  {
+    what << " on rank " << s.comm_->rank() << " of " << s.comm_->size();
+  }
+  const std::string problem = checkMemoryBudget(bytes, what.str());
+  return problem.empty() ? problem : problem + "; raise SegmentLength";
+}
+
+// Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
+// kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
+// the colliding pairs grow with the square of the copies or the gap.
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
+{
+  std::ostringstream msg;
+  const DuplicateStacks d = findDuplicateStacks(model);
+  if (d.largest > kMaxExactCopies)
+  {
+    msg << "fiber id " << d.largestId << " has " << d.largest << " exact copies (" << d.copies
+        << " duplicate fibers in all; at most " << kMaxExactCopies
+        << " copies of a fiber are separated): remove the duplicates";
+    return msg.str();
+  }
+  double rhoMax = largestRadius(model);
+  if (comm)
+  {
+    rhoMax = maxOverRanks(*comm, rhoMax);
+  }
+  if (o.minimumGap > kMaxGapRadii * rhoMax)
+  {
+    msg << "MinimumGap is " << o.minimumGap << ", more than " << kMaxGapRadii
+        << " x the largest fiber radius " << rhoMax
+        << ": the solver separates touching fibers, it does not spread them apart; lower it";
+  }
+  return msg.str();
+}
+
+} // namespace fiberpli

@@ -1,0 +1,115 @@
+// SolverEngine: the slabs, migrations and link exchanges of a distributed run (docs/solver.md §13).
+
+#include "Solver/SolverEngine.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fiberpli
+{
+
+// The slabs, the pair and probe reaches and every fiber to its owner (the run's first exchange).
+void SolverEngine::startDistribution()
+{
+  layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
+  const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
+  // Pairs collide closer than 2·ρmax + gap; the minimum gap probes pairs up to one median
+  // radius (<= ρmax) apart; a relative margin covers the rounding of the distances.
+  pairReach_ = (2.0 * rhoMax + o_.minimumGap) * (1.0 + 1e-6) + 1e-9;
+  probeReach_ = 3.0 * rhoMax * (1.0 + 1e-6) + 1e-9;
+  RankFibers r = rankFibers();
+  std::vector<int> dest(r.size());
+  for (std::size_t f = 0; f < r.size(); ++f)
+  {
+    dest[f] = layout_.owner(model_.fibers[f]);
+  }
+  redistribute(r, dest, *comm_);
+  migrationDue_ = false;
+  pairWork_ = 0;
+}
+
+// Every kBalanceSteps steps the tester slabs are re-cut at equal pair work of the steps since
+// (the link counts they start with balance the links, not their pairs: the 1000-fiber cube's
+// ranks did 52 / 48 % of the box tests).
+void SolverEngine::balanceTesters()
+{
+  if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
+  {
+    const SlabLayout before = layout_;
+    layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
+    pairWork_ = 0;
+    const double span = layout_.testerLo(comm_->size()) - layout_.testerLo(0);
+    double moved = 0.0;
+    for (int q = 1; q < comm_->size(); ++q)
+      moved = std::max(moved, std::abs(layout_.testerLo(q) - before.testerLo(q)));
+    if (moved > 0.0)
+    {
+      ++testerRecuts_;
+      testerCutMove_ = std::max(testerCutMove_, moved / span);
+    }
+  }
+}
+
+void SolverEngine::resetTraffic()
+{
+  migrations_ = haloExchanges_ = haloBytes_ = peakHaloLinks_ = peakRankPoints_ = peakHeldLinks_ = 0;
+  testerRecuts_ = 0;
+  testerCutMove_ = 0.0;
+}
+
+// Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
+// at the end of the last step: most steps move no fiber out of its slab, and the links go to
+// every rank whose region they reach whoever owns them).
+void SolverEngine::migrate()
+{
+  if (migrationDue_)
+  {
+    RankFibers r = rankFibers();
+    std::vector<int> dest(r.size());
+    for (std::size_t f = 0; f < r.size(); ++f)
+    {
+      dest[f] = layout_.owner(model_.fibers[f]);
+    }
+    migrations_ += redistribute(r, dest, *comm_).fibers;
+    migrationDue_ = false;
+  }
+}
+
+// links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
+// from all owners, with the current positions (so they are complete for this step), or with
+// the wider reach of the minimum-gap probe (then not counted as a step's traffic).
+void SolverEngine::gatherLinks(const std::vector<char>* active, const std::vector<char>* closed, double scale,
+  bool forGapProbe)
+{
+  buildLinks(model_, active, threads_, comm_ ? ownLinks_ : links_, &pointOffset_, closed, scale);
+  if (!comm_)
+  {
+    return;
+  }
+  const double reach = forGapProbe ? probeReach_ : pairReach_;
+  const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
+  if (forGapProbe)
+  {
+    return;
+  }
+  haloBytes_ += sent.bytes;
+  ++haloExchanges_;
+  std::size_t halo = 0;
+  for (std::uint32_t f : held_.local)
+    halo += f == kNotOwned ? 1 : 0;
+  peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
+  peakHaloLinks_ = std::max(peakHaloLinks_, halo);
+  peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
+}
+
+// Owned fibers whose middle left this rank's slab (after a move): they migrate next step.
+std::int64_t SolverEngine::leavingFibers() const
+{
+  std::int64_t n = 0;
+  const int me = comm_->rank();
+  for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+    n += layout_.owner(model_.fibers[f]) != me ? 1 : 0;
+  return n;
+}
+
+} // namespace fiberpli

@@ -1,0 +1,37 @@
+/// SolverLinks: the flat capsule-link array the collision solver and its counts work on
+/// (docs/solver.md §1), the median radius and the capsule volume of a model, and the memory a
+/// point and a pair of a solve take.
+#pragma once
+
+#include "Index/CollisionGrid.h"
+#include "Model/FiberModel.h"
+#include "Solver/SolverComm.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
+/// active (optional): only these fibers; pointOffset (optional): each fiber's first point in a
+/// flat point array; closed (optional): fibers closed through a periodic cell; scale: capsule
+/// radii × scale (growth).
+void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
+  std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset,
+  const std::vector<char>* closed = nullptr, double scale = 1.0);
+
+/// Median point radius of the fibers with >= 2 points; distributed (comm): of all ranks' fibers,
+/// exactly the same value.
+double medianRadius(const FiberModel& model, SolverComm* comm = nullptr);
+
+/// Σ π ρ² · link length over all links (ρ = capsule radius), summed exactly: the same bits for
+/// any order and split of the fibers; comm: over all ranks' fibers (collective).
+double capsuleVolume(const FiberModel& model, SolverComm* comm = nullptr);
+
+/// Bytes the solver keeps per point (model point and radius, velocity, source index, force, its
+/// link and the grid's buffers; links ≈ points) and per colliding pair (the pair and its push).
+double bytesPerPoint();
+double bytesPerPair();
+
+} // namespace fiberpli
