@@ -227,6 +227,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   options.initialRadiusScale = this->InitialRadiusScale;
   options.pushBoost = this->PushBoost;
   options.maxDisplacement = this->MaxDisplacement;
+  options.tortuosity = this->Tortuosity;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
   options.maxSteps = this->MaxSteps;
@@ -390,6 +391,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
   os << indent << "PushBoost: " << this->PushBoost << "\n";
   os << indent << "MaxDisplacement: " << this->MaxDisplacement << "\n";
+  os << indent << "Tortuosity: " << this->Tortuosity << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";
   os << indent << "MaximumSnapshots: " << this->MaximumSnapshots << "\n";

@@ -134,6 +134,18 @@ public:
 
   ///@{
   /**
+   * Tortuosity to keep (path length / end-to-end distance; over the lattice vector in a periodic
+   * cell), 0 = off, else in (1, 3] (docs/solver.md §5.3). Pushes flatten undulating fibers; with a
+   * target, shape control scales a fiber's deviations from its axis back up whenever its
+   * tortuosity falls 5 % of the excess below the target, so the solved model keeps the requested
+   * undulation. Straight fibers stay straight. Default is 0 (off).
+   */
+  vtkSetMacro(Tortuosity, double);
+  vtkGetMacro(Tortuosity, double);
+  ///@}
+
+  ///@{
+  /**
    * Expose the solver's steps as time steps: 0, TimeStepInterval, 2 × TimeStepInterval, … and the
    * step the solve ended at, which is the last time step (the solve runs when the pipeline
    * information is updated, once, and is cached). Default is off.
@@ -217,6 +229,7 @@ private:
   double InitialRadiusScale = 0.0;
   double PushBoost = 3.0;
   double MaxDisplacement = 0.125;
+  double Tortuosity = 0.0;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
   int MaximumSnapshots = 100;

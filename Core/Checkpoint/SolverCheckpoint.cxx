@@ -21,7 +21,7 @@ namespace
 // input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
 // warnings, then the FNV-1a checksum of everything before it.
 const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
-constexpr std::uint32_t kVersion = 3; // 2: PushBoost and the push scale; 3: its pair cap (another push rule)
+constexpr std::uint32_t kVersion = 4; // 2: PushBoost and the push scale; 3: its pair cap (another push rule); 4: Tortuosity
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
 
@@ -58,7 +58,8 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
     { "MinimumGap", o.minimumGap }, { "endPoints", static_cast<double>(o.endPoints) },
     { "stallSteps", o.stallSteps }, { "periodic_cell xmin", c.lo.x }, { "periodic_cell xmax", c.hi.x },
     { "periodic_cell ymin", c.lo.y }, { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
-    { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale } };
+    { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale },
+    { "Tortuosity", o.tortuosity } };
 }
 
 class Writer

@@ -75,6 +75,12 @@ struct CollisionSolverOptions
   /// slower and looser than plain pushing on the periodic benchmarks, bench/README.md). The output
   /// always has the input radii. Default 0.
   double initialRadiusScale = 0.0;
+  /// [ours] Keep every fiber's tortuosity (path length / end-to-end distance, over the closure in
+  /// a periodic cell) at least at this value (docs/solver.md §5.3): pushes flatten undulating
+  /// fibers, so shape control scales a fiber's deviations from its axis back up once its
+  /// tortuosity falls 5 % of the excess below it. Straight fibers stay straight. 0 = off (any
+  /// value <= 1), else in (1, 3]. Default 0.
+  double tortuosity = 0.0;
 };
 
 /// Outcome of solveCollisions (field data of §9). error non-empty: nothing was done and the model

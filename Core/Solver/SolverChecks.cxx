@@ -127,6 +127,10 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "InitialRadiusScale is " << o.initialRadiusScale << ", must be in [0, 1] (0 = automatic, 1 = off)";
   }
+  else if (!std::isfinite(o.tortuosity) || o.tortuosity < 0.0 || o.tortuosity > 3.0)
+  {
+    msg << "Tortuosity is " << o.tortuosity << ", must be in [0, 3] (0 or 1 = off)";
+  }
   else if (!isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
   {
     msg << "the periodic cell has a non-finite bound";

@@ -117,6 +117,10 @@ public:
 
   bool periodic() const { return o_.periodicCell.enabled(); }
 
+  // A fiber's tortuosity is restored once it falls this far below the target (§5.3): 5 % of the
+  // target's excess over 1, so the solved fibers keep at least 95 % of the requested excess.
+  double tortuosityTolerance() const { return 0.05 * (o_.tortuosity - 1.0); }
+
   // Largest move of a point per step, boosted with the pushes (PushBoost 2: fastPLI's 0.2·r); the
   // curvature correction steps scale with it as in fastPLI.
   double moveCap() const { return st_.vMax * (1.0 + 0.6 * (st_.pushScale - 1.0)); }

@@ -3,13 +3,14 @@
 #include "Solver/SolverEngine.h"
 
 #include "Solver/PushBoost.h"
+#include "Solver/TortuosityControl.h"
 
 #include <cmath>
 
 namespace fiberpli
 {
 
-// Length then curvature per fiber; parallel over fibers, each fiber sequential (§5).
+// Tortuosity, length, then curvature per fiber; parallel over fibers, each fiber sequential (§5).
 bool SolverEngine::shapeControl()
 {
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
@@ -25,7 +26,8 @@ bool SolverEngine::shapeControl()
     FiberPointState& st = st_.points[static_cast<std::size_t>(f)];
     const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
     const Vec3* closure = closed ? &st_.closure[static_cast<std::size_t>(f)] : nullptr;
-    bool c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2);
+    bool c = controlTortuosity(fib, o_.tortuosity, tortuosityTolerance(), moveCap(), 5.0 * st_.segmentLength, closure);
+    c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2) || c;
     c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
     close(static_cast<std::size_t>(f));
     changed |= c ? 1 : 0;
@@ -52,7 +54,13 @@ bool SolverEngine::localShapeWithinLimits() const
       continue;
     }
     const bool closed = periodic() && st_.closed[f];
-    if (!curvatureOk(fib, o_.minCurvatureRadius, closed ? &st_.closure[f] : nullptr))
+    const Vec3* closure = closed ? &st_.closure[f] : nullptr;
+    if (!curvatureOk(fib, o_.minCurvatureRadius, closure))
+    {
+      return false;
+    }
+    const double tau = fiberTortuosity(fib, closure);
+    if (o_.tortuosity > 1.0 && tau > 1.0 && tau < o_.tortuosity - tortuosityTolerance())
     {
       return false;
     }
