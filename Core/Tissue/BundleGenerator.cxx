@@ -1,7 +1,9 @@
 #include "Tissue/BundleGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/Beading.h"
 #include "Tissue/BundleShapes.h"
+#include "Tissue/Undulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,7 +63,8 @@ FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& rang
     {
       if (next >= range.begin && next < range.end)
       {
-        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement);
+        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement, o.realism,
+          o.segmentLength, o.seed);
         f.id = static_cast<std::int64_t>(next);
         f.bundle = b.bundle;
         model.fibers.push_back(std::move(f));
@@ -118,7 +121,8 @@ double chiasmTurnRadius(const BundleOptions& o) { return yTurnRadius(o); }
 } // namespace
 
 Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
-  const RanvierOptions& ranvier, double displacement)
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed, bool* reached)
 {
   Fiber f;
   const std::size_t n = t.points.size();
@@ -127,12 +131,50 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
   {
     f.points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
   }
-  applyRanvier(f, cf.radius, cf.phase, ranvier);
-  for (Vec3& p : f.points)
+  if (shape.undulating())
   {
-    p.x += cf.rng.uniform(-displacement, displacement);
-    p.y += cf.rng.uniform(-displacement, displacement);
-    p.z += cf.rng.uniform(-displacement, displacement);
+    // The laid polyline is the base path; the undulated fiber replaces it, its displacements drawn
+    // from the Jitter stream (its point count differs from the straight one's) and counted in the
+    // calibration; Ranvier's points then go onto the finished polyline, which they do not bend.
+    BasePath base;
+    base.points = f.points;
+    base.u = fr.u;
+    base.v = fr.v;
+    const std::size_t points = undulatedPointCount(polylineLength(base.points), shape.tortuosity, segmentLength, 2);
+    std::vector<Vec3> jitter(points);
+    RandomStream jr = shapeStream(seed, ShapeFeature::Jitter, cf.crossSection, cf.key);
+    for (Vec3& d : jitter)
+      for (int a = 0; a < 3; ++a)
+        d[a] = jr.uniform(-displacement, displacement);
+    RandomStream ur = shapeStream(seed, ShapeFeature::Undulation, cf.crossSection, cf.key);
+    Undulation und = drawUndulation(ur, polylineLength(base.points), shape.undulationWavelength, false);
+    const bool ok = calibrateUndulation(base, und, shape.tortuosity, points, &jitter);
+    if (reached)
+      *reached = ok;
+    f.points = undulatedPath(base, und, und.amplitude, points);
+    for (std::size_t i = 0; i < points; ++i)
+      f.points[i] += jitter[i];
+    applyRanvier(f, cf.radius, cf.phase, ranvier);
+  }
+  else
+  {
+    applyRanvier(f, cf.radius, cf.phase, ranvier);
+    for (Vec3& p : f.points)
+    {
+      p.x += cf.rng.uniform(-displacement, displacement);
+      p.y += cf.rng.uniform(-displacement, displacement);
+      p.z += cf.rng.uniform(-displacement, displacement);
+    }
+  }
+  if (shape.beaded())
+  {
+    std::vector<double> arc(f.points.size(), 0.0);
+    for (std::size_t i = 1; i < arc.size(); ++i)
+      arc[i] = arc[i - 1] + distance(f.points[i - 1], f.points[i]);
+    RandomStream br = shapeStream(seed, ShapeFeature::Beading, cf.crossSection, cf.key);
+    const std::vector<double> factor = beadingFactors(drawBeading(br, arc, shape.beadingLength, shape.beadingCV, false));
+    for (std::size_t i = 0; i < f.radii.size(); ++i)
+      f.radii[i] *= factor[i];
   }
   return f;
 }
@@ -215,6 +257,20 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
   {
     return std::string();
+  }
+  if (o.realism.undulating())
+  {
+    // Each axis of U[−D, D]³ adds D²/3 per point: a link of length l becomes about √(l² + 2D²)
+    // (docs/tissue-models.md §5.2); a fiber whose jitter alone is that tortuous gets no undulation.
+    const double jitterAlone = std::sqrt(1.0 + 2.0 * o.displacement * o.displacement / (o.segmentLength * o.segmentLength));
+    if (jitterAlone >= o.realism.tortuosity)
+    {
+      std::ostringstream msg;
+      msg << "Tortuosity " << o.realism.tortuosity << ": the Displacement " << o.displacement
+          << " alone makes the fibers about " << jitterAlone
+          << " times longer than their path, so they stay without undulation (lower Displacement)";
+      return msg.str();
+    }
   }
   ResampledTrajectory t;
   if (o.shape == BundleShape::Trajectory)

@@ -19,8 +19,14 @@ namespace fiberpli
 /// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
 /// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
 /// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
+/// With undulation (shape.tortuosity > 1, §10.1) the laid polyline is the base path of an
+/// undulated fiber of round(τ·L/l) + 1 points (frames u_k, v_k across it), displaced by draws of
+/// the fiber's Jitter stream, calibrated with them, and the Ranvier points are inserted on it
+/// afterwards; with beading (§10.3) the radii are multiplied by the fiber's profile along its arc
+/// length. Shape streams: (seed, crossSection, key) of shapeStream.
 Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
-  const RanvierOptions& ranvier, double displacement);
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape = {}, double segmentLength = 0.0,
+  std::uint64_t seed = 0, bool* reached = nullptr);
 
 /// FiberBundleSource (docs/tissue-models.md §8). Shapes and bundle ids:
 /// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.

@@ -1,6 +1,7 @@
 #include "Tissue/CubeGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
@@ -37,7 +38,7 @@ double fiberCountEstimate(const CubeOptions& o)
 
 // Fiber j of population k (stream (seed, k, j)): straight along axis k, displaced; closed through
 // the faces when periodic (the last point is the first shifted by one period, not drawn).
-Fiber makeFiber(const CubeOptions& o, int k, int j)
+Fiber makeStraightFiber(const CubeOptions& o, int k, int j)
 {
   const int n = pointsPerFiber(o);
   const double half = 0.5 * o.edgeLength;
@@ -94,6 +95,90 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
   return drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
 }
 
+
+// The span of fiber j of population k: its end-to-end vector (closed: its lattice vector), one
+// edge along the population's axis.
+Vec3 fiberSpan(const CubeOptions& o, int k, int /*j*/)
+{
+  Vec3 span;
+  span[k] = o.edgeLength;
+  return span;
+}
+
+// The point count of a fiber: the straight one's, or with undulation spread ≈ SegmentLength apart
+// along the longer path.
+std::size_t shapedPointCount(const CubeOptions& o, int k, int j)
+{
+  if (!(o.realism.undulating() || o.realism.dispersed()))
+    return static_cast<std::size_t>(pointsPerFiber(o));
+  return undulatedPointCount(norm(fiberSpan(o, k, j)), o.realism.tortuosity, o.segmentLength, o.periodic ? 3 : 2);
+}
+
+// The beading profile of fiber j of population k on the nominal arc positions of its n points
+// (equally spaced over its target path length τ·|span|), stream Beading (k, j).
+BeadingProfile cubeBeading(const CubeOptions& o, int k, int j, std::size_t n)
+{
+  const double length = o.realism.tortuosity * norm(fiberSpan(o, k, j));
+  std::vector<double> arc(n);
+  for (std::size_t i = 0; i < n; ++i)
+    arc[i] = length * static_cast<double>(i) / static_cast<double>(n - 1);
+  RandomStream rng = shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  return drawBeading(rng, arc, o.realism.beadingLength, o.realism.beadingCV, o.periodic);
+}
+
+// The volume a fiber adds to the volume-fraction count: π r² L for a straight fiber (as always);
+// with shape knobs the capsules' Σ π ρ_link² · link length of its target path (ρ_link the larger
+// radius of the link's two points, as the solver's volume_fraction counts).
+double fiberVolume(const CubeOptions& o, int k, int j)
+{
+  const double r = cubeFiberRadius(o, k, j);
+  if (!o.realism.shapesFibers())
+    return M_PI * r * r * o.edgeLength;
+  const std::size_t n = shapedPointCount(o, k, j);
+  const double length = o.realism.tortuosity * norm(fiberSpan(o, k, j));
+  if (!o.realism.beaded())
+    return M_PI * r * r * length;
+  const std::vector<double> f = beadingFactors(cubeBeading(o, k, j, n));
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 1 < n; ++i)
+  {
+    const double rho = r * std::max(f[i], f[i + 1]);
+    sum += rho * rho;
+  }
+  return M_PI * sum * length / static_cast<double>(n - 1);
+}
+
+// The fiber with its shape knobs: undulated (and dispersed) points from cubeFiberShape, or the
+// straight fiber; then the beaded radii.
+Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
+{
+  Fiber f;
+  if (o.realism.undulating() || o.realism.dispersed())
+  {
+    const CubeFiberShape shape = cubeFiberShape(o, k, j);
+    if (reached)
+      *reached = shape.reached;
+    f.bundle = k;
+    f.points = undulatedPath(shape.base, shape.undulation, shape.undulation.amplitude, shape.pointCount);
+    for (std::size_t i = 0; i < f.points.size(); ++i)
+      f.points[i] += shape.jitter[i];
+    if (o.periodic)
+      f.points.back() = f.points.front() + (shape.base.points.back() - shape.base.points.front());
+    f.radii.assign(f.points.size(), shape.radius);
+  }
+  else
+  {
+    f = makeStraightFiber(o, k, j);
+  }
+  if (o.realism.beaded())
+  {
+    const std::vector<double> factor = beadingFactors(cubeBeading(o, k, j, f.points.size()));
+    for (std::size_t i = 0; i < f.radii.size(); ++i)
+      f.radii[i] *= factor[i];
+  }
+  return f;
+}
+
 // Fibers per population. With a volume fraction: fibers in turn over the populations (0, 1, 2,
 // 0, …) until their volume (each fiber's straight length is one period L) reaches the target, so
 // the count is the smallest whose nominal fraction is at least the one asked for; only their radii
@@ -118,8 +203,7 @@ std::vector<int> populationCounts(const CubeOptions& o)
   for (int i = 0; i < bound && volume < reached; ++i)
   {
     const int k = i % o.populations;
-    const double r = cubeFiberRadius(o, k, i / o.populations);
-    volume += M_PI * r * r * o.edgeLength;
+    volume += fiberVolume(o, k, i / o.populations);
     ++counts[static_cast<std::size_t>(k)];
   }
   return counts;
@@ -272,6 +356,37 @@ void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const Latti
 }
 } // namespace
 
+CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
+{
+  const double half = 0.5 * o.edgeLength;
+  CubeFiberShape shape;
+  // The transverse position as the straight fiber draws it (the first two numbers of its stream).
+  RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  Vec3 start;
+  start[k] = -half;
+  start[(k + 1) % 3] = rng.uniform(-half, half);
+  start[(k + 2) % 3] = rng.uniform(-half, half);
+  const Vec3 span = fiberSpan(o, k, j);
+  shape.base = straightBasePath(start, span, o.periodic);
+  shape.pointCount = shapedPointCount(o, k, j);
+  shape.radius = cubeFiberRadius(o, k, j);
+  shape.jitter.assign(shape.pointCount, Vec3{});
+  RandomStream jitter = shapeStream(o.seed, ShapeFeature::Jitter, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  const std::size_t drawn = o.periodic ? shape.pointCount - 1 : shape.pointCount;
+  for (std::size_t i = 0; i < drawn; ++i)
+    for (int a = 0; a < 3; ++a)
+      shape.jitter[i][a] = jitter.uniform(-o.displacement, o.displacement);
+  if (o.periodic)
+    shape.jitter.back() = shape.jitter.front();
+  if (o.realism.undulating())
+  {
+    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    shape.undulation = drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    shape.reached = calibrateUndulation(shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
+  }
+  return shape;
+}
+
 PeriodicCell cubeCell(const CubeOptions& o)
 {
   const double half = 0.5 * o.edgeLength;
@@ -329,10 +444,14 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
   }
+  else if (!validateShapeOptions(o.realism).empty())
+  {
+    msg << validateShapeOptions(o.realism);
+  }
   else
   {
     const double fibers = fiberCountEstimate(o);
-    const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
+    const double points = fibers * (o.realism.tortuosity * o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
     what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
@@ -392,6 +511,7 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     return {};
   FiberModel model;
   model.fibers.reserve(range.size());
+  std::size_t unreached = 0;
   // Global order: population by population, fiber j of population k at first(k) + j.
   std::size_t first = 0;
   for (std::size_t k = 0; k < counts.size(); ++k)
@@ -401,7 +521,9 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     const std::size_t to = std::min(range.end, first + count);
     for (std::size_t j = from; first + j < to; ++j)
     {
-      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j));
+      bool reached = true;
+      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
+      unreached += reached ? 0 : 1;
       if (!sites.empty())
       {
         placeOnSite(o, k, j, sites[k][j], spacing, f);
@@ -410,6 +532,14 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
       model.fibers.push_back(std::move(f));
     }
     first += count;
+  }
+  if (warning && unreached > 0)
+  {
+    std::ostringstream w;
+    w << (warning->empty() ? "" : "; ") << "Tortuosity " << o.realism.tortuosity << ": the Displacement "
+      << o.displacement << " alone makes " << unreached << " fiber(s) of this piece longer than that, left "
+      << "without undulation (lower Displacement, or raise Tortuosity)";
+    *warning += w.str();
   }
   return model;
 }

@@ -9,6 +9,8 @@
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Tissue/ShapeOptions.h"
+#include "Tissue/Undulation.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -46,7 +48,33 @@ struct CubeOptions
   /// as many as fibers; the empty ones chosen at random), each jittered uniformly in the disc of
   /// radius max(0, spacing/2 − fiberRadius); the drawn positions are replaced, the displacements kept.
   CubeSeeding seeding = CubeSeeding::Random;
+  /// Realism knobs (Tissue/ShapeOptions.h, docs/tissue-models.md §10); the defaults are off and
+  /// leave the cube bit-identical. Undulation (and dispersion) replace the straight fiber of n
+  /// points by a shaped one of max(n_min, round(τ·span/l) + 1) points whose displacements come from
+  /// the fiber's Jitter stream; its transverse position and radius are drawn as for the straight
+  /// fiber. Beading multiplies the radii (field on the nominal arc positions i·τ·span/(n − 1)).
+  ShapeOptions realism;
 };
+
+/// The target shape of one cube fiber (fiber j of population k) with undulation or dispersion on,
+/// everything a later step needs to re-apply or scale it: the straight base path (from the drawn
+/// transverse position, along the fiber's span), its calibrated undulation, the point count, the
+/// point displacements (drawn from the Jitter stream; closed: the last equals the first) and the
+/// radius drawn for it. Lattice seeding translates the finished fiber across its axis afterwards.
+/// points = undulatedPath(base, undulation, undulation.amplitude, pointCount) + jitter.
+struct CubeFiberShape
+{
+  BasePath base;
+  Undulation undulation;
+  std::size_t pointCount = 0;
+  std::vector<Vec3> jitter;
+  double radius = 0.0;
+  /// false when the displacements alone make the fiber longer than the target (amplitude 0).
+  bool reached = true;
+};
+
+/// The shape of fiber j of population k; meaningful when options.realism undulates or disperses.
+CubeFiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
 
 /// The cell of a periodic cube: [-L/2, L/2]³.
 PeriodicCell cubeCell(const CubeOptions& options);

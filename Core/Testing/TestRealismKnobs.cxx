@@ -1,0 +1,209 @@
+// The realism knobs in the two generators (docs/tissue-models.md §10): defaults leave the models
+// untouched, each knob's statistic measured on the generated fibers, closure in periodic cells,
+// pieces, and the errors naming the property.
+#include "Tissue/Beading.h"
+#include "Tissue/BundleGenerator.h"
+#include "Tissue/CubeGenerator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace fiberpli;
+
+namespace
+{
+CubeOptions periodicCube()
+{
+  CubeOptions o;
+  o.populations = 2;
+  o.numberOfFibers = 60;
+  o.edgeLength = 30.0;
+  o.fiberRadius = 0.8;
+  o.displacement = 0.1;
+  o.periodic = true;
+  o.seed = 17;
+  return o;
+}
+
+double lengthOf(const Fiber& f)
+{
+  double len = 0.0;
+  for (std::size_t i = 1; i < f.points.size(); ++i)
+    len += distance(f.points[i - 1], f.points[i]);
+  return len;
+}
+
+bool samePoints(const FiberModel& a, const FiberModel& b)
+{
+  if (a.fibers.size() != b.fibers.size())
+    return false;
+  for (std::size_t i = 0; i < a.fibers.size(); ++i)
+    if (a.fibers[i].points != b.fibers[i].points || a.fibers[i].id != b.fibers[i].id)
+      return false;
+  return true;
+}
+
+bool sameModel(const FiberModel& a, const FiberModel& b)
+{
+  if (!samePoints(a, b))
+    return false;
+  for (std::size_t i = 0; i < a.fibers.size(); ++i)
+    if (a.fibers[i].radii != b.fibers[i].radii || a.fibers[i].bundle != b.fibers[i].bundle)
+      return false;
+  return true;
+}
+} // namespace
+
+TEST(RealismKnobs, MyelinAloneLeavesTheFibersAndBeadingOnlyTheRadii)
+{
+  for (bool periodic : { false, true })
+  {
+    CubeOptions o = periodicCube();
+    o.periodic = periodic;
+    o.radiusSpread = 0.3;
+    o.radiusDistribution = RadiusDistribution::Gamma;
+    const FiberModel plain = generateCube(o);
+    o.realism.gRatio = 0.7;
+    EXPECT_TRUE(sameModel(plain, generateCube(o)));
+    o.realism.beadingCV = 0.2;
+    const FiberModel beaded = generateCube(o);
+    EXPECT_TRUE(samePoints(plain, beaded));
+    EXPECT_FALSE(sameModel(plain, beaded));
+  }
+}
+
+TEST(RealismKnobs, PeriodicCubeFibersReachTortuosityAndClose)
+{
+  CubeOptions o = periodicCube();
+  o.realism.tortuosity = 1.05;
+  o.realism.undulationWavelength = 12.0;
+  std::string warning;
+  const FiberModel m = generateCube(o, 0, 1, &warning);
+  EXPECT_TRUE(warning.empty()) << warning;
+  ASSERT_EQ(m.fibers.size(), 60u);
+  const PeriodicCell cell = cubeCell(o);
+  for (const Fiber& f : m.fibers)
+  {
+    Vec3 closure;
+    ASSERT_TRUE(isClosedFiber(f, cell, closure));
+    Vec3 expected;
+    expected[f.bundle] = o.edgeLength;
+    EXPECT_EQ(f.points.back(), f.points.front() + expected);
+    EXPECT_NEAR(lengthOf(f) / o.edgeLength, 1.05, 1e-4);
+    // Points about SegmentLength apart along the path.
+    EXPECT_NEAR(lengthOf(f) / static_cast<double>(f.points.size() - 1), o.segmentLength, 0.1);
+  }
+}
+
+TEST(RealismKnobs, BeadedCubeFibersHaveTheRequestedRadiusCV)
+{
+  CubeOptions o = periodicCube();
+  o.realism.tortuosity = 1.1;
+  o.realism.beadingCV = 0.25;
+  o.realism.beadingLength = 4.0;
+  const FiberModel m = generateCube(o);
+  for (const Fiber& f : m.fibers)
+  {
+    // Closed fibers: the last point repeats the first.
+    EXPECT_NEAR(coefficientOfVariation(f.radii, true), 0.25, 1e-9);
+    double mean = 0.0;
+    for (std::size_t i = 0; i + 1 < f.radii.size(); ++i)
+      mean += f.radii[i];
+    EXPECT_NEAR(mean / static_cast<double>(f.radii.size() - 1), o.fiberRadius, 1e-12);
+    EXPECT_EQ(f.radii.back(), f.radii.front());
+  }
+}
+
+TEST(RealismKnobs, VolumeFractionCountsTortuousLengthsAndBeads)
+{
+  CubeOptions o = periodicCube();
+  o.volumeFraction = 0.5;
+  const std::size_t straight = generateCube(o).fibers.size();
+  o.realism.tortuosity = 1.2;
+  const FiberModel tortuous = generateCube(o);
+  // Every fiber is 1.2 periods long: the target needs about 1/1.2 as many.
+  EXPECT_NEAR(static_cast<double>(tortuous.fibers.size()), straight / 1.2, 2.0);
+  double volume = 0.0;
+  for (const Fiber& f : tortuous.fibers)
+    volume += M_PI * f.radii[0] * f.radii[0] * lengthOf(f);
+  EXPECT_NEAR(volume / std::pow(o.edgeLength, 3), 0.5, 0.01);
+}
+
+TEST(RealismKnobs, PiecesConcatenateToTheSerialModel)
+{
+  CubeOptions o = periodicCube();
+  o.realism.tortuosity = 1.04;
+  o.realism.beadingCV = 0.2;
+  const FiberModel serial = generateCube(o);
+  FiberModel joined;
+  for (int p = 0; p < 3; ++p)
+  {
+    const FiberModel piece = generateCube(o, p, 3);
+    joined.fibers.insert(joined.fibers.end(), piece.fibers.begin(), piece.fibers.end());
+  }
+  EXPECT_TRUE(sameModel(serial, joined));
+}
+
+TEST(RealismKnobs, OpenCubeAndBundleFibersReachTortuosity)
+{
+  CubeOptions c = periodicCube();
+  c.periodic = false;
+  c.realism.tortuosity = 1.08;
+  for (const Fiber& f : generateCube(c).fibers)
+    EXPECT_NEAR(lengthOf(f) / distance(f.points.front(), f.points.back()), 1.08, 0.005);
+
+  BundleOptions b;
+  b.displacement = 0.1;
+  b.realism.tortuosity = 1.06;
+  b.realism.undulationWavelength = 15.0;
+  b.realism.beadingCV = 0.2;
+  const FiberModel m = generateBundle(b, nullptr);
+  ASSERT_GT(m.fibers.size(), 50u);
+  double sum = 0.0;
+  for (const Fiber& f : m.fibers)
+  {
+    const double tau = lengthOf(f) / distance(f.points.front(), f.points.back());
+    EXPECT_NEAR(tau, 1.06, 0.01);
+    sum += tau;
+    EXPECT_NEAR(coefficientOfVariation(f.radii, false), 0.2, 1e-9);
+  }
+  EXPECT_NEAR(sum / static_cast<double>(m.fibers.size()), 1.06, 0.002);
+  // Bundle defaults are untouched by myelin; pieces are the serial model.
+  BundleOptions d;
+  const FiberModel plain = generateBundle(d, nullptr);
+  d.realism.gRatio = 0.6;
+  EXPECT_TRUE(sameModel(plain, generateBundle(d, nullptr)));
+  FiberModel joined;
+  for (int p = 0; p < 2; ++p)
+  {
+    const FiberModel piece = generateBundle(b, nullptr, nullptr, p, 2);
+    joined.fibers.insert(joined.fibers.end(), piece.fibers.begin(), piece.fibers.end());
+  }
+  EXPECT_TRUE(sameModel(m, joined));
+}
+
+TEST(RealismKnobs, BadValuesNameTheProperty)
+{
+  const auto cubeError = [](auto set) {
+    CubeOptions o = periodicCube();
+    set(o.realism);
+    return validateCubeOptions(o);
+  };
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = 0.9; }).find("Tortuosity is 0.9"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = NAN; }).find("Tortuosity is nan"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = 1.1; s.undulationWavelength = 0.0; })
+              .find("UndulationWavelength is 0"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 0.3; }).find("DispersionC2 is 0.3"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 1.2; }).find("DispersionC2 is 1.2"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = -0.1; }).find("BeadingCV is -0.1"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = 5.0; }).find("BeadingCV is 5"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = 0.2; s.beadingLength = -1.0; })
+              .find("BeadingLength is -1"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.gRatio = 1.0; }).find("GRatio is 1"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.gRatio = -0.5; }).find("GRatio is -0.5"), std::string::npos);
+  EXPECT_TRUE(cubeError([](ShapeOptions&) {}).empty());
+  BundleOptions b;
+  b.realism.gRatio = 1.5;
+  EXPECT_NE(validateBundleOptions(b).find("GRatio is 1.5"), std::string::npos);
+}
