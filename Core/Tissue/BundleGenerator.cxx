@@ -3,6 +3,7 @@
 #include "Model/FiberPieces.h"
 #include "Tissue/Beading.h"
 #include "Tissue/BundleShapes.h"
+#include "Tissue/Dispersion.h"
 #include "Tissue/Undulation.h"
 
 #include <algorithm>
@@ -16,6 +17,8 @@ namespace fiberpli
 namespace
 {
 constexpr double kDegree = M_PI / 180.0;
+// The largest tilt of a dispersed bundle fiber (75°: a fiber at most 3.9 times its path's length).
+constexpr double kMaxBundleTilt = 75.0 * kDegree;
 
 struct Path
 {
@@ -130,6 +133,23 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
   for (std::size_t k = 0; k < n; ++k)
   {
     f.points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
+  }
+  if (shape.dispersed())
+  {
+    // Tilt the fiber about its middle by a Watson-drawn angle θ (stream Dispersion): a drift across
+    // the path growing linearly with arc length, so a straight bundle's fiber runs at θ to the
+    // axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across a bundle.
+    RandomStream dr = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key);
+    const double u1 = dr.uniform();
+    const double u2 = dr.uniform();
+    const double c = watsonTableForC2(shape.dispersionC2)->cosine(u1);
+    const double slope = std::min(std::tan(kMaxBundleTilt), std::sqrt(std::max(0.0, 1.0 - c * c)) / c);
+    const double phi = 2.0 * M_PI * u2;
+    std::vector<double> arc(n, 0.0);
+    for (std::size_t k = 1; k < n; ++k)
+      arc[k] = arc[k - 1] + distance(t.points[k - 1], t.points[k]);
+    for (std::size_t k = 0; k < n; ++k)
+      f.points[k] += (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
   }
   if (shape.undulating())
   {

@@ -19,6 +19,8 @@ namespace fiberpli
 /// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
 /// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
 /// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
+/// With dispersion (§10.2) the fiber is first tilted about its middle by a Watson-drawn angle
+/// (at most 75°) in a random direction across the path.
 /// With undulation (shape.tortuosity > 1, §10.1) the laid polyline is the base path of an
 /// undulated fiber of round(τ·L/l) + 1 points (frames u_k, v_k across it), displaced by draws of
 /// the fiber's Jitter stream, calibrated with them, and the Ranvier points are inserted on it

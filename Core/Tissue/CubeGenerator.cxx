@@ -3,6 +3,7 @@
 #include "Model/FiberPieces.h"
 #include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
+#include "Tissue/Dispersion.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
@@ -98,11 +99,23 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
 
 // The span of fiber j of population k: its end-to-end vector (closed: its lattice vector), one
 // edge along the population's axis.
-Vec3 fiberSpan(const CubeOptions& o, int k, int /*j*/)
+// With dispersion the direction is drawn from the Watson distribution about the axis (stream
+// Dispersion (k, j): u1 for |cos θ|, u2 for the azimuth); a periodic fiber takes the nearest short
+// lattice direction instead, so that it still closes.
+Vec3 fiberSpan(const CubeOptions& o, int k, int j)
 {
-  Vec3 span;
-  span[k] = o.edgeLength;
-  return span;
+  Vec3 axis;
+  axis[k] = 1.0;
+  if (!o.realism.dispersed())
+    return o.edgeLength * axis;
+  Vec3 e1, e2;
+  e1[(k + 1) % 3] = 1.0;
+  e2[(k + 2) % 3] = 1.0;
+  RandomStream rng = shapeStream(o.seed, ShapeFeature::Dispersion, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  const double u1 = rng.uniform();
+  const double u2 = rng.uniform();
+  const Vec3 d = watsonDirection(axis, e1, e2, *watsonTableForC2(o.realism.dispersionC2), u1, u2);
+  return o.edgeLength * (o.periodic ? nearestLatticeDirection(k, d) : d);
 }
 
 // The point count of a fiber: the straight one's, or with undulation spread ≈ SegmentLength apart
@@ -163,7 +176,7 @@ Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
     for (std::size_t i = 0; i < f.points.size(); ++i)
       f.points[i] += shape.jitter[i];
     if (o.periodic)
-      f.points.back() = f.points.front() + (shape.base.points.back() - shape.base.points.front());
+      f.points.back() = f.points.front() + shape.base.closure;
     f.radii.assign(f.points.size(), shape.radius);
   }
   else
@@ -367,6 +380,14 @@ CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   start[(k + 1) % 3] = rng.uniform(-half, half);
   start[(k + 2) % 3] = rng.uniform(-half, half);
   const Vec3 span = fiberSpan(o, k, j);
+  // An open dispersed fiber is tilted about its midpoint (the straight fiber's centre); a periodic
+  // one starts where the straight one does.
+  if (!o.periodic)
+  {
+    Vec3 mid = start;
+    mid[k] = 0.0;
+    start = mid - 0.5 * span;
+  }
   shape.base = straightBasePath(start, span, o.periodic);
   shape.pointCount = shapedPointCount(o, k, j);
   shape.radius = cubeFiberRadius(o, k, j);
@@ -385,6 +406,25 @@ CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
     shape.reached = calibrateUndulation(shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
   }
   return shape;
+}
+
+std::vector<double> cubeDispersionC2(const CubeOptions& o)
+{
+  const std::vector<int> counts = populationCounts(o);
+  std::vector<double> c2(counts.size(), 1.0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    if (counts[k] == 0 || !o.realism.dispersed())
+      continue;
+    double sum = 0.0;
+    for (int j = 0; j < counts[k]; ++j)
+    {
+      const Vec3 d = normalized(fiberSpan(o, static_cast<int>(k), j));
+      sum += d[static_cast<int>(k)] * d[static_cast<int>(k)];
+    }
+    c2[k] = sum / counts[k];
+  }
+  return c2;
 }
 
 PeriodicCell cubeCell(const CubeOptions& o)

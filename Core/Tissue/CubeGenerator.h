@@ -76,6 +76,11 @@ struct CubeFiberShape
 /// The shape of fiber j of population k; meaningful when options.realism undulates or disperses.
 CubeFiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
 
+/// The achieved ⟨cos²⟩ of the end-to-end directions about the axis, per population (1 without
+/// dispersion; every fiber of the model counted, so the same on every piece). Open cubes: the
+/// sample mean of the Watson draws; periodic: of the lattice directions taken.
+std::vector<double> cubeDispersionC2(const CubeOptions& options);
+
 /// The cell of a periodic cube: [-L/2, L/2]³.
 PeriodicCell cubeCell(const CubeOptions& options);
 

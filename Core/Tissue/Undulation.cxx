@@ -52,6 +52,7 @@ BasePath straightBasePath(const Vec3& start, const Vec3& span, bool closed)
   b.u = { u, u };
   b.v = { v, v };
   b.closed = closed;
+  b.closure = closed ? span : Vec3{};
   return b;
 }
 
@@ -138,7 +139,7 @@ std::vector<Vec3> undulatedPath(const BasePath& base, const Undulation& und, dou
     out[i] = lerp(curve[j], curve[j + 1], f);
   }
   out.front() = curve.front();
-  out.back() = base.closed ? curve.front() + (base.points.back() - base.points.front()) : curve.back();
+  out.back() = base.closed ? curve.front() + base.closure : curve.back();
   return out;
 }
 

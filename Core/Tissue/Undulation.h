@@ -30,6 +30,8 @@ struct BasePath
   std::vector<Vec3> u;
   std::vector<Vec3> v;
   bool closed = false;
+  /// closed: the fiber's lattice vector, exactly (points.back() − points.front() up to rounding).
+  Vec3 closure;
 };
 
 /// The straight base path from `start` to `start + span` (2 points) with a fixed pair of directions
@@ -71,7 +73,7 @@ void undulationDeviation(const Undulation& undulation, double t, bool closed, do
 
 /// The undulated fiber with `points` points (>= 2) spaced equally in arc length along the curve
 /// base(s) + amplitude·(du(s)·u(s) + dv(s)·v(s)); the first and last points lie on the base
-/// path's ends (closed: last = first + the lattice vector, exactly). amplitude 0 gives the base
+/// path's ends (closed: last = first + base.closure, exactly). amplitude 0 gives the base
 /// path resampled.
 std::vector<Vec3> undulatedPath(const BasePath& base, const Undulation& undulation, double amplitude,
   std::size_t points);

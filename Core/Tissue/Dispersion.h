@@ -1,0 +1,58 @@
+/// Dispersion: fibers' end-to-end directions spread about their population's axis
+/// (docs/tissue-models.md §10.2). Open models draw each fiber's axis from a Watson distribution
+/// (density ∝ exp(κ·(μ·x)²) on the sphere) whose concentration κ gives the requested ⟨cos²⟩; in a
+/// periodic cell a fiber's end-to-end vector must be a lattice vector, so the drawn direction is
+/// replaced by the nearest direction of a short lattice vector (m periods along the axis, a and b
+/// periods across, 1 <= m <= kMaxDispersionPeriods, |a|, |b| <= kMaxDispersionPeriods), and the
+/// achieved ⟨cos²⟩ is reported.
+#pragma once
+
+#include "Geometry/Vec3.h"
+#include "Util/Random.h"
+
+#include <memory>
+#include <vector>
+
+namespace fiberpli
+{
+
+/// ⟨cos²θ⟩ of the Watson distribution of concentration κ >= 0 (κ = 0: isotropic, 1/3; large κ:
+/// about 1 − 1/κ), by quadrature.
+double watsonC2(double kappa);
+
+/// The κ whose watsonC2 is c2 ∈ (1/3, 1) (bisection on log κ; 1e-10 relative in c2).
+double watsonConcentration(double c2);
+
+/// The distribution of t = |cos θ| of a Watson distribution, tabulated for sampling by inversion.
+class WatsonTable
+{
+public:
+  explicit WatsonTable(double kappa);
+  /// t = F⁻¹(u) for u ∈ [0, 1): the |cos θ| of quantile u (increasing in κ for a fixed u).
+  double cosine(double u) const;
+  double kappa() const { return kappa_; }
+
+private:
+  double kappa_ = 0.0;
+  double span_ = 1.0;      // the table covers x = 1 − t ∈ [0, span_]
+  std::vector<double> cdf_; // mass of x ∈ [0, x_i], normalised
+};
+
+/// The table of the κ reaching c2 (watsonConcentration), shared by all fibers of a model: computed
+/// once per c2 and kept (a few models' worth; safe to call from several threads).
+std::shared_ptr<const WatsonTable> watsonTableForC2(double c2);
+
+/// A direction about `axis` (unit) with |cos θ| = table.cosine(u1) and azimuth 2π·u2 around it,
+/// (e1, e2) being the directions across the axis; always in the axis's hemisphere.
+Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2);
+
+/// The most periods a dispersed periodic fiber spans along or across its axis.
+constexpr int kMaxDispersionPeriods = 4;
+
+/// Coordinate axis k (0, 1, 2) of the cell: the lattice direction (m, a, b) — m periods along
+/// axis k, a along (k + 1) mod 3, b along (k + 2) mod 3 — with 1 <= m, |a|, |b| <=
+/// kMaxDispersionPeriods nearest in angle to `direction` (ties: the shorter, then the first in
+/// m, a, b order). Returned as the vector in cell coordinates, in periods (multiply by the edge).
+Vec3 nearestLatticeDirection(int k, const Vec3& direction);
+
+} // namespace fiberpli
