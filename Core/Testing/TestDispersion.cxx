@@ -4,6 +4,7 @@
 #include "Tissue/BundleGenerator.h"
 #include "Tissue/CubeGenerator.h"
 #include "Tissue/Dispersion.h"
+#include "Tissue/PopulationAxes.h"
 
 #include <gtest/gtest.h>
 
@@ -79,10 +80,15 @@ TEST(Dispersion, InversionSamplesTheTargetC2)
 
 TEST(Dispersion, NearestLatticeDirections)
 {
-  EXPECT_EQ(nearestLatticeDirection(0, { 1, 0, 0 }), (Vec3{ 1, 0, 0 }));
-  EXPECT_EQ(nearestLatticeDirection(0, { 1, 1, 0 }), (Vec3{ 1, 1, 0 }));
-  EXPECT_EQ(nearestLatticeDirection(1, { 0.02, 1, -0.26 }), (Vec3{ 0, 4, -1 }));
-  EXPECT_EQ(nearestLatticeDirection(2, { 0.5, 0, 1 }), (Vec3{ 1, 0, 2 }));
+  const std::vector<PopulationAxis> axes = populationAxes(3, 90.0, true);
+  EXPECT_EQ(nearestLatticeDirection(axes[0], { 1, 0, 0 }), (Vec3{ 1, 0, 0 }));
+  EXPECT_EQ(nearestLatticeDirection(axes[0], { 1, 1, 0 }), (Vec3{ 1, 1, 0 }));
+  EXPECT_EQ(nearestLatticeDirection(axes[1], { 0.02, 1, -0.26 }), (Vec3{ 0, 4, -1 }));
+  EXPECT_EQ(nearestLatticeDirection(axes[2], { 0.5, 0, 1 }), (Vec3{ 1, 0, 2 }));
+  // About a diagonal axis (1, 1, 0): across it (0, 0, 1) and (−1, 1, 0).
+  const PopulationAxis diagonal = populationAxes(2, 45.0, true)[1];
+  EXPECT_EQ(nearestLatticeDirection(diagonal, { 1, 1, 0.1 }), (Vec3{ 1, 1, 0 }));
+  EXPECT_EQ(nearestLatticeDirection(diagonal, { 1, 1, 0.25 }), (Vec3{ 4, 4, 1 }));
 }
 
 TEST(Dispersion, OpenCubeAndBundleFibersHaveTheTargetC2)

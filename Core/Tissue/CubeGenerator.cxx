@@ -104,25 +104,29 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
 // lattice direction instead, so that it still closes.
 Vec3 fiberSpan(const CubeOptions& o, int k, int j)
 {
-  Vec3 axis;
-  axis[k] = 1.0;
+  const PopulationAxis axis = cubePopulationAxes(o)[static_cast<std::size_t>(k)];
   if (!o.realism.dispersed())
-    return o.edgeLength * axis;
-  Vec3 e1, e2;
-  e1[(k + 1) % 3] = 1.0;
-  e2[(k + 2) % 3] = 1.0;
+    return o.edgeLength * axis.lattice;
   RandomStream rng = shapeStream(o.seed, ShapeFeature::Dispersion, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
   const double u1 = rng.uniform();
   const double u2 = rng.uniform();
-  const Vec3 d = watsonDirection(axis, e1, e2, *watsonTableForC2(o.realism.dispersionC2), u1, u2);
-  return o.edgeLength * (o.periodic ? nearestLatticeDirection(k, d) : d);
+  const Vec3 d = watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
+    *watsonTableForC2(o.realism.dispersionC2), u1, u2);
+  return o.edgeLength * (o.periodic ? nearestLatticeDirection(axis, d) : d);
+}
+
+// Fiber j of population k is not today's straight fiber of n points: it undulates, is dispersed,
+// or its population runs along a crossing-angle axis.
+bool reshaped(const CubeOptions& o, int k)
+{
+  return o.realism.undulating() || o.realism.dispersed() || !cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard;
 }
 
 // The point count of a fiber: the straight one's, or with undulation spread ≈ SegmentLength apart
 // along the longer path.
 std::size_t shapedPointCount(const CubeOptions& o, int k, int j)
 {
-  if (!(o.realism.undulating() || o.realism.dispersed()))
+  if (!reshaped(o, k))
     return static_cast<std::size_t>(pointsPerFiber(o));
   return undulatedPointCount(norm(fiberSpan(o, k, j)), o.realism.tortuosity, o.segmentLength, o.periodic ? 3 : 2);
 }
@@ -145,7 +149,7 @@ BeadingProfile cubeBeading(const CubeOptions& o, int k, int j, std::size_t n)
 double fiberVolume(const CubeOptions& o, int k, int j)
 {
   const double r = cubeFiberRadius(o, k, j);
-  if (!o.realism.shapesFibers())
+  if (!o.realism.beaded() && !reshaped(o, k))
     return M_PI * r * r * o.edgeLength;
   const std::size_t n = shapedPointCount(o, k, j);
   const double length = o.realism.tortuosity * norm(fiberSpan(o, k, j));
@@ -166,7 +170,7 @@ double fiberVolume(const CubeOptions& o, int k, int j)
 Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
 {
   Fiber f;
-  if (o.realism.undulating() || o.realism.dispersed())
+  if (reshaped(o, k))
   {
     const CubeFiberShape shape = cubeFiberShape(o, k, j);
     if (reached)
@@ -192,6 +196,29 @@ Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
   return f;
 }
 
+// PopulationShares that differ from today's even split (empty or all equal is today's).
+bool customShares(const CubeOptions& o)
+{
+  if (static_cast<int>(o.populationShares.size()) < o.populations)
+    return false;
+  for (int k = 1; k < o.populations; ++k)
+    if (o.populationShares[static_cast<std::size_t>(k)] != o.populationShares[0])
+      return true;
+  return false;
+}
+
+// The shares of the populations, summing to 1.
+std::vector<double> normalizedShares(const CubeOptions& o)
+{
+  std::vector<double> w(o.populationShares.begin(), o.populationShares.begin() + o.populations);
+  double sum = 0.0;
+  for (double x : w)
+    sum += x;
+  for (double& x : w)
+    x /= sum;
+  return w;
+}
+
 // Fibers per population. With a volume fraction: fibers in turn over the populations (0, 1, 2,
 // 0, …) until their volume (each fiber's straight length is one period L) reaches the target, so
 // the count is the smallest whose nominal fraction is at least the one asked for; only their radii
@@ -213,6 +240,25 @@ std::vector<int> populationCounts(const CubeOptions& o)
   // gets N fibers, not N + 1.
   const double reached = target * (1.0 - 1e-12);
   double volume = 0.0;
+  if (customShares(o))
+  {
+    // The next fiber goes to the population furthest below its share of the volume (ties: the
+    // lower index), so every population ends within one fiber of its share.
+    const std::vector<double> w = normalizedShares(o);
+    std::vector<double> byPopulation(counts.size(), 0.0);
+    for (int i = 0; i < bound && volume < reached; ++i)
+    {
+      std::size_t k = 0;
+      for (std::size_t q = 1; q < counts.size(); ++q)
+        if (byPopulation[q] / w[q] < byPopulation[k] / w[k])
+          k = q;
+      const double v = fiberVolume(o, static_cast<int>(k), counts[k]);
+      byPopulation[k] += v;
+      volume += v;
+      ++counts[k];
+    }
+    return counts;
+  }
   for (int i = 0; i < bound && volume < reached; ++i)
   {
     const int k = i % o.populations;
@@ -367,6 +413,51 @@ void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const Latti
     p[other2] += shift2;
   }
 }
+// Lattice seeding by a disk packing (packedSites) rather than the lattice: one population with
+// varying radii; two with varying radii (slabs) unless Interwoven is asked for, or with Sheets.
+bool packsDisks(const CubeOptions& o)
+{
+  if (o.populations == 2 && o.arrangement == CubeArrangement::Sheets)
+    return true;
+  if (o.populations == 2 && o.arrangement == CubeArrangement::Interwoven)
+    return false;
+  return polydisperse(o) && o.populations <= 2;
+}
+
+// Sheets with Random seeding: the z-range [lo, hi] of population 0 and of population 1 (lo0, hi0,
+// lo1, hi1), population 0 at the bottom, the thickness by the shares of the fiber cross-section
+// (Σ r², as the slabs of the polydisperse Lattice seeding).
+std::vector<double> sheetHeights(const CubeOptions& o, const std::vector<int>& counts)
+{
+  double area[2] = { 0.0, 0.0 };
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < counts[static_cast<std::size_t>(k)]; ++j)
+    {
+      const double r = cubeFiberRadius(o, k, j);
+      area[k] += r * r;
+    }
+  const double L = o.edgeLength;
+  const double h0 = area[0] + area[1] > 0.0 ? L * area[0] / (area[0] + area[1]) : 0.5 * L;
+  return { -0.5 * L, -0.5 * L + h0, -0.5 * L + h0, 0.5 * L };
+}
+
+// Moves fiber j of population k (0 or 1; both axes lie in the x–y plane) along z from its drawn
+// position into its sheet: the drawn z ∈ [−L/2, L/2) maps linearly onto the sheet, less the
+// fiber's radius at both sides.
+void placeInSheet(const CubeOptions& o, std::size_t k, std::size_t j, const std::vector<double>& sheets, Fiber& f)
+{
+  const double half = 0.5 * o.edgeLength;
+  RandomStream drawn(o.seed, k, j);
+  const double t1 = drawn.uniform(-half, half);
+  const double t2 = drawn.uniform(-half, half);
+  const double z = k == 0 ? t2 : t1; // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
+  const double r = std::min(cubeFiberRadius(o, static_cast<int>(k), static_cast<int>(j)),
+    0.5 * (sheets[2 * k + 1] - sheets[2 * k]));
+  const double lo = sheets[2 * k] + r, hi = sheets[2 * k + 1] - r;
+  const double moved = lo + (z + half) / o.edgeLength * (hi - lo);
+  for (Vec3& p : f.points)
+    p.z += moved - z;
+}
 } // namespace
 
 CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
@@ -379,13 +470,22 @@ CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   start[k] = -half;
   start[(k + 1) % 3] = rng.uniform(-half, half);
   start[(k + 2) % 3] = rng.uniform(-half, half);
+  // A population along a crossing-angle axis: the straight fiber's start plane would hold all of
+  // its lines (an axis in that plane) or not spread them evenly, so the position along coordinate
+  // k is drawn too (stream Placement), making the start uniform in the cell.
+  if (!cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard)
+  {
+    RandomStream place = shapeStream(o.seed, ShapeFeature::Placement, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    start[k] = place.uniform(-half, half);
+  }
   const Vec3 span = fiberSpan(o, k, j);
   // An open dispersed fiber is tilted about its midpoint (the straight fiber's centre); a periodic
   // one starts where the straight one does.
   if (!o.periodic)
   {
     Vec3 mid = start;
-    mid[k] = 0.0;
+    if (cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard)
+      mid[k] = 0.0;
     start = mid - 0.5 * span;
   }
   shape.base = straightBasePath(start, span, o.periodic);
@@ -432,6 +532,32 @@ PeriodicCell cubeCell(const CubeOptions& o)
   const double half = 0.5 * o.edgeLength;
   return PeriodicCell{ { -half, -half, -half }, { half, half, half } };
 }
+
+namespace
+{
+// Empty when the used PopulationShares are usable: finite and > 0 (and so a positive sum).
+std::string sharesProblem(const CubeOptions& o)
+{
+  if (o.populationShares.empty())
+    return {};
+  std::ostringstream msg;
+  if (static_cast<int>(o.populationShares.size()) < o.populations)
+  {
+    msg << "PopulationShares has " << o.populationShares.size() << " values for " << o.populations << " populations";
+    return msg.str();
+  }
+  for (int k = 0; k < o.populations; ++k)
+  {
+    const double w = o.populationShares[static_cast<std::size_t>(k)];
+    if (!std::isfinite(w) || w <= 0.0)
+    {
+      msg << "PopulationShares value " << k << " is " << w << ", must be > 0";
+      return msg.str();
+    }
+  }
+  return {};
+}
+} // namespace
 
 std::string validateCubeOptions(const CubeOptions& o, int pieces)
 {
@@ -488,6 +614,27 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << validateShapeOptions(o.realism);
   }
+  else if (!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0)
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees";
+  }
+  else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", which needs Seeding Random (the lattices are built "
+           "for perpendicular populations)";
+  }
+  else if (!sharesProblem(o).empty())
+  {
+    msg << sharesProblem(o);
+  }
+  else if (static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2)
+  {
+    msg << "Arrangement is " << static_cast<int>(o.arrangement) << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+  }
+  else if (o.arrangement == CubeArrangement::Sheets && o.populations != 2)
+  {
+    msg << "Arrangement is Sheets, which needs Populations 2 (it is " << o.populations << ")";
+  }
   else
   {
     const double fibers = fiberCountEstimate(o);
@@ -506,7 +653,7 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     {
       msg << problem << "; it would need too many points";
     }
-    else if (o.seeding == CubeSeeding::Lattice && polydisperse(o) && o.populations <= 2)
+    else if (o.seeding == CubeSeeding::Lattice && packsDisks(o))
     {
       // Every piece packs all fibers' disks.
       std::ostringstream packing;
@@ -525,7 +672,46 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
 
 int cubePopulationSize(const CubeOptions& o, int k)
 {
-  return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
+  if (!customShares(o))
+    return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
+  // Largest remainder: the floors of N·w, the fibers left to the largest fractions (ties: lower k).
+  const std::vector<double> w = normalizedShares(o);
+  std::vector<int> counts(w.size());
+  std::vector<double> rest(w.size());
+  int left = o.numberOfFibers;
+  for (std::size_t q = 0; q < w.size(); ++q)
+  {
+    const double exact = o.numberOfFibers * w[q];
+    counts[q] = static_cast<int>(std::floor(exact));
+    rest[q] = exact - counts[q];
+    left -= counts[q];
+  }
+  for (; left > 0; --left)
+  {
+    std::size_t best = 0;
+    for (std::size_t q = 1; q < w.size(); ++q)
+      if (rest[q] > rest[best])
+        best = q;
+    ++counts[best];
+    rest[best] = -1.0;
+  }
+  return counts[static_cast<std::size_t>(k)];
+}
+
+const char* cubeArrangementName(CubeArrangement a)
+{
+  switch (a)
+  {
+    case CubeArrangement::Auto: return "Auto";
+    case CubeArrangement::Interwoven: return "Interwoven";
+    case CubeArrangement::Sheets: return "Sheets";
+  }
+  return "Unknown";
+}
+
+std::vector<PopulationAxis> cubePopulationAxes(const CubeOptions& o)
+{
+  return populationAxes(o.populations, o.crossingAngle, o.periodic);
 }
 
 FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning, const ProgressFn& progress)
@@ -543,8 +729,9 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   std::string packed;
   bool aborted = false;
   if (o.seeding == CubeSeeding::Lattice)
-    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts, packed, progress, aborted)
-                                                  : shuffledSites(o, counts, spacing);
+    sites = packsDisks(o) ? packedSites(o, counts, packed, progress, aborted) : shuffledSites(o, counts, spacing);
+  const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
+    ? sheetHeights(o, counts) : std::vector<double>{};
   if (warning)
     *warning = packed;
   if (aborted)
@@ -567,6 +754,10 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
       if (!sites.empty())
       {
         placeOnSite(o, k, j, sites[k][j], spacing, f);
+      }
+      if (!sheets.empty())
+      {
+        placeInSheet(o, k, j, sheets, f);
       }
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));

@@ -93,30 +93,4 @@ Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const Wat
   return t * axis + s * (std::cos(phi) * e1 + std::sin(phi) * e2);
 }
 
-Vec3 nearestLatticeDirection(int k, const Vec3& direction)
-{
-  const Vec3 d = normalized(direction);
-  const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-  Vec3 best;
-  double bestCos = -2.0, bestLength = 0.0;
-  for (int m = 1; m <= kMaxDispersionPeriods; ++m)
-    for (int a = -kMaxDispersionPeriods; a <= kMaxDispersionPeriods; ++a)
-      for (int b = -kMaxDispersionPeriods; b <= kMaxDispersionPeriods; ++b)
-      {
-        Vec3 v;
-        v[k] = m;
-        v[k1] = a;
-        v[k2] = b;
-        const double length = norm(v);
-        const double c = dot(v, d) / length;
-        if (c > bestCos + 1e-12 || (c > bestCos - 1e-12 && length < bestLength))
-        {
-          best = v;
-          bestCos = c;
-          bestLength = length;
-        }
-      }
-  return best;
-}
-
 } // namespace fiberpli

@@ -3,8 +3,8 @@
 /// (density ∝ exp(κ·(μ·x)²) on the sphere) whose concentration κ gives the requested ⟨cos²⟩; in a
 /// periodic cell a fiber's end-to-end vector must be a lattice vector, so the drawn direction is
 /// replaced by the nearest direction of a short lattice vector (m periods along the axis, a and b
-/// periods across, 1 <= m <= kMaxDispersionPeriods, |a|, |b| <= kMaxDispersionPeriods), and the
-/// achieved ⟨cos²⟩ is reported.
+/// across, 1 <= m <= kMaxDispersionPeriods, |a|, |b| <= kMaxDispersionPeriods;
+/// PopulationAxes.h, nearestLatticeDirection), and the achieved ⟨cos²⟩ is reported.
 #pragma once
 
 #include "Geometry/Vec3.h"
@@ -48,11 +48,5 @@ Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const Wat
 
 /// The most periods a dispersed periodic fiber spans along or across its axis.
 constexpr int kMaxDispersionPeriods = 4;
-
-/// Coordinate axis k (0, 1, 2) of the cell: the lattice direction (m, a, b) — m periods along
-/// axis k, a along (k + 1) mod 3, b along (k + 2) mod 3 — with 1 <= m, |a|, |b| <=
-/// kMaxDispersionPeriods nearest in angle to `direction` (ties: the shorter, then the first in
-/// m, a, b order). Returned as the vector in cell coordinates, in periods (multiply by the edge).
-Vec3 nearestLatticeDirection(int k, const Vec3& direction);
 
 } // namespace fiberpli

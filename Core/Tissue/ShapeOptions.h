@@ -64,7 +64,8 @@ enum class ShapeFeature : std::uint64_t
   Undulation = 0,
   Dispersion = 1,
   Beading = 2,
-  Jitter = 3 ///< the point displacements of a shaped fiber (its point count differs from the straight one's)
+  Jitter = 3, ///< the point displacements of a shaped fiber (its point count differs from the straight one's)
+  Placement = 4 ///< the cube: the along-axis start of a fiber of a crossing-angle population
 };
 
 /// The stream of a shape feature for fiber `index` of `group` (the cube's population or the
