@@ -207,3 +207,29 @@ TEST(RealismKnobs, BadValuesNameTheProperty)
   b.realism.gRatio = 1.5;
   EXPECT_NE(validateBundleOptions(b).find("GRatio is 1.5"), std::string::npos);
 }
+
+TEST(RealismKnobs, TinyBeadingLengthAndShortWavelengthStayCheapAndAreWarned)
+{
+  // A correlation length far below the point spacing: modes are capped at the points' resolution,
+  // the CV is still exact.
+  CubeOptions o = periodicCube();
+  o.realism.beadingCV = 0.2;
+  o.realism.beadingLength = 1e-6;
+  for (const Fiber& f : generateCube(o).fibers)
+    EXPECT_NEAR(coefficientOfVariation(f.radii, true), 0.2, 1e-9);
+  EXPECT_TRUE(shapeWarnings(o.realism, o.segmentLength).empty());
+  o.realism.tortuosity = 1.05;
+  o.realism.undulationWavelength = 3.0;
+  std::string warning;
+  generateCube(o, 0, 1, &warning);
+  EXPECT_NE(warning.find("UndulationWavelength 3 is shorter than 4 x SegmentLength"), std::string::npos) << warning;
+  BundleOptions b;
+  b.realism = o.realism;
+  EXPECT_NE(bundleWarnings(b, nullptr).find("UndulationWavelength 3"), std::string::npos);
+  // Displacement alone above the target: the fibers stay unundulated, and the source says so.
+  o.realism.undulationWavelength = 12.0;
+  o.realism.tortuosity = 1.01;
+  o.displacement = 0.6;
+  generateCube(o, 0, 1, &warning);
+  EXPECT_NE(warning.find("Tortuosity 1.01: the Displacement 0.6 alone"), std::string::npos) << warning;
+}

@@ -59,7 +59,12 @@ BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc, do
   const double period = closed ? length : length + 4.0 * ell;
   // Squared-exponential correlation exp(−Δ²/2ℓ²): spectral weight exp(−(ωℓ)²/2) per mode, modes up
   // to ωℓ = 5 (the rest carries < 1e-5 of the variance).
-  const int modes = std::clamp(static_cast<int>(std::ceil(5.0 * period / (2.0 * M_PI * ell))), 1, kMaxBeadingModes);
+  // No more modes than points over the period: finer waves are not resolved by the points (a
+  // correlation length below the point spacing gives radii uncorrelated from point to point).
+  const double spacing = length / static_cast<double>(arc.size() - 1);
+  const int resolved = static_cast<int>(std::ceil(period / spacing)) + 1;
+  const int modes = std::clamp(static_cast<int>(std::ceil(5.0 * period / (2.0 * M_PI * ell))), 1,
+    std::min(kMaxBeadingModes, resolved));
   for (int m = 1; m <= modes; ++m)
   {
     const double omega = 2.0 * M_PI * m / period;

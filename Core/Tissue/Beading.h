@@ -30,7 +30,8 @@ struct BeadingProfile
 /// (0, 1]. Closed: the field is periodic over the fiber's length and the last point (the first
 /// shifted by the lattice vector) gets the first point's value. Open: synthesised over
 /// length + 4ℓ, so the ends are not tied together. Draws 2 normals per Fourier mode from rng
-/// (modes up to 5/(2πℓ) cycles per µm, at most kMaxBeadingModes).
+/// (modes up to 5/(2πℓ) cycles per µm, at most one per point spacing over the period and at most
+/// kMaxBeadingModes).
 BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc, double correlationLength, double cv,
   bool closed);
 

@@ -139,9 +139,9 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
     // Tilt the fiber about its middle by a Watson-drawn angle θ (stream Dispersion): a drift across
     // the path growing linearly with arc length, so a straight bundle's fiber runs at θ to the
     // axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across a bundle.
-    RandomStream dr = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key);
-    const double u1 = dr.uniform();
-    const double u2 = dr.uniform();
+    const double offset = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, kGroupStream).uniform();
+    const double u1 = dispersionQuantile(offset, cf.key);
+    const double u2 = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key).uniform();
     const double c = watsonTableForC2(shape.dispersionC2)->cosine(u1);
     const double slope = std::min(std::tan(kMaxBundleTilt), std::sqrt(std::max(0.0, 1.0 - c * c)) / c);
     const double phi = 2.0 * M_PI * u2;
@@ -277,6 +277,10 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
   {
     return std::string();
+  }
+  if (!shapeWarnings(o.realism, o.segmentLength).empty())
+  {
+    return shapeWarnings(o.realism, o.segmentLength);
   }
   if (o.realism.undulating())
   {

@@ -4,6 +4,7 @@
 #include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
 #include "Tissue/Dispersion.h"
+#include "Tissue/LatticeDispersion.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
@@ -96,23 +97,27 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
   return drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
 }
 
-
 // The span of fiber j of population k: its end-to-end vector (closed: its lattice vector), one
-// edge along the population's axis.
-// With dispersion the direction is drawn from the Watson distribution about the axis (stream
-// Dispersion (k, j): u1 for |cos θ|, u2 for the azimuth); a periodic fiber takes the nearest short
-// lattice direction instead, so that it still closes.
+// edge along the population's axis (|axis| edges for a crossing-angle axis of a periodic cell).
+// With dispersion the direction is drawn from the Watson distribution about the axis (|cos θ| at
+// the population's quantile sequence, the azimuth from stream Dispersion (k, j)); a periodic fiber
+// takes a nearby short lattice direction instead, so that it still closes.
 Vec3 fiberSpan(const CubeOptions& o, int k, int j)
 {
   const PopulationAxis axis = cubePopulationAxes(o)[static_cast<std::size_t>(k)];
   if (!o.realism.dispersed())
     return o.edgeLength * axis.lattice;
-  RandomStream rng = shapeStream(o.seed, ShapeFeature::Dispersion, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-  const double u1 = rng.uniform();
-  const double u2 = rng.uniform();
-  const Vec3 d = watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
+  const auto group = static_cast<std::uint64_t>(k);
+  const double offset = shapeStream(o.seed, ShapeFeature::Dispersion, group, kGroupStream).uniform();
+  const double u1 = dispersionQuantile(offset, static_cast<std::uint64_t>(j));
+  const double u2 = shapeStream(o.seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j)).uniform();
+  if (o.periodic)
+  {
+    const double kappa = latticeDispersionKappa(axis, o.realism.dispersionC2, o.seed, static_cast<std::uint64_t>(k));
+    return o.edgeLength * latticeDispersedDirection(axis, *watsonTableForKappa(kappa), u1, u2);
+  }
+  return o.edgeLength * watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
     *watsonTableForC2(o.realism.dispersionC2), u1, u2);
-  return o.edgeLength * (o.periodic ? nearestLatticeDirection(axis, d) : d);
 }
 
 // Fiber j of population k is not today's straight fiber of n points: it undulates, is dispersed,
@@ -516,11 +521,12 @@ std::vector<double> cubeDispersionC2(const CubeOptions& o)
   {
     if (counts[k] == 0 || !o.realism.dispersed())
       continue;
+    const Vec3 axis = cubePopulationAxes(o)[k].direction;
     double sum = 0.0;
     for (int j = 0; j < counts[k]; ++j)
     {
-      const Vec3 d = normalized(fiberSpan(o, static_cast<int>(k), j));
-      sum += d[static_cast<int>(k)] * d[static_cast<int>(k)];
+      const double c = dot(normalized(fiberSpan(o, static_cast<int>(k), j)), axis);
+      sum += c * c;
     }
     c2[k] = sum / counts[k];
   }
@@ -638,7 +644,17 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   else
   {
     const double fibers = fiberCountEstimate(o);
-    const double points = fibers * (o.realism.tortuosity * o.edgeLength / o.segmentLength + 2.0);
+    // Fibers along a crossing-angle axis span |axis| edges, dispersed periodic ones up to
+    // kMaxDispersionPeriods times that; with a volume fraction longer fibers are fewer, so only a
+    // fixed count needs the factor.
+    double span = 1.0;
+    for (const PopulationAxis& a : cubePopulationAxes(o))
+      span = std::max(span, norm(a.lattice));
+    if (o.realism.dispersed() && o.periodic)
+      span *= kMaxDispersionPeriods;
+    if (o.volumeFraction > 0.0)
+      span = 1.0;
+    const double points = fibers * (o.realism.tortuosity * span * o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
     what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
@@ -764,6 +780,8 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     }
     first += count;
   }
+  if (warning && !shapeWarnings(o.realism, o.segmentLength).empty())
+    *warning += (warning->empty() ? "" : "; ") + shapeWarnings(o.realism, o.segmentLength);
   if (warning && unreached > 0)
   {
     std::ostringstream w;

@@ -100,7 +100,8 @@ CubeFiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
 
 /// The achieved ⟨cos²⟩ of the end-to-end directions about the axis, per population (1 without
 /// dispersion; every fiber of the model counted, so the same on every piece). Open cubes: the
-/// sample mean of the Watson draws; periodic: of the lattice directions taken.
+/// sample mean of the Watson draws; periodic: of the lattice directions taken (their κ calibrated
+/// so that they reach the request, Tissue/LatticeDispersion.h). About each population's own axis.
 std::vector<double> cubeDispersionC2(const CubeOptions& options);
 
 /// The axes of the cube's populations (unit vectors; periodic: the lattice directions taken).

@@ -85,6 +85,28 @@ std::shared_ptr<const WatsonTable> watsonTableForC2(double c2)
   return table;
 }
 
+std::shared_ptr<const WatsonTable> watsonTableForKappa(double kappa)
+{
+  static std::mutex mutex;
+  static std::map<double, std::shared_ptr<const WatsonTable>> tables;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = tables.find(kappa);
+  if (it != tables.end())
+    return it->second;
+  if (tables.size() >= 16)
+    tables.clear();
+  auto table = std::make_shared<const WatsonTable>(kappa);
+  tables.emplace(kappa, table);
+  return table;
+}
+
+double dispersionQuantile(double offset, std::uint64_t index)
+{
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  const double x = offset + (static_cast<double>(index) + 0.5) * g;
+  return x - std::floor(x);
+}
+
 Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2)
 {
   const double t = table.cosine(u1);

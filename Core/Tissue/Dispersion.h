@@ -10,6 +10,7 @@
 #include "Geometry/Vec3.h"
 #include "Util/Random.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,16 @@ private:
 /// The table of the κ reaching c2 (watsonConcentration), shared by all fibers of a model: computed
 /// once per c2 and kept (a few models' worth; safe to call from several threads).
 std::shared_ptr<const WatsonTable> watsonTableForC2(double c2);
+
+/// The table of concentration κ, kept like watsonTableForC2's.
+std::shared_ptr<const WatsonTable> watsonTableForKappa(double kappa);
+
+/// The quantile of |cos θ| of fiber `index` of a population: frac(offset + (index + ½)·g), g the
+/// golden ratio's fraction (√5 − 1)/2, offset ∈ [0, 1) drawn once per population. The first N
+/// fibers of any population then sample the distribution evenly (a low-discrepancy sequence), so
+/// the population's ⟨cos²⟩ meets the target to O(log N / N) instead of the O(1/√N) of independent
+/// draws, for every count; the azimuth stays an independent draw per fiber.
+double dispersionQuantile(double offset, std::uint64_t index);
 
 /// A direction about `axis` (unit) with |cos θ| = table.cosine(u1) and azimuth 2π·u2 around it,
 /// (e1, e2) being the directions across the axis; always in the axis's hemisphere.

@@ -38,8 +38,8 @@ std::vector<PopulationAxis> populationAxes(int populations, double crossingAngle
 double axesAngle(const std::vector<PopulationAxis>& axes);
 
 /// Of the lattice vectors m·lattice + a·across1 + b·across2 (1 <= m <= kMaxDispersionPeriods,
-/// |a|, |b| <= kMaxDispersionPeriods), the one nearest in angle to `direction` (ties: the
-/// shorter, then the first in m, a, b order), in periods.
+/// |a|, |b| <= kMaxDispersionPeriods), the shortest of those within 1° of the smallest angle to
+/// `direction` (ties: the first in m, a, b order), in periods.
 Vec3 nearestLatticeDirection(const PopulationAxis& axis, const Vec3& direction);
 
 } // namespace fiberpli

@@ -55,4 +55,15 @@ std::string validateShapeOptions(const ShapeOptions& o)
   return msg.str();
 }
 
+std::string shapeWarnings(const ShapeOptions& o, double segmentLength)
+{
+  if (!o.undulating() || o.undulationWavelength >= 4.0 * segmentLength)
+    return {};
+  std::ostringstream msg;
+  msg << "UndulationWavelength " << o.undulationWavelength << " is shorter than 4 x SegmentLength ("
+      << 4.0 * segmentLength << "): the points cannot follow the waves and the fibers zig-zag; "
+      << "use a longer wavelength or a shorter SegmentLength";
+  return msg.str();
+}
+
 } // namespace fiberpli

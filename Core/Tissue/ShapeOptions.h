@@ -58,6 +58,10 @@ constexpr double kMaxBeadingCV = 1.0;
 /// (0, 1) unless 0; GRatioModel not Constant or Lee2019.
 std::string validateShapeOptions(const ShapeOptions& options);
 
+/// Empty, or a warning about usable but doubtful values: an UndulationWavelength below four
+/// SegmentLengths, whose waves the points cannot follow (the polyline zig-zags instead).
+std::string shapeWarnings(const ShapeOptions& options, double segmentLength);
+
 /// The shape features that draw random numbers, each from its own stream.
 enum class ShapeFeature : std::uint64_t
 {
@@ -67,6 +71,10 @@ enum class ShapeFeature : std::uint64_t
   Jitter = 3, ///< the point displacements of a shaped fiber (its point count differs from the straight one's)
   Placement = 4 ///< the cube: the along-axis start of a fiber of a crossing-angle population
 };
+
+/// The index of the one stream of a group that is not a fiber's: its draws are shared by the whole
+/// group (the dispersion quantiles' offset).
+constexpr std::uint64_t kGroupStream = ~std::uint64_t{ 0 };
 
 /// The stream of a shape feature for fiber `index` of `group` (the cube's population or the
 /// bundle's cross-section): (seed, 1000 + 16·feature + group, index). Key1 >= 1000 never meets the
