@@ -233,3 +233,109 @@ TEST(RealismKnobs, TinyBeadingLengthAndShortWavelengthStayCheapAndAreWarned)
   generateCube(o, 0, 1, &warning);
   EXPECT_NE(warning.find("Tortuosity 1.01: the Displacement 0.6 alone"), std::string::npos) << warning;
 }
+
+TEST(RealismKnobs, NeighboursUndulateIndependently)
+{
+  // One population along x, undulated, no jitter: the transverse deviation (y, z minus the fiber's
+  // mean) sampled at the same x for two fibers; over all pairs whose mean axes are more than 4 µm
+  // apart the mean correlation is near 0 (a crystal bent as a whole would give 1).
+  CubeOptions o = periodicCube();
+  o.populations = 1;
+  o.numberOfFibers = 40;
+  o.displacement = 0.0;
+  o.realism.tortuosity = 1.08;
+  o.realism.undulationWavelength = 10.0;
+  const FiberModel m = generateCube(o);
+  const int samples = 60;
+  std::vector<std::vector<double>> dev(m.fibers.size());
+  std::vector<Vec3> centre(m.fibers.size());
+  for (std::size_t f = 0; f < m.fibers.size(); ++f)
+  {
+    const std::vector<Vec3>& p = m.fibers[f].points;
+    std::vector<double> y(samples), z(samples);
+    std::size_t i = 0;
+    for (int s = 0; s < samples; ++s)
+    {
+      const double x = p.front().x + o.edgeLength * (s + 0.5) / samples;
+      while (i + 2 < p.size() && p[i + 1].x < x)
+        ++i;
+      const double t = (x - p[i].x) / (p[i + 1].x - p[i].x);
+      y[static_cast<std::size_t>(s)] = p[i].y + t * (p[i + 1].y - p[i].y);
+      z[static_cast<std::size_t>(s)] = p[i].z + t * (p[i + 1].z - p[i].z);
+    }
+    double my = 0.0, mz = 0.0;
+    for (int s = 0; s < samples; ++s)
+    {
+      my += y[static_cast<std::size_t>(s)] / samples;
+      mz += z[static_cast<std::size_t>(s)] / samples;
+    }
+    centre[f] = { 0.0, my, mz };
+    for (int s = 0; s < samples; ++s)
+    {
+      dev[f].push_back(y[static_cast<std::size_t>(s)] - my);
+      dev[f].push_back(z[static_cast<std::size_t>(s)] - mz);
+    }
+  }
+  double sum = 0.0;
+  int pairs = 0;
+  for (std::size_t a = 0; a < dev.size(); ++a)
+    for (std::size_t b = a + 1; b < dev.size(); ++b)
+    {
+      if (distance(centre[a], centre[b]) <= 4.0)
+        continue;
+      double ab = 0.0, aa = 0.0, bb = 0.0;
+      for (std::size_t s = 0; s < dev[a].size(); ++s)
+      {
+        ab += dev[a][s] * dev[b][s];
+        aa += dev[a][s] * dev[a][s];
+        bb += dev[b][s] * dev[b][s];
+      }
+      sum += ab / std::sqrt(aa * bb);
+      ++pairs;
+    }
+  ASSERT_GT(pairs, 300);
+  EXPECT_LT(std::fabs(sum / pairs), 0.1);
+}
+
+TEST(RealismKnobs, InterwovenPopulationsFillEverySubCube)
+{
+  // Two populations at 45° in a periodic cell, Random seeding (interwoven): in each of the 27
+  // sub-cubes of edge L/3 each population holds at least 20 % of the fiber length there (points
+  // wrapped into the cell; equal radii, so length stands for volume). Sheets leaves sub-cubes
+  // with one population only.
+  for (CubeArrangement arrangement : { CubeArrangement::Auto, CubeArrangement::Sheets })
+  {
+    CubeOptions o = periodicCube();
+    o.numberOfFibers = 300;
+    o.crossingAngle = 45.0;
+    o.arrangement = arrangement;
+    o.realism.tortuosity = 1.05;
+    o.realism.undulationWavelength = 10.0;
+    const FiberModel m = generateCube(o);
+    const double L = o.edgeLength;
+    std::vector<double> length(27 * 2, 0.0);
+    for (const Fiber& f : m.fibers)
+      for (std::size_t i = 1; i < f.points.size(); ++i)
+      {
+        Vec3 mid = 0.5 * (f.points[i - 1] + f.points[i]);
+        int cell = 0;
+        for (int a = 0; a < 3; ++a)
+        {
+          const double u = mid[a] / L + 0.5;
+          const int c = std::min(2, static_cast<int>(3.0 * (u - std::floor(u))));
+          cell = 3 * cell + c;
+        }
+        length[static_cast<std::size_t>(2 * cell + f.bundle)] += distance(f.points[i - 1], f.points[i]);
+      }
+    double worst = 1.0;
+    for (int c = 0; c < 27; ++c)
+    {
+      const double total = length[2 * c] + length[2 * c + 1];
+      worst = std::min({ worst, length[2 * c] / total, length[2 * c + 1] / total });
+    }
+    if (arrangement == CubeArrangement::Auto)
+      EXPECT_GE(worst, 0.2);
+    else
+      EXPECT_LT(worst, 0.05);
+  }
+}
