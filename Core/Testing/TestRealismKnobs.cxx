@@ -339,3 +339,41 @@ TEST(RealismKnobs, InterwovenPopulationsFillEverySubCube)
       EXPECT_LT(worst, 0.05);
   }
 }
+
+TEST(RealismKnobs, TargetShapesRebuildTheFibersAndScaleTowardsThem)
+{
+  // cubeFiberShape is what the generator builds the fiber from: its points() are the fiber's, and
+  // a fraction of the amplitude gives the same fiber less tortuous (for a later continuation).
+  CubeOptions o = periodicCube();
+  o.realism.tortuosity = 1.1;
+  o.realism.undulationWavelength = 12.0;
+  o.realism.dispersionC2 = 0.9;
+  const FiberModel m = generateCube(o);
+  for (const Fiber& f : m.fibers)
+  {
+    const int k = f.bundle;
+    const int j = static_cast<int>(f.id) - (k == 0 ? 0 : cubePopulationSize(o, 0));
+    const FiberShape shape = cubeFiberShape(o, k, j);
+    EXPECT_EQ(shape.points(), f.points);
+    const std::vector<Vec3> half = shape.points(0.5);
+    EXPECT_EQ(half.back(), half.front() + shape.base.closure);
+    Fiber h;
+    h.points = half;
+    const double tauHalf = lengthOf(h) / norm(shape.base.closure);
+    EXPECT_GT(tauHalf, 1.0);
+    EXPECT_LT(tauHalf, 1.1 - 0.02);
+  }
+  BundleOptions b;
+  b.displacement = 0.1;
+  b.realism.tortuosity = 1.07;
+  const std::vector<CrossSectionFiber> cs = makeCrossSection(b, 0);
+  const ResampledTrajectory t = resampleTrajectory({ { -30, 0, 0 }, { 30, 0, 0 } }, nullptr, b.segmentLength);
+  const TrajectoryFrames fr = transportFrames(t.points);
+  const FiberModel bundle = generateBundle(b, nullptr);
+  ASSERT_EQ(bundle.fibers.size(), cs.size());
+  for (std::size_t i = 0; i < cs.size(); ++i)
+  {
+    const FiberShape shape = bundleFiberShape(t, fr, cs[i], b.displacement, b.realism, b.segmentLength, b.seed);
+    EXPECT_EQ(shape.points(), bundle.fibers[i].points);
+  }
+}

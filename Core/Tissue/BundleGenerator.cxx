@@ -121,24 +121,22 @@ double yTurnRadius(const BundleOptions& o) { return std::max(2.0 * o.bundleRadiu
 // BundleRadius from its centre line: the same max(2R, 5r) as the Y keeps them >= R from the centre
 // of the turn.
 double chiasmTurnRadius(const BundleOptions& o) { return yTurnRadius(o); }
-} // namespace
-
-Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
-  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape, double segmentLength,
-  std::uint64_t seed, bool* reached)
+// The fiber laid along the trajectory at its seed offset, dispersed: tilted about its middle by a
+// Watson angle θ (|cos θ| at the cross-section's quantile sequence, the azimuth from stream
+// Dispersion): a drift across the path growing linearly with arc length, so a straight bundle's
+// fiber runs at θ to the axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across
+// a bundle.
+std::vector<Vec3> laidPoints(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
+  const ShapeOptions& shape, std::uint64_t seed)
 {
-  Fiber f;
   const std::size_t n = t.points.size();
-  f.points.resize(n);
+  std::vector<Vec3> points(n);
   for (std::size_t k = 0; k < n; ++k)
   {
-    f.points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
+    points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
   }
   if (shape.dispersed())
   {
-    // Tilt the fiber about its middle by a Watson-drawn angle θ (stream Dispersion): a drift across
-    // the path growing linearly with arc length, so a straight bundle's fiber runs at θ to the
-    // axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across a bundle.
     const double offset = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, kGroupStream).uniform();
     const double u1 = dispersionQuantile(offset, cf.key);
     const double u2 = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key).uniform();
@@ -149,35 +147,53 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
     for (std::size_t k = 1; k < n; ++k)
       arc[k] = arc[k - 1] + distance(t.points[k - 1], t.points[k]);
     for (std::size_t k = 0; k < n; ++k)
-      f.points[k] += (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
+      points[k] += (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
   }
+  return points;
+}
+} // namespace
+
+FiberShape bundleFiberShape(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
+  double displacement, const ShapeOptions& shape, double segmentLength, std::uint64_t seed)
+{
+  FiberShape target;
+  target.base.points = laidPoints(t, fr, cf, shape, seed);
+  target.base.u = fr.u;
+  target.base.v = fr.v;
+  target.radius = cf.radius;
+  const double length = polylineLength(target.base.points);
+  target.pointCount = undulatedPointCount(length, shape.tortuosity, segmentLength, 2);
+  RandomStream jr = shapeStream(seed, ShapeFeature::Jitter, cf.crossSection, cf.key);
+  target.jitter = drawJitter(jr, target.pointCount, displacement, false);
   if (shape.undulating())
   {
-    // The laid polyline is the base path; the undulated fiber replaces it, its displacements drawn
-    // from the Jitter stream (its point count differs from the straight one's) and counted in the
-    // calibration; Ranvier's points then go onto the finished polyline, which they do not bend.
-    BasePath base;
-    base.points = f.points;
-    base.u = fr.u;
-    base.v = fr.v;
-    const std::size_t points = undulatedPointCount(polylineLength(base.points), shape.tortuosity, segmentLength, 2);
-    std::vector<Vec3> jitter(points);
-    RandomStream jr = shapeStream(seed, ShapeFeature::Jitter, cf.crossSection, cf.key);
-    for (Vec3& d : jitter)
-      for (int a = 0; a < 3; ++a)
-        d[a] = jr.uniform(-displacement, displacement);
     RandomStream ur = shapeStream(seed, ShapeFeature::Undulation, cf.crossSection, cf.key);
-    Undulation und = drawUndulation(ur, polylineLength(base.points), shape.undulationWavelength, false);
-    const bool ok = calibrateUndulation(base, und, shape.tortuosity, points, &jitter);
+    target.undulation = drawUndulation(ur, length, shape.undulationWavelength, false);
+    target.reached = calibrateUndulation(target.base, target.undulation, shape.tortuosity, target.pointCount,
+      &target.jitter);
+  }
+  return target;
+}
+
+Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed, bool* reached)
+{
+  Fiber f;
+  if (shape.undulating())
+  {
+    // The undulated fiber replaces the laid polyline, its displacements drawn from the Jitter stream
+    // (its point count differs from the straight one's) and counted in the calibration; Ranvier's
+    // points then go onto the finished polyline, which they do not bend.
+    const FiberShape target = bundleFiberShape(t, fr, cf, displacement, shape, segmentLength, seed);
     if (reached)
-      *reached = ok;
-    f.points = undulatedPath(base, und, und.amplitude, points);
-    for (std::size_t i = 0; i < points; ++i)
-      f.points[i] += jitter[i];
+      *reached = target.reached;
+    f.points = target.points();
     applyRanvier(f, cf.radius, cf.phase, ranvier);
   }
   else
   {
+    f.points = laidPoints(t, fr, cf, shape, seed);
     applyRanvier(f, cf.radius, cf.phase, ranvier);
     for (Vec3& p : f.points)
     {

@@ -6,6 +6,7 @@
 #include "Model/FiberModel.h"
 #include "Tissue/BundleOptions.h"
 #include "Tissue/CrossSection.h"
+#include "Tissue/FiberShape.h"
 #include "Tissue/Ranvier.h"
 #include "Tissue/Trajectory.h"
 
@@ -29,6 +30,15 @@ namespace fiberpli
 Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
   const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape = {}, double segmentLength = 0.0,
   std::uint64_t seed = 0, bool* reached = nullptr);
+
+/// The target shape of an undulated bundle fiber (Tissue/FiberShape.h, docs/tissue-models.md
+/// §10.8): the base path is the fiber laid along the trajectory at its seed offset (and dispersed),
+/// with the transported frames across it; round(τ·L/l) + 1 points; displacements from the fiber's
+/// Jitter stream; undulation from its Undulation stream, calibrated with the displacements. Nodes
+/// of Ranvier and beading come on top (layFiber).
+FiberShape bundleFiberShape(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames,
+  const CrossSectionFiber& fiber, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed);
 
 /// FiberBundleSource (docs/tissue-models.md §8). Shapes and bundle ids:
 /// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.

@@ -177,15 +177,11 @@ Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
   Fiber f;
   if (reshaped(o, k))
   {
-    const CubeFiberShape shape = cubeFiberShape(o, k, j);
+    const FiberShape shape = cubeFiberShape(o, k, j);
     if (reached)
       *reached = shape.reached;
     f.bundle = k;
-    f.points = undulatedPath(shape.base, shape.undulation, shape.undulation.amplitude, shape.pointCount);
-    for (std::size_t i = 0; i < f.points.size(); ++i)
-      f.points[i] += shape.jitter[i];
-    if (o.periodic)
-      f.points.back() = f.points.front() + shape.base.closure;
+    f.points = shape.points();
     f.radii.assign(f.points.size(), shape.radius);
   }
   else
@@ -465,10 +461,10 @@ void placeInSheet(const CubeOptions& o, std::size_t k, std::size_t j, const std:
 }
 } // namespace
 
-CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
+FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
 {
   const double half = 0.5 * o.edgeLength;
-  CubeFiberShape shape;
+  FiberShape shape;
   // The transverse position as the straight fiber draws it (the first two numbers of its stream).
   RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
   Vec3 start;
@@ -496,14 +492,8 @@ CubeFiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   shape.base = straightBasePath(start, span, o.periodic);
   shape.pointCount = shapedPointCount(o, k, j);
   shape.radius = cubeFiberRadius(o, k, j);
-  shape.jitter.assign(shape.pointCount, Vec3{});
   RandomStream jitter = shapeStream(o.seed, ShapeFeature::Jitter, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-  const std::size_t drawn = o.periodic ? shape.pointCount - 1 : shape.pointCount;
-  for (std::size_t i = 0; i < drawn; ++i)
-    for (int a = 0; a < 3; ++a)
-      shape.jitter[i][a] = jitter.uniform(-o.displacement, o.displacement);
-  if (o.periodic)
-    shape.jitter.back() = shape.jitter.front();
+  shape.jitter = drawJitter(jitter, shape.pointCount, o.displacement, o.periodic);
   if (o.realism.undulating())
   {
     RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));

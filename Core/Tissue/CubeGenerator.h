@@ -10,8 +10,8 @@
 #include "Model/FiberModel.h"
 #include "Tissue/PopulationAxes.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Tissue/FiberShape.h"
 #include "Tissue/ShapeOptions.h"
-#include "Tissue/Undulation.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -78,25 +78,12 @@ struct CubeOptions
   CubeArrangement arrangement = CubeArrangement::Auto;
 };
 
-/// The target shape of one cube fiber (fiber j of population k) with undulation or dispersion on,
-/// everything a later step needs to re-apply or scale it: the straight base path (from the drawn
-/// transverse position, along the fiber's span), its calibrated undulation, the point count, the
-/// point displacements (drawn from the Jitter stream; closed: the last equals the first) and the
-/// radius drawn for it. Lattice seeding translates the finished fiber across its axis afterwards.
-/// points = undulatedPath(base, undulation, undulation.amplitude, pointCount) + jitter.
-struct CubeFiberShape
-{
-  BasePath base;
-  Undulation undulation;
-  std::size_t pointCount = 0;
-  std::vector<Vec3> jitter;
-  double radius = 0.0;
-  /// false when the displacements alone make the fiber longer than the target (amplitude 0).
-  bool reached = true;
-};
-
-/// The shape of fiber j of population k; meaningful when options.realism undulates or disperses.
-CubeFiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
+/// The target shape of fiber j of population k (Tissue/FiberShape.h): the straight base path from
+/// the drawn transverse position along the fiber's span, its calibrated undulation, the point
+/// count, the displacements (drawn from the Jitter stream) and the radius drawn for it. Lattice
+/// seeding and Sheets translate the finished fiber across its axis afterwards.
+/// Meaningful when the fiber is reshaped (undulation, dispersion or a crossing-angle axis).
+FiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
 
 /// The achieved ⟨cos²⟩ of the end-to-end directions about the axis, per population (1 without
 /// dispersion; every fiber of the model counted, so the same on every piece). Open cubes: the
