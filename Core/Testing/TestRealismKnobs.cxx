@@ -377,3 +377,37 @@ TEST(RealismKnobs, TargetShapesRebuildTheFibersAndScaleTowardsThem)
     EXPECT_EQ(shape.points(), bundle.fibers[i].points);
   }
 }
+
+TEST(RealismKnobs, EveryBundleShapeTakesTheKnobs)
+{
+  const std::vector<Vec3> path = { { 0, 0, 0 }, { 15, 5, 0 }, { 30, 0, 5 } };
+  for (BundleShape shape : { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing,
+         BundleShape::YShape, BundleShape::Chiasm })
+  {
+    BundleOptions b;
+    b.shape = shape;
+    b.bundleRadius = 4.0;
+    b.length = 40.0;
+    b.crossingAngle = shape == BundleShape::Crossing ? 90.0 : 60.0;
+    b.displacement = 0.05;
+    b.ranvierSpacing = 10.0;
+    b.realism.tortuosity = 1.06;
+    b.realism.undulationWavelength = 10.0;
+    b.realism.dispersionC2 = 0.95;
+    b.realism.beadingCV = 0.2;
+    const std::vector<Vec3>* trajectory = shape == BundleShape::Trajectory ? &path : nullptr;
+    ASSERT_EQ(validateBundleOptions(b, trajectory), "");
+    const FiberModel m = generateBundle(b, trajectory);
+    ASSERT_FALSE(m.fibers.empty()) << bundleShapeName(shape);
+    EXPECT_EQ(validateModel(m), "") << bundleShapeName(shape);
+    for (const Fiber& f : m.fibers)
+    {
+      // Beading and nodes of Ranvier multiply: the radii vary, stay positive, and average near r.
+      double mean = 0.0;
+      for (double r : f.radii)
+        mean += r / static_cast<double>(f.radii.size());
+      EXPECT_GT(coefficientOfVariation(f.radii, false), 0.1);
+      EXPECT_NEAR(mean, b.fiberRadius, 0.15 * b.fiberRadius);
+    }
+  }
+}
