@@ -2,6 +2,7 @@
 
 #include "FiberCollective.h"
 #include "FiberPolyData.h"
+#include "FiberRealism.h"
 #include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
 
@@ -97,6 +98,13 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
   options.ranvierDepth = this->RanvierDepth;
   options.ranvierLength = this->RanvierLength;
   options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.realism.tortuosity = this->Tortuosity;
+  options.realism.undulationWavelength = this->UndulationWavelength;
+  options.realism.dispersionC2 = this->DispersionC2;
+  options.realism.beadingCV = this->BeadingCV;
+  options.realism.beadingLength = this->BeadingLength;
+  options.realism.gRatio = this->GRatio;
+  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
 
   std::vector<fiberpli::Vec3> trajectory;
   std::vector<double> scale;
@@ -181,6 +189,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
     return 1; // aborted: no partial model is passed on
   }
   fiberpli::FiberPolyData::FromModel(model, output);
+  fiberpli::AddInnerRadius(output, options.realism);
 
   // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
@@ -208,4 +217,11 @@ void vtkFiberBundleSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RanvierDepth: " << this->RanvierDepth << "\n";
   os << indent << "RanvierLength: " << this->RanvierLength << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Tortuosity: " << this->Tortuosity << "\n";
+  os << indent << "UndulationWavelength: " << this->UndulationWavelength << "\n";
+  os << indent << "DispersionC2: " << this->DispersionC2 << "\n";
+  os << indent << "BeadingCV: " << this->BeadingCV << "\n";
+  os << indent << "BeadingLength: " << this->BeadingLength << "\n";
+  os << indent << "GRatio: " << this->GRatio << "\n";
+  os << indent << "GRatioModel: " << this->GRatioModel << "\n";
 }

@@ -191,6 +191,65 @@ public:
   vtkGetMacro(Seed, int);
   ///@}
 
+  ///@{
+  /**
+   * Target tortuosity (path length / end-to-end distance) of every fiber, >= 1 (at most 3): a
+   * smooth random undulation whose amplitude is calibrated per fiber, Displacement included
+   * (docs/tissue-models.md §10.1). 1 = off (straight fibers). Default is 1.
+   */
+  vtkSetMacro(Tortuosity, double);
+  vtkGetMacro(Tortuosity, double);
+  ///@}
+  ///@{
+  /**
+   * Typical wavelength of the undulation in µm, > 0 (in a periodic cell rounded to whole waves per
+   * period). Default is 20.
+   */
+  vtkSetMacro(UndulationWavelength, double);
+  vtkGetMacro(UndulationWavelength, double);
+  ///@}
+  ///@{
+  /**
+   * Target ⟨cos²⟩ of the fibers' end-to-end directions about their population's axis, in (1/3, 1];
+   * 1 = off (docs/tissue-models.md §10.2). Default is 1.
+   */
+  vtkSetMacro(DispersionC2, double);
+  vtkGetMacro(DispersionC2, double);
+  ///@}
+  ///@{
+  /**
+   * Coefficient of variation of the radius along each fiber, 0 to 1 (0 = off): a smooth
+   * log-normal profile whose mean over the fiber is its radius (docs/tissue-models.md §10.3).
+   * Default is 0.
+   */
+  vtkSetMacro(BeadingCV, double);
+  vtkGetMacro(BeadingCV, double);
+  ///@}
+  ///@{
+  /**
+   * Correlation length of the radius variation in µm, > 0. Default is 5.
+   */
+  vtkSetMacro(BeadingLength, double);
+  vtkGetMacro(BeadingLength, double);
+  ///@}
+  ///@{
+  /**
+   * g-ratio (inner / outer radius) in (0, 1); 0 = no myelin. With myelin the output has the point
+   * array inner_radius beside radius (= the outer radius). Default is 0.
+   */
+  vtkSetMacro(GRatio, double);
+  vtkGetMacro(GRatio, double);
+  ///@}
+  ///@{
+  /**
+   * g-ratio model with myelin on: 0 = Constant (inner = GRatio · outer), 1 = Lee2019 (myelin
+   * thickness 0.35 + 0.006·d + 0.024·ln d µm of the inner diameter d; GRatio only switches it on).
+   * Default is 0.
+   */
+  vtkSetMacro(GRatioModel, int);
+  vtkGetMacro(GRatioModel, int);
+  ///@}
+
 protected:
   vtkFiberBundleSource();
   ~vtkFiberBundleSource() override = default;
@@ -220,6 +279,13 @@ private:
   double RanvierDepth = 0.3;
   double RanvierLength = 1.0;
   int Seed = 42;
+  double Tortuosity = 1.0;
+  double UndulationWavelength = 20.0;
+  double DispersionC2 = 1.0;
+  double BeadingCV = 0.0;
+  double BeadingLength = 5.0;
+  double GRatio = 0.0;
+  int GRatioModel = 0;
 };
 
 #endif

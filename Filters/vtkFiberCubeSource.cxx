@@ -4,6 +4,7 @@
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "FiberPolyData.h"
+#include "FiberRealism.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <vtkInformation.h>
@@ -11,7 +12,51 @@
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
+#include <cmath>
+
 vtkStandardNewMacro(vtkFiberCubeSource);
+
+namespace
+{
+// What the cell allowed of the requested shape: the axes taken (with a crossing angle) and the
+// dispersion reached (with dispersion), and a warning (once, on piece 0) where it falls short.
+void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fiberpli::CubeOptions& options, int piece)
+{
+  const std::vector<fiberpli::PopulationAxis> axes = fiberpli::cubePopulationAxes(options);
+  if (options.crossingAngle != 90.0 && axes.size() >= 2)
+  {
+    std::vector<double> values;
+    for (const fiberpli::PopulationAxis& a : axes)
+    {
+      values.insert(values.end(), { a.direction.x, a.direction.y, a.direction.z });
+    }
+    fiberpli::AddFieldDoubles(output, "population_axes", values);
+    const double achieved = fiberpli::axesAngle(axes);
+    if (std::fabs(achieved - options.crossingAngle) > 1.0 && piece == 0)
+    {
+      vtkWarningWithObjectMacro(self, "FiberCubeSource: CrossingAngle " << options.crossingAngle
+                      << ": the nearest lattice direction of the periodic cell is (" << axes[1].lattice.x << ", "
+                      << axes[1].lattice.y << ", 0), " << achieved << " degrees from population 0");
+    }
+  }
+  if (options.realism.dispersed())
+  {
+    const std::vector<double> c2 = fiberpli::cubeDispersionC2(options);
+    fiberpli::AddFieldDoubles(output, "dispersion_c2", c2);
+    for (std::size_t k = 0; k < c2.size() && piece == 0; ++k)
+    {
+      if (std::fabs(c2[k] - options.realism.dispersionC2) > 0.02)
+      {
+        vtkWarningWithObjectMacro(self, "FiberCubeSource: DispersionC2 " << options.realism.dispersionC2 << ": population " << k
+                        << " reaches " << c2[k]
+                        << (options.periodic ? " with the lattice directions of the periodic cell" : "")
+                        << " (field data dispersion_c2)");
+      }
+    }
+  }
+}
+
+} // namespace
 
 //------------------------------------------------------------------------------
 // Construct with 1 population of 1000 fibers in a cube of edge √3·30 µm, radius 0.8 µm,
@@ -58,6 +103,16 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   options.segmentLength = this->SegmentLength;
   options.displacement = this->Displacement;
   options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.realism.tortuosity = this->Tortuosity;
+  options.realism.undulationWavelength = this->UndulationWavelength;
+  options.realism.dispersionC2 = this->DispersionC2;
+  options.realism.beadingCV = this->BeadingCV;
+  options.realism.beadingLength = this->BeadingLength;
+  options.realism.gRatio = this->GRatio;
+  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
+  options.crossingAngle = this->CrossingAngle;
+  options.populationShares.assign(this->PopulationShares, this->PopulationShares + 3);
+  options.arrangement = static_cast<fiberpli::CubeArrangement>(this->Arrangement);
   options.radiusSpread = this->RadiusSpread;
   options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
   options.periodic = this->Periodic;
@@ -89,6 +144,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   }
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(model, output);
+  fiberpli::AddInnerRadius(output, options.realism);
 
   // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
@@ -96,6 +152,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   {
     fiberpli::AddPeriodicCell(output, fiberpli::cubeCell(options));
   }
+  AddRealismFieldData(this, output, options, piece);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -116,4 +173,15 @@ void vtkFiberCubeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VolumeFraction: " << this->VolumeFraction << "\n";
   os << indent << "Seeding: " << this->Seeding << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Tortuosity: " << this->Tortuosity << "\n";
+  os << indent << "UndulationWavelength: " << this->UndulationWavelength << "\n";
+  os << indent << "DispersionC2: " << this->DispersionC2 << "\n";
+  os << indent << "BeadingCV: " << this->BeadingCV << "\n";
+  os << indent << "BeadingLength: " << this->BeadingLength << "\n";
+  os << indent << "GRatio: " << this->GRatio << "\n";
+  os << indent << "GRatioModel: " << this->GRatioModel << "\n";
+  os << indent << "CrossingAngle: " << this->CrossingAngle << "\n";
+  os << indent << "PopulationShares: " << this->PopulationShares[0] << " " << this->PopulationShares[1] << " "
+     << this->PopulationShares[2] << "\n";
+  os << indent << "Arrangement: " << this->Arrangement << "\n";
 }

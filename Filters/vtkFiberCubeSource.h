@@ -21,6 +21,7 @@
 #include "FiberPLIFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+
 class FIBERPLIFILTERS_EXPORT vtkFiberCubeSource : public vtkPolyDataAlgorithm
 {
 public:
@@ -132,6 +133,92 @@ public:
   vtkGetMacro(Seed, int);
   ///@}
 
+  ///@{
+  /**
+   * Target tortuosity (path length / end-to-end distance) of every fiber, >= 1 (at most 3): a
+   * smooth random undulation whose amplitude is calibrated per fiber, Displacement included
+   * (docs/tissue-models.md §10.1). 1 = off (straight fibers). Default is 1.
+   */
+  vtkSetMacro(Tortuosity, double);
+  vtkGetMacro(Tortuosity, double);
+  ///@}
+  ///@{
+  /**
+   * Typical wavelength of the undulation in µm, > 0 (in a periodic cell rounded to whole waves per
+   * period). Default is 20.
+   */
+  vtkSetMacro(UndulationWavelength, double);
+  vtkGetMacro(UndulationWavelength, double);
+  ///@}
+  ///@{
+  /**
+   * Target ⟨cos²⟩ of the fibers' end-to-end directions about their population's axis, in (1/3, 1];
+   * 1 = off (docs/tissue-models.md §10.2). Default is 1.
+   */
+  vtkSetMacro(DispersionC2, double);
+  vtkGetMacro(DispersionC2, double);
+  ///@}
+  ///@{
+  /**
+   * Coefficient of variation of the radius along each fiber, 0 to 1 (0 = off): a smooth
+   * log-normal profile whose mean over the fiber is its radius (docs/tissue-models.md §10.3).
+   * Default is 0.
+   */
+  vtkSetMacro(BeadingCV, double);
+  vtkGetMacro(BeadingCV, double);
+  ///@}
+  ///@{
+  /**
+   * Correlation length of the radius variation in µm, > 0. Default is 5.
+   */
+  vtkSetMacro(BeadingLength, double);
+  vtkGetMacro(BeadingLength, double);
+  ///@}
+  ///@{
+  /**
+   * g-ratio (inner / outer radius) in (0, 1); 0 = no myelin. With myelin the output has the point
+   * array inner_radius beside radius (= the outer radius). Default is 0.
+   */
+  vtkSetMacro(GRatio, double);
+  vtkGetMacro(GRatio, double);
+  ///@}
+  ///@{
+  /**
+   * g-ratio model with myelin on: 0 = Constant (inner = GRatio · outer), 1 = Lee2019 (myelin
+   * thickness 0.35 + 0.006·d + 0.024·ln d µm of the inner diameter d; GRatio only switches it on).
+   * Default is 0.
+   */
+  vtkSetMacro(GRatioModel, int);
+  vtkGetMacro(GRatioModel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Degrees between the axes of populations 0 and 1, 0 to 90 (population 2 stays along z). In a
+   * periodic cell the nearest small-integer lattice direction is taken and reported as field data
+   * population_axes. Other than 90 needs Seeding Random. Default is 90 (x and y).
+   */
+  vtkSetMacro(CrossingAngle, double);
+  vtkGetMacro(CrossingAngle, double);
+  ///@}
+  ///@{
+  /**
+   * Relative shares of populations 0, 1, 2 (fibers with NumberOfFibers, volume with
+   * VolumeFraction), each > 0; only the first Populations values are used. All equal = today's
+   * even split. Default is 1, 1, 1.
+   */
+  vtkSetVector3Macro(PopulationShares, double);
+  vtkGetVector3Macro(PopulationShares, double);
+  ///@}
+  ///@{
+  /**
+   * How the populations share the cell: 0 = Auto (each Seeding's own), 1 = Interwoven (mixed
+   * everywhere), 2 = Sheets (two populations in two slabs along z). Default is 0.
+   */
+  vtkSetMacro(Arrangement, int);
+  vtkGetMacro(Arrangement, int);
+  ///@}
+
 protected:
   vtkFiberCubeSource();
   ~vtkFiberCubeSource() override = default;
@@ -156,6 +243,16 @@ private:
   double VolumeFraction = 0.0;
   int Seeding = 0;
   int Seed = 42;
+  double Tortuosity = 1.0;
+  double UndulationWavelength = 20.0;
+  double DispersionC2 = 1.0;
+  double BeadingCV = 0.0;
+  double BeadingLength = 5.0;
+  double GRatio = 0.0;
+  int GRatioModel = 0;
+  double CrossingAngle = 90.0;
+  double PopulationShares[3] = { 1.0, 1.0, 1.0 };
+  int Arrangement = 0;
 };
 
 #endif

@@ -1,7 +1,10 @@
 #include "Tissue/BundleGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/Beading.h"
 #include "Tissue/BundleShapes.h"
+#include "Tissue/Dispersion.h"
+#include "Tissue/Undulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +17,8 @@ namespace fiberpli
 namespace
 {
 constexpr double kDegree = M_PI / 180.0;
+// The largest tilt of a dispersed bundle fiber (75°: a fiber at most 3.9 times its path's length).
+constexpr double kMaxBundleTilt = 75.0 * kDegree;
 
 struct Path
 {
@@ -61,7 +66,8 @@ FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& rang
     {
       if (next >= range.begin && next < range.end)
       {
-        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement);
+        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement, o.realism,
+          o.segmentLength, o.seed);
         f.id = static_cast<std::int64_t>(next);
         f.bundle = b.bundle;
         model.fibers.push_back(std::move(f));
@@ -115,24 +121,96 @@ double yTurnRadius(const BundleOptions& o) { return std::max(2.0 * o.bundleRadiu
 // BundleRadius from its centre line: the same max(2R, 5r) as the Y keeps them >= R from the centre
 // of the turn.
 double chiasmTurnRadius(const BundleOptions& o) { return yTurnRadius(o); }
-} // namespace
-
-Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
-  const RanvierOptions& ranvier, double displacement)
+// The fiber laid along the trajectory at its seed offset, dispersed: tilted about its middle by a
+// Watson angle θ (|cos θ| at the cross-section's quantile sequence, the azimuth from stream
+// Dispersion): a drift across the path growing linearly with arc length, so a straight bundle's
+// fiber runs at θ to the axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across
+// a bundle.
+std::vector<Vec3> laidPoints(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
+  const ShapeOptions& shape, std::uint64_t seed)
 {
-  Fiber f;
   const std::size_t n = t.points.size();
-  f.points.resize(n);
+  std::vector<Vec3> points(n);
   for (std::size_t k = 0; k < n; ++k)
   {
-    f.points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
+    points[k] = t.points[k] + t.scale[k] * (cf.seed.x * fr.u[k] + cf.seed.y * fr.v[k]);
   }
-  applyRanvier(f, cf.radius, cf.phase, ranvier);
-  for (Vec3& p : f.points)
+  if (shape.dispersed())
   {
-    p.x += cf.rng.uniform(-displacement, displacement);
-    p.y += cf.rng.uniform(-displacement, displacement);
-    p.z += cf.rng.uniform(-displacement, displacement);
+    const double offset = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, kGroupStream).uniform();
+    const double u1 = dispersionQuantile(offset, cf.key);
+    const double u2 = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key).uniform();
+    const double c = watsonTableForC2(shape.dispersionC2)->cosine(u1);
+    const double slope = std::min(std::tan(kMaxBundleTilt), std::sqrt(std::max(0.0, 1.0 - c * c)) / c);
+    const double phi = 2.0 * M_PI * u2;
+    std::vector<double> arc(n, 0.0);
+    for (std::size_t k = 1; k < n; ++k)
+      arc[k] = arc[k - 1] + distance(t.points[k - 1], t.points[k]);
+    for (std::size_t k = 0; k < n; ++k)
+      points[k] += (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
+  }
+  return points;
+}
+} // namespace
+
+FiberShape bundleFiberShape(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
+  double displacement, const ShapeOptions& shape, double segmentLength, std::uint64_t seed)
+{
+  FiberShape target;
+  target.base.points = laidPoints(t, fr, cf, shape, seed);
+  target.base.u = fr.u;
+  target.base.v = fr.v;
+  target.radius = cf.radius;
+  const double length = polylineLength(target.base.points);
+  target.pointCount = undulatedPointCount(length, shape.tortuosity, segmentLength, 2);
+  RandomStream jr = shapeStream(seed, ShapeFeature::Jitter, cf.crossSection, cf.key);
+  target.jitter = drawJitter(jr, target.pointCount, displacement, false);
+  if (shape.undulating())
+  {
+    RandomStream ur = shapeStream(seed, ShapeFeature::Undulation, cf.crossSection, cf.key);
+    target.undulation = drawUndulation(ur, length, shape.undulationWavelength, false);
+    target.reached = calibrateUndulation(target.base, target.undulation, shape.tortuosity, target.pointCount,
+      &target.jitter);
+  }
+  return target;
+}
+
+Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed, bool* reached)
+{
+  Fiber f;
+  if (shape.undulating())
+  {
+    // The undulated fiber replaces the laid polyline, its displacements drawn from the Jitter stream
+    // (its point count differs from the straight one's) and counted in the calibration; Ranvier's
+    // points then go onto the finished polyline, which they do not bend.
+    const FiberShape target = bundleFiberShape(t, fr, cf, displacement, shape, segmentLength, seed);
+    if (reached)
+      *reached = target.reached;
+    f.points = target.points();
+    applyRanvier(f, cf.radius, cf.phase, ranvier);
+  }
+  else
+  {
+    f.points = laidPoints(t, fr, cf, shape, seed);
+    applyRanvier(f, cf.radius, cf.phase, ranvier);
+    for (Vec3& p : f.points)
+    {
+      p.x += cf.rng.uniform(-displacement, displacement);
+      p.y += cf.rng.uniform(-displacement, displacement);
+      p.z += cf.rng.uniform(-displacement, displacement);
+    }
+  }
+  if (shape.beaded())
+  {
+    std::vector<double> arc(f.points.size(), 0.0);
+    for (std::size_t i = 1; i < arc.size(); ++i)
+      arc[i] = arc[i - 1] + distance(f.points[i - 1], f.points[i]);
+    RandomStream br = shapeStream(seed, ShapeFeature::Beading, cf.crossSection, cf.key);
+    const std::vector<double> factor = beadingFactors(drawBeading(br, arc, shape.beadingLength, shape.beadingCV, false));
+    for (std::size_t i = 0; i < f.radii.size(); ++i)
+      f.radii[i] *= factor[i];
   }
   return f;
 }
@@ -215,6 +293,24 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   if (!validateBundleOptions(o, trajectory, trajectoryScale).empty())
   {
     return std::string();
+  }
+  if (!shapeWarnings(o.realism, o.segmentLength).empty())
+  {
+    return shapeWarnings(o.realism, o.segmentLength);
+  }
+  if (o.realism.undulating())
+  {
+    // Each axis of U[−D, D]³ adds D²/3 per point: a link of length l becomes about √(l² + 2D²)
+    // (docs/tissue-models.md §5.2); a fiber whose jitter alone is that tortuous gets no undulation.
+    const double jitterAlone = std::sqrt(1.0 + 2.0 * o.displacement * o.displacement / (o.segmentLength * o.segmentLength));
+    if (jitterAlone >= o.realism.tortuosity)
+    {
+      std::ostringstream msg;
+      msg << "Tortuosity " << o.realism.tortuosity << ": the Displacement " << o.displacement
+          << " alone makes the fibers about " << jitterAlone
+          << " times longer than their path, so they stay without undulation (lower Displacement)";
+      return msg.str();
+    }
   }
   ResampledTrajectory t;
   if (o.shape == BundleShape::Trajectory)

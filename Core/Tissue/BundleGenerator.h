@@ -6,6 +6,7 @@
 #include "Model/FiberModel.h"
 #include "Tissue/BundleOptions.h"
 #include "Tissue/CrossSection.h"
+#include "Tissue/FiberShape.h"
 #include "Tissue/Ranvier.h"
 #include "Tissue/Trajectory.h"
 
@@ -19,8 +20,25 @@ namespace fiberpli
 /// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
 /// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
 /// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
+/// With dispersion (§10.2) the fiber is first tilted about its middle by a Watson-drawn angle
+/// (at most 75°) in a random direction across the path.
+/// With undulation (shape.tortuosity > 1, §10.1) the laid polyline is the base path of an
+/// undulated fiber of round(τ·L/l) + 1 points (frames u_k, v_k across it), displaced by draws of
+/// the fiber's Jitter stream, calibrated with them, and the Ranvier points are inserted on it
+/// afterwards; with beading (§10.3) the radii are multiplied by the fiber's profile along its arc
+/// length. Shape streams: (seed, crossSection, key) of shapeStream.
 Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
-  const RanvierOptions& ranvier, double displacement);
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape = {}, double segmentLength = 0.0,
+  std::uint64_t seed = 0, bool* reached = nullptr);
+
+/// The target shape of an undulated bundle fiber (Tissue/FiberShape.h, docs/tissue-models.md
+/// §10.8): the base path is the fiber laid along the trajectory at its seed offset (and dispersed),
+/// with the transported frames across it; round(τ·L/l) + 1 points; displacements from the fiber's
+/// Jitter stream; undulation from its Undulation stream, calibrated with the displacements. Nodes
+/// of Ranvier and beading come on top (layFiber).
+FiberShape bundleFiberShape(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames,
+  const CrossSectionFiber& fiber, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed);
 
 /// FiberBundleSource (docs/tissue-models.md §8). Shapes and bundle ids:
 /// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.

@@ -128,6 +128,10 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   {
     msg << "UncrossedFraction is " << o.uncrossedFraction << ", must be in [0, 1]";
   }
+  else if (!validateShapeOptions(o.realism).empty())
+  {
+    msg << validateShapeOptions(o.realism);
+  }
   else if (!std::isfinite(o.ranvierSpacing))
   {
     msg << "RanvierSpacing is " << o.ranvierSpacing << ", must be finite";
@@ -163,7 +167,10 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   // The chiasm's side path and a Catmull–Rom curve are longer than the straight estimate: × 1.5.
   pathLength *= 1.5;
   const double fibers = seedCandidates(o) * crossSectionCount(o.shape);
-  const double perFiber = pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
+  // A dispersed fiber is about 1/cos θ longer than its path (θ at most 75°): 1.5/√c2 covers the
+  // mean of that with room to spare.
+  const double tilt = o.realism.dispersed() ? std::min(3.9, 1.5 / std::sqrt(o.realism.dispersionC2)) : 1.0;
+  const double perFiber = tilt * o.realism.tortuosity * pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
   // Fibers alone first (a tiny FiberSpacing), then with their points.
   const std::string fiberProblem = checkMemoryBudget(fiberModelBytes(fibers, 2.0 * fibers), "the fibers");
   const double share = 1.0 / std::max(1, pieces);

@@ -4,6 +4,7 @@
 
 #include "Geometry/Vec3.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Tissue/ShapeOptions.h"
 
 #include <cstdint>
 #include <string>
@@ -46,6 +47,9 @@ struct BundleOptions
   double ranvierDepth = 0.3;        ///< in [0, 1)
   double ranvierLength = 1.0;       ///< w, with 2w <= Λ
   std::uint64_t seed = 42;
+  /// Realism knobs (Tissue/ShapeOptions.h, docs/tissue-models.md §10); the defaults are off and
+  /// leave the bundles bit-identical.
+  ShapeOptions realism;
 };
 
 /// Λ after resolving the "shape default" sentinel: 20 µm for Chiasm, 0 otherwise (§8).
@@ -58,7 +62,7 @@ double effectiveRanvierSpacing(const BundleOptions& options);
 /// SegmentLength <= 0; Displacement < 0; CrossingAngle outside (0, 180] (Crossing) or (0, 180)
 /// (YShape, Chiasm); UncrossedFraction outside [0, 1]; with Ranvier on: RanvierDepth outside [0, 1),
 /// RanvierLength <= 0 or 2·RanvierLength > RanvierSpacing; Trajectory without a polyline or a bad
-/// polyline (validateTrajectory); more fibers or points than the memory budget allows
+/// polyline (validateTrajectory); a bad realism knob (validateShapeOptions); more fibers or points than the memory budget allows
 /// (Util/MemoryBudget.h, with fiberModelBytes; the points of one piece of `pieces`, the
 /// cross-sections of all fibers, which every piece draws).
 std::string validateBundleOptions(const BundleOptions& options, const std::vector<Vec3>* trajectory = nullptr,

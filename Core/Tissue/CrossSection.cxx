@@ -9,7 +9,7 @@ std::vector<CrossSectionFiber> makeCrossSection(const BundleOptions& o, std::uin
   const double R = o.bundleRadius;
   std::vector<CrossSectionFiber> fibers;
   auto drawFiber = [&](std::size_t key, const Seed2D* gridSeed) {
-    CrossSectionFiber f{ {}, 0.0, 0.0, key, RandomStream(o.seed, crossSection, key) };
+    CrossSectionFiber f{ {}, 0.0, 0.0, key, RandomStream(o.seed, crossSection, key), crossSection };
     const double u1 = f.rng.uniform();
     const double u2 = f.rng.uniform();
     f.radius = drawFiberRadius(f.rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, R);

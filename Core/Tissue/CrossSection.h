@@ -21,6 +21,7 @@ struct CrossSectionFiber
   double phase = 0.0;    ///< Ranvier phase φ_j in [0, Λ) (0 when Λ = 0)
   std::size_t key = 0;   ///< seed index: grid index before cropping, or random-seed index
   RandomStream rng;      ///< stream (Seed, crossSection, key) after the phase draw
+  std::uint64_t crossSection = 0; ///< the cross-section index (the shape streams' group)
 };
 
 /// Fibers of cross-section `crossSection` (docs/tissue-models.md §7: one stream per fiber,

@@ -1,7 +1,10 @@
 #include "Tissue/CubeGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
+#include "Tissue/Dispersion.h"
+#include "Tissue/LatticeDispersion.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
 #include "Util/MemoryBudget.h"
@@ -37,7 +40,7 @@ double fiberCountEstimate(const CubeOptions& o)
 
 // Fiber j of population k (stream (seed, k, j)): straight along axis k, displaced; closed through
 // the faces when periodic (the last point is the first shifted by one period, not drawn).
-Fiber makeFiber(const CubeOptions& o, int k, int j)
+Fiber makeStraightFiber(const CubeOptions& o, int k, int j)
 {
   const int n = pointsPerFiber(o);
   const double half = 0.5 * o.edgeLength;
@@ -94,6 +97,129 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
   return drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
 }
 
+// The span of fiber j of population k: its end-to-end vector (closed: its lattice vector), one
+// edge along the population's axis (|axis| edges for a crossing-angle axis of a periodic cell).
+// With dispersion the direction is drawn from the Watson distribution about the axis (|cos θ| at
+// the population's quantile sequence, the azimuth from stream Dispersion (k, j)); a periodic fiber
+// takes a nearby short lattice direction instead, so that it still closes.
+Vec3 fiberSpan(const CubeOptions& o, int k, int j)
+{
+  const PopulationAxis axis = cubePopulationAxes(o)[static_cast<std::size_t>(k)];
+  if (!o.realism.dispersed())
+    return o.edgeLength * axis.lattice;
+  const auto group = static_cast<std::uint64_t>(k);
+  const double offset = shapeStream(o.seed, ShapeFeature::Dispersion, group, kGroupStream).uniform();
+  const double u1 = dispersionQuantile(offset, static_cast<std::uint64_t>(j));
+  const double u2 = shapeStream(o.seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j)).uniform();
+  if (o.periodic)
+  {
+    const double kappa = latticeDispersionKappa(axis, o.realism.dispersionC2, o.seed, static_cast<std::uint64_t>(k));
+    return o.edgeLength * latticeDispersedDirection(axis, *watsonTableForKappa(kappa), u1, u2);
+  }
+  return o.edgeLength * watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
+    *watsonTableForC2(o.realism.dispersionC2), u1, u2);
+}
+
+// Fiber j of population k is not today's straight fiber of n points: it undulates, is dispersed,
+// or its population runs along a crossing-angle axis.
+bool reshaped(const CubeOptions& o, int k)
+{
+  return o.realism.undulating() || o.realism.dispersed() || !cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard;
+}
+
+// The point count of a fiber: the straight one's, or with undulation spread ≈ SegmentLength apart
+// along the longer path.
+std::size_t shapedPointCount(const CubeOptions& o, int k, int j)
+{
+  if (!reshaped(o, k))
+    return static_cast<std::size_t>(pointsPerFiber(o));
+  return undulatedPointCount(norm(fiberSpan(o, k, j)), o.realism.tortuosity, o.segmentLength, o.periodic ? 3 : 2);
+}
+
+// The beading profile of fiber j of population k on the nominal arc positions of its n points
+// (equally spaced over its target path length τ·|span|), stream Beading (k, j).
+BeadingProfile cubeBeading(const CubeOptions& o, int k, int j, std::size_t n)
+{
+  const double length = o.realism.tortuosity * norm(fiberSpan(o, k, j));
+  std::vector<double> arc(n);
+  for (std::size_t i = 0; i < n; ++i)
+    arc[i] = length * static_cast<double>(i) / static_cast<double>(n - 1);
+  RandomStream rng = shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  return drawBeading(rng, arc, o.realism.beadingLength, o.realism.beadingCV, o.periodic);
+}
+
+// The volume a fiber adds to the volume-fraction count: π r² L for a straight fiber (as always);
+// with shape knobs the capsules' Σ π ρ_link² · link length of its target path (ρ_link the larger
+// radius of the link's two points, as the solver's volume_fraction counts).
+double fiberVolume(const CubeOptions& o, int k, int j)
+{
+  const double r = cubeFiberRadius(o, k, j);
+  if (!o.realism.beaded() && !reshaped(o, k))
+    return M_PI * r * r * o.edgeLength;
+  const std::size_t n = shapedPointCount(o, k, j);
+  const double length = o.realism.tortuosity * norm(fiberSpan(o, k, j));
+  if (!o.realism.beaded())
+    return M_PI * r * r * length;
+  const std::vector<double> f = beadingFactors(cubeBeading(o, k, j, n));
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 1 < n; ++i)
+  {
+    const double rho = r * std::max(f[i], f[i + 1]);
+    sum += rho * rho;
+  }
+  return M_PI * sum * length / static_cast<double>(n - 1);
+}
+
+// The fiber with its shape knobs: undulated (and dispersed) points from cubeFiberShape, or the
+// straight fiber; then the beaded radii.
+Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
+{
+  Fiber f;
+  if (reshaped(o, k))
+  {
+    const FiberShape shape = cubeFiberShape(o, k, j);
+    if (reached)
+      *reached = shape.reached;
+    f.bundle = k;
+    f.points = shape.points();
+    f.radii.assign(f.points.size(), shape.radius);
+  }
+  else
+  {
+    f = makeStraightFiber(o, k, j);
+  }
+  if (o.realism.beaded())
+  {
+    const std::vector<double> factor = beadingFactors(cubeBeading(o, k, j, f.points.size()));
+    for (std::size_t i = 0; i < f.radii.size(); ++i)
+      f.radii[i] *= factor[i];
+  }
+  return f;
+}
+
+// PopulationShares that differ from today's even split (empty or all equal is today's).
+bool customShares(const CubeOptions& o)
+{
+  if (static_cast<int>(o.populationShares.size()) < o.populations)
+    return false;
+  for (int k = 1; k < o.populations; ++k)
+    if (o.populationShares[static_cast<std::size_t>(k)] != o.populationShares[0])
+      return true;
+  return false;
+}
+
+// The shares of the populations, summing to 1.
+std::vector<double> normalizedShares(const CubeOptions& o)
+{
+  std::vector<double> w(o.populationShares.begin(), o.populationShares.begin() + o.populations);
+  double sum = 0.0;
+  for (double x : w)
+    sum += x;
+  for (double& x : w)
+    x /= sum;
+  return w;
+}
+
 // Fibers per population. With a volume fraction: fibers in turn over the populations (0, 1, 2,
 // 0, …) until their volume (each fiber's straight length is one period L) reaches the target, so
 // the count is the smallest whose nominal fraction is at least the one asked for; only their radii
@@ -115,11 +241,29 @@ std::vector<int> populationCounts(const CubeOptions& o)
   // gets N fibers, not N + 1.
   const double reached = target * (1.0 - 1e-12);
   double volume = 0.0;
+  if (customShares(o))
+  {
+    // The next fiber goes to the population furthest below its share of the volume (ties: the
+    // lower index), so every population ends within one fiber of its share.
+    const std::vector<double> w = normalizedShares(o);
+    std::vector<double> byPopulation(counts.size(), 0.0);
+    for (int i = 0; i < bound && volume < reached; ++i)
+    {
+      std::size_t k = 0;
+      for (std::size_t q = 1; q < counts.size(); ++q)
+        if (byPopulation[q] / w[q] < byPopulation[k] / w[k])
+          k = q;
+      const double v = fiberVolume(o, static_cast<int>(k), counts[k]);
+      byPopulation[k] += v;
+      volume += v;
+      ++counts[k];
+    }
+    return counts;
+  }
   for (int i = 0; i < bound && volume < reached; ++i)
   {
     const int k = i % o.populations;
-    const double r = cubeFiberRadius(o, k, i / o.populations);
-    volume += M_PI * r * r * o.edgeLength;
+    volume += fiberVolume(o, k, i / o.populations);
     ++counts[static_cast<std::size_t>(k)];
   }
   return counts;
@@ -270,13 +414,146 @@ void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const Latti
     p[other2] += shift2;
   }
 }
+// Lattice seeding by a disk packing (packedSites) rather than the lattice: one population with
+// varying radii; two with varying radii (slabs) unless Interwoven is asked for, or with Sheets.
+bool packsDisks(const CubeOptions& o)
+{
+  if (o.populations == 2 && o.arrangement == CubeArrangement::Sheets)
+    return true;
+  if (o.populations == 2 && o.arrangement == CubeArrangement::Interwoven)
+    return false;
+  return polydisperse(o) && o.populations <= 2;
+}
+
+// Sheets with Random seeding: the z-range [lo, hi] of population 0 and of population 1 (lo0, hi0,
+// lo1, hi1), population 0 at the bottom, the thickness by the shares of the fiber cross-section
+// (Σ r², as the slabs of the polydisperse Lattice seeding).
+std::vector<double> sheetHeights(const CubeOptions& o, const std::vector<int>& counts)
+{
+  double area[2] = { 0.0, 0.0 };
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < counts[static_cast<std::size_t>(k)]; ++j)
+    {
+      const double r = cubeFiberRadius(o, k, j);
+      area[k] += r * r;
+    }
+  const double L = o.edgeLength;
+  const double h0 = area[0] + area[1] > 0.0 ? L * area[0] / (area[0] + area[1]) : 0.5 * L;
+  return { -0.5 * L, -0.5 * L + h0, -0.5 * L + h0, 0.5 * L };
+}
+
+// Moves fiber j of population k (0 or 1; both axes lie in the x–y plane) along z from its drawn
+// position into its sheet: the drawn z ∈ [−L/2, L/2) maps linearly onto the sheet, less the
+// fiber's radius at both sides.
+void placeInSheet(const CubeOptions& o, std::size_t k, std::size_t j, const std::vector<double>& sheets, Fiber& f)
+{
+  const double half = 0.5 * o.edgeLength;
+  RandomStream drawn(o.seed, k, j);
+  const double t1 = drawn.uniform(-half, half);
+  const double t2 = drawn.uniform(-half, half);
+  const double z = k == 0 ? t2 : t1; // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
+  const double r = std::min(cubeFiberRadius(o, static_cast<int>(k), static_cast<int>(j)),
+    0.5 * (sheets[2 * k + 1] - sheets[2 * k]));
+  const double lo = sheets[2 * k] + r, hi = sheets[2 * k + 1] - r;
+  const double moved = lo + (z + half) / o.edgeLength * (hi - lo);
+  for (Vec3& p : f.points)
+    p.z += moved - z;
+}
 } // namespace
+
+FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
+{
+  const double half = 0.5 * o.edgeLength;
+  FiberShape shape;
+  // The transverse position as the straight fiber draws it (the first two numbers of its stream).
+  RandomStream rng(o.seed, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  Vec3 start;
+  start[k] = -half;
+  start[(k + 1) % 3] = rng.uniform(-half, half);
+  start[(k + 2) % 3] = rng.uniform(-half, half);
+  // A population along a crossing-angle axis: the straight fiber's start plane would hold all of
+  // its lines (an axis in that plane) or not spread them evenly, so the position along coordinate
+  // k is drawn too (stream Placement), making the start uniform in the cell.
+  if (!cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard)
+  {
+    RandomStream place = shapeStream(o.seed, ShapeFeature::Placement, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    start[k] = place.uniform(-half, half);
+  }
+  const Vec3 span = fiberSpan(o, k, j);
+  // An open dispersed fiber is tilted about its midpoint (the straight fiber's centre); a periodic
+  // one starts where the straight one does.
+  if (!o.periodic)
+  {
+    Vec3 mid = start;
+    if (cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard)
+      mid[k] = 0.0;
+    start = mid - 0.5 * span;
+  }
+  shape.base = straightBasePath(start, span, o.periodic);
+  shape.pointCount = shapedPointCount(o, k, j);
+  shape.radius = cubeFiberRadius(o, k, j);
+  RandomStream jitter = shapeStream(o.seed, ShapeFeature::Jitter, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  shape.jitter = drawJitter(jitter, shape.pointCount, o.displacement, o.periodic);
+  if (o.realism.undulating())
+  {
+    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    shape.undulation = drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    shape.reached = calibrateUndulation(shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
+  }
+  return shape;
+}
+
+std::vector<double> cubeDispersionC2(const CubeOptions& o)
+{
+  const std::vector<int> counts = populationCounts(o);
+  std::vector<double> c2(counts.size(), 1.0);
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    if (counts[k] == 0 || !o.realism.dispersed())
+      continue;
+    const Vec3 axis = cubePopulationAxes(o)[k].direction;
+    double sum = 0.0;
+    for (int j = 0; j < counts[k]; ++j)
+    {
+      const double c = dot(normalized(fiberSpan(o, static_cast<int>(k), j)), axis);
+      sum += c * c;
+    }
+    c2[k] = sum / counts[k];
+  }
+  return c2;
+}
 
 PeriodicCell cubeCell(const CubeOptions& o)
 {
   const double half = 0.5 * o.edgeLength;
   return PeriodicCell{ { -half, -half, -half }, { half, half, half } };
 }
+
+namespace
+{
+// Empty when the used PopulationShares are usable: finite and > 0 (and so a positive sum).
+std::string sharesProblem(const CubeOptions& o)
+{
+  if (o.populationShares.empty())
+    return {};
+  std::ostringstream msg;
+  if (static_cast<int>(o.populationShares.size()) < o.populations)
+  {
+    msg << "PopulationShares has " << o.populationShares.size() << " values for " << o.populations << " populations";
+    return msg.str();
+  }
+  for (int k = 0; k < o.populations; ++k)
+  {
+    const double w = o.populationShares[static_cast<std::size_t>(k)];
+    if (!std::isfinite(w) || w <= 0.0)
+    {
+      msg << "PopulationShares value " << k << " is " << w << ", must be > 0";
+      return msg.str();
+    }
+  }
+  return {};
+}
+} // namespace
 
 std::string validateCubeOptions(const CubeOptions& o, int pieces)
 {
@@ -329,10 +606,45 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
   }
+  else if (!validateShapeOptions(o.realism).empty())
+  {
+    msg << validateShapeOptions(o.realism);
+  }
+  else if (!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0)
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees";
+  }
+  else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
+  {
+    msg << "CrossingAngle is " << o.crossingAngle << ", which needs Seeding Random (the lattices are built "
+           "for perpendicular populations)";
+  }
+  else if (!sharesProblem(o).empty())
+  {
+    msg << sharesProblem(o);
+  }
+  else if (static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2)
+  {
+    msg << "Arrangement is " << static_cast<int>(o.arrangement) << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+  }
+  else if (o.arrangement == CubeArrangement::Sheets && o.populations != 2)
+  {
+    msg << "Arrangement is Sheets, which needs Populations 2 (it is " << o.populations << ")";
+  }
   else
   {
     const double fibers = fiberCountEstimate(o);
-    const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
+    // Fibers along a crossing-angle axis span |axis| edges, dispersed periodic ones up to
+    // kMaxDispersionPeriods times that; with a volume fraction longer fibers are fewer, so only a
+    // fixed count needs the factor.
+    double span = 1.0;
+    for (const PopulationAxis& a : cubePopulationAxes(o))
+      span = std::max(span, norm(a.lattice));
+    if (o.realism.dispersed() && o.periodic)
+      span *= kMaxDispersionPeriods;
+    if (o.volumeFraction > 0.0)
+      span = 1.0;
+    const double points = fibers * (o.realism.tortuosity * span * o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
     what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
@@ -347,7 +659,7 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     {
       msg << problem << "; it would need too many points";
     }
-    else if (o.seeding == CubeSeeding::Lattice && polydisperse(o) && o.populations <= 2)
+    else if (o.seeding == CubeSeeding::Lattice && packsDisks(o))
     {
       // Every piece packs all fibers' disks.
       std::ostringstream packing;
@@ -366,7 +678,46 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
 
 int cubePopulationSize(const CubeOptions& o, int k)
 {
-  return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
+  if (!customShares(o))
+    return o.numberOfFibers / o.populations + (k < o.numberOfFibers % o.populations ? 1 : 0);
+  // Largest remainder: the floors of N·w, the fibers left to the largest fractions (ties: lower k).
+  const std::vector<double> w = normalizedShares(o);
+  std::vector<int> counts(w.size());
+  std::vector<double> rest(w.size());
+  int left = o.numberOfFibers;
+  for (std::size_t q = 0; q < w.size(); ++q)
+  {
+    const double exact = o.numberOfFibers * w[q];
+    counts[q] = static_cast<int>(std::floor(exact));
+    rest[q] = exact - counts[q];
+    left -= counts[q];
+  }
+  for (; left > 0; --left)
+  {
+    std::size_t best = 0;
+    for (std::size_t q = 1; q < w.size(); ++q)
+      if (rest[q] > rest[best])
+        best = q;
+    ++counts[best];
+    rest[best] = -1.0;
+  }
+  return counts[static_cast<std::size_t>(k)];
+}
+
+const char* cubeArrangementName(CubeArrangement a)
+{
+  switch (a)
+  {
+    case CubeArrangement::Auto: return "Auto";
+    case CubeArrangement::Interwoven: return "Interwoven";
+    case CubeArrangement::Sheets: return "Sheets";
+  }
+  return "Unknown";
+}
+
+std::vector<PopulationAxis> cubePopulationAxes(const CubeOptions& o)
+{
+  return populationAxes(o.populations, o.crossingAngle, o.periodic);
 }
 
 FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning, const ProgressFn& progress)
@@ -384,14 +735,16 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   std::string packed;
   bool aborted = false;
   if (o.seeding == CubeSeeding::Lattice)
-    sites = polydisperse(o) && o.populations <= 2 ? packedSites(o, counts, packed, progress, aborted)
-                                                  : shuffledSites(o, counts, spacing);
+    sites = packsDisks(o) ? packedSites(o, counts, packed, progress, aborted) : shuffledSites(o, counts, spacing);
+  const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
+    ? sheetHeights(o, counts) : std::vector<double>{};
   if (warning)
     *warning = packed;
   if (aborted)
     return {};
   FiberModel model;
   model.fibers.reserve(range.size());
+  std::size_t unreached = 0;
   // Global order: population by population, fiber j of population k at first(k) + j.
   std::size_t first = 0;
   for (std::size_t k = 0; k < counts.size(); ++k)
@@ -401,15 +754,31 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     const std::size_t to = std::min(range.end, first + count);
     for (std::size_t j = from; first + j < to; ++j)
     {
-      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j));
+      bool reached = true;
+      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
+      unreached += reached ? 0 : 1;
       if (!sites.empty())
       {
         placeOnSite(o, k, j, sites[k][j], spacing, f);
+      }
+      if (!sheets.empty())
+      {
+        placeInSheet(o, k, j, sheets, f);
       }
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));
     }
     first += count;
+  }
+  if (warning && !shapeWarnings(o.realism, o.segmentLength).empty())
+    *warning += (warning->empty() ? "" : "; ") + shapeWarnings(o.realism, o.segmentLength);
+  if (warning && unreached > 0)
+  {
+    std::ostringstream w;
+    w << (warning->empty() ? "" : "; ") << "Tortuosity " << o.realism.tortuosity << ": the Displacement "
+      << o.displacement << " alone makes " << unreached << " fiber(s) of this piece longer than that, left "
+      << "without undulation (lower Displacement, or raise Tortuosity)";
+    *warning += w.str();
   }
   return model;
 }

@@ -8,7 +8,10 @@
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
+#include "Tissue/PopulationAxes.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Tissue/FiberShape.h"
+#include "Tissue/ShapeOptions.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -16,6 +19,17 @@
 
 namespace fiberpli
 {
+
+/// How the populations share the cell (docs/tissue-models.md §10.5).
+enum class CubeArrangement
+{
+  Auto = 0,       ///< each seeding's own: Random uniform (interwoven), Lattice its lattice or, with varying radii, its slabs
+  Interwoven = 1, ///< populations mixed everywhere (Random: uniform; Lattice, 2 populations: alternating layers)
+  Sheets = 2      ///< 2 populations in two slabs along z, thickness by their cross-section shares
+};
+
+/// The api string of an arrangement ("Auto", "Interwoven", "Sheets").
+const char* cubeArrangementName(CubeArrangement arrangement);
 
 /// How the transverse positions of a cube's fibers are chosen.
 enum class CubeSeeding
@@ -46,7 +60,39 @@ struct CubeOptions
   /// as many as fibers; the empty ones chosen at random), each jittered uniformly in the disc of
   /// radius max(0, spacing/2 − fiberRadius); the drawn positions are replaced, the displacements kept.
   CubeSeeding seeding = CubeSeeding::Random;
+  /// Realism knobs (Tissue/ShapeOptions.h, docs/tissue-models.md §10); the defaults are off and
+  /// leave the cube bit-identical. Undulation (and dispersion) replace the straight fiber of n
+  /// points by a shaped one of max(n_min, round(τ·span/l) + 1) points whose displacements come from
+  /// the fiber's Jitter stream; its transverse position and radius are drawn as for the straight
+  /// fiber. Beading multiplies the radii (field on the nominal arc positions i·τ·span/(n − 1)).
+  ShapeOptions realism;
+  /// Degrees between the axes of populations 0 and 1, in [0, 90]; 90 = today's x and y. In a
+  /// periodic cell the nearest small-integer lattice direction is taken (Tissue/PopulationAxes.h).
+  /// Other than 90 needs Seeding Random.
+  double crossingAngle = 90.0;
+  /// Relative shares of the populations (fibers with numberOfFibers, volume with volumeFraction),
+  /// the first `populations` values used, each > 0. Empty or all equal: today's split (even /
+  /// populations in turn). Otherwise the counts are the largest-remainder split of numberOfFibers,
+  /// or fibers are added to the population furthest below its share of the volume.
+  std::vector<double> populationShares;
+  CubeArrangement arrangement = CubeArrangement::Auto;
 };
+
+/// The target shape of fiber j of population k (Tissue/FiberShape.h): the straight base path from
+/// the drawn transverse position along the fiber's span, its calibrated undulation, the point
+/// count, the displacements (drawn from the Jitter stream) and the radius drawn for it. Lattice
+/// seeding and Sheets translate the finished fiber across its axis afterwards.
+/// Meaningful when the fiber is reshaped (undulation, dispersion or a crossing-angle axis).
+FiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
+
+/// The achieved ⟨cos²⟩ of the end-to-end directions about the axis, per population (1 without
+/// dispersion; every fiber of the model counted, so the same on every piece). Open cubes: the
+/// sample mean of the Watson draws; periodic: of the lattice directions taken (their κ calibrated
+/// so that they reach the request, Tissue/LatticeDispersion.h). About each population's own axis.
+std::vector<double> cubeDispersionC2(const CubeOptions& options);
+
+/// The axes of the cube's populations (unit vectors; periodic: the lattice directions taken).
+std::vector<PopulationAxis> cubePopulationAxes(const CubeOptions& options);
 
 /// The cell of a periodic cube: [-L/2, L/2]³.
 PeriodicCell cubeCell(const CubeOptions& options);

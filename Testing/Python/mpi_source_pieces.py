@@ -2,7 +2,7 @@
 (docs/tissue-models.md §9). Every rank runs this script: the pipeline update gives it piece r of
 2, which must hold exactly the fibers [N·r/2, N·(r+1)/2) of the one-piece output, bit for bit, with
 their global fiber ids and the same field data (periodic_cell, seed, segment_length). Together the
-two ranks check the whole model, in its serial order."""
+two ranks check the whole model, in its serial order, also with the realism knobs on."""
 import os
 import signal
 import sys
@@ -70,4 +70,13 @@ periodic = FiberCubeSource(Populations=3, EdgeLength=20.0, Periodic=1, VolumeFra
                            RadiusDistribution="LogNormal", Seed=8)
 check_pieces(periodic, "periodic cube")
 check_pieces(FiberBundleSource(Shape="Chiasm", NumberOfFibers=20, BundleRadius=6.0, Length=40.0, Seed=5), "chiasm")
+# The realism knobs (docs/tissue-models.md §10) draw from per-fiber streams: the same pieces.
+realistic = FiberCubeSource(Populations=2, EdgeLength=16.0, Periodic=1, VolumeFraction=0.3, FiberRadius=1.0,
+                            RadiusSpread=0.5, RadiusDistribution="Gamma", Displacement=0.05, Seed=6,
+                            Tortuosity=1.06, UndulationWavelength=8.0, DispersionC2=0.9, BeadingCV=0.2,
+                            BeadingLength=3.0, GRatio=0.65, CrossingAngle=45.0, PopulationShares=[2, 1, 1])
+check_pieces(realistic, "realistic periodic cube")
+check_pieces(FiberBundleSource(Shape="Crossing", NumberOfFibers=12, BundleRadius=5.0, Length=30.0, Seed=5,
+                               Tortuosity=1.1, UndulationWavelength=10.0, DispersionC2=0.85, BeadingCV=0.3),
+             "realistic crossing")
 print("mpi_source_pieces passed on rank %d" % rank)
