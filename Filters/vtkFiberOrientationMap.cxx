@@ -1,5 +1,7 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberGuard.h"
+
 #include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
@@ -94,16 +96,19 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 //------------------------------------------------------------------------------
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  // The mask's reference (the largest value) is taken over all pieces of a parallel update:
-  // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
-  bool reduced = false;
-  const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
-  if (!reduced)
-  {
-    fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
-  }
-  return rc;
+  // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
+  return fiberpli::GuardRequest(this, outputVector, "FiberOrientationMap", [&]() -> int {
+    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+    // The mask's reference (the largest value) is taken over all pieces of a parallel update:
+    // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
+    bool reduced = false;
+    const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+    if (!reduced)
+    {
+      fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
+    }
+    return rc;
+  });
 }
 
 //------------------------------------------------------------------------------

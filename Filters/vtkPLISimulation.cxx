@@ -172,9 +172,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   }
   if (whole.periodic && whole.cellError.empty())
   {
-    reach.periodic = true;
-    reach.cell = whole.cell;
-    std::copy(options.volumeOfInterest, options.volumeOfInterest + 6, reach.tiling);
+    fiberpli::sectionTiling(reach, whole.cell, options.volumeOfInterest);
   }
   return {};
 }
@@ -468,7 +466,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   std::string cellError = in.cellError;
   if (in.periodic && cellError.empty())
   {
-    cellError = fiberpli::tileModel(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
+    cellError = fiberpli::tileSection(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
   }
   if (!cellError.empty())
   {

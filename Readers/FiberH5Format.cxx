@@ -1,6 +1,7 @@
 #include "FiberH5Format.h"
 
 #include "IO/AtomicFile.h"
+#include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
 #include "vtk_hdf5.h"

@@ -1,6 +1,7 @@
 #include "Checkpoint/SolverCheckpoint.h"
 
 #include "IO/AtomicFile.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -188,8 +189,8 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
   const std::size_t nf = model.fibers.size();
   if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf || st.closure.size() != nf)
   {
-    return named(path, "the solver state has " + std::to_string(st.points.size()) + " fibers, the model " +
-        std::to_string(nf));
+    return named(path, "the solver state has " + formatNumber(st.points.size()) + " fibers, the model " +
+        formatNumber(nf));
   }
   const std::string error = writeFileAtomically(path, [&](std::ostream& out) -> std::string {
     Writer w(out);
@@ -211,7 +212,7 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
       if (fib.radii.size() != fib.points.size() || ps.velocity.size() != fib.points.size() ||
         ps.source.size() != fib.points.size())
       {
-        return "fiber " + std::to_string(f) + " has points, radii and state of different sizes";
+        return "fiber " + formatNumber(f) + " has points, radii and state of different sizes";
       }
       w.u64(static_cast<std::uint64_t>(fib.id));
       w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(fib.bundle)));
@@ -278,8 +279,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   const std::uint64_t version = r.u64();
   if (version != kVersion)
   {
-    return named(path, "has version " + std::to_string(version) + ", this FiberPLI reads version " +
-        std::to_string(kVersion));
+    return named(path, "has version " + formatNumber(version) + ", this FiberPLI reads version " +
+        formatNumber(kVersion));
   }
   const auto given = optionList(options);
   const std::size_t nOptions = r.count(16);
@@ -367,8 +368,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   }
   if (fingerprint != inputFingerprint)
   {
-    return named(path, "was written for another input (fingerprint " + std::to_string(fingerprint) +
-        ", this input has " + std::to_string(inputFingerprint) + "); resume with the input it was written for");
+    return named(path, "was written for another input (fingerprint " + formatNumber(fingerprint) +
+        ", this input has " + formatNumber(inputFingerprint) + "); resume with the input it was written for");
   }
   model = std::move(m);
   state = std::move(st);
@@ -381,7 +382,7 @@ std::string checkpointPath(const std::string& path, const SolverComm* comm)
   {
     return path;
   }
-  return path + "." + std::to_string(comm->rank()) + "-of-" + std::to_string(comm->size());
+  return path + "." + formatNumber(comm->rank()) + "-of-" + formatNumber(comm->size());
 }
 
 std::string previousCheckpointPath(const std::string& path)
@@ -409,7 +410,7 @@ std::string agree(SolverComm* comm, const std::string& local)
   {
     if (!got[r].empty())
     {
-      return "rank " + std::to_string(r) + " failed: " + std::string(got[r].begin(), got[r].end());
+      return "rank " + formatNumber(r) + " failed: " + std::string(got[r].begin(), got[r].end());
     }
   }
   return {};
@@ -475,7 +476,7 @@ std::string describe(const std::vector<Generation>& gens)
   std::string text;
   for (const Generation& g : gens)
   {
-    text += (text.empty() ? "'" : ", '") + g.file + "' at step " + std::to_string(g.state.steps);
+    text += (text.empty() ? "'" : ", '") + g.file + "' at step " + formatNumber(g.state.steps);
   }
   return text;
 }
@@ -492,7 +493,7 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
   std::string mine;
   for (const Generation& g : gens)
   {
-    mine += std::to_string(g.state.steps) + " ";
+    mine += formatNumber(g.state.steps) + " ";
   }
   mine += "|" + describe(gens);
   const std::vector<std::vector<char>> got =
@@ -516,7 +517,7 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
     common.erase(std::remove_if(common.begin(), common.end(),
                    [&](int v) { return std::find(held.begin(), held.end(), v) == held.end(); }),
       common.end());
-    all += (r ? "; rank " : "rank ") + std::to_string(r) + ": " + text.substr(bar + 1);
+    all += (r ? "; rank " : "rank ") + formatNumber(r) + ": " + text.substr(bar + 1);
   }
   if (common.empty())
   {
@@ -579,9 +580,9 @@ std::string checkFiberSet(SolverComm* comm, const Generation& g)
   {
     return {};
   }
-  return named(g.file, "the checkpoints of step " + std::to_string(g.state.steps) +
-      " do not hold each of the model's " + std::to_string(n) +
-      " fibers exactly once (global indices are not 0.." + std::to_string(n - 1) +
+  return named(g.file, "the checkpoints of step " + formatNumber(g.state.steps) +
+      " do not hold each of the model's " + formatNumber(n) +
+      " fibers exactly once (global indices are not 0.." + formatNumber(n - 1) +
       "): files of different runs or rank counts?");
 }
 } // namespace
@@ -593,7 +594,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   CollisionSolverResult failed;
   if (checkpoint.interval < 0)
   {
-    failed.error = "CheckpointInterval is " + std::to_string(checkpoint.interval) + ", must be >= 0 (0 = off)";
+    failed.error = "CheckpointInterval is " + formatNumber(checkpoint.interval) + ", must be >= 0 (0 = off)";
     return failed;
   }
   if (checkpoint.interval == 0 && !checkpoint.resume)
@@ -668,7 +669,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
       if (!problem.empty())
       {
         result = run.finish();
-        result.error = problem + " (at step " + std::to_string(st.steps) + ")";
+        result.error = problem + " (at step " + formatNumber(st.steps) + ")";
         written = false;
         break;
       }

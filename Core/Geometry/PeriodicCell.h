@@ -90,26 +90,4 @@ inline bool closesThroughCell(const Vec3& first, const Vec3& last, const Periodi
   return cell.isLatticeVector(last - first, tol, closure);
 }
 
-/// The cell from the six values of the `periodic_cell` field (xmin xmax ymin ymax zmin zmax).
-/// Empty message when usable, else why not (count, non-finite, max <= min).
-inline std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicCell& cell)
-{
-  if (count != 6)
-  {
-    return "periodic_cell has " + std::to_string(count) +
-      " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
-  }
-  for (int a = 0; a < 3; ++a)
-  {
-    if (!std::isfinite(b[2 * a]) || !std::isfinite(b[2 * a + 1]) || !(b[2 * a + 1] > b[2 * a]))
-    {
-      return "periodic_cell axis " + std::to_string(a) + " is [" + std::to_string(b[2 * a]) + ", " +
-        std::to_string(b[2 * a + 1]) + "], must be finite with max > min";
-    }
-    cell.lo[a] = b[2 * a];
-    cell.hi[a] = b[2 * a + 1];
-  }
-  return {};
-}
-
 } // namespace fiberpli

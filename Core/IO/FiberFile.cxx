@@ -131,23 +131,20 @@ std::string writeTckWithRadii(const std::string& path, const FiberModel& model)
       radii.push_back(f.radii);
     }
   }
-  const std::string tckError = writeFileAtomically(path, [&](std::ostream& out) {
-    const std::string error = writeTck(out, model);
-    return error.empty() ? error : path + ": " + error;
+  // One pair: both files are written and synced before either replaces its old version, so a
+  // failure (a full disk) leaves the old pair, which still reads (AtomicFile.h).
+  return writeFilesAtomically({
+    AtomicPart{ path,
+      [&](std::ostream& out) {
+        const std::string error = writeTck(out, model);
+        return error.empty() ? error : path + ": " + error;
+      } },
+    AtomicPart{ tsfPath,
+      [&](std::ostream& out) {
+        const std::string error = writeTsf(out, radii, tckTimestamp(model));
+        return error.empty() ? error : tsfPath + ": " + error;
+      } },
   });
-  if (!tckError.empty())
-  {
-    return tckError;
-  }
-  const std::string tsfError = writeFileAtomically(tsfPath, [&](std::ostream& out) {
-    const std::string error = writeTsf(out, radii, tckTimestamp(model));
-    return error.empty() ? error : tsfPath + ": " + error;
-  });
-  if (!tsfError.empty())
-  {
-    return path + " was written but its radius file was not: " + tsfError;
-  }
-  return {};
 }
 
 } // namespace

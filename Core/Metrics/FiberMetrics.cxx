@@ -1,5 +1,7 @@
 #include "Metrics/FiberMetrics.h"
 
+#include "Model/PeriodicCellRule.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,14 +25,12 @@ std::string boxText(const Vec3& lo, const Vec3& hi)
 /// every axis), else why not: a half-set or infinite cell would silently skip or break the images.
 std::string checkCell(const PeriodicCell& cell)
 {
-  const Vec3 e = cell.edge();
-  bool off = true, usable = true;
+  bool off = true;
   for (int i = 0; i < 3; ++i)
   {
     off = off && cell.hi[i] == cell.lo[i];
-    usable = usable && std::isfinite(cell.lo[i]) && std::isfinite(cell.hi[i]) && e[i] > 0.0 && std::isfinite(e[i]);
   }
-  return off || usable ? "" : "periodic_cell " + boxText(cell.lo, cell.hi) + " must be finite with min < max on every axis";
+  return off ? "" : validatePeriodicCell(cell);
 }
 
 /// The region of the volume fraction, or an error naming the offending value.

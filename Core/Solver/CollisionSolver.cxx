@@ -2,6 +2,7 @@
 
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
+#include "Model/PeriodicCellRule.h"
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
 #include "Solver/PairBound.h"
@@ -1140,9 +1141,9 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "InitialRadiusScale is " << o.initialRadiusScale << ", must be in [0, 1] (0 = automatic, 1 = off)";
   }
-  else if (!isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
+  else if (o.periodicCell.enabled() || !isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
   {
-    msg << "the periodic cell has a non-finite bound";
+    msg << validatePeriodicCell(o.periodicCell); // Model/PeriodicCellRule.h: "" when usable
   }
   return msg.str();
 }

@@ -5,6 +5,7 @@
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
 #include "ThreadComm.h"
+#include "Model/PeriodicCellRule.h"
 #include "Model/PeriodicTiling.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
@@ -320,6 +321,36 @@ TEST(PeriodicCell, BoundsFieldIsValidated)
   EXPECT_NE(periodicCellFromBounds(flat, 6, cell), "");
   const double nan[6] = { -1, 1, -2, std::nan(""), -3, 3 };
   EXPECT_NE(periodicCellFromBounds(nan, 6, cell), "");
+}
+
+TEST(PeriodicCell, EdgeThatOverflowsIsRefusedEverywhere)
+{
+  // Finite bounds whose edge overflows (1e308 − (−1e308) = inf), a huge edge, and an edge too fine
+  // for its bounds' magnitude: refused by the one rule, in short number form, by the field reader
+  // and by the solver's options alike (the solver used to die on std::length_error).
+  PeriodicCell cell;
+  const double overflow[6] = { -1e308, 1e308, -5, 5, -5, 5 };
+  const std::string e = periodicCellFromBounds(overflow, 6, cell);
+  EXPECT_NE(e.find("periodic_cell axis x is [-1e+308, 1e+308]"), std::string::npos) << e;
+  EXPECT_NE(e.find("edge inf"), std::string::npos) << e;
+  EXPECT_FALSE(cell.enabled()) << "a refused cell must not be filled in";
+  const double huge[6] = { -5, 5, 0, 2e9, -5, 5 };
+  EXPECT_NE(periodicCellFromBounds(huge, 6, cell).find("axis y"), std::string::npos);
+  const double fine[6] = { -5, 5, -5, 5, 1e15, 1e15 + 0.5 };
+  EXPECT_NE(periodicCellFromBounds(fine, 6, cell).find("axis z"), std::string::npos);
+
+  FiberModel m;
+  Fiber f;
+  f.points = { { -4, 0, 0 }, { 0, 0, 0 }, { 4, 0, 0 } };
+  f.radii = { 1, 1, 1 };
+  m.fibers = { f };
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.periodicCell.lo = { -1e308, -5, -5 };
+  o.periodicCell.hi = { 1e308, 5, 5 };
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("periodic_cell axis x"), std::string::npos) << r.error;
+  EXPECT_TRUE(m.fibers[0].points == in.fibers[0].points);
 }
 
 TEST(PeriodicTiling, CopiesExactlyTheTranslatesThatReachTheBox)

@@ -198,8 +198,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   {
     const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6, progress);
     aborted = p.aborted;
-    if (aborted)
-      return {};
+    if (aborted || p.centres.size() != radii[0].size())
+      return {}; // no sites: a packing that placed no disks is never read (generateCube)
     warning = overlapWarning(o, p, "the cross-section");
     for (const Seed2D& c : p.centres)
       sites[0].push_back({ c.x - half, c.y - half });
@@ -221,6 +221,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
     aborted = true;
     return {};
   }
+  if (p0.centres.size() != radii[0].size() || p1.centres.size() != radii[1].size())
+    return {}; // the radii could not be packed (validateRadiusDistribution keeps them usable)
   warning = overlapWarning(o, p0, "the slab of population 0");
   if (warning.empty())
     warning = overlapWarning(o, p1, "the slab of population 1");
