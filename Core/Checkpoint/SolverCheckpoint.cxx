@@ -1,5 +1,7 @@
 #include "Checkpoint/SolverCheckpoint.h"
 
+#include "Checkpoint/CheckpointState.h"
+
 #include "IO/AtomicFile.h"
 #include "Util/NumberFormat.h"
 
@@ -632,6 +634,14 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     }
     Generation& g = gens[static_cast<std::size_t>(chosen)];
     failed.error = agree(comm, checkFiberSet(comm, g));
+    if (!failed.error.empty())
+    {
+      return failed;
+    }
+    // The checksum says the file is as written, not that what was written is sound: the state
+    // passes the checks of fresh input and of every scalar (Checkpoint/CheckpointState.h).
+    const std::string unsound = checkResumedState(g.model, g.state, options, comm ? comm->size() : 1);
+    failed.error = agree(comm, unsound.empty() ? unsound : named(g.file, unsound));
     if (!failed.error.empty())
     {
       return failed;

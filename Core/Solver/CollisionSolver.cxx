@@ -1347,6 +1347,10 @@ bool CollisionSolverRun::start()
   {
     error = checkStacksAndGap(model, o, s.comm_);
   }
+  if (error.empty())
+  {
+    error = checkCoordinateResolution(model, st.segmentLength); // Solver/ShapeControl.h
+  }
   if (r.fail(error))
   {
     return false;

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <fstream>
+#include <functional>
 #include <future>
 #include <iterator>
 #include <memory>
@@ -514,4 +515,54 @@ TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
   EXPECT_NE(r.error.find(file.path), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("at step 25"), std::string::npos) << r.error;
   EXPECT_TRUE(bitwiseEqual(resumed, in)) << "the caller's model must be unchanged";
+}
+
+TEST(SolverCheckpoint, ASoundFileWithAnUnsoundStateIsRefusedNamingFileAndField)
+{
+  // A checkpoint with a valid checksum but one edited value (rewritten with its checksum) used to
+  // be trusted: a NaN radius scale aborted, a tiny segment length split the model until memory ran
+  // out, a point at 1e300 hung, a NaN closure gave NaN output, all fibers flagged inactive gave
+  // "collisions 0". Each must be refused before the run goes on, naming the file and the field.
+  CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  FiberModel savedModel;
+  CollisionSolverState savedState;
+  ASSERT_EQ(readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), savedModel, savedState), "");
+  std::remove(previousCheckpointPath(run.file.path).c_str()); // nothing older to fall back to
+  struct Edit
+  {
+    const char* expected;
+    std::function<void(FiberModel&, CollisionSolverState&)> apply;
+  };
+  const std::vector<Edit> edits = {
+    { "radius scale is nan", [](FiberModel&, CollisionSolverState& s) { s.scale = std::nan(""); } },
+    { "radius scale is 1.5", [](FiberModel&, CollisionSolverState& s) { s.scale = 1.5; } },
+    { "segment length is 1e-09", [](FiberModel&, CollisionSolverState& s) { s.segmentLength = 1e-9; } },
+    { "coordinate 1e+300", [](FiberModel& m, CollisionSolverState&) { m.fibers[3].points[1].x = 1e300; } },
+    { "closure vector of fiber 2", [](FiberModel&, CollisionSolverState& s) { s.closure[2].y = std::nan(""); } },
+    { "flags fiber 0 (fiber_id 0) inactive",
+      [](FiberModel&, CollisionSolverState& s) { std::fill(s.active.begin(), s.active.end(), 0); } },
+    { "move cap is 1e+09", [](FiberModel&, CollisionSolverState& s) { s.vMax = 1e9; } },
+    { "step count is -4", [](FiberModel&, CollisionSolverState& s) { s.steps = -4; } },
+    { "push scale is inf", [](FiberModel&, CollisionSolverState& s) { s.pushScale = HUGE_VAL; } },
+    { "velocity of fiber 1 (fiber_id 1) point 0", [](FiberModel&, CollisionSolverState& s) {
+        s.points[1].velocity[0].z = std::nan("");
+      } },
+  };
+  for (const Edit& edit : edits)
+  {
+    FiberModel m = savedModel;
+    CollisionSolverState st = savedState;
+    edit.apply(m, st);
+    ASSERT_EQ(writeSolverCheckpoint(run.file.path, m, st, run.options, modelFingerprint(run.in)), "");
+    FiberModel resumed = run.in;
+    const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true });
+    EXPECT_NE(r.error.find("checkpoint file '" + run.file.path + "'"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find(edit.expected), std::string::npos) << r.error;
+    EXPECT_TRUE(bitwiseEqual(resumed, run.in)) << "a refused resume must leave the caller's model";
+  }
+  // The state as written resumes.
+  ASSERT_EQ(writeSolverCheckpoint(run.file.path, savedModel, savedState, run.options, modelFingerprint(run.in)), "");
+  FiberModel resumed = run.in;
+  EXPECT_EQ(solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true }).error, "");
 }
