@@ -10,6 +10,7 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
@@ -119,6 +120,9 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     output->GetCellData()->AddArray(fiberId);
     output->GetCellData()->AddArray(bundleId);
     output->GetCellData()->SetActiveScalars("bundle_id");
+    // The model's field data (solved, collisions, periodic_cell, seed, …) describe the tubes as
+    // well: a saved tubes file still says what it is.
+    output->GetFieldData()->PassData(input->GetFieldData());
     return 1;
   });
 }
