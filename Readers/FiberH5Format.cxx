@@ -1,6 +1,7 @@
 #include "FiberH5Format.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/RegularFile.h"
 #include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
@@ -301,9 +302,9 @@ std::string bundleGroup(const Handle& file, const std::string& path, const std::
 bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
 {
   QuietHdf5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
+  if (!fiberpli::checkRegularFile(path).empty() || H5Fis_hdf5(path.c_str()) <= 0)
   {
-    return false;
+    return false; // never open a FIFO or device (it could block or never end)
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   return file.ok() && !bundleGroupsOf(file.get()).empty();
@@ -314,6 +315,11 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
 {
   QuietHdf5 quiet;
   model.fibers.clear();
+  const std::string special = fiberpli::checkRegularFile(path); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return "cannot read " + special;
+  }
   if (H5Fis_hdf5(path.c_str()) <= 0)
   {
     return path + ": not an HDF5 file";

@@ -3,17 +3,22 @@
 #include "Checkpoint/CheckpointState.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/RegularFile.h"
 #include "Util/NumberFormat.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
-#include <sys/stat.h>
 #include <utility>
 #include <vector>
+
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace fiberpli
 {
@@ -259,6 +264,11 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
 std::string readSolverCheckpoint(const std::string& path, const CollisionSolverOptions& options,
   std::uint64_t inputFingerprint, FiberModel& model, CollisionSolverState& state)
 {
+  const std::string special = checkRegularFile(path); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return named(path, "cannot be read: " + special);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
@@ -447,7 +457,7 @@ struct Generation
 // The generations of `path` that read (the file and its previous one), newest step first; with
 // none, error is the file's own read error.
 std::vector<Generation> readGenerations(const std::string& path, const CollisionSolverOptions& options,
-  std::uint64_t fingerprint, std::string& error)
+  std::uint64_t fingerprint, std::string& error, std::string& newestProblem)
 {
   std::vector<Generation> found;
   for (const std::string& file : { path, previousCheckpointPath(path) })
@@ -462,6 +472,7 @@ std::vector<Generation> readGenerations(const std::string& path, const Collision
     else if (file == path)
     {
       error = problem;
+      newestProblem = problem; // kept when the previous generation reads: the caller warns
     }
   }
   std::stable_sort(found.begin(), found.end(),
@@ -471,6 +482,49 @@ std::vector<Generation> readGenerations(const std::string& path, const Collision
     error.clear();
   }
   return found;
+}
+
+// When this run's file is missing: the checkpoint files of `base` written by runs over another
+// number of ranks ("" when there are none), so that resuming 2-rank checkpoints on 3 ranks says
+// what exists instead of only "cannot be opened".
+std::string otherRankCountFiles(const std::string& base, int ranks)
+{
+  const std::size_t slash = base.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : base.substr(0, slash));
+  const std::string name = slash == std::string::npos ? base : base.substr(slash + 1);
+  std::map<int, std::vector<std::string>> byRanks; // rank count -> files
+  if (ranks > 1 && checkRegularFile(base).empty() && ::access(base.c_str(), F_OK) == 0)
+  {
+    byRanks[1].push_back(name);
+  }
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string entry = e->d_name;
+      int rank = -1, count = -1, used = 0;
+      if (entry.size() > name.size() + 1 && entry.compare(0, name.size() + 1, name + ".") == 0 &&
+        std::sscanf(entry.c_str() + name.size() + 1, "%d-of-%d%n", &rank, &count, &used) == 2 &&
+        static_cast<std::size_t>(used) == entry.size() - name.size() - 1 && count != ranks && count > 1)
+      {
+        byRanks[count].push_back(entry);
+      }
+    }
+    ::closedir(d);
+  }
+  std::string text;
+  for (auto& [count, files] : byRanks)
+  {
+    std::sort(files.begin(), files.end());
+    std::string list;
+    for (const std::string& f : files)
+    {
+      list += (list.empty() ? "'" : ", '") + f + "'";
+    }
+    text += (text.empty() ? "" : "; ") + std::string(count == 1 ? "a file of a serial run exists (" : "files for ") +
+      (count == 1 ? list + ")" : formatNumber(count) + " ranks exist (" + list + ")");
+  }
+  return text.empty() ? text : text + ": resume on the number of ranks that wrote them";
 }
 
 std::string describe(const std::vector<Generation>& gens)
@@ -618,10 +672,16 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   FiberModel resumed;
   CollisionSolverState saved;
   std::string resumedFile = path;
+  std::string newestProblem; // why the newest generation was not the one resumed
   if (checkpoint.resume)
   {
     std::string problem;
-    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem);
+    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem, newestProblem);
+    if (gens.empty() && ::access(path.c_str(), F_OK) != 0)
+    {
+      const std::string others = otherRankCountFiles(checkpoint.path, comm ? comm->size() : 1);
+      problem += others.empty() ? "" : "; " + others;
+    }
     failed.error = agree(comm, problem);
     if (!failed.error.empty())
     {
@@ -649,6 +709,10 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     resumed = std::move(g.model);
     saved = std::move(g.state);
     resumedFile = g.file;
+    if (resumedFile != path && newestProblem.empty())
+    {
+      newestProblem = named(path, "holds a step not every rank holds");
+    }
   }
   FiberModel& work = checkpoint.resume ? resumed : model;
   CollisionSolverRun run(work, options, progress, observer, comm);
@@ -692,6 +756,11 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   if (checkpoint.resume && result.error.empty()) // a failed resumed run leaves the caller's piece
   {
     model = std::move(resumed);
+  }
+  if (checkpoint.resume && resumedFile != path) // never silently: the newest file was not used
+  {
+    result.warnings.push_back(newestProblem + "; resumed from the previous generation '" + resumedFile +
+      "' at step " + formatNumber(saved.steps));
   }
   return result;
 }

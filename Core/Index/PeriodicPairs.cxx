@@ -46,7 +46,8 @@ std::string PeriodicPairs::cellTooSmall(double w, const PeriodicCell& cell)
   }
   std::ostringstream msg;
   msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << w
-      << " um (segment extent + 2 x radius): use a larger cell or a shorter SegmentLength";
+      << " um (segment extent + 2 x radius + MinimumGap): use a larger cell, a shorter SegmentLength or a "
+         "smaller MinimumGap";
   return msg.str();
 }
 

@@ -303,3 +303,29 @@ TEST(AtomicFile, TckAndRadiusFileAreReplacedAsAPair)
   ASSERT_EQ(back.model.fibers.size(), 2u);
   EXPECT_EQ(back.model.fibers[1].radii[0], 2.0);
 }
+
+TEST(AtomicFile, ReadersRefuseAFifoWithoutBlocking)
+{
+  // Opening a FIFO for reading blocks until a writer comes: FileName on one used to hang.
+  TempDir dir;
+  for (const std::string name : { "pipe.dat", "pipe.tck", "pipe.trk" })
+  {
+    const std::string fifo = dir.path + "/" + name;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_FALSE(canReadFiberFile(fifo));
+    const FiberReadResult r = readFiberFile(fifo, 1.0); // blocks forever without the check
+    EXPECT_NE(r.error.find(fifo + " is a FIFO (named pipe), not a regular file"), std::string::npos) << r.error;
+  }
+  // A .tck whose radius file is a FIFO.
+  const std::string tck = dir.path + "/model.tck";
+  FiberModel m;
+  Fiber f;
+  f.points = { { 0, 0, 0 }, { 1, 0, 0 } };
+  f.radii = { 1, 1 };
+  m.fibers = { f };
+  ASSERT_EQ(writeFiberFile(tck, m), "");
+  ASSERT_EQ(::unlink(tckRadiusPath(tck).c_str()), 0);
+  ASSERT_EQ(::mkfifo(tckRadiusPath(tck).c_str(), 0600), 0);
+  const FiberReadResult r = readFiberFile(tck, 1.0);
+  EXPECT_NE(r.error.find("FIFO"), std::string::npos) << r.error;
+}

@@ -566,3 +566,65 @@ TEST(SolverCheckpoint, ASoundFileWithAnUnsoundStateIsRefusedNamingFileAndField)
   FiberModel resumed = run.in;
   EXPECT_EQ(solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true }).error, "");
 }
+
+TEST(SolverCheckpoint, AFallBackToThePreviousGenerationIsAWarning)
+{
+  // A damaged newest file used to be skipped silently for its previous generation.
+  CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  {
+    std::ofstream damaged(run.file.path, std::ios::binary | std::ios::trunc);
+    damaged << "FiberPLI? no";
+  }
+  FiberModel m = run.in;
+  const CollisionSolverResult r = solveWithCheckpoints(m, run.options, { run.file.path, 0, true });
+  ASSERT_EQ(r.error, "");
+  bool warned = false;
+  for (const std::string& w : r.warnings)
+  {
+    warned = warned || (w.find("'" + run.file.path + "'") != std::string::npos &&
+                         w.find("resumed from the previous generation '" + previousCheckpointPath(run.file.path) +
+                           "' at step 20") != std::string::npos);
+  }
+  EXPECT_TRUE(warned) << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
+}
+
+TEST(SolverCheckpoint, ResumingOnAnotherRankCountSaysWhichFilesExist)
+{
+  // Files of a 2-rank run, resumed on 3 ranks (and serially): every rank says that files for 2
+  // ranks exist, instead of only that its own file cannot be opened.
+  TempFile file;
+  for (int r = 0; r < 2; ++r)
+  {
+    std::ofstream(file.path + "." + std::to_string(r) + "-of-2") << "x";
+  }
+  const FiberModel whole = denseOpenCube();
+  std::vector<std::string> errors(3);
+  runRanksWithin(3, 60, [&](SolverComm& comm) {
+    FiberModel piece;
+    for (std::size_t f = whole.fibers.size() * comm.rank() / 3; f < whole.fibers.size() * (comm.rank() + 1) / 3; ++f)
+      piece.fibers.push_back(whole.fibers[f]);
+    errors[static_cast<std::size_t>(comm.rank())] =
+      solveWithCheckpoints(piece, twoRankOptions(), { file.path, 0, true }, {}, {}, &comm).error;
+  });
+  for (const std::string& e : errors)
+  {
+    EXPECT_NE(e.find("files for 2 ranks exist ('solve.ckpt.0-of-2', 'solve.ckpt.1-of-2')"), std::string::npos) << e;
+  }
+  FiberModel serial = whole;
+  const std::string e = solveWithCheckpoints(serial, twoRankOptions(), { file.path, 0, true }).error;
+  EXPECT_NE(e.find("files for 2 ranks exist"), std::string::npos) << e;
+}
+
+TEST(SolverCheckpoint, AFifoAsCheckpointFileIsRefusedWithoutBlocking)
+{
+  TempFile file;
+  ASSERT_EQ(::mkfifo(file.path.c_str(), 0600), 0);
+  std::string error;
+  runRanksWithin(1, 30, [&](SolverComm&) {
+    FiberModel m = denseOpenCube();
+    error = solveWithCheckpoints(m, twoRankOptions(), { file.path, 0, true }).error;
+  });
+  EXPECT_NE(error.find("'" + file.path + "'"), std::string::npos) << error;
+  EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
+}
