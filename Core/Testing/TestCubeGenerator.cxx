@@ -2,6 +2,7 @@
 #include "Tissue/CubeGenerator.h"
 #include "Tissue/BundleOptions.h"
 #include "Tissue/RadiusDistribution.h"
+#include "MemoryLimitGuard.h"
 #include "Util/NumberFormat.h"
 
 #include <gtest/gtest.h>
@@ -183,4 +184,32 @@ TEST(CubeGenerator, LogNormalSpreadThatUnderflowsTheRadiiIsRefused)
   {
     EXPECT_GE(f.radii[0], o.fiberRadius * std::exp(-3.0 * o.radiusSpread) * (1 - 1e-12));
   }
+}
+
+TEST(CubeGenerator, VolumeFractionRefusalNamesItAndTheRealCount)
+{
+  // A broad radius spread with VolumeFraction used to be refused as "NumberOfFibers 1.1e+08 ..."
+  // (every fiber assumed as thin as the thinnest radius, and a property the user did not set).
+  // The message names VolumeFraction and the count generateCube really makes.
+  CubeOptions o;
+  o.populations = 2;
+  o.periodic = true;
+  o.edgeLength = 400.0;
+  o.volumeFraction = 0.3;
+  o.radiusDistribution = RadiusDistribution::LogNormal;
+  o.radiusSpread = 1.0;
+  std::string e;
+  {
+    fiberpli::testing::MemoryLimitGuard limit("1M");
+    e = validateCubeOptions(o);
+  }
+  ASSERT_NE(e, "");
+  EXPECT_NE(e.find("VolumeFraction 0.3 ("), std::string::npos) << e;
+  EXPECT_EQ(e.find("NumberOfFibers"), std::string::npos) << e;
+  // The count in the message is the count generateCube makes.
+  const std::size_t made = generateCube(o).fibers.size();
+  EXPECT_NE(e.find("(" + std::to_string(made) + " fibers)"), std::string::npos) << made << ": " << e;
+  // ... far below the old estimate, every fiber as thin as the thinnest radius r e^-3s.
+  const double thinnest = o.fiberRadius * std::exp(-3.0 * o.radiusSpread);
+  EXPECT_LT(static_cast<double>(made), 0.01 * o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * thinnest * thinnest));
 }

@@ -125,6 +125,25 @@ std::vector<int> populationCounts(const CubeOptions& o)
   return counts;
 }
 
+// The fibers a volume fraction takes (populationCounts' rule), counted up to kCountedFibers:
+// beyond that `atLeast` is set and the count is a lower bound (enough for the memory check).
+constexpr double kCountedFibers = 1e6;
+double countedFibers(const CubeOptions& o, bool& atLeast)
+{
+  const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength * (1.0 - 1e-12);
+  const double bound = std::min(fiberCountEstimate(o), kCountedFibers);
+  double volume = 0.0;
+  double i = 0.0;
+  for (; i < bound && volume < target; i += 1.0)
+  {
+    const int n = static_cast<int>(i);
+    const double r = cubeFiberRadius(o, n % o.populations, n / o.populations);
+    volume += M_PI * r * r * o.edgeLength;
+  }
+  atLeast = volume < target;
+  return i;
+}
+
 // Lattice seeding: the sites of every population, shuffled by the stream (seed, 3 + k, 0) (keys
 // 3..5 are not fiber streams: those have key1 = population 0..2). Fiber j of population k takes
 // the j-th site.
@@ -333,12 +352,20 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else
   {
-    const double fibers = fiberCountEstimate(o);
+    // With VolumeFraction the fibers it takes, counted as generateCube counts them (the upper
+    // estimate of fiberCountEstimate assumes the thinnest radius for every fiber, which for a
+    // broad spread is orders of magnitude too many); counting stops at kCountedFibers.
+    bool atLeast = false;
+    const double fibers = o.volumeFraction > 0.0 ? countedFibers(o, atLeast) : fiberCountEstimate(o);
     const double points = fibers * (o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
-    what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
-         << " and SegmentLength " << o.segmentLength << " (" << points << " points";
+    if (o.volumeFraction > 0.0)
+      what << "VolumeFraction " << o.volumeFraction << " (" << (atLeast ? "at least " : "") << fibers << " fibers)";
+    else
+      what << "NumberOfFibers " << fibers;
+    what << " with EdgeLength " << o.edgeLength << " and SegmentLength " << o.segmentLength << " (" << points
+         << " points";
     if (pieces > 1)
     {
       what << ", a share of 1/" << pieces << " per piece";
@@ -356,7 +383,7 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
       packing << "Seeding Lattice with RadiusSpread " << o.radiusSpread << " (a disk packing of " << fibers
               << " fibers, ";
       if (o.volumeFraction > 0.0)
-        packing << "VolumeFraction " << o.volumeFraction;
+        packing << "VolumeFraction " << o.volumeFraction; // the count above is the real one
       else
         packing << "NumberOfFibers " << o.numberOfFibers;
       packing << " with EdgeLength " << o.edgeLength << ", on every piece)";
