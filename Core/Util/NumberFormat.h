@@ -12,19 +12,23 @@
 namespace fiberpli
 {
 
-/// The shortest "%g" text (1 to 17 significant digits) that reads back to exactly v.
+/// The shortest "%g" text (1 to 17 significant digits) that reads back to exactly v ("1000"
+/// rather than "1e+03": of the precisions that read back, the one with the fewest characters).
 inline std::string formatNumber(double v)
 {
+  std::string best;
   char text[32];
+  bool exact = false;
   for (int digits = 1; digits <= 17; ++digits)
   {
     std::snprintf(text, sizeof text, "%.*g", digits, v);
-    if (std::strtod(text, nullptr) == v)
+    exact = exact || std::strtod(text, nullptr) == v; // NaN never does: it ends as "nan"
+    if ((exact || digits == 17) && (best.empty() || std::string(text).size() < best.size()))
     {
-      break; // NaN never compares equal: it ends at 17 digits as "nan"
+      best = text;
     }
   }
-  return text;
+  return best;
 }
 
 inline std::string formatNumber(float v)
