@@ -2,6 +2,7 @@
 
 #include "IO/AtomicFile.h"
 #include "IO/RegularFile.h"
+#include "Util/PrintableText.h"
 #include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
@@ -345,7 +346,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::string problem = root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
   if (!problem.empty())
   {
-    return path + ": member '" + prefix + "/" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
+    return path + ": member '" + printableText(prefix + "/" + bad, 80) + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
       (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
   if (cell)
@@ -353,7 +354,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     const std::string cellError = readCellAttribute(root.get(), *cell);
     if (!cellError.empty())
     {
-      return path + ": group '" + (prefix.empty() ? "/" : prefix) + "' " + cellError;
+      return path + ": group '" + printableText(prefix.empty() ? "/" : prefix, 80) + "' " + cellError;
     }
   }
 
@@ -366,18 +367,18 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     Handle group(H5Gopen2(root.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
     if (!group.ok())
     {
-      return path + ": '" + prefix + "/" + bundleName + "' is not a group";
+      return path + ": '" + printableText(prefix + "/" + bundleName, 80) + "' is not a group";
     }
     std::vector<std::pair<long, std::string>> fibers;
     problem = numericMembers(group.get(), "fiber", fibers, bad);
     if (!problem.empty())
     {
-      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' " + problem;
+      return path + ": member '" + printableText(prefix + "/" + bundleName + "/" + bad, 80) + "' " + problem;
     }
     for (const auto& fiber : fibers)
     {
       const std::string& fiberName = fiber.second;
-      const std::string where = path + ": dataset '" + prefix + "/" + bundleName + "/" + fiberName + "'";
+      const std::string where = path + ": dataset '" + printableText(prefix + "/" + bundleName + "/" + fiberName, 80) + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
       {
@@ -425,7 +426,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::int64_t nextId = 0;
   for (const FiberDataset& d : datasets)
   {
-    const std::string where = path + ": dataset '" + prefix + "/" + d.bundleName + "/" + d.fiberName + "'";
+    const std::string where = path + ": dataset '" + printableText(prefix + "/" + d.bundleName + "/" + d.fiberName, 80) + "'";
     const std::string name = d.bundleName + "/" + d.fiberName;
     Handle data(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     values.resize(static_cast<std::size_t>(d.points * 4));
