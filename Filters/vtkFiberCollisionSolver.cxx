@@ -1,9 +1,8 @@
 #include "vtkFiberCollisionSolver.h"
 
-#include "FiberGuard.h"
-
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Checkpoint/SolverCheckpoint.h"

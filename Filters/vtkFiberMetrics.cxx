@@ -1,8 +1,7 @@
 #include "vtkFiberMetrics.h"
 
-#include "FiberGuard.h"
-
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Metrics/FiberMetrics.h"

@@ -1,12 +1,11 @@
 #include "vtkFiberOrientationMap.h"
 
-#include "FiberGuard.h"
-
 #include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
+#include "FiberGuard.h"
 #include "Section/PLIFields.h"
 
 #include <vtkDataArray.h>

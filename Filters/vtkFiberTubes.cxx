@@ -1,7 +1,6 @@
 #include "vtkFiberTubes.h"
 
 #include "FiberGuard.h"
-
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Mesh/TubeMesher.h"

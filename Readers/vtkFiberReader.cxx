@@ -1,8 +1,7 @@
 #include "vtkFiberReader.h"
 
-#include "FiberGuard.h"
-
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberPolyData.h"
