@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace fiberpli
@@ -75,6 +76,27 @@ struct PeriodicCell
     return nonZero;
   }
 };
+
+/// The one rule of how small a periodic cell may be for its links: every edge must exceed twice
+/// the largest link reach w (a link's largest extent along an axis + 2 × its radius + MinimumGap),
+/// so that a link meets at most one image of another per axis. "" when the cell holds `reach`,
+/// else the message (naming SegmentLength and MinimumGap). The solver's pair search applies it to
+/// its links (Index/PeriodicPairs.h); FiberCubeSource to the longest links the solver makes of its
+/// fibers (Tissue/CubeGenerator.h), so that a periodic cube the source accepts the solver accepts.
+inline std::string periodicReachProblem(const PeriodicCell& cell, double reach)
+{
+  const Vec3 e = cell.edge();
+  const double eMin = std::min(e.x, std::min(e.y, e.z));
+  if (2.0 * reach < eMin)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << reach
+      << " um (segment extent + 2 x radius + MinimumGap): use a larger cell, a shorter SegmentLength or a "
+         "smaller MinimumGap";
+  return msg.str();
+}
 
 /// True when a fiber from `first` to `last` is closed through the cell: last − first is a non-zero
 /// lattice vector within 1e-5 × the cell's largest edge per axis (docs/data-contract.md); closure

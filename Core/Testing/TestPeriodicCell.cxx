@@ -439,3 +439,36 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
     }
   });
 }
+
+TEST(PeriodicCube, AnEdgeTheSourceAcceptsTheSolverAccepts)
+{
+  // EdgeLength 8 with SegmentLength 2, Displacement 0.3 and FiberRadius 0.8 passed the source (>= 4
+  // radii) although the solver's links may reach 2 + 0.6 + 1.6 um, more than half the cell. The
+  // source now applies the solver's rule to the longest links the solver can meet: it refuses
+  // such an edge naming EdgeLength, and what it accepts the solver solves without that error.
+  CubeOptions c;
+  c.populations = 1;
+  c.periodic = true;
+  c.numberOfFibers = 2;
+  c.fiberRadius = 0.8;
+  c.segmentLength = 2.0;
+  c.displacement = 0.3;
+  c.edgeLength = 8.0;
+  const std::string e = validateCubeOptions(c);
+  EXPECT_NE(e.find("EdgeLength is 8, too small for SegmentLength 2, Displacement 0.3 and FiberRadius 0.8"),
+    std::string::npos) << e;
+  EXPECT_NE(e.find("twice the largest link reach"), std::string::npos) << e;
+  for (double edge : { 8.6, 9.0, 12.0 })
+  {
+    c.edgeLength = edge;
+    ASSERT_EQ(validateCubeOptions(c), "") << edge;
+    FiberModel m = generateCube(c);
+    CollisionSolverOptions o;
+    o.periodicCell = cubeCell(c);
+    o.segmentLength = c.segmentLength;
+    o.maxSteps = 50;
+    o.numberOfThreads = 1;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    EXPECT_EQ(r.error.find("link reach"), std::string::npos) << edge << ": " << r.error;
+  }
+}

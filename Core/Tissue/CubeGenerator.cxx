@@ -35,6 +35,17 @@ double fiberCountEstimate(const CubeOptions& o)
   return o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * rMin * rMin) + 1.0;
 }
 
+// The largest link reach the collision solver can meet in a periodic cube (the pair search's rule,
+// Geometry/PeriodicCell.h), with its SegmentLength equal to the cube's: a link spans at most one
+// point spacing plus the displacement of both ends along an axis, and the solver's split leaves no
+// link longer than 4/3 SegmentLength; plus both radii (FiberRadius: with a spread the solver
+// still judges the radii it gets).
+double solverLinkReach(const CubeOptions& o)
+{
+  const double spacing = o.edgeLength / (pointsPerFiber(o) - 1) + 2.0 * o.displacement;
+  return std::min(spacing, 4.0 / 3.0 * o.segmentLength) + 2.0 * o.fiberRadius;
+}
+
 // Fiber j of population k (stream (seed, k, j)): straight along axis k, displaced; closed through
 // the faces when periodic (the last point is the first shifted by one period, not drawn).
 Fiber makeFiber(const CubeOptions& o, int k, int j)
@@ -332,6 +343,15 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
   {
     msg << "SegmentLength is " << o.segmentLength << ", must be > 0";
+  }
+  else if (o.periodic && std::isfinite(o.displacement) &&
+    !periodicReachProblem(cubeCell(o), solverLinkReach(o)).empty())
+  {
+    // The solver's rule (Geometry/PeriodicCell.h) for the longest links it can make of these
+    // fibers: a periodic cube the source accepts, the solver with the same SegmentLength accepts.
+    msg << "EdgeLength is " << o.edgeLength << ", too small for SegmentLength " << o.segmentLength
+        << ", Displacement " << o.displacement << " and FiberRadius " << o.fiberRadius << ": "
+        << periodicReachProblem(cubeCell(o), solverLinkReach(o));
   }
   else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
   {
