@@ -100,13 +100,15 @@ bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength, s
   }
   const double lMin = segmentLength * (2.0 / 3.0);
   const double lMax = segmentLength * (4.0 / 3.0);
-  // A bound on the splits and merges of this pass: about twice the points the links need at
-  // length lMin, plus the points there are. Exact arithmetic never comes near it; it ends the
-  // pass should rounding ever make a split and a merge undo each other forever.
-  double budget = 16.0 + 2.0 * static_cast<double>(f.points.size());
+  // A bound on the steps of this pass (splits, merges, advances). Exact arithmetic needs fewer
+  // than 2·ceil(len / lMin) per link for its splits and advances (halving ends at pieces longer
+  // than lMin) plus two per merge, at most one merge per point and one split after it: four
+  // times that is never reached, and ends the pass should rounding ever make a split and a merge
+  // undo each other forever.
+  double budget = 64.0 + 16.0 * static_cast<double>(f.points.size());
   for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
   {
-    budget += 2.0 * std::ceil(distance(f.points[k], f.points[k + 1]) / lMin);
+    budget += 8.0 * std::ceil(distance(f.points[k], f.points[k + 1]) / lMin);
   }
   bool changed = false;
   std::size_t i = 0;

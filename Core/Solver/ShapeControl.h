@@ -37,8 +37,8 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
 /// one point (never an end point, the one with the weaker radius feature). A fiber of minPoints
 /// points is never shortened (2; a fiber closed through a periodic cell needs 3). state arrays must
 /// have f.size() entries. Returns true when a point was inserted or removed. Bounded: a link whose
-/// midpoint rounds to one of its ends is left as it is, and one pass makes at most about twice
-/// the splits and merges its links need.
+/// midpoint rounds to one of its ends is left as it is, and one pass takes at most four times the
+/// steps its links can need.
 bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength,
   std::size_t minPoints = 2);
 
