@@ -265,3 +265,21 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_FALSE(sniff("zone t=\"a\"\n" + points));
   EXPECT_FALSE(sniff("a b c d\nx y z w\n1 2 3 0.5\n")); // mostly not points
 }
+
+TEST(DatFormat, GarbageIsQuotedEscapedNeverEchoedRaw)
+{
+  // A binary or damaged file: the message must not carry its raw bytes (an escape sequence would
+  // act on the terminal that shows it), only printable ASCII, and a long token is cut short.
+  const std::string garbage = std::string("1 2 \x1b[2J\x1b]0;owned\x07\xff\x01") + std::string(200, 'x') + " 4\n";
+  std::istringstream in(garbage);
+  const FiberReadResult r = readFastPliDat(in, "broken.dat");
+  ASSERT_FALSE(r.ok());
+  for (const char c : r.error)
+  {
+    const unsigned char u = static_cast<unsigned char>(c);
+    EXPECT_TRUE(u >= 0x20 && u < 0x7f) << "raw byte " << static_cast<int>(u) << " in: " << r.error;
+  }
+  EXPECT_NE(r.error.find("\\x1b[2J\\x1b]0;owned\\x07\\xff\\x01"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("..."), std::string::npos) << r.error;
+  EXPECT_LT(r.error.size(), 160u) << r.error;
+}

@@ -1,11 +1,13 @@
 // FiberTubes through VTK: watertight and outward, exact polygonal volume, arrays carried.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
+#include "vtkFiberCollisionSolver.h"
 #include "vtkFiberCubeSource.h"
 #include "vtkFiberTubes.h"
 
 #include <vtkCellArrayIterator.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkMassProperties.h>
 
 #include <gtest/gtest.h>
@@ -151,4 +153,39 @@ TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 2 * 8 + 2); // two rings and two cap centres
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfCells(), 2 * 8 + 2 * 8); // side quads as triangles, two fans
+}
+
+TEST(FiberTubes, TubesKeepTheModelsFieldData)
+{
+  // A periodic cube solved: its tubes carry the same solved, collisions and periodic_cell values
+  // (they used to be dropped, so a saved tubes file no longer said what it was).
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPopulations(1);
+  cube->SetNumberOfFibers(4);
+  cube->SetEdgeLength(12.0);
+  cube->SetPeriodic(1);
+  cube->SetSeed(2);
+  vtkNew<vtkFiberCollisionSolver> solver;
+  solver->SetInputConnection(cube->GetOutputPort());
+  solver->SetMaxSteps(200);
+  solver->SetNumberOfThreads(1);
+  vtkNew<vtkFiberTubes> tubes;
+  tubes->SetInputConnection(solver->GetOutputPort());
+  tubes->Update();
+  vtkFieldData* model = solver->GetOutput()->GetFieldData();
+  vtkFieldData* out = tubes->GetOutput()->GetFieldData();
+  ASSERT_GT(tubes->GetOutput()->GetNumberOfCells(), 0);
+  for (const char* name : { "solved", "collisions", "periodic_cell", "steps" })
+  {
+    vtkDataArray* a = model->GetArray(name);
+    vtkDataArray* b = out->GetArray(name);
+    ASSERT_NE(a, nullptr) << name;
+    ASSERT_NE(b, nullptr) << name << " dropped by FiberTubes";
+    ASSERT_EQ(b->GetNumberOfValues(), a->GetNumberOfValues()) << name;
+    for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+    {
+      EXPECT_EQ(b->GetTuple1(i), a->GetTuple1(i)) << name << " " << i;
+    }
+  }
+  EXPECT_EQ(out->GetArray("periodic_cell")->GetTuple1(1), 6.0);
 }

@@ -86,7 +86,7 @@ dense.UpdatePipeline()
 check(any("the radii could not be separated" in w for w in catcher.warnings),
       "no infeasible seeding warning: %s" % catcher.warnings)
 check(dense.GetDataInformation().GetNumberOfCells() > 40, "fibers dropped")
-huge = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=1e5, SegmentLength=5e4, NumberOfFibers=2,
+huge = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=1e5, SegmentLength=2e4, NumberOfFibers=2,
                        FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma")
 catcher = ErrorCatcher(huge)
 huge.UpdatePipeline()
