@@ -35,7 +35,7 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 } // namespace
 
 //------------------------------------------------------------------------------
-// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.5, PixelSize 2,
+// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.4, PixelSize 2,
 // all threads.
 /// The section of the properties and the planned volume, made by RequestInformation once per change
 /// of either and used by every RequestData.

@@ -252,7 +252,7 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_FALSE(sniff("\n\n# only comments\n"));
   EXPECT_FALSE(sniff(std::string("1 2 3 0.5\0\0\0", 12)));
   EXPECT_FALSE(sniff("mrtrix tracks\ndatatype: Float32LE\n"));
-  // One bad line among fastPLI points (issue 13): still ours, so the user sees our line number.
+  // One bad line among fastPLI points: still ours, so the user sees our line number.
   std::string points;
   for (int i = 0; i < 30; ++i)
   {

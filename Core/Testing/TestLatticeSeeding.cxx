@@ -104,7 +104,7 @@ TEST(LatticeSeeding, ClosedFormsOfTheThreeArrangements)
   const PeriodicLattice three = periodicLattice(12.0, { 9, 9, 8 });
   EXPECT_DOUBLE_EQ(three.spacing, 2.0);
   EXPECT_EQ(three.sites[2].size(), 9u);
-  // Straight touching rods at a = 4r fill 3π/16 of the cell (the 58.9 % limit).
+  // Straight touching rods at a = 4r fill 3π/16 of the cell (58.9 %, the densest cubic rod packing).
   EXPECT_NEAR(3 * 9 * M_PI * 1.0 * 12.0 / (12.0 * 12.0 * 12.0), 3.0 * M_PI / 16.0, 1e-12);
 }
 
