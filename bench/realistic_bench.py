@@ -43,6 +43,7 @@ parser.add_argument("--edge", type=float, default=40.0)
 parser.add_argument("--threads", type=int, default=2)
 parser.add_argument("--max-steps", type=int, default=6000)
 parser.add_argument("--seed", type=int, default=42)
+parser.add_argument("--volume-fraction", type=float, default=0.0, help="instead of the case's VolumeFraction")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 L = args.edge
@@ -172,6 +173,8 @@ print("| case | fibers | steps | solve [s] | CPU [s] | φ (MC) | collisions | pe
 print("|---|---|---|---|---|---|---|---|---|")
 for case in args.cases:
     knobs = dict(CASES[case])
+    if args.volume_fraction > 0.0:
+        knobs["VolumeFraction"] = args.volume_fraction
     source = FiberCubeSource(Periodic=1, EdgeLength=L, FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma",
                              SegmentLength=2.0, Displacement=0.0, Seed=args.seed, **knobs)
     source.UpdatePipeline()
@@ -193,7 +196,7 @@ for case in args.cases:
         per.append("%.3f [%.3f, %.3f] / %.3f / %.3f / %.3f / %.2f" % (f["tau"], f["tau_min"], f["tau_max"], f["c2_seg"],
                                                                    f["c2_e2e"], f["cv"], f["corr"]))
     mix = mixing(fibers, pops) if pops > 1 else float("nan")
-    print("| %s | %d | %d | %.1f | %.1f | %.1f ± %.1f %% | %d (min gap %.3f µm) | %s | %.2f |" % (
-        case, len(fibers), steps, wall, cpu, 100 * phi, 100 * err, count, worst, "; ".join(per), mix), flush=True)
+    print("| %s (%.2f) | %d | %d | %.1f | %.1f | %.1f ± %.1f %% | %d (min gap %.3f µm) | %s | %.2f |" % (
+        case, knobs["VolumeFraction"], len(fibers), steps, wall, cpu, 100 * phi, 100 * err, count, worst, "; ".join(per), mix), flush=True)
     Delete(solver)
     Delete(source)
