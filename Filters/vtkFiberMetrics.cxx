@@ -1,6 +1,7 @@
 #include "vtkFiberMetrics.h"
 
 #include "FiberFieldData.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Metrics/FiberMetrics.h"
@@ -59,12 +60,86 @@ void AddCount(vtkTable* table, const char* name, long long value)
   table->AddColumn(a);
 }
 
+/// A bar-chart table of a histogram: bin_center and bin_extents (the centre, under the name
+/// ParaView's own Histogram filter gives it, so the Bar Chart View picks it as x), bin_lower,
+/// bin_upper, count, and the summed weights under `weightName` when given.
+void FillHistogram(vtkTable* table, const fiberpli::Histogram& h, const char* weightName)
+{
+  const auto bins = static_cast<vtkIdType>(h.count.size());
+  vtkDoubleArray* centre = AddColumn(table, "bin_center", 1, bins);
+  vtkDoubleArray* extents = AddColumn(table, "bin_extents", 1, bins);
+  vtkDoubleArray* lower = AddColumn(table, "bin_lower", 1, bins);
+  vtkDoubleArray* upper = AddColumn(table, "bin_upper", 1, bins);
+  vtkNew<vtkIdTypeArray> count;
+  count->SetName("count");
+  count->SetNumberOfTuples(bins);
+  table->AddColumn(count);
+  vtkDoubleArray* weight = weightName ? AddColumn(table, weightName, 1, bins) : nullptr;
+  for (vtkIdType k = 0; k < bins; ++k)
+  {
+    const auto i = static_cast<std::size_t>(k);
+    centre->SetValue(k, h.centre(i));
+    extents->SetValue(k, h.centre(i));
+    lower->SetValue(k, h.lo + static_cast<double>(k) * h.width());
+    upper->SetValue(k, h.lo + static_cast<double>(k + 1) * h.width());
+    count->SetValue(k, static_cast<vtkIdType>(h.count[i]));
+    if (weight)
+    {
+      weight->SetValue(k, h.weight[i]);
+    }
+  }
+}
+
+/// Output port 3: one row per population.
+void FillPopulations(vtkTable* table, const fiberpli::MetricsResult& m)
+{
+  const auto& populations = m.realism.populations;
+  const auto rows = static_cast<vtkIdType>(populations.size());
+  vtkNew<vtkIntArray> bundleId;
+  bundleId->SetName("bundle_id");
+  bundleId->SetNumberOfTuples(rows);
+  vtkNew<vtkIdTypeArray> fibers;
+  fibers->SetName("fibers");
+  fibers->SetNumberOfTuples(rows);
+  table->AddColumn(bundleId);
+  table->AddColumn(fibers);
+  vtkDoubleArray* tMin = AddColumn(table, "tortuosity_min", 1, rows);
+  vtkDoubleArray* tMean = AddColumn(table, "tortuosity_mean", 1, rows);
+  vtkDoubleArray* tMax = AddColumn(table, "tortuosity_max", 1, rows);
+  vtkDoubleArray* axis = AddColumn(table, "axis", 3, rows);
+  vtkDoubleArray* c2Ends = AddColumn(table, "c2_end_to_end", 1, rows);
+  vtkDoubleArray* c2Segments = AddColumn(table, "c2_segments", 1, rows);
+  vtkDoubleArray* cv = AddColumn(table, "radius_cv", 1, rows);
+  vtkDoubleArray* g = AddColumn(table, "g_ratio_mean", 1, rows);
+  vtkDoubleArray* mixing = AddColumn(table, "mixing_min_share", 1, rows);
+  vtkDoubleArray* share = AddColumn(table, "volume_share", 1, rows);
+  for (vtkIdType r = 0; r < rows; ++r)
+  {
+    const fiberpli::PopulationRealism& p = populations[static_cast<std::size_t>(r)];
+    bundleId->SetValue(r, p.bundle);
+    fibers->SetValue(r, static_cast<vtkIdType>(p.fibers));
+    tMin->SetValue(r, p.tortuosity.min);
+    tMean->SetValue(r, p.tortuosity.mean);
+    tMax->SetValue(r, p.tortuosity.max);
+    const double a[3] = { p.axis.x, p.axis.y, p.axis.z };
+    axis->SetTypedTuple(r, a);
+    c2Ends->SetValue(r, p.c2EndToEnd);
+    c2Segments->SetValue(r, p.c2Segments);
+    cv->SetValue(r, p.radiusCV);
+    g->SetValue(r, p.gRatio);
+    // The mixing result lists the same populations in the same (increasing) order when computed.
+    const bool mixed = static_cast<std::size_t>(r) < m.mixing.minShare.size();
+    mixing->SetValue(r, mixed ? m.mixing.minShare[static_cast<std::size_t>(r)] : vtkMath::Nan());
+    share->SetValue(r, mixed ? m.mixing.volumeShare[static_cast<std::size_t>(r)] : vtkMath::Nan());
+  }
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
 vtkFiberMetrics::vtkFiberMetrics()
 {
-  this->SetNumberOfOutputPorts(3);
+  this->SetNumberOfOutputPorts(8);
 }
 
 //------------------------------------------------------------------------------
@@ -107,9 +182,17 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* summary = vtkTable::GetData(outputVector, 1);
   vtkTable* bundles = vtkTable::GetData(outputVector, 2);
+  vtkTable* populations = vtkTable::GetData(outputVector, 3);
+  vtkTable* histograms[4] = { vtkTable::GetData(outputVector, 4), vtkTable::GetData(outputVector, 5),
+    vtkTable::GetData(outputVector, 6), vtkTable::GetData(outputVector, 7) };
   output->Initialize();
   summary->Initialize();
   bundles->Initialize();
+  populations->Initialize();
+  for (vtkTable* h : histograms)
+  {
+    h->Initialize();
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const bool firstPiece = fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
   if (fiberpli::FiberPolyData::IsEmpty(input) || !firstPiece)
@@ -127,6 +210,13 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   {
     vtkWarningMacro(<< in.warning);
   }
+  fiberpli::InnerRadii inner;
+  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMetrics", inner);
+  if (!innerError.empty())
+  {
+    vtkErrorMacro(<< innerError);
+    return 0;
+  }
   fiberpli::MetricsOptions options;
   options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
   options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
@@ -136,6 +226,8 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
   options.volumeFraction = this->ComputeVolumeFraction;
   options.pairs = this->ComputeCollisions;
+  options.mixing = this->ComputeMixing;
+  options.histogramBins = this->HistogramBins;
   options.numberOfThreads = this->NumberOfThreads;
   if (this->UsePeriodicCell)
   {
@@ -151,7 +243,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   fiberpli::MetricsResult m;
   try
   {
-    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this), inner);
   }
   catch (const std::bad_alloc&) // no Core exception may leave through VTK (it would end pvpython)
   {
@@ -185,6 +277,28 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   }
   output->GetCellData()->AddArray(length);
   output->GetCellData()->AddArray(tortuosity);
+  // Realism per fiber: the along-fiber radius CV, and the g-ratio of myelinated fibers.
+  vtkNew<vtkDoubleArray> radiusCV, gRatio;
+  radiusCV->SetName("radius_cv");
+  gRatio->SetName("g_ratio");
+  for (vtkDoubleArray* a : { radiusCV.Get(), gRatio.Get() })
+  {
+    a->SetNumberOfTuples(input->GetNumberOfCells());
+    a->Fill(vtkMath::Nan());
+  }
+  for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
+  {
+    radiusCV->SetValue(in.sourceCell[f], m.realism.fiberRadiusCV[f]);
+    if (!inner.empty())
+    {
+      gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
+    }
+  }
+  output->GetCellData()->AddArray(radiusCV);
+  if (!inner.empty())
+  {
+    output->GetCellData()->AddArray(gRatio);
+  }
 
   const fiberpli::ShapeResult& s = m.shape;
   AddCount(summary, "fibers", static_cast<long long>(m.fibers));
@@ -213,6 +327,13 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   AddValue(summary, "radius_min", { s.radius.min });
   AddValue(summary, "radius_mean", { s.radius.mean });
   AddValue(summary, "radius_max", { s.radius.max });
+  AddValue(summary, "radius_cv", { m.realism.radiusCV });
+  AddValue(summary, "g_ratio_mean", { m.realism.gRatio });
+  AddValue(summary, "mixing_min_share", { m.mixing.minimum });
+  AddValue(summary, "axon_fraction", { m.axonVolume.fraction });
+  AddValue(summary, "axon_fraction_error", { m.axonVolume.errorBound });
+  AddValue(summary, "myelin_fraction", { m.myelinFraction });
+  AddValue(summary, "extra_axonal_fraction", { m.extraAxonalFraction });
   for (vtkIdType c = 0; c < summary->GetNumberOfColumns(); ++c)
   {
     output->GetFieldData()->AddArray(summary->GetColumn(c)); // replaces same-named input arrays
@@ -242,6 +363,12 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     tortuosityMean->SetValue(b, shape.tortuosity.mean);
     lengthMean->SetValue(b, shape.fiberLength.mean);
   }
+
+  FillPopulations(populations, m);
+  FillHistogram(histograms[0], m.realism.radiusHistogram, nullptr);
+  FillHistogram(histograms[1], m.realism.tortuosityHistogram, nullptr);
+  FillHistogram(histograms[2], m.realism.gRatioHistogram, nullptr);
+  FillHistogram(histograms[3], m.realism.segmentAngleHistogram, "link_length");
   return 1;
 }
 
@@ -258,5 +385,7 @@ void vtkFiberMetrics::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ComputeVolumeFraction: " << this->ComputeVolumeFraction << "\n";
   os << indent << "ComputeCollisions: " << this->ComputeCollisions << "\n";
+  os << indent << "ComputeMixing: " << this->ComputeMixing << "\n";
+  os << indent << "HistogramBins: " << this->HistogramBins << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

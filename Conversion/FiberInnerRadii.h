@@ -1,0 +1,33 @@
+/**
+ * @file FiberInnerRadii.h
+ * @brief the optional point array `inner_radius` (docs/data-contract.md §2) of fiber polydata as the
+ *        Core's InnerRadii, fiber by fiber in the order of a FiberConversion
+ */
+#ifndef FiberInnerRadii_h
+#define FiberInnerRadii_h
+
+#include "FiberPLIConversionModule.h" // for export macro
+#include "FiberPolyData.h"
+#include "Model/InnerRadii.h"
+
+#include <string>
+
+class vtkPolyData;
+
+namespace fiberpli
+{
+
+/// Name of the point array of the axon radius inside the myelin sheath.
+constexpr const char* kInnerRadiusArray = "inner_radius";
+
+/// Reads `inner_radius` of `input` for the fibers of `conversion` (made by FiberPolyData::ToModel
+/// from the same input, with its sourcePoints) into `inner`; no array leaves `inner` empty. Returns
+/// "" or an error prefixed by `who`: more than one component, a wrong number of values, or a value
+/// that is not finite in (0, radius] (naming the line cell, fiber and point).
+FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(vtkPolyData* input, const FiberConversion& conversion,
+  const std::string& who, InnerRadii& inner);
+
+} // namespace fiberpli
+
+#endif
+// VTK-HeaderTest-Exclude: FiberInnerRadii.h
