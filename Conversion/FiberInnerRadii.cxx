@@ -7,10 +7,12 @@
 namespace fiberpli
 {
 
-std::string ReadInnerRadii(vtkPolyData* input, const FiberConversion& conversion, const std::string& who,
-  InnerRadii& inner)
+std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion, const std::string& who)
 {
-  inner.clear();
+  for (Fiber& f : conversion.model.fibers)
+  {
+    f.innerRadii.clear();
+  }
   vtkDataArray* array = input ? input->GetPointData()->GetArray(kInnerRadiusArray) : nullptr;
   if (array == nullptr)
   {
@@ -26,19 +28,22 @@ std::string ReadInnerRadii(vtkPolyData* input, const FiberConversion& conversion
     return who + ": the point array 'inner_radius' has " + std::to_string(array->GetNumberOfTuples()) +
       " values for " + std::to_string(input->GetNumberOfPoints()) + " points";
   }
-  inner.resize(conversion.sourcePoints.size());
-  for (std::size_t f = 0; f < conversion.sourcePoints.size(); ++f)
+  for (std::size_t f = 0; f < conversion.sourcePoints.size() && f < conversion.model.fibers.size(); ++f)
   {
+    std::vector<double>& inner = conversion.model.fibers[f].innerRadii;
     for (long long id : conversion.sourcePoints[f])
     {
-      inner[f].push_back(array->GetComponent(static_cast<vtkIdType>(id), 0));
+      inner.push_back(array->GetComponent(static_cast<vtkIdType>(id), 0));
     }
   }
   std::size_t bad = 0;
-  const std::string invalid = validateInnerRadii(conversion.model, inner, &bad);
+  const std::string invalid = validateInnerRadii(conversion.model, &bad);
   if (!invalid.empty())
   {
-    inner.clear();
+    for (Fiber& f : conversion.model.fibers)
+    {
+      f.innerRadii.clear();
+    }
     // The Core names the fiber of the model; the line cell is what the user can find.
     const std::string cell =
       bad < conversion.sourceCell.size() ? "line cell " + std::to_string(conversion.sourceCell[bad]) + ", " : "";

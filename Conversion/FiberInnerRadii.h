@@ -20,12 +20,13 @@ namespace fiberpli
 /// Name of the point array of the axon radius inside the myelin sheath.
 constexpr const char* kInnerRadiusArray = "inner_radius";
 
-/// Reads `inner_radius` of `input` for the fibers of `conversion` (made by FiberPolyData::ToModel
-/// from the same input, with its sourcePoints) into `inner`; no array leaves `inner` empty. Returns
-/// "" or an error prefixed by `who`: more than one component, a wrong number of values, or a value
-/// that is not finite in (0, radius] (naming the line cell, fiber and point).
-FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(vtkPolyData* input, const FiberConversion& conversion,
-  const std::string& who, InnerRadii& inner);
+/// Reads `inner_radius` of `input` into Fiber::innerRadii of the fibers of `conversion` (made by
+/// FiberPolyData::ToModel from the same input, with its sourcePoints); without the array the
+/// fibers keep none. Returns "" or an error prefixed by `who` (the inner radii then cleared): more
+/// than one component, a wrong number of values, or a value that is not finite in (0, radius]
+/// (naming the line cell, fiber and point).
+FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion,
+  const std::string& who);
 
 } // namespace fiberpli
 

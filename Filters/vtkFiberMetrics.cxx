@@ -210,8 +210,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   {
     vtkWarningMacro(<< in.warning);
   }
-  fiberpli::InnerRadii inner;
-  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMetrics", inner);
+  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMetrics");
   if (!innerError.empty())
   {
     vtkErrorMacro(<< innerError);
@@ -243,7 +242,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   fiberpli::MetricsResult m;
   try
   {
-    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this), inner);
+    m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
   }
   catch (const std::bad_alloc&) // no Core exception may leave through VTK (it would end pvpython)
   {
@@ -289,13 +288,10 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
   {
     radiusCV->SetValue(in.sourceCell[f], m.realism.fiberRadiusCV[f]);
-    if (!inner.empty())
-    {
-      gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
-    }
+    gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
   }
   output->GetCellData()->AddArray(radiusCV);
-  if (!inner.empty())
+  if (fiberpli::hasInnerRadii(in.model))
   {
     output->GetCellData()->AddArray(gRatio);
   }

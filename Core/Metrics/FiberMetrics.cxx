@@ -104,7 +104,7 @@ bool stops(const Status& part, MetricsResult& result)
 } // namespace
 
 MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions& options,
-  const ProgressFn& progress, const InnerRadii& inner)
+  const ProgressFn& progress)
 {
   MetricsResult result;
   result.volume.fraction = NaN;
@@ -133,7 +133,7 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
     result.error = "HistogramBins " + std::to_string(options.histogramBins) + " must be in [1, 1000000]";
     return result;
   }
-  result.error = validateInnerRadii(model, inner);
+  result.error = validateInnerRadii(model);
   if (!result.error.empty())
   {
     return result;
@@ -143,7 +143,7 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   result.links = model.numberOfLinks();
   const CapsuleSet set = makeCapsules(model, options.cell);
   result.shape = fiberShape(model, set);
-  result.realism = measureRealism(model, inner, result.shape, static_cast<std::size_t>(options.histogramBins));
+  result.realism = measureRealism(model, result.shape, static_cast<std::size_t>(options.histogramBins));
   if (model.empty())
   {
     return result;
@@ -151,7 +151,7 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
 
   // Progress: the parts that run share [0, 1] by their rough cost (today's default run, volume and
   // pairs, keeps its 0.7 / 0.3 split).
-  const bool axons = options.volumeFraction && !inner.empty();
+  const bool axons = options.volumeFraction && hasInnerRadii(model);
   const bool sampledMixing = options.mixing && result.realism.populations.size() > 1;
   const double volumeCost = options.volumeFraction ? 0.7 : 0.0;
   const double axonCost = axons ? 0.7 : 0.0;
@@ -202,7 +202,7 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
     {
       // The same estimator on the inner capsules: the same voxels (or points) judge both, so the
       // myelin fraction is a difference of two counts over one grid.
-      const CapsuleSet axonSet = makeCapsules(axonModel(model, inner), options.cell);
+      const CapsuleSet axonSet = makeCapsules(axonModel(model), options.cell);
       result.axonVolume = measureVolume(axonSet, options, result, h, part(axonCost));
       if (stops(result.axonVolume, result))
       {

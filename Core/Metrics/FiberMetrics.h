@@ -56,7 +56,7 @@ struct MetricsResult : Status
   ShapeResult shape;
   RealismResult realism;
   MixingResult mixing;           ///< minimum NaN when not computed
-  /// With inner radii and the volume fraction on: the union of the inner capsules (the axons)
+  /// With inner radii (on any fiber) and the volume fraction on: the union of the inner capsules (the axons)
   /// measured like `volume` (same method, region, voxels or samples); myelin = volume − axon,
   /// extra-axonal = 1 − volume. NaN otherwise.
   VolumeFractionResult axonVolume;
@@ -64,10 +64,10 @@ struct MetricsResult : Status
 };
 
 /// Validates the options (box with zero thickness, non-positive cell, negative voxel size, too many
-/// voxels, HistogramBins < 1, inner radii not fitting the model → error naming the value) and
-/// measures. `inner` is empty (no myelin) or one inner radius per point (InnerRadii.h). An empty
-/// model gives zeros and NaNs, no error.
+/// voxels, HistogramBins < 1, inner radii not fitting their fiber → error naming the value) and
+/// measures; fibers with inner radii (Fiber::innerRadii) are myelinated. An empty model gives
+/// zeros and NaNs, no error.
 MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions& options,
-  const ProgressFn& progress, const InnerRadii& inner = {});
+  const ProgressFn& progress);
 
 } // namespace fiberpli

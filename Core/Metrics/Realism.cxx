@@ -97,11 +97,10 @@ struct PopulationAccumulator
 
 } // namespace
 
-RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, const ShapeResult& shape,
-  std::size_t bins)
+RealismResult measureRealism(const FiberModel& model, const ShapeResult& shape, std::size_t bins)
 {
   RealismResult result;
-  const bool myelin = !inner.empty();
+  const bool anyMyelin = hasInnerRadii(model);
   std::map<int, PopulationAccumulator> perBundle;
   std::vector<double> pointRadii, pointGRatios;
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
@@ -125,6 +124,8 @@ RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, c
         population.directions += 1.0;
       }
     }
+    const std::vector<double>& inner = fiber.innerRadii;
+    const bool myelin = !inner.empty();
     LinearMoments radius, gRatio;
     for (std::size_t k = 0; k + 1 < fiber.size(); ++k)
     {
@@ -132,18 +133,15 @@ RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, c
       radius.add(l, fiber.radii[k], fiber.radii[k + 1]);
       if (myelin)
       {
-        gRatio.add(l, inner[f][k] / fiber.radii[k], inner[f][k + 1] / fiber.radii[k + 1]);
+        gRatio.add(l, inner[k] / fiber.radii[k], inner[k + 1] / fiber.radii[k + 1]);
       }
     }
     result.fiberRadiusCV.push_back(radius.cv());
-    if (myelin)
-    {
-      result.fiberGRatio.push_back(gRatio.mean());
-    }
+    result.fiberGRatio.push_back(myelin ? gRatio.mean() : NaN);
     pointRadii.insert(pointRadii.end(), fiber.radii.begin(), fiber.radii.end());
     for (std::size_t i = 0; myelin && i < fiber.size(); ++i)
     {
-      pointGRatios.push_back(inner[f][i] / fiber.radii[i]);
+      pointGRatios.push_back(inner[i] / fiber.radii[i]);
     }
   }
 
@@ -178,16 +176,13 @@ RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, c
       const double fiberLength = shape.fiberLength[f];
       cv.add(result.fiberRadiusCV[f], fiberLength);
       allCV.add(result.fiberRadiusCV[f], fiberLength);
-      if (myelin)
-      {
-        g.add(result.fiberGRatio[f], fiberLength);
-        allG.add(result.fiberGRatio[f], fiberLength);
-      }
+      g.add(result.fiberGRatio[f], fiberLength); // NaN (no sheath) is skipped
+      allG.add(result.fiberGRatio[f], fiberLength);
       tortuosities.push_back(shape.tortuosity[f]);
     }
     p.c2Segments = length > 0.0 ? cos2 / length : NaN;
     p.radiusCV = cv.value();
-    p.gRatio = myelin ? g.value() : NaN;
+    p.gRatio = g.value();
     double lo = 0.0, hi = 0.0;
     if (finiteRange(tortuosities, lo, hi))
     {
@@ -210,7 +205,7 @@ RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, c
     result.populations.push_back(p);
   }
   result.radiusCV = allCV.value();
-  result.gRatio = myelin ? allG.value() : NaN;
+  result.gRatio = anyMyelin ? allG.value() : NaN;
 
   // Histograms over the range of their values (angles always over [0, 90] degrees).
   const auto histogramOf = [bins](const std::vector<double>& values) {

@@ -27,7 +27,7 @@ struct PopulationRealism
   double c2EndToEnd;   ///< ⟨(e·axis)²⟩ over the fibers (the largest eigenvalue of that mean)
   double c2Segments;   ///< length-weighted ⟨(u·axis)²⟩ over the links, u the unit link direction
   double radiusCV;     ///< length-weighted mean over the fibers of their along-fiber radius CV
-  double gRatio;       ///< length-weighted mean of inner/outer radius (NaN without inner radii)
+  double gRatio;       ///< length-weighted mean of inner/outer radius over its fibers with inner radii (else NaN)
 };
 
 struct RealismResult
@@ -36,7 +36,7 @@ struct RealismResult
   /// Per fiber: std/mean of the radius along the fiber, the radius taken linear along each link and
   /// both moments integrated over arc length (0 for a constant radius, NaN for a zero-length fiber).
   std::vector<double> fiberRadiusCV;
-  std::vector<double> fiberGRatio; ///< arc-length mean of inner/outer radius; empty without inner radii
+  std::vector<double> fiberGRatio; ///< arc-length mean of inner/outer radius; NaN for a fiber without inner radii
   double radiusCV, gRatio;         ///< over all fibers, length-weighted as per population
   /// Bar-chart data: point radii (count), fiber tortuosities (count), point g-ratios (count; empty
   /// bins without inner radii), link angles to their population's axis in degrees, [0, 90]
@@ -44,9 +44,8 @@ struct RealismResult
   Histogram radiusHistogram, tortuosityHistogram, gRatioHistogram, segmentAngleHistogram;
 };
 
-/// Measures the model; `inner` is empty or valid (validateInnerRadii); `shape` is fiberShape's
+/// Measures the model, whose inner radii are valid (validateInnerRadii); `shape` is fiberShape's
 /// result for the same model (its per-fiber tortuosity and lengths are reused); bins >= 1.
-RealismResult measureRealism(const FiberModel& model, const InnerRadii& inner, const ShapeResult& shape,
-  std::size_t bins);
+RealismResult measureRealism(const FiberModel& model, const ShapeResult& shape, std::size_t bins);
 
 } // namespace fiberpli

@@ -6,51 +6,65 @@
 namespace fiberpli
 {
 
-std::string validateInnerRadii(const FiberModel& model, const InnerRadii& inner, std::size_t* badFiber)
+bool hasInnerRadii(const FiberModel& model)
 {
-  if (inner.empty())
+  for (const Fiber& f : model.fibers)
   {
-    return {};
+    if (!f.innerRadii.empty())
+    {
+      return true;
+    }
   }
-  if (inner.size() != model.fibers.size())
-  {
-    std::ostringstream s;
-    s << "inner_radius has values for " << inner.size() << " fibers, the model has " << model.fibers.size();
-    return s.str();
-  }
-  for (std::size_t f = 0; f < inner.size(); ++f)
+  return false;
+}
+
+std::string validateInnerRadii(const FiberModel& model, std::size_t* badFiber)
+{
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
     const Fiber& fiber = model.fibers[f];
+    if (fiber.innerRadii.empty())
+    {
+      continue;
+    }
     std::ostringstream s;
     s << "inner_radius of fiber " << f << " (fiber_id " << fiber.id << ")";
-    if (badFiber != nullptr)
+    bool bad = fiber.innerRadii.size() != fiber.size();
+    if (bad)
     {
-      *badFiber = f;
+      s << " has " << fiber.innerRadii.size() << " values for " << fiber.size() << " points";
     }
-    if (inner[f].size() != fiber.size())
+    for (std::size_t i = 0; !bad && i < fiber.size(); ++i)
     {
-      s << " has " << inner[f].size() << " values for " << fiber.size() << " points";
-      return s.str();
-    }
-    for (std::size_t i = 0; i < fiber.size(); ++i)
-    {
-      const double v = inner[f][i];
+      const double v = fiber.innerRadii[i];
       if (!std::isfinite(v) || v <= 0.0 || v > fiber.radii[i])
       {
         s << " point " << i << " is " << v << " (must be finite, > 0 and <= radius " << fiber.radii[i] << ")";
-        return s.str();
+        bad = true;
       }
+    }
+    if (bad)
+    {
+      if (badFiber != nullptr)
+      {
+        *badFiber = f;
+      }
+      return s.str();
     }
   }
   return {};
 }
 
-FiberModel axonModel(const FiberModel& model, const InnerRadii& inner)
+FiberModel axonModel(const FiberModel& model)
 {
   FiberModel axons = model;
-  for (std::size_t f = 0; f < axons.fibers.size(); ++f)
+  for (Fiber& f : axons.fibers)
   {
-    axons.fibers[f].radii = inner[f];
+    if (!f.innerRadii.empty())
+    {
+      f.radii.swap(f.innerRadii);
+      f.innerRadii.clear();
+    }
   }
   return axons;
 }

@@ -200,12 +200,12 @@ TEST(RealismMetrics, MyelinatedFiberGivesMyelinAndAxonFractionsInClosedForm)
   const double L = 12.0, R = 2.0, g = 0.65;
   FiberModel m;
   m.fibers.push_back(segment({ 6, 6, 0 }, { 6, 6, L }, 12, R, 0, 0));
-  InnerRadii inner = { std::vector<double>(13, g * R) };
+  m.fibers[0].innerRadii.assign(13, g * R);
   MetricsOptions o;
   o.cell = cellOf(L);
   o.voxelSize = 0.05;
   o.pairs = false;
-  const MetricsResult res = computeFiberMetrics(m, o, nullptr, inner);
+  const MetricsResult res = computeFiberMetrics(m, o, nullptr);
   ASSERT_TRUE(res.error.empty()) << res.error;
   const double fiber = M_PI * R * R / (L * L), axon = M_PI * g * g * R * R / (L * L);
   EXPECT_NEAR(res.volume.fraction, fiber, res.volume.errorBound);
@@ -221,15 +221,16 @@ TEST(RealismMetrics, MyelinatedFiberGivesMyelinAndAxonFractionsInClosedForm)
   // Monte Carlo: the same closed forms within 4 standard errors.
   o.monteCarlo = true;
   o.samples = 400000;
-  const MetricsResult mc = computeFiberMetrics(m, o, nullptr, inner);
+  const MetricsResult mc = computeFiberMetrics(m, o, nullptr);
   EXPECT_NEAR(mc.axonVolume.fraction, axon, 4 * mc.axonVolume.errorBound);
   EXPECT_NEAR(mc.myelinFraction, fiber - axon, 4 * (mc.volume.errorBound + mc.axonVolume.errorBound));
   // Without inner radii nothing about myelin is claimed.
+  m.fibers[0].innerRadii.clear();
   const MetricsResult none = computeFiberMetrics(m, o, nullptr);
   EXPECT_TRUE(std::isnan(none.axonVolume.fraction));
   EXPECT_TRUE(std::isnan(none.myelinFraction));
   EXPECT_TRUE(std::isnan(none.realism.gRatio));
-  EXPECT_TRUE(none.realism.fiberGRatio.empty());
+  EXPECT_TRUE(std::isnan(none.realism.fiberGRatio[0]));
 }
 
 TEST(RealismMetrics, BadInnerRadiiAndBinsAreErrorsNamingTheValue)
@@ -237,13 +238,35 @@ TEST(RealismMetrics, BadInnerRadiiAndBinsAreErrorsNamingTheValue)
   FiberModel m;
   m.fibers.push_back(segment({ 0, 0, 0 }, { 0, 0, 4 }, 2, 1.0, 0, 5));
   MetricsOptions o = shapeOnly();
-  EXPECT_NE(computeFiberMetrics(m, o, nullptr, { { 0.5, 1.5, 0.5 } }).error.find("1.5"), std::string::npos);
-  EXPECT_NE(computeFiberMetrics(m, o, nullptr, { { 0.5, NAN, 0.5 } }).error.find("inner_radius of fiber 0 (fiber_id 5) point 1"),
-    std::string::npos);
-  EXPECT_NE(computeFiberMetrics(m, o, nullptr, { { 0.5, 0.5 } }).error.find("2 values for 3 points"), std::string::npos);
-  EXPECT_NE(computeFiberMetrics(m, o, nullptr, { { 0.5, 0.0, 0.5 } }).error.find("> 0"), std::string::npos);
+  const auto errorWith = [&](std::vector<double> inner) {
+    FiberModel bad = m;
+    bad.fibers[0].innerRadii = std::move(inner);
+    return computeFiberMetrics(bad, o, nullptr).error;
+  };
+  EXPECT_NE(errorWith({ 0.5, 1.5, 0.5 }).find("1.5"), std::string::npos);
+  EXPECT_NE(errorWith({ 0.5, NAN, 0.5 }).find("inner_radius of fiber 0 (fiber_id 5) point 1"), std::string::npos);
+  EXPECT_NE(errorWith({ 0.5, 0.5 }).find("2 values for 3 points"), std::string::npos);
+  EXPECT_NE(errorWith({ 0.5, 0.0, 0.5 }).find("> 0"), std::string::npos);
+  EXPECT_TRUE(errorWith({ 0.5, 1.0, 0.5 }).empty()); // inner = radius: no sheath there, allowed
   o.histogramBins = 0;
   EXPECT_NE(computeFiberMetrics(m, o, nullptr).error.find("HistogramBins 0"), std::string::npos);
+}
+
+TEST(RealismMetrics, OnlyMyelinatedFibersHaveAGRatio)
+{
+  // Two fibers of equal length, one with g = 0.5, one without a sheath: the g-ratio is 0.5 (the
+  // unmyelinated fiber is no g-ratio of 1), and the axons are the first fiber's inner capsules
+  // plus the whole second fiber.
+  FiberModel m;
+  m.fibers.push_back(segment({ 0, 0, 0 }, { 0, 0, 10 }, 5, 1.0, 0, 0));
+  m.fibers.push_back(segment({ 5, 0, 0 }, { 5, 0, 10 }, 5, 1.0, 0, 1));
+  m.fibers[0].innerRadii.assign(6, 0.5);
+  const MetricsResult res = computeFiberMetrics(m, shapeOnly(), nullptr);
+  EXPECT_NEAR(res.realism.gRatio, 0.5, 1e-12);
+  EXPECT_TRUE(std::isnan(res.realism.fiberGRatio[1]));
+  const FiberModel axons = axonModel(m);
+  EXPECT_EQ(axons.fibers[0].radii, std::vector<double>(6, 0.5));
+  EXPECT_EQ(axons.fibers[1].radii, std::vector<double>(6, 1.0));
 }
 
 namespace
