@@ -1,5 +1,6 @@
 #include "vtkFiberTubes.h"
 
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Mesh/TubeMesher.h"
@@ -19,6 +20,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 
@@ -51,10 +53,21 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     vtkWarningMacro(<< in.warning);
   }
 
+  if (this->InnerTubes)
+  {
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberTubes");
+    if (!innerError.empty())
+    {
+      vtkErrorMacro(<< innerError);
+      return 0;
+    }
+  }
+
   this->SetProgressText("Meshing tubes");
   fiberpli::TubeOptions options;
   options.sides = this->NumberOfSides;
   options.capping = this->Capping;
+  options.innerTubes = this->InnerTubes;
   options.numberOfThreads = this->NumberOfThreads;
   const std::string optionError = fiberpli::checkTubeOptions(options);
   if (!optionError.empty())
@@ -114,6 +127,14 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
   output->GetPointData()->SetNormals(normals);
   output->GetCellData()->AddArray(fiberId);
   output->GetCellData()->AddArray(bundleId);
+  if (this->InnerTubes)
+  {
+    vtkNew<vtkUnsignedCharArray> surface;
+    surface->SetName("tube_surface");
+    surface->SetNumberOfTuples(numTriangles);
+    std::copy(mesh.triangleSurface.begin(), mesh.triangleSurface.end(), surface->GetPointer(0));
+    output->GetCellData()->AddArray(surface);
+  }
   output->GetCellData()->SetActiveScalars("bundle_id");
   return 1;
 }
@@ -124,5 +145,6 @@ void vtkFiberTubes::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSides: " << this->NumberOfSides << "\n";
   os << indent << "Capping: " << this->Capping << "\n";
+  os << indent << "InnerTubes: " << this->InnerTubes << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }
