@@ -1,6 +1,8 @@
 #include "FiberInnerRadii.h"
 
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
@@ -50,6 +52,27 @@ std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion, cons
     return who + ": " + cell + invalid;
   }
   return {};
+}
+
+void AddInnerRadii(const FiberModel& model, vtkPolyData* output)
+{
+  if (!hasInnerRadii(model))
+  {
+    return;
+  }
+  vtkNew<vtkDoubleArray> inner;
+  inner->SetName(kInnerRadiusArray);
+  inner->SetNumberOfTuples(static_cast<vtkIdType>(model.numberOfPoints()));
+  vtkIdType p = 0;
+  for (const Fiber& f : model.fibers)
+  {
+    const bool sheath = f.innerRadii.size() == f.size();
+    for (std::size_t i = 0; i < f.size(); ++i)
+    {
+      inner->SetValue(p++, sheath ? f.innerRadii[i] : f.radii[i]);
+    }
+  }
+  output->GetPointData()->AddArray(inner);
 }
 
 } // namespace fiberpli

@@ -28,6 +28,11 @@ constexpr const char* kInnerRadiusArray = "inner_radius";
 FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion,
   const std::string& who);
 
+/// Adds the point array `inner_radius` (double) to `output`, made by FiberPolyData::FromModel from
+/// `model`, when some fiber of the model has inner radii; a fiber without them gets its radius (no
+/// sheath). Points are in FromModel's order (fiber by fiber).
+FIBERPLICONVERSION_EXPORT void AddInnerRadii(const FiberModel& model, vtkPolyData* output);
+
 } // namespace fiberpli
 
 #endif

@@ -3,6 +3,7 @@
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
 
@@ -53,6 +54,12 @@ void vtkFiberWriter::WriteData()
   if (!in.warning.empty())
   {
     vtkWarningMacro(<< in.warning);
+  }
+  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 only
+  if (!innerError.empty())
+  {
+    this->Fail(vtkErrorCode::UserError, innerError);
+    return;
   }
 
   std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";

@@ -1,13 +1,13 @@
 """pvpython: FiberMetrics' realism outputs against closed forms — closed helices of known tortuosity
 per population, myelin and axon volume of straight myelinated fibers through a periodic cell, the
 mixing figure of populations in halves or interleaved, the histogram tables — a realistic cube from
-the source, and a bad inner_radius (an error naming it; the pipeline usable again)."""
+the source (its inner_radius also through .h5 and back), and a bad inner_radius (an error naming it; the pipeline usable again)."""
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fiberpli_test import ErrorCatcher, check, load_plugin  # noqa: E402
+from fiberpli_test import ErrorCatcher, check, load_plugin, option  # noqa: E402
 from paraview import servermanager  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray, vtkPoints  # noqa: E402
@@ -134,6 +134,15 @@ print("cube: tortuosity_mean %.3f radius_cv %.3f g %.3f myelin %.4f axon %.4f" %
 check(abs(column(s, "g_ratio_mean") - 0.7) < 1e-9, "constant g-ratio")
 check(column(s, "radius_cv") > 0.05 and column(s, "tortuosity_mean") > 1.02, "beading and undulation measured")
 check(column(s, "myelin_fraction") > 0 and column(s, "axon_fraction") > 0, "myelin and axon volume")
+
+# --- inner_radius through .h5 (attributes beside fastPLI's (n, 4) datasets) and back ---
+h5 = os.path.join(option("-T"), "realism_cube.h5")
+SaveData(h5, proxy=cube)
+original = servermanager.Fetch(cube)
+back = servermanager.Fetch(FiberReader(FileName=h5))
+a, b = original.GetPointData().GetArray("inner_radius"), back.GetPointData().GetArray("inner_radius")
+check(b is not None and b.GetNumberOfTuples() == a.GetNumberOfTuples() and
+      all(a.GetValue(i) == b.GetValue(i) for i in range(a.GetNumberOfTuples())), ".h5 round trip of inner_radius")
 
 # --- a bad inner_radius: an error naming it and the value; usable once fixed ---
 bad_fibers = [(0, [(0, 0, 0, 1.0, 0.5), (0, 0, 4, 1.0, 1.5), (0, 0, 8, 1.0, 0.5)])]
