@@ -60,16 +60,15 @@ void AddCount(vtkTable* table, const char* name, long long value)
   table->AddColumn(a);
 }
 
-/// A bar-chart table of a histogram: bin_center and bin_extents (the centre, under the name
-/// ParaView's own Histogram filter gives it, so the Bar Chart View picks it as x), bin_lower,
-/// bin_upper, count, and the summed weights under `weightName` when given.
+/// A bar-chart table of a histogram: bin_extents (the bin centres, under the name ParaView's own
+/// Histogram filter gives them, so that the Bar Chart View takes them as x and hides them as a
+/// series), count, and the summed weights under `weightName` when given; the field data
+/// `histogram_range` (lower edge of the first bin, upper edge of the last) and `bin_width`. No
+/// other column, so that the chart shows only the counts by default.
 void FillHistogram(vtkTable* table, const fiberpli::Histogram& h, const char* weightName)
 {
   const auto bins = static_cast<vtkIdType>(h.count.size());
-  vtkDoubleArray* centre = AddColumn(table, "bin_center", 1, bins);
-  vtkDoubleArray* extents = AddColumn(table, "bin_extents", 1, bins);
-  vtkDoubleArray* lower = AddColumn(table, "bin_lower", 1, bins);
-  vtkDoubleArray* upper = AddColumn(table, "bin_upper", 1, bins);
+  vtkDoubleArray* centre = AddColumn(table, "bin_extents", 1, bins);
   vtkNew<vtkIdTypeArray> count;
   count->SetName("count");
   count->SetNumberOfTuples(bins);
@@ -79,15 +78,20 @@ void FillHistogram(vtkTable* table, const fiberpli::Histogram& h, const char* we
   {
     const auto i = static_cast<std::size_t>(k);
     centre->SetValue(k, h.centre(i));
-    extents->SetValue(k, h.centre(i));
-    lower->SetValue(k, h.lo + static_cast<double>(k) * h.width());
-    upper->SetValue(k, h.lo + static_cast<double>(k + 1) * h.width());
     count->SetValue(k, static_cast<vtkIdType>(h.count[i]));
     if (weight)
     {
       weight->SetValue(k, h.weight[i]);
     }
   }
+  vtkNew<vtkDoubleArray> range, width;
+  range->SetName("histogram_range");
+  range->InsertNextValue(h.lo);
+  range->InsertNextValue(h.hi);
+  width->SetName("bin_width");
+  width->InsertNextValue(h.width());
+  table->GetFieldData()->AddArray(range);
+  table->GetFieldData()->AddArray(width);
 }
 
 /// Output port 3: one row per population.

@@ -13,7 +13,7 @@
  * tortuosity range, c2 of end-to-end directions and of segments about the population's axis,
  * radius CV along fibers, g-ratio, mixing share. Output ports 4–7: histogram tables of point radii,
  * fiber tortuosity, point g-ratios and link angles to their population's axis (columns
- * bin_center, bin_extents, bin_lower, bin_upper, count; Bar Chart View). Column and field-data
+ * bin_extents = bin centres and count; field data histogram_range and bin_width; Bar Chart View). Column and field-data
  * names are listed in docs/metrics.md.
  *
  * Volume fraction: the covered fraction of `Box` (xmin xmax ymin ymax zmin zmax; any min > max,

@@ -88,7 +88,10 @@ hist = table(metrics, 5)  # tortuosity histogram: one count per fiber
 check(sum(hist.GetColumnByName("count").GetValue(k) for k in range(hist.GetNumberOfRows())) == 3, "tortuosity histogram")
 check(hist.GetNumberOfRows() == 20 and hist.GetColumnByName("bin_extents") is not None, "20 bins, bin_extents")
 angles = table(metrics, 7)
-check(abs(angles.GetColumnByName("bin_upper").GetValue(19) - 90) < 1e-12, "angles up to 90 degrees")
+check(abs(angles.GetFieldData().GetArray("histogram_range").GetValue(1) - 90) < 1e-12 and
+      abs(angles.GetFieldData().GetArray("bin_width").GetValue(0) - 4.5) < 1e-12 and
+      abs(angles.GetColumnByName("bin_extents").GetValue(0) - 2.25) < 1e-12, "angles in 4.5-degree bins up to 90")
+check(angles.GetNumberOfColumns() == 3 and hist.GetNumberOfColumns() == 2, "only the bar chart's columns")
 check(sum(angles.GetColumnByName("count").GetValue(k) for k in range(20)) == 3 * 4 * n - 2 * n, "one count per link")
 
 # --- myelin: straight fibers through the cell, inner radius g r: closed-form fractions ---
