@@ -62,10 +62,9 @@ void AddCount(vtkTable* table, const char* name, long long value)
 
 /// A bar-chart table of a histogram: bin_extents (the bin centres, under the name ParaView's own
 /// Histogram filter gives them, so that the Bar Chart View takes them as x and hides them as a
-/// series), count, and the summed weights under `weightName` when given; the field data
-/// `histogram_range` (lower edge of the first bin, upper edge of the last) and `bin_width`. No
-/// other column, so that the chart shows only the counts by default.
-void FillHistogram(vtkTable* table, const fiberpli::Histogram& h, const char* weightName)
+/// series) and count; the field data `histogram_range` (lower edge of the first bin, upper edge of
+/// the last) and `bin_width`. No other column, so that the chart shows the counts alone.
+void FillHistogram(vtkTable* table, const fiberpli::Histogram& h)
 {
   const auto bins = static_cast<vtkIdType>(h.count.size());
   vtkDoubleArray* centre = AddColumn(table, "bin_extents", 1, bins);
@@ -73,16 +72,11 @@ void FillHistogram(vtkTable* table, const fiberpli::Histogram& h, const char* we
   count->SetName("count");
   count->SetNumberOfTuples(bins);
   table->AddColumn(count);
-  vtkDoubleArray* weight = weightName ? AddColumn(table, weightName, 1, bins) : nullptr;
   for (vtkIdType k = 0; k < bins; ++k)
   {
     const auto i = static_cast<std::size_t>(k);
     centre->SetValue(k, h.centre(i));
     count->SetValue(k, static_cast<vtkIdType>(h.count[i]));
-    if (weight)
-    {
-      weight->SetValue(k, h.weight[i]);
-    }
   }
   vtkNew<vtkDoubleArray> range, width;
   range->SetName("histogram_range");
@@ -365,10 +359,10 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
   }
 
   FillPopulations(populations, m);
-  FillHistogram(histograms[0], m.realism.radiusHistogram, nullptr);
-  FillHistogram(histograms[1], m.realism.tortuosityHistogram, nullptr);
-  FillHistogram(histograms[2], m.realism.gRatioHistogram, nullptr);
-  FillHistogram(histograms[3], m.realism.segmentAngleHistogram, "link_length");
+  FillHistogram(histograms[0], m.realism.radiusHistogram);
+  FillHistogram(histograms[1], m.realism.tortuosityHistogram);
+  FillHistogram(histograms[2], m.realism.gRatioHistogram);
+  FillHistogram(histograms[3], m.realism.segmentAngleHistogram);
   return 1;
 }
 

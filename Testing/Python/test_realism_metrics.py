@@ -1,6 +1,6 @@
 """pvpython: FiberMetrics' realism outputs against closed forms — closed helices of known tortuosity
 per population, myelin and axon volume of straight myelinated fibers through a periodic cell, the
-mixing figure of populations in halves or interleaved, the histogram tables — a realistic cube from
+mixing figure of populations in halves or interleaved, the histogram tables (as a Bar Chart View shows them) — a realistic cube from
 the source (its inner_radius also through .h5 and back), and a bad inner_radius (an error naming it; the pipeline usable again)."""
 import math
 import os
@@ -91,7 +91,7 @@ angles = table(metrics, 7)
 check(abs(angles.GetFieldData().GetArray("histogram_range").GetValue(1) - 90) < 1e-12 and
       abs(angles.GetFieldData().GetArray("bin_width").GetValue(0) - 4.5) < 1e-12 and
       abs(angles.GetColumnByName("bin_extents").GetValue(0) - 2.25) < 1e-12, "angles in 4.5-degree bins up to 90")
-check(angles.GetNumberOfColumns() == 3 and hist.GetNumberOfColumns() == 2, "only the bar chart's columns")
+check(angles.GetNumberOfColumns() == 2 and hist.GetNumberOfColumns() == 2, "only the bar chart's columns")
 check(sum(angles.GetColumnByName("count").GetValue(k) for k in range(20)) == 3 * 4 * n - 2 * n, "one count per link")
 
 # --- myelin: straight fibers through the cell, inner radius g r: closed-form fractions ---
@@ -156,4 +156,11 @@ check("inner_radius" in errors.text() and "1.5" in errors.text() and "line cell 
       "no inner_radius error: %r" % errors.text())
 bad.Input = polydata([(0, [(0, 0, 0, 1.0, 0.5), (0, 0, 4, 1.0, 0.5), (0, 0, 8, 1.0, 0.5)])], 12)
 check(abs(column(table(bad, 1), "g_ratio_mean") - 0.5) < 1e-12, "pipeline not usable after the error")
+# --- the histograms as ParaView shows them: a Bar Chart View takes bin_extents as x, bars of count ---
+view = CreateView("XYBarChartView")
+bars = Show(OutputPort(metrics, 7), view)
+print("bar chart: x", bars.XArrayName, "series", bars.SeriesVisibility)
+check(bars.XArrayName == "bin_extents" and not bars.UseIndexForXAxis and list(bars.SeriesVisibility) == ["count"],
+      "bar chart defaults: x %s, series %s" % (bars.XArrayName, list(bars.SeriesVisibility)))
+Render(view)
 print("OK")
