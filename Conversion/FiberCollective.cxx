@@ -1,4 +1,8 @@
 #include "FiberCollective.h"
+#include "FiberFieldData.h"
+#include "FiberGuard.h"
+
+#include "Util/NumberFormat.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
@@ -13,7 +17,9 @@
 #include <vtkOutputWindow.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <algorithm>
 #include <climits>
+#include <vector>
 
 namespace fiberpli
 {
@@ -88,7 +94,7 @@ std::string FiberCollective::AgreeOnError(vtkInformation* info, const std::strin
   }
   std::string text;
   message >> text;
-  return who + ": rank " + std::to_string(first) + " failed, so no rank gives output: " + text;
+  return who + ": rank " + fiberpli::formatNumber(first) + " failed, so no rank gives output: " + text;
 }
 
 double FiberCollective::GlobalMax(vtkInformation* info, double local)
@@ -103,6 +109,36 @@ double FiberCollective::GlobalMax(vtkInformation* info, double local)
   return global;
 }
 
+std::string FiberCollective::AgreeOnPeriodicCell(vtkInformation* info, const std::string& who, vtkDataObject* piece)
+{
+  RankCell mine;
+  mine.present = PeriodicCellValues(piece, mine.values);
+  mine.count = mine.values.size();
+  std::vector<RankCell> all{ mine };
+  if (vtkMultiProcessController* c = ControllerFor(info))
+  {
+    // Per rank: present, value count, then up to 6 values (a longer field is malformed anyway:
+    // its count alone says so).
+    constexpr int kSlot = 8;
+    double sent[kSlot] = { mine.present ? 1.0 : 0.0, static_cast<double>(mine.values.size()), 0, 0, 0, 0, 0, 0 };
+    std::copy_n(mine.values.begin(), std::min<std::size_t>(6, mine.values.size()), sent + 2);
+    const int ranks = c->GetNumberOfProcesses();
+    std::vector<double> got(static_cast<std::size_t>(kSlot * ranks));
+    c->AllGather(sent, got.data(), kSlot);
+    all.assign(static_cast<std::size_t>(ranks), RankCell{});
+    for (int r = 0; r < ranks; ++r)
+    {
+      const double* slot = &got[static_cast<std::size_t>(kSlot * r)];
+      RankCell& cell = all[static_cast<std::size_t>(r)];
+      cell.present = slot[0] != 0.0;
+      cell.count = static_cast<std::size_t>(slot[1]);
+      cell.values.assign(slot + 2, slot + 2 + std::min<std::size_t>(6, cell.count));
+    }
+  }
+  const std::string error = CompareRankCells(all);
+  return error.empty() ? error : who + ": " + error;
+}
+
 int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request, vtkInformationVector* outputVector,
   const std::string& who, const std::function<int()>& piece)
 {
@@ -111,7 +147,7 @@ int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request
   const bool observed = self->HasObserver(vtkCommand::ErrorEvent) != 0;
   vtkNew<ErrorCapture> capture;
   const unsigned long tag = self->AddObserver(vtkCommand::ErrorEvent, capture);
-  const int rc = piece();
+  const int rc = GuardRequest(self, nullptr, who, piece); // an exception is this rank's error
   self->RemoveObserver(tag);
   if (!observed && !capture->Raw.empty())
   {

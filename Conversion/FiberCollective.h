@@ -24,6 +24,7 @@
 #include <string>
 
 class vtkAlgorithm;
+class vtkDataObject;
 class vtkInformation;
 class vtkInformationVector;
 class vtkMultiProcessController;
@@ -47,6 +48,12 @@ public:
   /// The largest `local` over the ranks of ControllerFor(info) (`local` itself without one).
   /// Collective: every rank calls it equally often per execution, whatever path it takes.
   static double GlobalMax(vtkInformation* info, double local);
+
+  /// Collective over ControllerFor(info) (local only without it): FiberFieldData.h's
+  /// CompareRankCells over every rank's `periodic_cell` of `piece`; "" or, on every rank, "<who>: "
+  /// and the message naming the rank whose cell is malformed or differs. Without a controller the
+  /// one piece's cell is checked alone.
+  static std::string AgreeOnPeriodicCell(vtkInformation* info, const std::string& who, vtkDataObject* piece);
 
   /// Runs `piece` (this rank's RequestData, reporting errors with vtkErrorMacro and returning 0)
   /// and ends it with AgreeOnError over the information of the requesting output port. When any

@@ -9,7 +9,7 @@ cell tiles space, and a large cell of two populations.
         [--targets 0.85,0.72,0.58] [--large-edge 100] [--large-target 0.70]
         [--seeding Lattice|Random] [--threads 2] [--max-steps 20000] [--size 440]
 
-The defaults are the figures of issue 14 (bench/README.md "Issue 14 figures"): a (30 µm)³ cell
+The defaults are the dense-cell benchmark (bench/README.md "Lattice seeding, equal radii"): a (30 µm)³ cell
 (r = 0.8 µm, points 2 µm apart, displacement 0.5 µm, seed 42, MinCurvatureRadius 4 µm) with
 Seeding = Lattice at 85 / 72 / 58 %, which solve without overlaps in 1 327 / 44 / 50 steps, and a
 (100 µm)³ cell of two populations at 70 % (3 482 fibers, 65 steps; --large-edge 0 leaves it out).

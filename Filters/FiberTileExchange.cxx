@@ -5,6 +5,7 @@
 #include "FiberPolyData.h"
 #include "FiberSolverComm.h"
 #include "Model/InnerRadii.h"
+#include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
 #include <vtkAlgorithm.h>
@@ -171,8 +172,10 @@ long long Summarise(const std::vector<PieceSummary>& all, int myPiece, TileFiber
   long long offset = 0;
   const PieceSummary* cellFrom = nullptr;
   out.emptyInput = true;
+  std::vector<RankCell> cells; // every rank's periodic_cell, for the one rule across the ranks
   for (const PieceSummary& p : all)
   {
+    cells.push_back(RankCell{ p.hasCell != 0, p.cell.size(), p.cell });
     out.emptyInput = out.emptyInput && p.empty;
     bundles.insert(p.bundles.begin(), p.bundles.end());
     out.myelinated = out.myelinated || p.myelinated;
@@ -184,7 +187,13 @@ long long Summarise(const std::vector<PieceSummary>& all, int myPiece, TileFiber
   out.periodic = cellFrom != nullptr;
   if (cellFrom)
   {
-    out.cellError = periodicCellFromBounds(cellFrom->cell.data(), cellFrom->cell.size(), out.cell);
+    // Not only the lowest rank's: a malformed or different cell on any rank fails every rank
+    // (the same message everywhere, naming that rank), as the solver refuses it.
+    out.cellError = CompareRankCells(cells);
+    if (out.cellError.empty())
+    {
+      out.cellError = periodicCellFromBounds(cellFrom->cell.data(), cellFrom->cell.size(), out.cell);
+    }
   }
   return offset;
 }

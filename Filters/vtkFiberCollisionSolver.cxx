@@ -2,6 +2,7 @@
 
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Checkpoint/SolverCheckpoint.h"
@@ -61,32 +62,35 @@ vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
 int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (!this->IterationsAsTime) // the input's own time steps pass through
-  {
+  // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
+  return fiberpli::GuardRequest(this, nullptr, "FiberCollisionSolver", [&]() -> int {
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    if (!this->IterationsAsTime) // the input's own time steps pass through
+    {
+      return 1;
+    }
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    // The time steps are the steps the solve really took, so the solve runs here (once, cached):
+    // the timeline then ends where the solve ended instead of at MaxSteps.
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+    fiberpli::FiberPolyData::UpdateAllFibers(this, inInfo);
+    vtkPolyData* input = inInfo ? vtkPolyData::GetData(inInfo) : nullptr;
+    if (fiberpli::FiberPolyData::IsEmpty(input))
+    {
+      return 1;
+    }
+    if (this->Solve(input) != 1)
+    {
+      return 1; // an error is reported (again by RequestData, which makes no output); or aborted
+    }
+    const std::vector<int>& steps = this->Cache->states.steps;
+    std::vector<double> times(steps.begin(), steps.end());
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
     return 1;
-  }
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-  // The time steps are the steps the solve really took, so the solve runs here (once, cached):
-  // the timeline then ends where the solve ended instead of at MaxSteps.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  fiberpli::FiberPolyData::UpdateAllFibers(this, inInfo);
-  vtkPolyData* input = inInfo ? vtkPolyData::GetData(inInfo) : nullptr;
-  if (fiberpli::FiberPolyData::IsEmpty(input))
-  {
-    return 1;
-  }
-  if (this->Solve(input) != 1)
-  {
-    return 1; // an error is reported (again by RequestData, which makes no output); or aborted
-  }
-  const std::vector<int>& steps = this->Cache->states.steps;
-  std::vector<double> times(steps.begin(), steps.end());
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-  const double range[2] = { times.front(), times.back() };
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
-  return 1;
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -287,95 +291,98 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
 //------------------------------------------------------------------------------
 int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  output->Initialize();
-  vtkMultiProcessController* controller = this->Distributed(outInfo);
-  std::unique_ptr<fiberpli::FiberSolverComm> comm;
-  if (controller)
-  {
-    comm = std::make_unique<fiberpli::FiberSolverComm>(controller);
-    if (!fiberpli::anyRank(*comm, !fiberpli::FiberPolyData::IsEmpty(input)))
+  // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
+  return fiberpli::GuardRequest(this, outputVector, "FiberCollisionSolver", [&]() -> int {
+    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+    vtkPolyData* output = vtkPolyData::GetData(outputVector);
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    output->Initialize();
+    vtkMultiProcessController* controller = this->Distributed(outInfo);
+    std::unique_ptr<fiberpli::FiberSolverComm> comm;
+    if (controller)
     {
-      return 1; // no rank has fibers
+      comm = std::make_unique<fiberpli::FiberSolverComm>(controller);
+      if (!fiberpli::anyRank(*comm, !fiberpli::FiberPolyData::IsEmpty(input)))
+      {
+        return 1; // no rank has fibers
+      }
     }
-  }
-  else if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
-  {
+    else if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
+    {
+      return 1;
+    }
+
+    const int solved = this->Solve(input, comm.get());
+    if (solved != 1)
+    {
+      return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
+    }
+
+    // Which state to show: the last one, or the last snapshot at or before the requested time.
+    const fiberpli::SolverSnapshots& states = this->Cache->states;
+    std::size_t shown = states.models.size() - 1;
+    if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      shown = states.atTime(t);
+      output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+    }
+    const int shownStep = this->IterationsAsTime ? states.steps[shown] : this->Cache->result.steps;
+
+    const fiberpli::FiberModel& model = states.models[shown];
+    const fiberpli::CollisionSolverResult& r = this->Cache->result;
+    const bool final = shown + 1 == states.models.size();
+    fiberpli::FiberPolyData::FromModel(model, output);
+    // The final state knows where each point came from. Snapshots do not: their point arrays are
+    // passed (unchanged points) only while no fiber has been split or merged yet.
+    bool sameCounts = true;
+    for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
+    {
+      sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
+    }
+    if (final || sameCounts)
+    {
+      static const std::vector<std::vector<double>> unchanged;
+      fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
+    }
+
+    const fiberpli::PeriodicCell& cell = this->Cache->cell;
+    const std::size_t collisions = final ? r.collisions
+                                         : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
+    fiberpli::AddFieldInt(output, "steps", shownStep);
+    fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
+    fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
+    if (final) // only known for the solver's last state
+    {
+      fiberpli::AddFieldDoubles(output, "max_overlap", { r.maxOverlap });
+      fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
+    }
+    fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
+    if (this->Cache->periodic)
+    {
+      fiberpli::AddPeriodicCell(output, cell);
+    }
+    // Of the periodic cell, else of the model's bounding box.
+    fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
+    if (final)
+    {
+      fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
+      fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
+    }
+    if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
+    {
+      fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
+      fiberpli::AddFieldDoubles(output, "halo_links", { static_cast<double>(r.peakHaloLinks) });
+      fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
+      fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
+      fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
+      fiberpli::AddFieldDoubles(output, "tester_recuts", { static_cast<double>(r.testerRecuts) });
+      fiberpli::AddFieldDoubles(output, "tester_cut_move", { r.testerCutMove });
+    }
+    this->UpdateProgress(1.0);
     return 1;
-  }
-
-  const int solved = this->Solve(input, comm.get());
-  if (solved != 1)
-  {
-    return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
-  }
-
-  // Which state to show: the last one, or the last snapshot at or before the requested time.
-  const fiberpli::SolverSnapshots& states = this->Cache->states;
-  std::size_t shown = states.models.size() - 1;
-  if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-  {
-    const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    shown = states.atTime(t);
-    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
-  }
-  const int shownStep = this->IterationsAsTime ? states.steps[shown] : this->Cache->result.steps;
-
-  const fiberpli::FiberModel& model = states.models[shown];
-  const fiberpli::CollisionSolverResult& r = this->Cache->result;
-  const bool final = shown + 1 == states.models.size();
-  fiberpli::FiberPolyData::FromModel(model, output);
-  // The final state knows where each point came from. Snapshots do not: their point arrays are
-  // passed (unchanged points) only while no fiber has been split or merged yet.
-  bool sameCounts = true;
-  for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
-  {
-    sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
-  }
-  if (final || sameCounts)
-  {
-    static const std::vector<std::vector<double>> unchanged;
-    fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
-  }
-
-  const fiberpli::PeriodicCell& cell = this->Cache->cell;
-  const std::size_t collisions = final ? r.collisions
-                                       : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
-  fiberpli::AddFieldInt(output, "steps", shownStep);
-  fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
-  fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
-  if (final) // only known for the solver's last state
-  {
-    fiberpli::AddFieldDoubles(output, "max_overlap", { r.maxOverlap });
-    fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
-  }
-  fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
-  if (this->Cache->periodic)
-  {
-    fiberpli::AddPeriodicCell(output, cell);
-  }
-  // Of the periodic cell, else of the model's bounding box.
-  fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
-  if (final)
-  {
-    fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
-    fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
-  }
-  if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
-  {
-    fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
-    fiberpli::AddFieldDoubles(output, "halo_links", { static_cast<double>(r.peakHaloLinks) });
-    fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
-    fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
-    fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
-    fiberpli::AddFieldDoubles(output, "tester_recuts", { static_cast<double>(r.testerRecuts) });
-    fiberpli::AddFieldDoubles(output, "tester_cut_move", { r.testerCutMove });
-  }
-  this->UpdateProgress(1.0);
-  return 1;
+  });
 }
 
 //------------------------------------------------------------------------------

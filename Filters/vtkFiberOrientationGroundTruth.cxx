@@ -6,6 +6,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "FiberTileExchange.h"
+#include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
 #include "Section/PLIFields.h"
 #include "Section/SectionPlan.h"
@@ -34,7 +35,7 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 } // namespace
 
 //------------------------------------------------------------------------------
-// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.5, PixelSize 2,
+// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.4, PixelSize 2,
 // all threads.
 /// The section of the properties and the planned volume, made by RequestInformation once per change
 /// of either and used by every RequestData.
@@ -169,14 +170,23 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   };
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
   // fibers its pixels read, in model order (FiberTileExchange.h).
+  // A periodic cell is tiled into the volume of interest as PLISimulation tiles it (one rule,
+  // Model/PeriodicTiling.h), so both see the same tissue pixel by pixel.
+  const double* volume = this->Plan->volume;
+  fiberpli::TileReach pieceReach;
   fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
-    localError, [&](const fiberpli::TileFibers&, fiberpli::TileReach& reach) {
+    localError, [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach) {
       fiberpli::GridRange range;
       const std::string e = pieceRange(range);
       if (e.empty() && range.nx() > 0 && range.ny() > 0)
       {
         reach = fiberpli::groundTruthReach(section, options, range);
       }
+      if (whole.periodic && whole.cellError.empty())
+      {
+        fiberpli::sectionTiling(reach, whole.cell, volume);
+      }
+      pieceReach = reach;
       return e;
     },
     this->Fibers.get());
@@ -195,6 +205,16 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   if (c.emptyInput)
   {
     return 1;
+  }
+  std::string cellError = c.cellError;
+  if (c.periodic && cellError.empty())
+  {
+    cellError = fiberpli::tileSection(c.model, c.cell, volume, c.distributed ? &pieceReach : nullptr);
+  }
+  if (!cellError.empty())
+  {
+    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << cellError);
+    return 0;
   }
   fiberpli::GridRange range;
   std::string err = pieceRange(range);

@@ -5,6 +5,7 @@
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
+#include "FiberGuard.h"
 #include "Section/PLIFields.h"
 
 #include <vtkDataArray.h>
@@ -94,16 +95,19 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 //------------------------------------------------------------------------------
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  // The mask's reference (the largest value) is taken over all pieces of a parallel update:
-  // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
-  bool reduced = false;
-  const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
-  if (!reduced)
-  {
-    fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
-  }
-  return rc;
+  // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
+  return fiberpli::GuardRequest(this, outputVector, "FiberOrientationMap", [&]() -> int {
+    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+    // The mask's reference (the largest value) is taken over all pieces of a parallel update:
+    // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
+    bool reduced = false;
+    const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+    if (!reduced)
+    {
+      fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
+    }
+    return rc;
+  });
 }
 
 //------------------------------------------------------------------------------

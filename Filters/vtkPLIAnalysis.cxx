@@ -3,6 +3,7 @@
 #include "Analysis/PliAnalysis.h"
 #include "ArrayValues.h"
 #include "FiberCollective.h"
+#include "FiberGuard.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Section/PLIFields.h"
@@ -122,7 +123,9 @@ int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** 
   // agreement on the error state (FiberCollective.h): all ranks fail together or none does.
   bool reduced = false;
   return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLIAnalysis", [&] {
-    const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+    // Guarded here already (FiberGuard.h), so that an exception still leaves this rank's reduction.
+    const int rc = fiberpli::GuardRequest(
+      this, outputVector, "PLIAnalysis", [&]() -> int { return this->ExecutePiece(inputVector, outputVector, reduced); });
     if (!reduced)
     {
       fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);

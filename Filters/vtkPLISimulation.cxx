@@ -172,9 +172,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   }
   if (whole.periodic && whole.cellError.empty())
   {
-    reach.periodic = true;
-    reach.cell = whole.cell;
-    std::copy(options.volumeOfInterest, options.volumeOfInterest + 6, reach.tiling);
+    fiberpli::sectionTiling(reach, whole.cell, options.volumeOfInterest);
   }
   return {};
 }
@@ -391,6 +389,14 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     this->PlanImage(inputVector[0]); // a data pass without an information pass
   }
+  const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
+  if (port == 1 && !this->ExportTissue)
+  {
+    // The tissue port without ExportTissue computes nothing: an error of the properties is the
+    // image port's to report (once, not again for every port an update asks for).
+    vtkImageData::GetData(outputVector, 1)->Initialize();
+    return 1;
+  }
   std::string localError = this->Plan->error;
   if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
   {
@@ -400,7 +406,6 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   {
     vtkErrorMacro(<< localError);
   }
-  const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
   const bool wantImage = port != 1;
   const bool wantTissue = port != 0;
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
@@ -470,7 +475,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   std::string cellError = in.cellError;
   if (in.periodic && cellError.empty())
   {
-    cellError = fiberpli::tileModel(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
+    cellError = fiberpli::tileSection(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
   }
   if (!cellError.empty())
   {

@@ -1,6 +1,9 @@
 #include "FiberH5Format.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/RegularFile.h"
+#include "Util/PrintableText.h"
+#include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
 #include "vtk_hdf5.h"
@@ -381,9 +384,9 @@ std::string bundleGroup(const Handle& file, const std::string& path, const std::
 bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
 {
   QuietHdf5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
+  if (!fiberpli::checkRegularFile(path).empty() || H5Fis_hdf5(path.c_str()) <= 0)
   {
-    return false;
+    return false; // never open a FIFO or device (it could block or never end)
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   return file.ok() && !bundleGroupsOf(file.get()).empty();
@@ -394,6 +397,11 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
 {
   QuietHdf5 quiet;
   model.fibers.clear();
+  const std::string special = fiberpli::checkRegularFile(path); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return "cannot read " + special;
+  }
   if (H5Fis_hdf5(path.c_str()) <= 0)
   {
     return path + ": not an HDF5 file";
@@ -419,7 +427,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::string problem = root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
   if (!problem.empty())
   {
-    return path + ": member '" + prefix + "/" + bad + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
+    return path + ": member '" + printableText(prefix + "/" + bad, 80) + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
       (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
   if (cell)
@@ -427,7 +435,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     const std::string cellError = readCellAttribute(root.get(), *cell);
     if (!cellError.empty())
     {
-      return path + ": group '" + (prefix.empty() ? "/" : prefix) + "' " + cellError;
+      return path + ": group '" + printableText(prefix.empty() ? "/" : prefix, 80) + "' " + cellError;
     }
   }
 
@@ -440,18 +448,18 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     Handle group(H5Gopen2(root.get(), bundleName.c_str(), H5P_DEFAULT), H5Gclose);
     if (!group.ok())
     {
-      return path + ": '" + prefix + "/" + bundleName + "' is not a group";
+      return path + ": '" + printableText(prefix + "/" + bundleName, 80) + "' is not a group";
     }
     std::vector<std::pair<long, std::string>> fibers;
     problem = numericMembers(group.get(), "fiber", fibers, bad);
     if (!problem.empty())
     {
-      return path + ": member '" + prefix + "/" + bundleName + "/" + bad + "' " + problem;
+      return path + ": member '" + printableText(prefix + "/" + bundleName + "/" + bad, 80) + "' " + problem;
     }
     for (const auto& fiber : fibers)
     {
       const std::string& fiberName = fiber.second;
-      const std::string where = path + ": dataset '" + prefix + "/" + bundleName + "/" + fiberName + "'";
+      const std::string where = path + ": dataset '" + printableText(prefix + "/" + bundleName + "/" + fiberName, 80) + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
       {
@@ -499,7 +507,7 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::int64_t nextId = 0;
   for (const FiberDataset& d : datasets)
   {
-    const std::string where = path + ": dataset '" + prefix + "/" + d.bundleName + "/" + d.fiberName + "'";
+    const std::string where = path + ": dataset '" + printableText(prefix + "/" + d.bundleName + "/" + d.fiberName, 80) + "'";
     const std::string name = d.bundleName + "/" + d.fiberName;
     Handle data(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     values.resize(static_cast<std::size_t>(d.points * 4));

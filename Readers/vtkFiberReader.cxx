@@ -1,6 +1,7 @@
 #include "vtkFiberReader.h"
 
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberInnerRadii.h"
@@ -63,64 +64,67 @@ int vtkFiberReader::CanReadFile(const char* fileName)
 //------------------------------------------------------------------------------
 int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  output->Initialize();
-  if (this->FileName == nullptr || this->FileName[0] == '\0')
-  {
-    vtkErrorMacro(<< "FiberReader: no FileName set");
-    return 0;
-  }
-  const std::string path(this->FileName);
-  this->SetProgressText("Reading fibers");
-  this->UpdateProgress(0.0);
-
-  fiberpli::FiberReadResult result;
-  fiberpli::PeriodicCell cell;
-  try // the readers check sizes before allocating; this is the last line against a crash
-  {
-    if (HasH5Extension(path))
+  // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
+  return fiberpli::GuardRequest(this, outputVector, "FiberReader", [&]() -> int {
+    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+    vtkPolyData* output = vtkPolyData::GetData(outputVector);
+    output->Initialize();
+    if (this->FileName == nullptr || this->FileName[0] == '\0')
     {
-      result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model, &cell);
-      if (result.ok())
+      vtkErrorMacro(<< "FiberReader: no FileName set");
+      return 0;
+    }
+    const std::string path(this->FileName);
+    this->SetProgressText("Reading fibers");
+    this->UpdateProgress(0.0);
+
+    fiberpli::FiberReadResult result;
+    fiberpli::PeriodicCell cell;
+    try // the readers check sizes before allocating; this is the last line against a crash
+    {
+      if (HasH5Extension(path))
       {
-        // .h5 files hold all points; validate like the text formats do.
-        result.error = fiberpli::validateModel(result.model);
-        if (!result.ok())
+        result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model, &cell);
+        if (result.ok())
         {
-          result.error = path + ": " + result.error;
+          // .h5 files hold all points; validate like the text formats do.
+          result.error = fiberpli::validateModel(result.model);
+          if (!result.ok())
+          {
+            result.error = path + ": " + result.error;
+          }
         }
       }
+      else
+      {
+        result = fiberpli::readFiberFile(path, this->DefaultRadius);
+      }
     }
-    else
+    catch (const std::bad_alloc&)
     {
-      result = fiberpli::readFiberFile(path, this->DefaultRadius);
+      result = fiberpli::FiberReadResult{};
+      result.error = path + ": not enough memory to read the file";
     }
-  }
-  catch (const std::bad_alloc&)
-  {
-    result = fiberpli::FiberReadResult{};
-    result.error = path + ": not enough memory to read the file";
-  }
-  if (!result.ok())
-  {
-    vtkErrorMacro(<< "FiberReader: " << result.error);
-    return 0;
-  }
-  if (result.droppedFibers > 0)
-  {
-    vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
-                    << " fiber(s) with fewer than 2 points dropped");
-  }
-  this->UpdateProgress(0.8);
-  fiberpli::FiberPolyData::FromModel(result.model, output);
-  fiberpli::AddInnerRadii(result.model, output); // .h5 files can hold them
-  if (cell.enabled())
-  {
-    fiberpli::AddPeriodicCell(output, cell);
-  }
-  this->UpdateProgress(1.0);
-  return 1;
+    if (!result.ok())
+    {
+      vtkErrorMacro(<< "FiberReader: " << result.error);
+      return 0;
+    }
+    if (result.droppedFibers > 0)
+    {
+      vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
+                      << " fiber(s) with fewer than 2 points dropped");
+    }
+    this->UpdateProgress(0.8);
+    fiberpli::FiberPolyData::FromModel(result.model, output);
+    fiberpli::AddInnerRadii(result.model, output); // .h5 files can hold them
+    if (cell.enabled())
+    {
+      fiberpli::AddPeriodicCell(output, cell);
+    }
+    this->UpdateProgress(1.0);
+    return 1;
+  });
 }
 
 //------------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #include "vtkFiberWriter.h"
 
 #include "FiberFieldData.h"
+#include "FiberGuard.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberInnerRadii.h"
@@ -35,50 +36,61 @@ int vtkFiberWriter::FillInputPortInformation(int, vtkInformation* info)
 //------------------------------------------------------------------------------
 void vtkFiberWriter::WriteData()
 {
-  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-  this->SetErrorCode(vtkErrorCode::NoError);
-  this->SetLastWriteError(nullptr);
-  if (this->FileName == nullptr || this->FileName[0] == '\0')
-  {
-    this->Fail(vtkErrorCode::NoFileNameError, "FiberWriter: no FileName set");
-    return;
-  }
-  const std::string path(this->FileName);
-  vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
-  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberWriter");
-  if (!in.ok())
-  {
-    this->Fail(vtkErrorCode::UserError, in.error);
-    return;
-  }
-  if (!in.warning.empty())
-  {
-    vtkWarningMacro(<< in.warning);
-  }
-  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 only
-  if (!innerError.empty())
-  {
-    this->Fail(vtkErrorCode::UserError, innerError);
-    return;
-  }
+  // Any exception escaping the write becomes a VTK error (FiberGuard.h), never an abort; the
+  // parallel writer reads it from LastWriteError.
+  const int ok = fiberpli::GuardRequest(this, nullptr, "FiberWriter", [&]() -> int {
+    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+    this->SetErrorCode(vtkErrorCode::NoError);
+    this->SetLastWriteError(nullptr);
+    if (this->FileName == nullptr || this->FileName[0] == '\0')
+    {
+      this->Fail(vtkErrorCode::NoFileNameError, "FiberWriter: no FileName set");
+      return 0;
+    }
+    const std::string path(this->FileName);
+    vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberWriter");
+    if (!in.ok())
+    {
+      this->Fail(vtkErrorCode::UserError, in.error);
+      return 0;
+    }
+    if (!in.warning.empty())
+    {
+      vtkWarningMacro(<< in.warning);
+    }
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 only
+    if (!innerError.empty())
+    {
+      this->Fail(vtkErrorCode::UserError, innerError);
+      return 0;
+    }
 
-  std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  // The periodic cell goes where the format can hold it (.h5 attribute); the text formats have no
-  // place for it.
-  fiberpli::PeriodicCell cell;
-  std::string cellError;
-  fiberpli::ReadPeriodicCell(input, cell, cellError);
-  if (!cellError.empty())
+    std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    // The periodic cell goes where the format can hold it (.h5 attribute); the text formats have no
+    // place for it.
+    fiberpli::PeriodicCell cell;
+    std::string cellError;
+    fiberpli::ReadPeriodicCell(input, cell, cellError);
+    if (!cellError.empty())
+    {
+      this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
+      return 0;
+    }
+    const std::string error =
+      ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell) : fiberpli::writeFiberFile(path, in.model);
+    if (!error.empty())
+    {
+      this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);
+      return 0;
+    }
+    return 1;
+  });
+  if (!ok && this->GetErrorCode() == vtkErrorCode::NoError)
   {
-    this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
-    return;
-  }
-  const std::string error =
-    ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell) : fiberpli::writeFiberFile(path, in.model);
-  if (!error.empty())
-  {
-    this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    this->SetLastWriteError("FiberWriter: writing failed (internal error)");
   }
 }
 

@@ -1,5 +1,5 @@
-// The distributed solver's slab axis on a section strip (bench/README.md, weak-scaling model
-// item 3): Examples/mpi_section.py's periodic cell (2 populations along x and y, 30 µm, volume
+// The distributed solver's slab axis on a section strip (bench/README.md, "Slab axis on a section
+// strip"): Examples/mpi_section.py's periodic cell (2 populations along x and y, 30 µm, volume
 // fraction 0.3, seed 42) tiled along x and clipped to a thickness (each tile's fibers cut at its
 // faces), solved for a few steps on 2 and 4 thread ranks (Core/Testing/ThreadComm.h, as the Core
 // tests run the distributed solver). Prints the slab axis and per rank: owned fibers, peak held

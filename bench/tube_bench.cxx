@@ -1,5 +1,5 @@
-// Tube meshing speed: N fibers of 30 points (the brief's "1000 fibers of 30 points in well under a
-// second"), 12 sides, capped; 1 and 2 threads; prints seconds, triangles per second and peak RSS.
+// Tube meshing speed: N fibers of 30 points (1000 of them should take well under a second),
+// 12 sides, capped; 1 and 2 threads; prints seconds, triangles per second and peak RSS.
 #include "BenchUtil.h"
 #include "Mesh/TubeMesher.h"
 #include "Tissue/CubeGenerator.h"

@@ -1,16 +1,24 @@
 #include "Checkpoint/SolverCheckpoint.h"
 
+#include "Checkpoint/CheckpointState.h"
+
 #include "IO/AtomicFile.h"
+#include "IO/RegularFile.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
-#include <sys/stat.h>
 #include <utility>
 #include <vector>
+
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace fiberpli
 {
@@ -189,8 +197,8 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
   const std::size_t nf = model.fibers.size();
   if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf || st.closure.size() != nf)
   {
-    return named(path, "the solver state has " + std::to_string(st.points.size()) + " fibers, the model " +
-        std::to_string(nf));
+    return named(path, "the solver state has " + formatNumber(st.points.size()) + " fibers, the model " +
+        formatNumber(nf));
   }
   const std::string error = writeFileAtomically(path, [&](std::ostream& out) -> std::string {
     Writer w(out);
@@ -212,7 +220,7 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
       if (fib.radii.size() != fib.points.size() || ps.velocity.size() != fib.points.size() ||
         ps.source.size() != fib.points.size())
       {
-        return "fiber " + std::to_string(f) + " has points, radii and state of different sizes";
+        return "fiber " + formatNumber(f) + " has points, radii and state of different sizes";
       }
       w.u64(static_cast<std::uint64_t>(fib.id));
       w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(fib.bundle)));
@@ -257,6 +265,11 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
 std::string readSolverCheckpoint(const std::string& path, const CollisionSolverOptions& options,
   std::uint64_t inputFingerprint, FiberModel& model, CollisionSolverState& state)
 {
+  const std::string special = checkRegularFile(path); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return named(path, "cannot be read: " + special);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
@@ -279,8 +292,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   const std::uint64_t version = r.u64();
   if (version != kVersion)
   {
-    return named(path, "has version " + std::to_string(version) + ", this FiberPLI reads version " +
-        std::to_string(kVersion));
+    return named(path, "has version " + formatNumber(version) + ", this FiberPLI reads version " +
+        formatNumber(kVersion));
   }
   const auto given = optionList(options);
   const std::size_t nOptions = r.count(16);
@@ -368,8 +381,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   }
   if (fingerprint != inputFingerprint)
   {
-    return named(path, "was written for another input (fingerprint " + std::to_string(fingerprint) +
-        ", this input has " + std::to_string(inputFingerprint) + "); resume with the input it was written for");
+    return named(path, "was written for another input (fingerprint " + formatNumber(fingerprint) +
+        ", this input has " + formatNumber(inputFingerprint) + "); resume with the input it was written for");
   }
   model = std::move(m);
   state = std::move(st);
@@ -382,7 +395,7 @@ std::string checkpointPath(const std::string& path, const SolverComm* comm)
   {
     return path;
   }
-  return path + "." + std::to_string(comm->rank()) + "-of-" + std::to_string(comm->size());
+  return path + "." + formatNumber(comm->rank()) + "-of-" + formatNumber(comm->size());
 }
 
 std::string previousCheckpointPath(const std::string& path)
@@ -410,7 +423,7 @@ std::string agree(SolverComm* comm, const std::string& local)
   {
     if (!got[r].empty())
     {
-      return "rank " + std::to_string(r) + " failed: " + std::string(got[r].begin(), got[r].end());
+      return "rank " + formatNumber(r) + " failed: " + std::string(got[r].begin(), got[r].end());
     }
   }
   return {};
@@ -445,7 +458,7 @@ struct Generation
 // The generations of `path` that read (the file and its previous one), newest step first; with
 // none, error is the file's own read error.
 std::vector<Generation> readGenerations(const std::string& path, const CollisionSolverOptions& options,
-  std::uint64_t fingerprint, std::string& error)
+  std::uint64_t fingerprint, std::string& error, std::string& newestProblem)
 {
   std::vector<Generation> found;
   for (const std::string& file : { path, previousCheckpointPath(path) })
@@ -460,6 +473,7 @@ std::vector<Generation> readGenerations(const std::string& path, const Collision
     else if (file == path)
     {
       error = problem;
+      newestProblem = problem; // kept when the previous generation reads: the caller warns
     }
   }
   std::stable_sort(found.begin(), found.end(),
@@ -471,12 +485,55 @@ std::vector<Generation> readGenerations(const std::string& path, const Collision
   return found;
 }
 
+// When this run's file is missing: the checkpoint files of `base` written by runs over another
+// number of ranks ("" when there are none), so that resuming 2-rank checkpoints on 3 ranks says
+// what exists instead of only "cannot be opened".
+std::string otherRankCountFiles(const std::string& base, int ranks)
+{
+  const std::size_t slash = base.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : base.substr(0, slash));
+  const std::string name = slash == std::string::npos ? base : base.substr(slash + 1);
+  std::map<int, std::vector<std::string>> byRanks; // rank count -> files
+  if (ranks > 1 && checkRegularFile(base).empty() && ::access(base.c_str(), F_OK) == 0)
+  {
+    byRanks[1].push_back(name);
+  }
+  if (DIR* d = ::opendir(dir.c_str()))
+  {
+    while (const dirent* e = ::readdir(d))
+    {
+      const std::string entry = e->d_name;
+      int rank = -1, count = -1, used = 0;
+      if (entry.size() > name.size() + 1 && entry.compare(0, name.size() + 1, name + ".") == 0 &&
+        std::sscanf(entry.c_str() + name.size() + 1, "%d-of-%d%n", &rank, &count, &used) == 2 &&
+        static_cast<std::size_t>(used) == entry.size() - name.size() - 1 && count != ranks && count > 1)
+      {
+        byRanks[count].push_back(entry);
+      }
+    }
+    ::closedir(d);
+  }
+  std::string text;
+  for (auto& [count, files] : byRanks)
+  {
+    std::sort(files.begin(), files.end());
+    std::string list;
+    for (const std::string& f : files)
+    {
+      list += (list.empty() ? "'" : ", '") + f + "'";
+    }
+    text += (text.empty() ? "" : "; ") + std::string(count == 1 ? "a file of a serial run exists (" : "files for ") +
+      (count == 1 ? list + ")" : formatNumber(count) + " ranks exist (" + list + ")");
+  }
+  return text.empty() ? text : text + ": resume on the number of ranks that wrote them";
+}
+
 std::string describe(const std::vector<Generation>& gens)
 {
   std::string text;
   for (const Generation& g : gens)
   {
-    text += (text.empty() ? "'" : ", '") + g.file + "' at step " + std::to_string(g.state.steps);
+    text += (text.empty() ? "'" : ", '") + g.file + "' at step " + formatNumber(g.state.steps);
   }
   return text;
 }
@@ -493,7 +550,7 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
   std::string mine;
   for (const Generation& g : gens)
   {
-    mine += std::to_string(g.state.steps) + " ";
+    mine += formatNumber(g.state.steps) + " ";
   }
   mine += "|" + describe(gens);
   const std::vector<std::vector<char>> got =
@@ -517,7 +574,7 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
     common.erase(std::remove_if(common.begin(), common.end(),
                    [&](int v) { return std::find(held.begin(), held.end(), v) == held.end(); }),
       common.end());
-    all += (r ? "; rank " : "rank ") + std::to_string(r) + ": " + text.substr(bar + 1);
+    all += (r ? "; rank " : "rank ") + formatNumber(r) + ": " + text.substr(bar + 1);
   }
   if (common.empty())
   {
@@ -580,9 +637,9 @@ std::string checkFiberSet(SolverComm* comm, const Generation& g)
   {
     return {};
   }
-  return named(g.file, "the checkpoints of step " + std::to_string(g.state.steps) +
-      " do not hold each of the model's " + std::to_string(n) +
-      " fibers exactly once (global indices are not 0.." + std::to_string(n - 1) +
+  return named(g.file, "the checkpoints of step " + formatNumber(g.state.steps) +
+      " do not hold each of the model's " + formatNumber(n) +
+      " fibers exactly once (global indices are not 0.." + formatNumber(n - 1) +
       "): files of different runs or rank counts?");
 }
 } // namespace
@@ -594,7 +651,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   CollisionSolverResult failed;
   if (checkpoint.interval < 0)
   {
-    failed.error = "CheckpointInterval is " + std::to_string(checkpoint.interval) + ", must be >= 0 (0 = off)";
+    failed.error = "CheckpointInterval is " + formatNumber(checkpoint.interval) + ", must be >= 0 (0 = off)";
     return failed;
   }
   if (checkpoint.interval == 0 && !checkpoint.resume)
@@ -616,10 +673,16 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   FiberModel resumed;
   CollisionSolverState saved;
   std::string resumedFile = path;
+  std::string newestProblem; // why the newest generation was not the one resumed
   if (checkpoint.resume)
   {
     std::string problem;
-    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem);
+    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem, newestProblem);
+    if (gens.empty() && ::access(path.c_str(), F_OK) != 0)
+    {
+      const std::string others = otherRankCountFiles(checkpoint.path, comm ? comm->size() : 1);
+      problem += others.empty() ? "" : "; " + others;
+    }
     failed.error = agree(comm, problem);
     if (!failed.error.empty())
     {
@@ -636,9 +699,21 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     {
       return failed;
     }
+    // The checksum says the file is as written, not that what was written is sound: the state
+    // passes the checks of fresh input and of every scalar (Checkpoint/CheckpointState.h).
+    const std::string unsound = checkResumedState(g.model, g.state, options, comm ? comm->size() : 1);
+    failed.error = agree(comm, unsound.empty() ? unsound : named(g.file, unsound));
+    if (!failed.error.empty())
+    {
+      return failed;
+    }
     resumed = std::move(g.model);
     saved = std::move(g.state);
     resumedFile = g.file;
+    if (resumedFile != path && newestProblem.empty())
+    {
+      newestProblem = named(path, "holds a step not every rank holds");
+    }
   }
   FiberModel& work = checkpoint.resume ? resumed : model;
   CollisionSolverRun run(work, options, progress, observer, comm);
@@ -669,7 +744,7 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
       if (!problem.empty())
       {
         result = run.finish();
-        result.error = problem + " (at step " + std::to_string(st.steps) + ")";
+        result.error = problem + " (at step " + formatNumber(st.steps) + ")";
         written = false;
         break;
       }
@@ -682,6 +757,11 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   if (checkpoint.resume && result.error.empty()) // a failed resumed run leaves the caller's piece
   {
     model = std::move(resumed);
+  }
+  if (checkpoint.resume && resumedFile != path) // never silently: the newest file was not used
+  {
+    result.warnings.push_back(newestProblem + "; resumed from the previous generation '" + resumedFile +
+      "' at step " + formatNumber(saved.steps));
   }
   return result;
 }

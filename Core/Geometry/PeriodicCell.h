@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace fiberpli
@@ -76,6 +77,27 @@ struct PeriodicCell
   }
 };
 
+/// The one rule of how small a periodic cell may be for its links: every edge must exceed twice
+/// the largest link reach w (a link's largest extent along an axis + 2 × its radius + MinimumGap),
+/// so that a link meets at most one image of another per axis. "" when the cell holds `reach`,
+/// else the message (naming SegmentLength and MinimumGap). The solver's pair search applies it to
+/// its links (Index/PeriodicPairs.h); FiberCubeSource to the longest links the solver makes of its
+/// fibers (Tissue/CubeGenerator.h), so that a periodic cube the source accepts the solver accepts.
+inline std::string periodicReachProblem(const PeriodicCell& cell, double reach)
+{
+  const Vec3 e = cell.edge();
+  const double eMin = std::min(e.x, std::min(e.y, e.z));
+  if (2.0 * reach < eMin)
+  {
+    return {};
+  }
+  std::ostringstream msg;
+  msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << reach
+      << " um (segment extent + 2 x radius + MinimumGap): use a larger cell, a shorter SegmentLength or a "
+         "smaller MinimumGap";
+  return msg.str();
+}
+
 /// True when a fiber from `first` to `last` is closed through the cell: last − first is a non-zero
 /// lattice vector within 1e-5 × the cell's largest edge per axis (docs/data-contract.md); closure
 /// receives it exactly. The one closure rule of the solver and the metrics.
@@ -88,28 +110,6 @@ inline bool closesThroughCell(const Vec3& first, const Vec3& last, const Periodi
   const Vec3 e = cell.edge();
   const double tol = 1e-5 * std::max(e.x, std::max(e.y, e.z));
   return cell.isLatticeVector(last - first, tol, closure);
-}
-
-/// The cell from the six values of the `periodic_cell` field (xmin xmax ymin ymax zmin zmax).
-/// Empty message when usable, else why not (count, non-finite, max <= min).
-inline std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicCell& cell)
-{
-  if (count != 6)
-  {
-    return "periodic_cell has " + std::to_string(count) +
-      " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
-  }
-  for (int a = 0; a < 3; ++a)
-  {
-    if (!std::isfinite(b[2 * a]) || !std::isfinite(b[2 * a + 1]) || !(b[2 * a + 1] > b[2 * a]))
-    {
-      return "periodic_cell axis " + std::to_string(a) + " is [" + std::to_string(b[2 * a]) + ", " +
-        std::to_string(b[2 * a + 1]) + "], must be finite with max > min";
-    }
-    cell.lo[a] = b[2 * a];
-    cell.hi[a] = b[2 * a + 1];
-  }
-  return {};
 }
 
 } // namespace fiberpli

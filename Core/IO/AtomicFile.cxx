@@ -1,5 +1,6 @@
 #include "IO/AtomicFile.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -120,16 +121,30 @@ std::string randomSuffix()
 
 } // namespace
 
-std::string writeFileAtomically(const std::string& path,
-  const std::function<std::string(std::ostream& out)>& writeContent)
+namespace
 {
+
+/// One file of an atomic write: its target, whether and how it existed, and its temporary file.
+struct Staged
+{
+  std::string path;
+  std::string tmp;
+  bool targetExists = false;
+  struct stat targetInfo;
+};
+
+/// Writes the content of one file into a new temporary file beside its target, flushed, synced
+/// and closed. "" on success (staged.tmp exists), else the error (no temporary file is left).
+std::string stage(const std::string& path, const std::function<std::string(std::ostream& out)>& writeContent,
+  Staged& staged)
+{
+  staged.path = path;
   if (path.empty())
   {
     return "cannot write a file with an empty path";
   }
-  struct stat targetInfo;
-  const bool targetExists = ::stat(path.c_str(), &targetInfo) == 0;
-  if (targetExists && S_ISDIR(targetInfo.st_mode))
+  staged.targetExists = ::stat(path.c_str(), &staged.targetInfo) == 0;
+  if (staged.targetExists && S_ISDIR(staged.targetInfo.st_mode))
   {
     return "cannot write " + path + ": it is a directory";
   }
@@ -177,7 +192,7 @@ std::string writeFileAtomically(const std::string& path,
       }
     }
   }
-  if (error.empty() && targetExists && ::fchmod(fd, targetInfo.st_mode & 07777) != 0)
+  if (error.empty() && staged.targetExists && ::fchmod(fd, staged.targetInfo.st_mode & 07777) != 0)
   {
     error = systemError("cannot set permissions of", path, errno);
   }
@@ -189,22 +204,140 @@ std::string writeFileAtomically(const std::string& path,
   {
     error = systemError("cannot close", path, errno);
   }
-  if (error.empty() && ::rename(tmp.c_str(), path.c_str()) != 0)
-  {
-    error = systemError("cannot replace", path, errno);
-  }
   if (!error.empty())
   {
     ::unlink(tmp.c_str());
     return error;
   }
-  // Make the rename itself durable; failure here cannot undo the (complete) write, so ignore it.
-  const int dirFd = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dirFd >= 0)
+  staged.tmp = tmp;
+  return {};
+}
+
+/// Makes the renames in the directories of `paths` durable; a failure here cannot undo the
+/// (complete) write, so it is ignored.
+void syncDirectories(const std::vector<std::string>& paths)
+{
+  std::vector<std::string> done;
+  for (const std::string& path : paths)
   {
-    ::fsync(dirFd);
-    ::close(dirFd);
+    const std::string dir = directoryOf(path);
+    if (std::find(done.begin(), done.end(), dir) != done.end())
+    {
+      continue;
+    }
+    done.push_back(dir);
+    const int dirFd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dirFd >= 0)
+    {
+      ::fsync(dirFd);
+      ::close(dirFd);
+    }
   }
+}
+
+} // namespace
+
+std::string writeFileAtomically(const std::string& path,
+  const std::function<std::string(std::ostream& out)>& writeContent)
+{
+  return writeFilesAtomically({ AtomicPart{ path, writeContent } });
+}
+
+std::string writeFilesAtomically(const std::vector<AtomicPart>& parts)
+{
+  // 1. Every temporary file written and synced; the first failure removes them all, and no
+  //    target has been touched.
+  std::vector<Staged> staged(parts.size());
+  std::string error;
+  for (std::size_t i = 0; i < parts.size() && error.empty(); ++i)
+  {
+    error = stage(parts[i].path, parts[i].writeContent, staged[i]);
+  }
+  const auto removeTemporaries = [&staged]() {
+    for (const Staged& s : staged)
+    {
+      if (!s.tmp.empty())
+      {
+        ::unlink(s.tmp.c_str());
+      }
+    }
+  };
+  if (!error.empty())
+  {
+    removeTemporaries();
+    return error;
+  }
+  // 2. With several files, the targets that exist get a hard-linked backup first, so that a
+  //    rename failing half-way can put back the ones already replaced (renames of complete,
+  //    synced files into the same directory practically never fail, but then the set is whole).
+  std::vector<std::string> backups(parts.size());
+  const auto removeBackups = [&backups]() {
+    for (const std::string& b : backups)
+    {
+      if (!b.empty())
+      {
+        ::unlink(b.c_str());
+      }
+    }
+  };
+  for (std::size_t i = 0; parts.size() > 1 && i < staged.size(); ++i)
+  {
+    if (!staged[i].targetExists)
+    {
+      continue;
+    }
+    std::string backup;
+    int rc = -1;
+    for (int attempt = 0; attempt < 64 && rc != 0; ++attempt)
+    {
+      backup = staged[i].path + ".old-" + randomSuffix();
+      rc = ::link(staged[i].path.c_str(), backup.c_str());
+      if (rc != 0 && errno != EEXIST)
+      {
+        break;
+      }
+    }
+    if (rc != 0)
+    {
+      error = systemError("cannot keep the old", staged[i].path, errno);
+      removeBackups();
+      removeTemporaries();
+      return error;
+    }
+    backups[i] = backup;
+  }
+  // 3. The renames, in order; a failure restores the targets replaced so far.
+  for (std::size_t i = 0; i < staged.size(); ++i)
+  {
+    if (::rename(staged[i].tmp.c_str(), staged[i].path.c_str()) == 0)
+    {
+      staged[i].tmp.clear();
+      continue;
+    }
+    error = systemError("cannot replace", staged[i].path, errno);
+    for (std::size_t k = 0; k < i; ++k)
+    {
+      if (!backups[k].empty())
+      {
+        ::rename(backups[k].c_str(), staged[k].path.c_str());
+        backups[k].clear();
+      }
+      else
+      {
+        ::unlink(staged[k].path.c_str()); // it did not exist before
+      }
+    }
+    removeBackups();
+    removeTemporaries();
+    return error;
+  }
+  removeBackups();
+  std::vector<std::string> paths;
+  for (const AtomicPart& p : parts)
+  {
+    paths.push_back(p.path);
+  }
+  syncDirectories(paths);
   return {};
 }
 

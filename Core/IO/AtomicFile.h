@@ -1,4 +1,4 @@
-/// AtomicFile: replace a file so that a failed write never destroys what was there (docs/api.md
+/// AtomicFile: replace a file (or several together) so that a failed write never destroys what was there (docs/api.md
 /// §4: writers write to a temporary file beside the target and rename it).
 /// Steps: create "<target>.tmp-<16 random hex digits>" beside the target (same directory, hence
 /// same file system, so rename(2) is atomic) with O_EXCL | O_NOFOLLOW, so nothing planted there is
@@ -10,6 +10,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace fiberpli
 {
@@ -20,5 +21,21 @@ namespace fiberpli
 /// the umask; a replaced file keeps its permission bits.
 std::string writeFileAtomically(const std::string& path,
   const std::function<std::string(std::ostream& out)>& writeContent);
+
+/// One file of writeFilesAtomically: its path and what to write into it (as for
+/// writeFileAtomically).
+struct AtomicPart
+{
+  std::string path;
+  std::function<std::string(std::ostream& out)> writeContent;
+};
+
+/// Replaces several files together or not at all (a .tck and its .radius.tsf): first every
+/// temporary file is written, flushed, synced and closed; only when all are complete are they
+/// renamed over their targets, in order. A failed write leaves every target untouched; should a
+/// rename fail after others succeeded, the targets already replaced are put back from hard-linked
+/// copies taken before the first rename (a target that did not exist is removed again). Returns
+/// "" or the first error, naming its path; no temporary or backup file is left behind.
+std::string writeFilesAtomically(const std::vector<AtomicPart>& parts);
 
 } // namespace fiberpli

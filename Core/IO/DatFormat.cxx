@@ -1,4 +1,5 @@
 #include "IO/DatFormat.h"
+#include "Util/PrintableText.h"
 
 #include "IO/LineReader.h"
 
@@ -125,10 +126,10 @@ std::string describePointError(PointParse p, int count, std::string_view badToke
       msg << "expected 4 numbers 'x y z r', found " << count;
       break;
     case PointParse::NotANumber:
-      msg << "'" << badToken.substr(0, 40) << "' is not a number";
+      msg << "'" << printableText(badToken) << "' is not a number";
       break;
     case PointParse::NotFinite:
-      msg << "'" << badToken.substr(0, 40) << "' is not a finite number";
+      msg << "'" << printableText(badToken) << "' is not a finite number";
       break;
     case PointParse::BadRadius:
       msg << "radius " << v[3] << " must be > 0";

@@ -1,4 +1,6 @@
 #include "IO/FiberFile.h"
+#include "IO/RegularFile.h"
+#include "Util/PrintableText.h"
 
 #include "IO/AtomicFile.h"
 #include "IO/DatFormat.h"
@@ -35,7 +37,7 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
   }
   if (!tsf.timestamp.empty() && !tckTimestampValue.empty() && tsf.timestamp != tckTimestampValue)
   {
-    return readFailure(tsfPath + ": timestamp '" + tsf.timestamp + "' differs from timestamp '" + tckTimestampValue +
+    return readFailure(tsfPath + ": timestamp '" + printableText(tsf.timestamp) + "' differs from timestamp '" + printableText(tckTimestampValue) +
       "' of " + tckPath + " (the radii belong to other tracks; rewrite or remove the .tsf)");
   }
   const std::size_t streamlines = tck.model.fibers.size() + tck.droppedFibers;
@@ -99,6 +101,11 @@ FiberReadResult readTckWithRadii(std::istream& in, const std::string& path, doub
   {
     return tck; // no radius file: defaultRadius everywhere, as for any .tck
   }
+  const std::string special = checkRegularFile(tsfPath); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return readFailure("cannot read the radii of " + path + ": " + special);
+  }
   std::ifstream tsfIn(tsfPath, std::ios::binary);
   if (!tsfIn)
   {
@@ -131,23 +138,20 @@ std::string writeTckWithRadii(const std::string& path, const FiberModel& model)
       radii.push_back(f.radii);
     }
   }
-  const std::string tckError = writeFileAtomically(path, [&](std::ostream& out) {
-    const std::string error = writeTck(out, model);
-    return error.empty() ? error : path + ": " + error;
+  // One pair: both files are written and synced before either replaces its old version, so a
+  // failure (a full disk) leaves the old pair, which still reads (AtomicFile.h).
+  return writeFilesAtomically({
+    AtomicPart{ path,
+      [&](std::ostream& out) {
+        const std::string error = writeTck(out, model);
+        return error.empty() ? error : path + ": " + error;
+      } },
+    AtomicPart{ tsfPath,
+      [&](std::ostream& out) {
+        const std::string error = writeTsf(out, radii, tckTimestamp(model));
+        return error.empty() ? error : tsfPath + ": " + error;
+      } },
   });
-  if (!tckError.empty())
-  {
-    return tckError;
-  }
-  const std::string tsfError = writeFileAtomically(tsfPath, [&](std::ostream& out) {
-    const std::string error = writeTsf(out, radii, tckTimestamp(model));
-    return error.empty() ? error : tsfPath + ": " + error;
-  });
-  if (!tsfError.empty())
-  {
-    return path + " was written but its radius file was not: " + tsfError;
-  }
-  return {};
 }
 
 } // namespace
@@ -192,6 +196,10 @@ bool canReadFiberFile(const std::string& path)
   {
     return false;
   }
+  if (!checkRegularFile(path).empty())
+  {
+    return false; // never open a FIFO or device (it could block or never end)
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
@@ -213,6 +221,11 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   if (format == FiberFileFormat::Unknown)
   {
     return readFailure(path + ": unknown fiber file extension (expected .dat, .tck or .trk)");
+  }
+  const std::string special = checkRegularFile(path); // a FIFO would block the read forever
+  if (!special.empty())
+  {
+    return readFailure("cannot read " + special);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in)

@@ -44,9 +44,9 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius);
 /// Writes .dat or .tck (by extension) atomically: on failure an existing file is unchanged.
 /// .tck also writes the radii to tckRadiusPath(path) (Float32LE .tsf, same timestamp as the .tck,
 /// see tckTimestamp), atomically too. Radii that float32 cannot hold (> 3.4e38, or rounding to 0)
-/// are refused before either file is touched; if the .tck is written but the .tsf write then fails
-/// (I/O error), the message says so, and the old .tsf, if any, no longer matches the .tck's
-/// timestamp, so reading reports the mismatch instead of using wrong radii.
+/// are refused before either file is touched. The two files are replaced as a pair
+/// (writeFilesAtomically): when either cannot be written (a full disk, an I/O error), neither
+/// old file is changed, so the old pair still reads.
 /// Returns "" on success, else a message naming the path.
 std::string writeFiberFile(const std::string& path, const FiberModel& model);
 

@@ -1,4 +1,5 @@
 #include "IO/MrtrixHeader.h"
+#include "Util/PrintableText.h"
 
 #include "IO/BinaryIO.h"
 
@@ -141,7 +142,7 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
     }
     if (!ok)
     {
-      return fail(mrtrixErrorAt(fileName, "line", lineNo, "'" + key + "' given twice with different values"));
+      return fail(mrtrixErrorAt(fileName, "line", lineNo, "'" + printableText(key) + "' given twice with different values"));
     }
   }
 
@@ -161,7 +162,7 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   else
   {
     return fail(mrtrixErrorAt(fileName, "line", datatypeLine,
-      "datatype '" + datatype + "' is not supported (Float32LE, Float32BE, Float64LE, Float64BE)"));
+      "datatype '" + printableText(datatype) + "' is not supported (Float32LE, Float32BE, Float64LE, Float64BE)"));
   }
   h.littleEndian = dt.compare(dt.size() - 2, 2, "le") == 0;
 
@@ -173,11 +174,11 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   if (fv.size() < 2 || fv[0] != '.' || (fv[1] != ' ' && fv[1] != '\t'))
   {
     return fail(mrtrixErrorAt(fileName, "line", fileLine,
-      "'file: " + fileValue + "': only data in the same file ('file: . <offset>') is supported"));
+      "'file: " + printableText(fileValue) + "': only data in the same file ('file: . <offset>') is supported"));
   }
   if (!parseUnsigned(trim(fv.substr(1)), h.dataOffset))
   {
-    return fail(mrtrixErrorAt(fileName, "line", fileLine, "'file: " + fileValue + "': offset is not a number"));
+    return fail(mrtrixErrorAt(fileName, "line", fileLine, "'file: " + printableText(fileValue) + "': offset is not a number"));
   }
   if (h.dataOffset < headerEnd || h.dataOffset > h.fileSize)
   {
@@ -192,7 +193,7 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   {
     if (!parseUnsigned(countValue, h.count))
     {
-      return fail(mrtrixErrorAt(fileName, "line", h.countLine, "count '" + countValue + "' is not a number"));
+      return fail(mrtrixErrorAt(fileName, "line", h.countLine, "count '" + printableText(countValue) + "' is not a number"));
     }
     // Every streamline needs at least its NaN separator, plus the final Inf: this bounds any
     // allocation sized by count to the real file length.

@@ -1,4 +1,5 @@
 #include "IO/TrkFormat.h"
+#include "Util/PrintableText.h"
 
 #include "IO/BinaryIO.h"
 
@@ -152,7 +153,7 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
     }
     if (!valid || headerAxis[0] == headerAxis[1] || headerAxis[1] == headerAxis[2] || headerAxis[0] == headerAxis[2])
     {
-      return fail(at(fileName, 948, "voxel_order '" + std::string(order, 3) + "' is not three distinct letters of R/L, A/P, S/I"));
+      return fail(at(fileName, 948, "voxel_order '" + printableText(std::string_view(order, 3)) + "' is not three distinct letters of R/L, A/P, S/I"));
     }
     // World axis and direction of each affine voxel axis: the dominant entry of its column.
     int affineAxis[3];

@@ -38,16 +38,7 @@ double PeriodicPairs::reach(const std::vector<CapsuleLink>& links, double minimu
 
 std::string PeriodicPairs::cellTooSmall(double w, const PeriodicCell& cell)
 {
-  const Vec3 e = cell.edge();
-  const double eMin = std::min(e.x, std::min(e.y, e.z));
-  if (2.0 * w < eMin)
-  {
-    return {};
-  }
-  std::ostringstream msg;
-  msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << w
-      << " um (segment extent + 2 x radius): use a larger cell or a shorter SegmentLength";
-  return msg.str();
+  return periodicReachProblem(cell, w); // the one rule (Geometry/PeriodicCell.h)
 }
 
 std::string PeriodicPairs::cellTooSmall(

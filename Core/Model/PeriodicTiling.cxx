@@ -176,4 +176,16 @@ bool periodicTranslateReaches(const Fiber& fib, const TileReach& reach)
   return false;
 }
 
+std::string tileSection(FiberModel& model, const PeriodicCell& cell, const double volume[6], const TileReach* reach)
+{
+  return tileModel(model, cell, volume, reach);
+}
+
+void sectionTiling(TileReach& reach, const PeriodicCell& cell, const double volume[6])
+{
+  reach.periodic = true;
+  reach.cell = cell;
+  std::copy(volume, volume + 6, reach.tiling);
+}
+
 } // namespace fiberpli

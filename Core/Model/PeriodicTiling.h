@@ -22,6 +22,18 @@ namespace fiberpli
 std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double box[6],
   const TileReach* reach = nullptr);
 
+/// The one rule by which a section honours a periodic cell, shared by PLISimulation and
+/// FiberOrientationGroundTruth so that their pixels see the same tissue: the section's volume of
+/// interest `volume` is filled with the lattice translates of the cell's fibers (tileModel into
+/// `volume`; under MPI with the tile's `reach`, which sectionTiling made periodic first).
+/// Returns tileModel's error.
+std::string tileSection(FiberModel& model, const PeriodicCell& cell, const double volume[6],
+  const TileReach* reach = nullptr);
+
+/// Makes a tile's reach periodic for tileSection(…, cell, volume, &reach): the fiber stands for
+/// its translates into `volume`, and reaches the tile when one of them does.
+void sectionTiling(TileReach& reach, const PeriodicCell& cell, const double volume[6]);
+
 /// Whether one translate that tileModel(…, reach.cell, reach.tiling) makes of `fiber` has a link
 /// reaching reach.box: per link an interval of lattice shifts per axis, intersected with the
 /// tiling's, so the cost does not grow with the number of translates.

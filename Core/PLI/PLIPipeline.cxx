@@ -2,6 +2,7 @@
 
 #include "Model/InnerRadii.h"
 #include "PLI/OptionLimits.h"
+#include "Util/NumberFormat.h"
 #include "PLI/Optics.h"
 #include "PLI/Simulator.h"
 #include "PLI/TissueSpec.h"
@@ -199,7 +200,7 @@ std::string resolutionWarning(const FiberModel& model, const PLIOptions& o)
       first = false;
     }
   if (!first && o.voxelSize > 0.5 * rmin)
-    return "VoxelSize " + std::to_string(o.voxelSize) + " > half the smallest fiber radius " + std::to_string(rmin) +
+    return "VoxelSize " + formatNumber(o.voxelSize) + " > half the smallest fiber radius " + formatNumber(rmin) +
       ": layers are not resolved";
   return {};
 }

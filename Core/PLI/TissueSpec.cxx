@@ -1,6 +1,7 @@
 #include "PLI/TissueSpec.h"
 
 #include "PLI/OptionLimits.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,13 +101,13 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
   {
     if (!std::isfinite(l.scale) || l.scale <= 0.0)
     {
-      st.error = "Layers: scale " + std::to_string(l.scale) + " in " + where + " must be > 0";
+      st.error = "Layers: scale " + formatNumber(l.scale) + " in " + where + " must be > 0";
       return st;
     }
     if (!std::isfinite(l.dn) || !std::isfinite(l.muPerMm) || l.muPerMm < 0.0)
     {
       st.error = "Layers: dn and mu in " + where + " must be finite, mu >= 0 (mu " +
-        std::to_string(l.muPerMm) + ")";
+        formatNumber(l.muPerMm) + ")";
       return st;
     }
     if (!(std::fabs(l.dn) <= kMaxBirefringence))
@@ -119,11 +120,11 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
     }
     if (l.model == AxisModel::Background && l.dn != 0.0)
     {
-      st.error = "Layers: layer 'b' in " + where + " has dn " + std::to_string(l.dn) + ", must be 0";
+      st.error = "Layers: layer 'b' in " + where + " has dn " + formatNumber(l.dn) + ", must be 0";
       return st;
     }
     if (l.scale > 1.0)
-      st.warnings.push_back("Layers: scale " + std::to_string(l.scale) + " > 1 in " + where);
+      st.warnings.push_back("Layers: scale " + formatNumber(l.scale) + " > 1 in " + where);
     if (l.model == AxisModel::Parallel && l.dn > 0.0)
       st.warnings.push_back("Layers: parallel layer with dn > 0 in " + where + " shows up rotated by 90 deg");
     if (l.model == AxisModel::Radial && l.dn < 0.0)
@@ -140,7 +141,7 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
   {
     if (layers[i].scale == layers[i - 1].scale)
     {
-      st.error = "Layers: two layers with scale " + std::to_string(layers[i].scale) + " in " + where;
+      st.error = "Layers: two layers with scale " + formatNumber(layers[i].scale) + " in " + where;
       return st;
     }
   }
@@ -154,7 +155,7 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
   spec = TissueSpec();
   if (!std::isfinite(backgroundMu) || backgroundMu < 0.0)
   {
-    st.error = "BackgroundAbsorption is " + std::to_string(backgroundMu) + ", must be >= 0";
+    st.error = "BackgroundAbsorption is " + formatNumber(backgroundMu) + ", must be >= 0";
     return st;
   }
   spec.backgroundMu = backgroundMu;
@@ -180,7 +181,7 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
     haveGeneral = true;
     if (!std::isfinite(defaultMu) || defaultMu < 0.0)
     {
-      st.error = "Absorption is " + std::to_string(defaultMu) + ", must be >= 0";
+      st.error = "Absorption is " + formatNumber(defaultMu) + ", must be >= 0";
       return st;
     }
     if (!(std::fabs(defaultDn) <= kMaxBirefringence))
@@ -198,7 +199,7 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
     for (const std::string& rawGroup : split(layersText, '|'))
     {
       std::string group = trim(rawGroup);
-      const std::string where0 = "group " + std::to_string(groupIndex++);
+      const std::string where0 = "group " + formatNumber(groupIndex++);
       const auto colon = group.find(':');
       std::vector<Layer> layers;
       if (colon == std::string::npos)
@@ -229,10 +230,10 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
         }
         if (specific.count(id))
         {
-          st.error = "Layers: bundle " + std::to_string(id) + " has two groups";
+          st.error = "Layers: bundle " + formatNumber(id) + " has two groups";
           return st;
         }
-        const std::string where = where0 + " (bundle " + std::to_string(id) + ")";
+        const std::string where = where0 + " (bundle " + formatNumber(id) + ")";
         st.error = parseGroup(group.substr(colon + 1), where, layers);
         if (!st.ok())
           return st;
@@ -257,7 +258,7 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
     }
     else
     {
-      st.error = "Layers: bundle " + std::to_string(id) + " has no group and there is no default group";
+      st.error = "Layers: bundle " + formatNumber(id) + " has no group and there is no default group";
       return st;
     }
   }

@@ -339,7 +339,11 @@ std::string agreeOnError(SolverComm& comm, const std::string& localError)
       b.assign(localError.begin(), localError.end());
   }
   const std::vector<std::vector<char>> in = comm.exchange(out);
-  return std::string(in[who].begin(), in[who].end());
+  const std::string message(in[who].begin(), in[who].end());
+  // When only some ranks failed, say which one (the same text on every rank); when all failed
+  // (a bad option, the same everywhere) the message stands alone.
+  const bool all = std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
+  return all ? message : "rank " + std::to_string(who) + ": " + message;
 }
 
 bool anyRank(SolverComm& comm, bool value)

@@ -86,7 +86,9 @@ struct TrafficCount
 /// fibers others send here, keeps global order. Collective.
 TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
 
-/// "" when no rank failed, else the message of the lowest failing rank, on every rank. Collective.
+/// "" when no rank failed, else the message of the lowest failing rank R, on every rank: as it is
+/// when every rank failed, else as "rank R: <message>" (so that the other ranks' reports name the
+/// rank whose piece failed). Collective.
 std::string agreeOnError(SolverComm& comm, const std::string& localError);
 /// Logical or / exact minimum and maximum over all ranks. Collective.
 bool anyRank(SolverComm& comm, bool value);

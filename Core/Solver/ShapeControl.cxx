@@ -1,4 +1,5 @@
 #include "Solver/ShapeControl.h"
+#include "Util/NumberFormat.h"
 
 #include <cmath>
 
@@ -20,6 +21,14 @@ void erasePoint(Fiber& f, FiberPointState& st, std::size_t j)
   f.radii.erase(f.radii.begin() + off);
   st.velocity.erase(st.velocity.begin() + off);
   st.source.erase(st.source.begin() + off);
+}
+
+// Whether the midpoint of a link is a third point: far from the origin (|x| ~ 3e16 µm, where
+// neighbouring doubles are 4 µm apart) it rounds to an end point, and splitting would never end.
+bool splittable(const Vec3& a, const Vec3& b)
+{
+  const Vec3 m = 0.5 * (a + b);
+  return !(m == a) && !(m == b);
 }
 
 void insertMidpoint(Fiber& f, FiberPointState& st, std::size_t i)
@@ -90,17 +99,32 @@ bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength, s
   }
   const double lMin = segmentLength * (2.0 / 3.0);
   const double lMax = segmentLength * (4.0 / 3.0);
+  // A bound on the steps of this pass (splits, merges, advances). Exact arithmetic needs fewer
+  // than 2·ceil(len / lMin) per link for its splits and advances (halving ends at pieces longer
+  // than lMin) plus two per merge, at most one merge per point and one split after it: four
+  // times that is never reached, and ends the pass should rounding ever make a split and a merge
+  // undo each other forever.
+  double budget = 64.0 + 16.0 * static_cast<double>(f.points.size());
+  for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+  {
+    budget += 8.0 * std::ceil(distance(f.points[k], f.points[k + 1]) / lMin);
+  }
   bool changed = false;
   std::size_t i = 0;
-  while (i + 1 < f.points.size())
+  while (i + 1 < f.points.size() && budget-- > 0.0)
   {
     const std::size_t n = f.points.size();
     const double len = distance(f.points[i], f.points[i + 1]);
-    if (len > lMax)
+    if (len > lMax && splittable(f.points[i], f.points[i + 1]))
     {
       insertMidpoint(f, st, i);
       changed = true;
       continue; // re-check link i, now half as long
+    }
+    if (len > lMax)
+    {
+      ++i; // the midpoint rounds to an end point: double precision cannot shorten this link
+      continue;
     }
     if (len < lMin && n > minPoints)
     {
@@ -203,6 +227,34 @@ bool curvatureOk(const Fiber& f, double minRadius, const Vec3* closure)
     }
   }
   return true;
+}
+
+std::string checkCoordinateResolution(const FiberModel& model, double segmentLength)
+{
+  if (!(segmentLength > 0.0))
+  {
+    return {};
+  }
+  const double limit = kMaxCoordinateOverSegment * segmentLength;
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fib = model.fibers[f];
+    for (std::size_t i = 0; i < fib.points.size(); ++i)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        if (!(std::fabs(fib.points[i][d]) <= limit))
+        {
+          return "fiber " + formatNumber(f) + " (fiber_id " + formatNumber(fib.id) + ") point " + formatNumber(i) +
+            " has coordinate " + formatNumber(fib.points[i][d]) + " um, more than " +
+            formatNumber(kMaxCoordinateOverSegment) + " x the segment length " + formatNumber(segmentLength) +
+            " um: double precision cannot resolve links of that length so far from the origin (move the model "
+            "towards the origin or raise SegmentLength)";
+        }
+      }
+    }
+  }
+  return {};
 }
 
 } // namespace fiberpli

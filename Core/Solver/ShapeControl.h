@@ -6,6 +6,7 @@
 #include "Geometry/Vec3.h"
 #include "Model/FiberModel.h"
 
+#include <string>
 #include <vector>
 
 namespace fiberpli
@@ -35,9 +36,21 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
 /// L̄ > 0). A split inserts the mean position, radius, velocity and source index; a merge deletes
 /// one point (never an end point, the one with the weaker radius feature). A fiber of minPoints
 /// points is never shortened (2; a fiber closed through a periodic cell needs 3). state arrays must
-/// have f.size() entries. Returns true when a point was inserted or removed.
+/// have f.size() entries. Returns true when a point was inserted or removed. Bounded: a link whose
+/// midpoint rounds to one of its ends is left as it is, and one pass takes at most four times the
+/// steps its links can need.
 bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength,
   std::size_t minPoints = 2);
+
+/// Largest |coordinate| of a point relative to the segment length L̄ (µm/µm): there neighbouring
+/// doubles are 2.2e-4 L̄ apart, still fine enough for split and merge; much farther out a
+/// link's midpoint rounds to one of its ends (docs/solver.md §5.1).
+constexpr double kMaxCoordinateOverSegment = 1e12;
+
+/// "" when every coordinate of the model is within kMaxCoordinateOverSegment × segmentLength of
+/// the origin (or split/merge is off, segmentLength <= 0), else a message naming the fiber, the
+/// point and the value. The solver refuses such input (fresh or resumed) before it starts.
+std::string checkCoordinateResolution(const FiberModel& model, double segmentLength);
 
 /// Curvature rule of docs/solver.md §5.2 (division-free): a vertex whose circumradius is
 /// below minRadius or whose angle is below 60° moves by +0.2·step towards the inside of the bend,

@@ -1,8 +1,10 @@
 #include "Solver/SolverChecks.h"
 
+#include "Model/PeriodicCellRule.h"
 #include "Solver/SolverEngine.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
+#include "Util/NumberFormat.h"
 
 #include <cmath>
 #include <cstring>
@@ -131,9 +133,9 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "Tortuosity is " << o.tortuosity << ", must be in [0, 3] (0 or 1 = off)";
   }
-  else if (!isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
+  else if (o.periodicCell.enabled() || !isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
   {
-    msg << "the periodic cell has a non-finite bound";
+    msg << validatePeriodicCell(o.periodicCell); // Model/PeriodicCellRule.h: "" when usable
   }
   return msg.str();
 }
@@ -145,10 +147,10 @@ std::string validatePiece(const FiberModel& piece, const std::vector<std::int64_
 {
   std::size_t bad = 0;
   std::string error = validateModel(piece, &bad, ShortFibers::Allowed);
-  const std::string local = "fiber " + std::to_string(bad);
+  const std::string local = "fiber " + formatNumber(bad);
   if (!error.empty() && bad < global.size() && error.compare(0, local.size(), local) == 0)
   {
-    error = "fiber " + std::to_string(global[bad]) + error.substr(local.size());
+    error = "fiber " + formatNumber(global[bad]) + error.substr(local.size());
   }
   return error;
 }

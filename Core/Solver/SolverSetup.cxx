@@ -1,6 +1,7 @@
 // SolverEngine set-up: the fibers prepared for solving, the closures of a periodic cell, the
 // segment length and the step cap with their warnings (docs/solver.md §4.2, §5, §9).
 #include "Solver/SolverEngine.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
 #include <cmath>
@@ -86,11 +87,11 @@ void prepareFibers(SolverEngine& s, std::vector<std::string>& warnings)
   }
   if (repeated > 0)
   {
-    warnings.push_back(std::to_string(repeated) + " repeated consecutive points removed");
+    warnings.push_back(formatNumber(repeated) + " repeated consecutive points removed");
   }
   if (tooShort > 0)
   {
-    warnings.push_back(std::to_string(tooShort) +
+    warnings.push_back(formatNumber(tooShort) +
       " fibers with fewer than 2 distinct points are not solved (copied through)");
   }
 }
@@ -155,15 +156,15 @@ void configure(SolverEngine& s, std::vector<std::string>& warnings)
   // (0.4 where the default leaves collisions, docs/solver.md §4.2).
   if (rMin < 0.5 * rMedian && s.o_.maxDisplacement < 0.4)
   {
-    warnings.push_back("smallest radius " + std::to_string(rMin) +
-      " is below 1/2 of the median radius " + std::to_string(rMedian) +
-      ": every point moves at most MaxDisplacement " + std::to_string(s.o_.maxDisplacement) +
-      " x this radius = " + std::to_string(s.o_.maxDisplacement * rMin) +
+    warnings.push_back("smallest radius " + formatNumber(rMin) +
+      " is below 1/2 of the median radius " + formatNumber(rMedian) +
+      ": every point moves at most MaxDisplacement " + formatNumber(s.o_.maxDisplacement) +
+      " x this radius = " + formatNumber(s.o_.maxDisplacement * rMin) +
       " um per step (slow; dense targets of such radii may need MaxDisplacement 0.4)");
   }
   if (s.o_.maxDisplacement > 1.0)
   {
-    warnings.push_back("MaxDisplacement " + std::to_string(s.o_.maxDisplacement) +
+    warnings.push_back("MaxDisplacement " + formatNumber(s.o_.maxDisplacement) +
       " is above 1: a point may move farther than the thinnest fiber's radius per step, so fibers can "
       "pass through each other unseen");
   }
@@ -176,19 +177,19 @@ void configure(SolverEngine& s, std::vector<std::string>& warnings)
   }
   if (s.o_.minCurvatureRadius > 0.0 && s.o_.minCurvatureRadius < rMax)
   {
-    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
-      " is below the largest radius " + std::to_string(rMax) +
+    warnings.push_back("MinCurvatureRadius " + formatNumber(s.o_.minCurvatureRadius) +
+      " is below the largest radius " + formatNumber(rMax) +
       ": a tube bent that tightly intersects itself on the inside");
   }
   if (s.st_.segmentLength > 0.0 && s.o_.minCurvatureRadius > 0.0 &&
     s.o_.minCurvatureRadius < s.st_.segmentLength / std::sqrt(3.0))
   {
-    warnings.push_back("MinCurvatureRadius " + std::to_string(s.o_.minCurvatureRadius) +
+    warnings.push_back("MinCurvatureRadius " + formatNumber(s.o_.minCurvatureRadius) +
       " is below SegmentLength/sqrt(3): only the 60 degree rule can act");
   }
   if (s.st_.segmentLength > 0.0 && s.st_.segmentLength < 0.25 * rMedian)
   {
-    warnings.push_back("SegmentLength " + std::to_string(s.st_.segmentLength) +
+    warnings.push_back("SegmentLength " + formatNumber(s.st_.segmentLength) +
       " is below 1/4 of the median radius: many points, slow and memory hungry");
   }
 }

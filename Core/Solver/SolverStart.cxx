@@ -3,6 +3,7 @@
 
 #include "Solver/SolverChecks.h"
 #include "Util/Threads.h"
+#include "Util/NumberFormat.h"
 
 #include <numeric>
 
@@ -67,6 +68,10 @@ bool CollisionSolverRun::start()
   {
     error = checkStacksAndGap(model, o, s.comm_);
   }
+  if (error.empty())
+  {
+    error = checkCoordinateResolution(model, st.segmentLength); // Solver/ShapeControl.h
+  }
   if (r.fail(error))
   {
     return false;
@@ -107,21 +112,21 @@ std::string CollisionSolverRun::Impl::misfit(const CollisionSolverState& saved) 
   {
     // Every rank would number its fibers 0..n-1: the global indices would collide.
     error = "the saved solver state has no global fiber indices (a serial state): it cannot "
-            "resume a run over " + std::to_string(r.s.comm_->size()) + " ranks";
+            "resume a run over " + formatNumber(r.s.comm_->size()) + " ranks";
   }
   if (error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
     saved.closed.size() != nf || saved.closure.size() != nf))
   {
-    error = "the saved solver state is for " + std::to_string(saved.points.size()) +
-      " fibers, the model has " + std::to_string(nf);
+    error = "the saved solver state is for " + formatNumber(saved.points.size()) +
+      " fibers, the model has " + formatNumber(nf);
   }
   for (std::size_t f = 0; error.empty() && f < nf; ++f)
   {
     const std::size_t n = r.model.fibers[f].size();
     if (saved.points[f].velocity.size() != n || saved.points[f].source.size() != n)
     {
-      error = "the saved solver state of fiber " + std::to_string(f) + " has " +
-        std::to_string(saved.points[f].velocity.size()) + " points, the model " + std::to_string(n);
+      error = "the saved solver state of fiber " + formatNumber(f) + " has " +
+        formatNumber(saved.points[f].velocity.size()) + " points, the model " + formatNumber(n);
     }
   }
   if (error.empty())

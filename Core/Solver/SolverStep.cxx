@@ -2,6 +2,7 @@
 #include "Solver/SolverRun.h"
 
 #include "Solver/PushBoost.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +40,7 @@ bool CollisionSolverRun::step()
   SolverEngine::Counts counts;
   if (!s.detect(&counts, changed))
   {
-    r.failDetection(" (at step " + std::to_string(st.steps) + ")");
+    r.failDetection(" (at step " + formatNumber(st.steps) + ")");
     return false;
   }
   st.changed = counts.changed;
@@ -100,7 +101,7 @@ bool CollisionSolverRun::step()
   }
   if (o.stallSteps > 0 && st.sinceImprovement >= o.stallSteps)
   {
-    st.warnings.push_back("stopped after " + std::to_string(st.sinceImprovement) +
+    st.warnings.push_back("stopped after " + formatNumber(st.sinceImprovement) +
       " steps without fewer collisions (StallSteps)");
     return end();
   }
@@ -124,7 +125,7 @@ bool CollisionSolverRun::step()
     r.result.aborted = true;
     if (!s.detect()) // collisions must describe the geometry that is returned
     {
-      s.detectError_ += " (at step " + std::to_string(st.steps) + ")";
+      s.detectError_ += " (at step " + formatNumber(st.steps) + ")";
       r.takeState();
       r.result.error = s.detectError_;
       r.phase = Impl::Phase::Failed;
@@ -148,7 +149,7 @@ CollisionSolverResult CollisionSolverRun::finish()
   {
     if (!r.s.detect())
     {
-      r.failDetection(" (at step " + std::to_string(r.s.st_.steps) + ")");
+      r.failDetection(" (at step " + formatNumber(r.s.st_.steps) + ")");
     }
     else
     {
@@ -174,7 +175,7 @@ CollisionSolverResult CollisionSolverRun::finish()
     if (!s.detect())
     {
       r.takeState();
-      result.error = s.detectError_ + " (at full radius after step " + std::to_string(st.steps) + ")";
+      result.error = s.detectError_ + " (at full radius after step " + formatNumber(st.steps) + ")";
       r.phase = Impl::Phase::Failed;
       return result;
     }

@@ -215,3 +215,117 @@ TEST(AtomicFile, TemporaryNameIsUnpredictable)
   }
   EXPECT_EQ(dir.entries().size(), 1u);
 }
+
+TEST(AtomicFile, FilePairFailingSecondWriteKeepsBothOldFiles)
+{
+  // The second file cannot be written (its content fails half-way, as on a full disk): neither
+  // old file may change, and no temporary or backup file may remain.
+  TempDir dir;
+  const std::string a = dir.path + "/pair.tck";
+  const std::string b = dir.path + "/pair.radius.tsf";
+  spit(a, "old a");
+  spit(b, "old b");
+  const std::string err = writeFilesAtomically({
+    AtomicPart{ a, [](std::ostream& out) { out << "new a"; return std::string(); } },
+    AtomicPart{ b, [](std::ostream& out) { out << "half of new b"; return std::string("No space left on device"); } },
+  });
+  EXPECT_EQ(err, "No space left on device");
+  EXPECT_EQ(slurp(a), "old a");
+  EXPECT_EQ(slurp(b), "old b");
+  EXPECT_EQ(dir.entries().size(), 2u);
+
+  ASSERT_EQ(writeFilesAtomically({
+              AtomicPart{ a, [](std::ostream& out) { out << "new a"; return std::string(); } },
+              AtomicPart{ b, [](std::ostream& out) { out << "new b"; return std::string(); } },
+            }),
+    "");
+  EXPECT_EQ(slurp(a), "new a");
+  EXPECT_EQ(slurp(b), "new b");
+  EXPECT_EQ(dir.entries().size(), 2u);
+}
+
+TEST(AtomicFile, FilePairFailedSecondRenamePutsTheFirstBack)
+{
+  // Both contents are complete, the first file is renamed into place, then the second rename
+  // fails (its target became a non-empty directory): the first target gets its old content back.
+  TempDir dir;
+  const std::string a = dir.path + "/first.dat";
+  const std::string b = dir.path + "/second.dat";
+  spit(a, "old first");
+  const std::string err = writeFilesAtomically({
+    AtomicPart{ a, [](std::ostream& out) { out << "new first"; return std::string(); } },
+    AtomicPart{ b,
+      [&](std::ostream& out) {
+        out << "new second";
+        ::mkdir(b.c_str(), 0755);
+        std::ofstream(b + "/inside") << "x";
+        return std::string();
+      } },
+  });
+  EXPECT_NE(err.find("cannot replace " + b), std::string::npos) << err;
+  EXPECT_EQ(slurp(a), "old first");
+  EXPECT_EQ(dir.entries().size(), 2u) << "temporary or backup file left behind";
+  ::unlink((b + "/inside").c_str());
+}
+
+TEST(AtomicFile, TckAndRadiusFileAreReplacedAsAPair)
+{
+  // A .tck and its .radius.tsf: when the .tsf cannot be written, the old .tck must stay (it used
+  // to be replaced first, leaving a .tck whose radius file no longer matched: the pair did not
+  // read). The failure is provoked with a directory in the .tsf's place.
+  TempDir dir;
+  const std::string tck = dir.path + "/model.tck";
+  FiberModel oldModel;
+  Fiber f;
+  f.points = { { 0, 0, 0 }, { 1, 0, 0 } };
+  f.radii = { 1, 1 };
+  oldModel.fibers = { f };
+  ASSERT_EQ(writeFiberFile(tck, oldModel), "");
+  const std::string oldTck = slurp(tck);
+  const std::string oldTsf = slurp(tckRadiusPath(tck));
+
+  FiberModel newModel = oldModel;
+  newModel.fibers.push_back(f);
+  newModel.fibers[1].radii = { 2, 2 };
+  ASSERT_EQ(::unlink(tckRadiusPath(tck).c_str()), 0);
+  ASSERT_EQ(::mkdir(tckRadiusPath(tck).c_str(), 0755), 0);
+  const std::string err = writeFiberFile(tck, newModel);
+  EXPECT_NE(err.find(tckRadiusPath(tck)), std::string::npos) << err;
+  EXPECT_EQ(slurp(tck), oldTck) << "the .tck was replaced although its radius file was not";
+  EXPECT_EQ(dir.entries().size(), 2u) << "temporary file left behind";
+  ASSERT_EQ(::rmdir(tckRadiusPath(tck).c_str()), 0);
+
+  // Written together, the new pair reads back with its own radii.
+  spit(tckRadiusPath(tck), oldTsf);
+  ASSERT_EQ(writeFiberFile(tck, newModel), "");
+  const FiberReadResult back = readFiberFile(tck, 1.0);
+  ASSERT_TRUE(back.ok()) << back.error;
+  ASSERT_EQ(back.model.fibers.size(), 2u);
+  EXPECT_EQ(back.model.fibers[1].radii[0], 2.0);
+}
+
+TEST(AtomicFile, ReadersRefuseAFifoWithoutBlocking)
+{
+  // Opening a FIFO for reading blocks until a writer comes: FileName on one used to hang.
+  TempDir dir;
+  for (const std::string name : { "pipe.dat", "pipe.tck", "pipe.trk" })
+  {
+    const std::string fifo = dir.path + "/" + name;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_FALSE(canReadFiberFile(fifo));
+    const FiberReadResult r = readFiberFile(fifo, 1.0); // blocks forever without the check
+    EXPECT_NE(r.error.find(fifo + " is a FIFO (named pipe), not a regular file"), std::string::npos) << r.error;
+  }
+  // A .tck whose radius file is a FIFO.
+  const std::string tck = dir.path + "/model.tck";
+  FiberModel m;
+  Fiber f;
+  f.points = { { 0, 0, 0 }, { 1, 0, 0 } };
+  f.radii = { 1, 1 };
+  m.fibers = { f };
+  ASSERT_EQ(writeFiberFile(tck, m), "");
+  ASSERT_EQ(::unlink(tckRadiusPath(tck).c_str()), 0);
+  ASSERT_EQ(::mkfifo(tckRadiusPath(tck).c_str(), 0600), 0);
+  const FiberReadResult r = readFiberFile(tck, 1.0);
+  EXPECT_NE(r.error.find("FIFO"), std::string::npos) << r.error;
+}

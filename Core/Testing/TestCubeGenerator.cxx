@@ -1,5 +1,9 @@
 // Cube benchmark generator (docs/tissue-models.md §6.1): counts, directions, displacement bound, seeds.
 #include "Tissue/CubeGenerator.h"
+#include "Tissue/BundleOptions.h"
+#include "Tissue/RadiusDistribution.h"
+#include "MemoryLimitGuard.h"
+#include "Util/NumberFormat.h"
 
 #include <gtest/gtest.h>
 
@@ -144,4 +148,68 @@ TEST(CubeGenerator, RejectsBadOptionsByName)
   o.numberOfFibers = 2000000000;
   o.segmentLength = 0.001;
   EXPECT_NE(validateCubeOptions(o).find("would need"), std::string::npos);
+}
+
+TEST(CubeGenerator, LogNormalSpreadThatUnderflowsTheRadiiIsRefused)
+{
+  // RadiusSpread 1e300 (or 1000) made LogNormal radii r·exp(s·z) underflow to 0: the disk packing
+  // of Lattice seeding then placed nothing and was read anyway (a crash), and Random seeding gave
+  // fibers of radius 0. Both sources check the spread with the same rule, naming it and its value.
+  CubeOptions o;
+  o.populations = 1;
+  o.edgeLength = 20.0;
+  o.periodic = true;
+  o.numberOfFibers = 50;
+  o.radiusDistribution = RadiusDistribution::LogNormal;
+  o.seeding = CubeSeeding::Lattice;
+  for (double spread : { 1e300, 1000.0, 2.5 })
+  {
+    o.radiusSpread = spread;
+    const std::string e = validateCubeOptions(o);
+    EXPECT_NE(e.find("RadiusSpread is " + formatNumber(spread)), std::string::npos) << e;
+    EXPECT_NE(e.find("LogNormal"), std::string::npos) << e;
+    EXPECT_LT(e.size(), 200u) << "a number in long form: " << e;
+  }
+  BundleOptions b;
+  b.radiusDistribution = RadiusDistribution::LogNormal;
+  b.radiusSpread = 1e300;
+  EXPECT_NE(validateBundleOptions(b).find("RadiusSpread is 1e+300"), std::string::npos) << validateBundleOptions(b);
+  // The largest accepted spread still gives radii that are positive normal numbers.
+  o.radiusSpread = kMaxLogNormalSpread;
+  o.populations = 2;
+  ASSERT_EQ(validateCubeOptions(o), "");
+  const FiberModel m = generateCube(o);
+  ASSERT_EQ(m.fibers.size(), 50u);
+  for (const Fiber& f : m.fibers)
+  {
+    EXPECT_GE(f.radii[0], o.fiberRadius * std::exp(-3.0 * o.radiusSpread) * (1 - 1e-12));
+  }
+}
+
+TEST(CubeGenerator, VolumeFractionRefusalNamesItAndTheRealCount)
+{
+  // A broad radius spread with VolumeFraction used to be refused as "NumberOfFibers 1.1e+08 ..."
+  // (every fiber assumed as thin as the thinnest radius, and a property the user did not set).
+  // The message names VolumeFraction and the count generateCube really makes.
+  CubeOptions o;
+  o.populations = 2;
+  o.periodic = true;
+  o.edgeLength = 400.0;
+  o.volumeFraction = 0.3;
+  o.radiusDistribution = RadiusDistribution::LogNormal;
+  o.radiusSpread = 1.0;
+  std::string e;
+  {
+    fiberpli::testing::MemoryLimitGuard limit("1M");
+    e = validateCubeOptions(o);
+  }
+  ASSERT_NE(e, "");
+  EXPECT_NE(e.find("VolumeFraction 0.3 ("), std::string::npos) << e;
+  EXPECT_EQ(e.find("NumberOfFibers"), std::string::npos) << e;
+  // The count in the message is the count generateCube makes.
+  const std::size_t made = generateCube(o).fibers.size();
+  EXPECT_NE(e.find("(" + std::to_string(made) + " fibers)"), std::string::npos) << made << ": " << e;
+  // ... far below the old estimate, every fiber as thin as the thinnest radius r e^-3s.
+  const double thinnest = o.fiberRadius * std::exp(-3.0 * o.radiusSpread);
+  EXPECT_LT(static_cast<double>(made), 0.01 * o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * thinnest * thinnest));
 }

@@ -252,7 +252,7 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_FALSE(sniff("\n\n# only comments\n"));
   EXPECT_FALSE(sniff(std::string("1 2 3 0.5\0\0\0", 12)));
   EXPECT_FALSE(sniff("mrtrix tracks\ndatatype: Float32LE\n"));
-  // One bad line among fastPLI points (issue 13): still ours, so the user sees our line number.
+  // One bad line among fastPLI points: still ours, so the user sees our line number.
   std::string points;
   for (int i = 0; i < 30; ++i)
   {
@@ -264,4 +264,22 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_FALSE(sniff("TITLE = \"x\"\nVARIABLES = \"X\" \"Y\" \"Z\" \"R\"\nZONE I=30\n" + points));
   EXPECT_FALSE(sniff("zone t=\"a\"\n" + points));
   EXPECT_FALSE(sniff("a b c d\nx y z w\n1 2 3 0.5\n")); // mostly not points
+}
+
+TEST(DatFormat, GarbageIsQuotedEscapedNeverEchoedRaw)
+{
+  // A binary or damaged file: the message must not carry its raw bytes (an escape sequence would
+  // act on the terminal that shows it), only printable ASCII, and a long token is cut short.
+  const std::string garbage = std::string("1 2 \x1b[2J\x1b]0;owned\x07\xff\x01") + std::string(200, 'x') + " 4\n";
+  std::istringstream in(garbage);
+  const FiberReadResult r = readFastPliDat(in, "broken.dat");
+  ASSERT_FALSE(r.ok());
+  for (const char c : r.error)
+  {
+    const unsigned char u = static_cast<unsigned char>(c);
+    EXPECT_TRUE(u >= 0x20 && u < 0x7f) << "raw byte " << static_cast<int>(u) << " in: " << r.error;
+  }
+  EXPECT_NE(r.error.find("\\x1b[2J\\x1b]0;owned\\x07\\xff\\x01"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("..."), std::string::npos) << r.error;
+  EXPECT_LT(r.error.size(), 160u) << r.error;
 }

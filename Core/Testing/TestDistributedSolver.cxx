@@ -558,7 +558,8 @@ TEST(DistributedSolver, AnErrorOnOneRankReachesEveryRank)
   std::size_t f = 0;
   for (const RankRun& run : runs)
   {
-    EXPECT_EQ(run.result.error, serialError); // the global index, as the serial run names it
+    // The global index, as the serial run names it, and the rank whose piece failed.
+    EXPECT_EQ(run.result.error, "rank 2: " + serialError);
     ASSERT_EQ(run.model.fibers.size(), 10u); // every piece unchanged (the input piece had 10)
     for (const Fiber& fib : run.model.fibers)
     {

@@ -302,11 +302,11 @@ TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
 
 TEST(FiberMetrics, LongUnwrappedFiberIsCheckedAgainstTheMemoryBudget)
 {
-  // One fiber closed through a 10 µm cell after 1e5 periods: its 1e4 links of 100 µm each reach
-  // ~1000 voxel layers, 1e7 layer entries (~320 MB), refused before any is stored; the Monte Carlo
-  // cells are refused too.
+  // One fiber closed through a 10 µm cell after 1e5 periods: its 1e5 links of just under 10 µm (one cell
+  // edge each: longer ones are refused outright) each reach ~100 voxel layers, 1e7 layer entries
+  // (~320 MB), refused before any is stored; the Monte Carlo cells are refused too.
   FiberModel m;
-  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, 1e6 }, 10000, 0.5, 0));
+  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, 1e6 }, 100001, 0.5, 0));
   MetricsOptions o = box(5, 0.1);
   o.cell = cube(5);
   o.pairs = false;
@@ -463,4 +463,33 @@ TEST(FiberMetrics, MonteCarloAgreesWithinItsStandardError)
 
   o.samples = 0;
   EXPECT_NE(computeFiberMetrics(m, o, nullptr).error.find("Samples 0"), std::string::npos);
+}
+
+TEST(FiberMetrics, LinksLongerThanThePeriodicCellAreRefusedAtOnce)
+{
+  // 99 µm links in a 10 µm cell wrapped over it ten times: every voxel visited once per wrap (a
+  // minute for a few thousand fibers) and no single nearest image for a pair. Refused before any
+  // work, naming the fiber, the link, its span and the edge; links up to the edge are measured.
+  FiberModel m;
+  for (int f = 0; f < 3; ++f)
+  {
+    Fiber fiber;
+    for (int k = 0; k < 5; ++k)
+      fiber.points.push_back({ -5.0 + (f == 2 ? 99.0 : 2.0) * k, -3.0 + 3.0 * f, 0.0 });
+    fiber.radii.assign(5, 0.5);
+    fiber.id = 10 + f;
+    m.fibers.push_back(fiber);
+  }
+  MetricsOptions o;
+  o.cell.lo = { -5, -5, -5 };
+  o.cell.hi = { 5, 5, 5 };
+  o.numberOfThreads = 1;
+  const MetricsResult r = computeFiberMetrics(m, o, {});
+  EXPECT_NE(r.error.find("fiber 2 (fiber_id 12) link 0 spans 99 um along x, more than the periodic cell's edge 10"),
+    std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("UsePeriodicCell"), std::string::npos) << r.error;
+  m.fibers.pop_back();
+  const MetricsResult ok = computeFiberMetrics(m, o, {});
+  EXPECT_EQ(ok.error, "");
+  EXPECT_GT(ok.volume.fraction, 0.0);
 }

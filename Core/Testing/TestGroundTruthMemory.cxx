@@ -1,4 +1,4 @@
-// FiberOrientationGroundTruth's memory (issue 11): 2500² pixels were killed, since every pixel
+// FiberOrientationGroundTruth's memory: 2500² pixels used to be killed, since every pixel
 // carried a 162-bin histogram that the filter never outputs. Histograms are now opt-in and the
 // whole estimate is checked against the memory budget before anything is allocated.
 #include "MemoryLimitGuard.h"

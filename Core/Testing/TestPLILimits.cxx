@@ -1,4 +1,4 @@
-// PLISimulation options that used to crash, hang or silently give inf/NaN/zero images (issue 11):
+// PLISimulation options that used to crash, hang or silently give inf/NaN/zero images:
 // each is refused with an error naming the property and the value, and the largest accepted value
 // still gives a finite image.
 #include "MemoryLimitGuard.h"

@@ -5,6 +5,7 @@
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
 #include "ThreadComm.h"
+#include "Model/PeriodicCellRule.h"
 #include "Model/PeriodicTiling.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
@@ -322,6 +323,36 @@ TEST(PeriodicCell, BoundsFieldIsValidated)
   EXPECT_NE(periodicCellFromBounds(nan, 6, cell), "");
 }
 
+TEST(PeriodicCell, EdgeThatOverflowsIsRefusedEverywhere)
+{
+  // Finite bounds whose edge overflows (1e308 − (−1e308) = inf), a huge edge, and an edge too fine
+  // for its bounds' magnitude: refused by the one rule, in short number form, by the field reader
+  // and by the solver's options alike (the solver used to die on std::length_error).
+  PeriodicCell cell;
+  const double overflow[6] = { -1e308, 1e308, -5, 5, -5, 5 };
+  const std::string e = periodicCellFromBounds(overflow, 6, cell);
+  EXPECT_NE(e.find("periodic_cell axis x is [-1e+308, 1e+308]"), std::string::npos) << e;
+  EXPECT_NE(e.find("edge inf"), std::string::npos) << e;
+  EXPECT_FALSE(cell.enabled()) << "a refused cell must not be filled in";
+  const double huge[6] = { -5, 5, 0, 2e9, -5, 5 };
+  EXPECT_NE(periodicCellFromBounds(huge, 6, cell).find("axis y"), std::string::npos);
+  const double fine[6] = { -5, 5, -5, 5, 1e15, 1e15 + 0.5 };
+  EXPECT_NE(periodicCellFromBounds(fine, 6, cell).find("axis z"), std::string::npos);
+
+  FiberModel m;
+  Fiber f;
+  f.points = { { -4, 0, 0 }, { 0, 0, 0 }, { 4, 0, 0 } };
+  f.radii = { 1, 1, 1 };
+  m.fibers = { f };
+  const FiberModel in = m;
+  CollisionSolverOptions o;
+  o.periodicCell.lo = { -1e308, -5, -5 };
+  o.periodicCell.hi = { 1e308, 5, 5 };
+  const CollisionSolverResult r = solveCollisions(m, o);
+  EXPECT_NE(r.error.find("periodic_cell axis x"), std::string::npos) << r.error;
+  EXPECT_TRUE(m.fibers[0].points == in.fibers[0].points);
+}
+
 TEST(PeriodicTiling, CopiesExactlyTheTranslatesThatReachTheBox)
 {
   // One closed fiber along x through (0, 0, 0), radius 0.5, in the cell [-5, 5]³; it spans
@@ -407,4 +438,37 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
       EXPECT_EQ(layout.wrapShift(p.z), t.z);
     }
   });
+}
+
+TEST(PeriodicCube, AnEdgeTheSourceAcceptsTheSolverAccepts)
+{
+  // EdgeLength 8 with SegmentLength 2, Displacement 0.3 and FiberRadius 0.8 passed the source (>= 4
+  // radii) although the solver's links may reach 2 + 0.6 + 1.6 um, more than half the cell. The
+  // source now applies the solver's rule to the longest links the solver can meet: it refuses
+  // such an edge naming EdgeLength, and what it accepts the solver solves without that error.
+  CubeOptions c;
+  c.populations = 1;
+  c.periodic = true;
+  c.numberOfFibers = 2;
+  c.fiberRadius = 0.8;
+  c.segmentLength = 2.0;
+  c.displacement = 0.3;
+  c.edgeLength = 8.0;
+  const std::string e = validateCubeOptions(c);
+  EXPECT_NE(e.find("EdgeLength is 8, too small for SegmentLength 2, Displacement 0.3 and FiberRadius 0.8"),
+    std::string::npos) << e;
+  EXPECT_NE(e.find("twice the largest link reach"), std::string::npos) << e;
+  for (double edge : { 8.6, 9.0, 12.0 })
+  {
+    c.edgeLength = edge;
+    ASSERT_EQ(validateCubeOptions(c), "") << edge;
+    FiberModel m = generateCube(c);
+    CollisionSolverOptions o;
+    o.periodicCell = cubeCell(c);
+    o.segmentLength = c.segmentLength;
+    o.maxSteps = 50;
+    o.numberOfThreads = 1;
+    const CollisionSolverResult r = solveCollisions(m, o);
+    EXPECT_EQ(r.error.find("link reach"), std::string::npos) << edge << ": " << r.error;
+  }
 }

@@ -222,12 +222,12 @@ TEST(PolydisperseSeeding, TwoPopulationSlabThinnerThanAFiberWarns)
 
 TEST(PolydisperseSeeding, ThePackingsMemoryIsCheckedOnEveryPiece)
 {
-  // 10⁶ fibers of 3 points in 8 pieces: a piece's share of the model fits 200 MB, the packing of
+  // 10⁶ fibers of 4 points in 8 pieces: a piece's share of the model fits 200 MB, the packing of
   // all 10⁶ disks, which every piece computes, does not (diskPackingBytes).
   CubeOptions o = gammaCube(1, 2000.0, 0.0, 1);
   o.volumeFraction = 0.0;
   o.numberOfFibers = 1000000;
-  o.segmentLength = 2000.0;
+  o.segmentLength = 700.0; // 4 points per fiber (3 would span half the cell: the solver refuses that)
   setenv("FIBERPLI_MEMORY_LIMIT", "200M", 1);
   const std::string e = validateCubeOptions(o, 8);
   o.seeding = CubeSeeding::Random;

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <dirent.h>
 #include <fstream>
+#include <functional>
 #include <future>
 #include <iterator>
 #include <memory>
@@ -514,4 +515,116 @@ TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
   EXPECT_NE(r.error.find(file.path), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("at step 25"), std::string::npos) << r.error;
   EXPECT_TRUE(bitwiseEqual(resumed, in)) << "the caller's model must be unchanged";
+}
+
+TEST(SolverCheckpoint, ASoundFileWithAnUnsoundStateIsRefusedNamingFileAndField)
+{
+  // A checkpoint with a valid checksum but one edited value (rewritten with its checksum) used to
+  // be trusted: a NaN radius scale aborted, a tiny segment length split the model until memory ran
+  // out, a point at 1e300 hung, a NaN closure gave NaN output, all fibers flagged inactive gave
+  // "collisions 0". Each must be refused before the run goes on, naming the file and the field.
+  CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  FiberModel savedModel;
+  CollisionSolverState savedState;
+  ASSERT_EQ(readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), savedModel, savedState), "");
+  std::remove(previousCheckpointPath(run.file.path).c_str()); // nothing older to fall back to
+  struct Edit
+  {
+    const char* expected;
+    std::function<void(FiberModel&, CollisionSolverState&)> apply;
+  };
+  const std::vector<Edit> edits = {
+    { "radius scale is nan", [](FiberModel&, CollisionSolverState& s) { s.scale = std::nan(""); } },
+    { "radius scale is 1.5", [](FiberModel&, CollisionSolverState& s) { s.scale = 1.5; } },
+    { "segment length is 1e-09", [](FiberModel&, CollisionSolverState& s) { s.segmentLength = 1e-9; } },
+    { "coordinate 1e+300", [](FiberModel& m, CollisionSolverState&) { m.fibers[3].points[1].x = 1e300; } },
+    { "closure vector of fiber 2", [](FiberModel&, CollisionSolverState& s) { s.closure[2].y = std::nan(""); } },
+    { "flags fiber 0 (fiber_id 0) inactive",
+      [](FiberModel&, CollisionSolverState& s) { std::fill(s.active.begin(), s.active.end(), 0); } },
+    { "move cap is 1e+09", [](FiberModel&, CollisionSolverState& s) { s.vMax = 1e9; } },
+    { "step count is -4", [](FiberModel&, CollisionSolverState& s) { s.steps = -4; } },
+    { "push scale is inf", [](FiberModel&, CollisionSolverState& s) { s.pushScale = HUGE_VAL; } },
+    { "velocity of fiber 1 (fiber_id 1) point 0", [](FiberModel&, CollisionSolverState& s) {
+        s.points[1].velocity[0].z = std::nan("");
+      } },
+  };
+  for (const Edit& edit : edits)
+  {
+    FiberModel m = savedModel;
+    CollisionSolverState st = savedState;
+    edit.apply(m, st);
+    ASSERT_EQ(writeSolverCheckpoint(run.file.path, m, st, run.options, modelFingerprint(run.in)), "");
+    FiberModel resumed = run.in;
+    const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true });
+    EXPECT_NE(r.error.find("checkpoint file '" + run.file.path + "'"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find(edit.expected), std::string::npos) << r.error;
+    EXPECT_TRUE(bitwiseEqual(resumed, run.in)) << "a refused resume must leave the caller's model";
+  }
+  // The state as written resumes.
+  ASSERT_EQ(writeSolverCheckpoint(run.file.path, savedModel, savedState, run.options, modelFingerprint(run.in)), "");
+  FiberModel resumed = run.in;
+  EXPECT_EQ(solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true }).error, "");
+}
+
+TEST(SolverCheckpoint, AFallBackToThePreviousGenerationIsAWarning)
+{
+  // A damaged newest file used to be skipped silently for its previous generation.
+  CheckpointedRun run;
+  ASSERT_EQ(run.error, "");
+  {
+    std::ofstream damaged(run.file.path, std::ios::binary | std::ios::trunc);
+    damaged << "FiberPLI? no";
+  }
+  FiberModel m = run.in;
+  const CollisionSolverResult r = solveWithCheckpoints(m, run.options, { run.file.path, 0, true });
+  ASSERT_EQ(r.error, "");
+  bool warned = false;
+  for (const std::string& w : r.warnings)
+  {
+    warned = warned || (w.find("'" + run.file.path + "'") != std::string::npos &&
+                         w.find("resumed from the previous generation '" + previousCheckpointPath(run.file.path) +
+                           "' at step 20") != std::string::npos);
+  }
+  EXPECT_TRUE(warned) << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
+}
+
+TEST(SolverCheckpoint, ResumingOnAnotherRankCountSaysWhichFilesExist)
+{
+  // Files of a 2-rank run, resumed on 3 ranks (and serially): every rank says that files for 2
+  // ranks exist, instead of only that its own file cannot be opened.
+  TempFile file;
+  for (int r = 0; r < 2; ++r)
+  {
+    std::ofstream(file.path + "." + std::to_string(r) + "-of-2") << "x";
+  }
+  const FiberModel whole = denseOpenCube();
+  std::vector<std::string> errors(3);
+  runRanksWithin(3, 60, [&](SolverComm& comm) {
+    FiberModel piece;
+    for (std::size_t f = whole.fibers.size() * comm.rank() / 3; f < whole.fibers.size() * (comm.rank() + 1) / 3; ++f)
+      piece.fibers.push_back(whole.fibers[f]);
+    errors[static_cast<std::size_t>(comm.rank())] =
+      solveWithCheckpoints(piece, twoRankOptions(), { file.path, 0, true }, {}, {}, &comm).error;
+  });
+  for (const std::string& e : errors)
+  {
+    EXPECT_NE(e.find("files for 2 ranks exist ('solve.ckpt.0-of-2', 'solve.ckpt.1-of-2')"), std::string::npos) << e;
+  }
+  FiberModel serial = whole;
+  const std::string e = solveWithCheckpoints(serial, twoRankOptions(), { file.path, 0, true }).error;
+  EXPECT_NE(e.find("files for 2 ranks exist"), std::string::npos) << e;
+}
+
+TEST(SolverCheckpoint, AFifoAsCheckpointFileIsRefusedWithoutBlocking)
+{
+  TempFile file;
+  ASSERT_EQ(::mkfifo(file.path.c_str(), 0600), 0);
+  std::string error;
+  runRanksWithin(1, 30, [&](SolverComm&) {
+    FiberModel m = denseOpenCube();
+    error = solveWithCheckpoints(m, twoRankOptions(), { file.path, 0, true }).error;
+  });
+  EXPECT_NE(error.find("'" + file.path + "'"), std::string::npos) << error;
+  EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
 }

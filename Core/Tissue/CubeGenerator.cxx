@@ -38,6 +38,17 @@ double fiberCountEstimate(const CubeOptions& o)
   return o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * rMin * rMin) + 1.0;
 }
 
+// The largest link reach the collision solver can meet in a periodic cube (the pair search's rule,
+// Geometry/PeriodicCell.h), with its SegmentLength equal to the cube's: a link spans at most one
+// point spacing plus the displacement of both ends along an axis, and the solver's split leaves no
+// link longer than 4/3 SegmentLength; plus both radii (FiberRadius: with a spread the solver
+// still judges the radii it gets).
+double solverLinkReach(const CubeOptions& o)
+{
+  const double spacing = o.edgeLength / (pointsPerFiber(o) - 1) + 2.0 * o.displacement;
+  return std::min(spacing, 4.0 / 3.0 * o.segmentLength) + 2.0 * o.fiberRadius;
+}
+
 // Fiber j of population k (stream (seed, k, j)): straight along axis k, displaced; closed through
 // the faces when periodic (the last point is the first shifted by one period, not drawn).
 Fiber makeStraightFiber(const CubeOptions& o, int k, int j)
@@ -269,6 +280,25 @@ std::vector<int> populationCounts(const CubeOptions& o)
   return counts;
 }
 
+// The fibers a volume fraction takes (populationCounts' rule), counted up to kCountedFibers:
+// beyond that `atLeast` is set and the count is a lower bound (enough for the memory check).
+constexpr double kCountedFibers = 1e6;
+double countedFibers(const CubeOptions& o, bool& atLeast)
+{
+  const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength * (1.0 - 1e-12);
+  const double bound = std::min(fiberCountEstimate(o), kCountedFibers);
+  double volume = 0.0;
+  double i = 0.0;
+  for (; i < bound && volume < target; i += 1.0)
+  {
+    const int n = static_cast<int>(i);
+    const double r = cubeFiberRadius(o, n % o.populations, n / o.populations);
+    volume += M_PI * r * r * o.edgeLength;
+  }
+  atLeast = volume < target;
+  return i;
+}
+
 // Lattice seeding: the sites of every population, shuffled by the stream (seed, 3 + k, 0) (keys
 // 3..5 are not fiber streams: those have key1 = population 0..2). Fiber j of population k takes
 // the j-th site.
@@ -342,8 +372,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   {
     const DiskPacking p = packDisks(radii[0], DiskDomain{ L, L, true }, o.seed, 6, progress);
     aborted = p.aborted;
-    if (aborted)
-      return {};
+    if (aborted || p.centres.size() != radii[0].size())
+      return {}; // no sites: a packing that placed no disks is never read (generateCube)
     warning = overlapWarning(o, p, "the cross-section");
     for (const Seed2D& c : p.centres)
       sites[0].push_back({ c.x - half, c.y - half });
@@ -365,6 +395,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
     aborted = true;
     return {};
   }
+  if (p0.centres.size() != radii[0].size() || p1.centres.size() != radii[1].size())
+    return {}; // the radii could not be packed (validateRadiusDistribution keeps them usable)
   warning = overlapWarning(o, p0, "the slab of population 0");
   if (warning.empty())
     warning = overlapWarning(o, p1, "the slab of population 1");
@@ -589,6 +621,15 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << "SegmentLength is " << o.segmentLength << ", must be > 0";
   }
+  else if (o.periodic && std::isfinite(o.displacement) &&
+    !periodicReachProblem(cubeCell(o), solverLinkReach(o)).empty())
+  {
+    // The solver's rule (Geometry/PeriodicCell.h) for the longest links it can make of these
+    // fibers: a periodic cube the source accepts, the solver with the same SegmentLength accepts.
+    msg << "EdgeLength is " << o.edgeLength << ", too small for SegmentLength " << o.segmentLength
+        << ", Displacement " << o.displacement << " and FiberRadius " << o.fiberRadius << ": "
+        << periodicReachProblem(cubeCell(o), solverLinkReach(o));
+  }
   else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
   {
     msg << "Displacement is " << o.displacement << ", must be >= 0";
@@ -633,7 +674,11 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else
   {
-    const double fibers = fiberCountEstimate(o);
+    // With VolumeFraction the fibers it takes, counted as generateCube counts them (the upper
+    // estimate of fiberCountEstimate assumes the thinnest radius for every fiber, which for a
+    // broad spread is orders of magnitude too many); counting stops at kCountedFibers.
+    bool atLeast = false;
+    const double fibers = o.volumeFraction > 0.0 ? countedFibers(o, atLeast) : fiberCountEstimate(o);
     // Fibers along a crossing-angle axis span |axis| edges, dispersed periodic ones up to
     // kMaxDispersionPeriods times that; with a volume fraction longer fibers are fewer, so only a
     // fixed count needs the factor.
@@ -647,8 +692,12 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     const double points = fibers * (o.realism.tortuosity * span * o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
-    what << "NumberOfFibers " << fibers << " with EdgeLength " << o.edgeLength
-         << " and SegmentLength " << o.segmentLength << " (" << points << " points";
+    if (o.volumeFraction > 0.0)
+      what << "VolumeFraction " << o.volumeFraction << " (" << (atLeast ? "at least " : "") << fibers << " fibers)";
+    else
+      what << "NumberOfFibers " << fibers;
+    what << " with EdgeLength " << o.edgeLength << " and SegmentLength " << o.segmentLength << " (" << points
+         << " points";
     if (pieces > 1)
     {
       what << ", a share of 1/" << pieces << " per piece";
@@ -666,7 +715,7 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
       packing << "Seeding Lattice with RadiusSpread " << o.radiusSpread << " (a disk packing of " << fibers
               << " fibers, ";
       if (o.volumeFraction > 0.0)
-        packing << "VolumeFraction " << o.volumeFraction;
+        packing << "VolumeFraction " << o.volumeFraction; // the count above is the real one
       else
         packing << "NumberOfFibers " << o.numberOfFibers;
       packing << " with EdgeLength " << o.edgeLength << ", on every piece)";

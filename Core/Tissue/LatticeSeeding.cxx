@@ -200,8 +200,47 @@ std::vector<Block> blocks(double L, double d, int count)
   return out;
 }
 
-// Blocks k = 0, 1, 2 with h_k + w_{k+1} <= L (cyclic): found with the blocks sorted by w and the
-// running minimum of h. False when none fit.
+// The first index i < end with value[i] <= limit, or `end` when there is none: a segment tree of
+// minima, so that fitBlocks asks it in O(log n) instead of scanning.
+class FirstAtMost
+{
+public:
+  explicit FirstAtMost(const std::vector<double>& value)
+    : n_(value.size())
+  {
+    size_ = 1;
+    while (size_ < n_)
+      size_ *= 2;
+    tree_.assign(2 * size_, HUGE_VAL);
+    std::copy(value.begin(), value.end(), tree_.begin() + static_cast<std::ptrdiff_t>(size_));
+    for (std::size_t k = size_ - 1; k >= 1; --k)
+      tree_[k] = std::min(tree_[2 * k], tree_[2 * k + 1]);
+  }
+  std::size_t find(std::size_t end, double limit) const { return end == 0 ? 0 : descend(1, 0, size_, end, limit); }
+
+private:
+  // In node k covering [lo, hi): the first index < end with a value <= limit, or `end`.
+  std::size_t descend(std::size_t k, std::size_t lo, std::size_t hi, std::size_t end, double limit) const
+  {
+    if (lo >= end || !(tree_[k] <= limit))
+      return end;
+    if (hi - lo == 1)
+      return lo;
+    const std::size_t mid = (lo + hi) / 2;
+    const std::size_t left = descend(2 * k, lo, mid, end, limit);
+    return left < end ? left : descend(2 * k + 1, mid, hi, end, limit);
+  }
+  std::size_t n_ = 0;
+  std::size_t size_ = 1;
+  std::vector<double> tree_;
+};
+
+// Blocks k = 0, 1, 2 with h_k + w_{k+1} <= L (cyclic), the blocks sorted by w: the first b0 (in
+// that order) for which a b1 fits, the first such b1, and for it the b2 of least h among those
+// with w <= L − h1. For each b1 that b2 is fixed (the running minimum of h), so whether a b1 fits
+// b0 is h0 + w1 <= L (a prefix of the order) and that b2's h <= L − w0: the first b1 is a query of
+// FirstAtMost. O(n log n) in the n blocks (it was O(n²): a minute for 10⁶ fibers). False when
+// none fit.
 bool fitBlocks(double L, double d, int count, Block chosen[3])
 {
   std::vector<Block> b = blocks(L, d, count);
@@ -209,25 +248,31 @@ bool fitBlocks(double L, double d, int count, Block chosen[3])
   std::vector<std::size_t> lowest(b.size());
   for (std::size_t i = 0; i < b.size(); ++i)
     lowest[i] = i > 0 && b[lowest[i - 1]].h <= b[i].h ? lowest[i - 1] : i;
+  // For b1 = b[i]: the index of its b2 (b.size() when none) and that b2's h (inf when none).
+  std::vector<std::size_t> third(b.size(), b.size());
+  std::vector<double> thirdH(b.size(), HUGE_VAL);
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    const auto end = std::upper_bound(b.begin(), b.end(), L - b[i].h, [](double x, const Block& y) { return x < y.w; });
+    if (end != b.begin())
+    {
+      third[i] = lowest[static_cast<std::size_t>(end - b.begin()) - 1];
+      thirdH[i] = b[third[i]].h;
+    }
+  }
+  const FirstAtMost firstFit(thirdH);
   for (const Block& b0 : b)
   {
-    for (const Block& b1 : b)
+    // b1: h0 + w1 <= L (the same comparison as ever, so the same blocks are chosen), a prefix.
+    const auto prefix = std::partition_point(b.begin(), b.end(), [&b0, L](const Block& y) { return b0.h + y.w <= L; });
+    const std::size_t end = static_cast<std::size_t>(prefix - b.begin());
+    const std::size_t i = firstFit.find(end, L - b0.w);
+    if (i < end)
     {
-      if (b0.h + b1.w > L)
-        continue;
-      // b2: w <= L − h1 and h <= L − w0.
-      const auto end = std::upper_bound(b.begin(), b.end(), L - b1.h,
-        [](double x, const Block& y) { return x < y.w; });
-      if (end == b.begin())
-        continue;
-      const Block& b2 = b[lowest[static_cast<std::size_t>(end - b.begin()) - 1]];
-      if (b2.h <= L - b0.w)
-      {
-        chosen[0] = b0;
-        chosen[1] = b1;
-        chosen[2] = b2;
-        return true;
-      }
+      chosen[0] = b0;
+      chosen[1] = b[i];
+      chosen[2] = b[third[i]];
+      return true;
     }
   }
   return false;

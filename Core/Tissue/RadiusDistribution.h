@@ -26,6 +26,9 @@ enum class RadiusDistribution
 /// The api string of a radius distribution ("LogNormal", "Uniform", "Gamma", "Constant").
 const char* radiusDistributionName(RadiusDistribution kind);
 
+/// Largest RadiusSpread of LogNormal: its radii r·exp(s·z), |z| <= 3, then span e^±6.
+constexpr double kMaxLogNormalSpread = 2.0;
+
 /// Empty when spread s and distribution are usable, else a message naming RadiusSpread (or
 /// RadiusDistribution, for a value outside the enum).
 std::string validateRadiusDistribution(RadiusDistribution kind, double spread);

@@ -178,7 +178,7 @@ TEST(FiberCollisionSolver, IterationsAsTimeShowTheFibersSeparating)
   solver->UpdateInformation();
   vtkInformation* info = solver->GetOutputInformation(0);
   ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
-  // The timeline ends where the solve ended (issue 13), not at MaxSteps: one time step per solver
+  // The timeline ends where the solve ended, not at MaxSteps: one time step per solver
   // step (interval 1) and the last one is the final step.
   const int length = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());

@@ -1,4 +1,4 @@
-// fastPLI .h5 through FiberReader / FiberWriter, hardened (issue 11): hard links cannot inflate a
+// fastPLI .h5 through FiberReader / FiberWriter, hardened: hard links cannot inflate a
 // small file into gigabytes, soft and external links are refused, group names outside the
 // bundle_id range are errors, and writing goes through the atomic path (exclusive temporary file,
 // permission bits kept, a full file system leaves the old file intact). Files with links are made

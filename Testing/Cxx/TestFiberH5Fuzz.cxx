@@ -1,4 +1,4 @@
-// Fuzzing of the .h5 reader (issue 11), at the level of the HDF5 objects: random files made
+// Fuzzing of the .h5 reader, at the level of the HDF5 objects: random files made
 // with the HDF5 API (fixed seed) with bundles and fibers of random shapes, declared sizes (chunked
 // datasets declaring up to 1e12 points), element types, names (negative, above INT_MAX, not
 // numbers) and links (hard links to datasets and groups, soft links dangling or looping,

@@ -1,6 +1,7 @@
 // FiberTubes through VTK: watertight and outward, exact polygonal volume, arrays carried.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
+#include "vtkFiberCollisionSolver.h"
 #include "vtkFiberCubeSource.h"
 #include "vtkFiberTubes.h"
 
@@ -9,6 +10,7 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkMassProperties.h>
 #include <vtkPointData.h>
 
@@ -220,4 +222,39 @@ TEST(FiberTubes, InnerTubesOnRequestAreWatertightOutwardAndLabelled)
   badTubes->Update();
   EXPECT_NE(catcher->Errors.find("inner_radius"), std::string::npos) << catcher->Errors;
   EXPECT_NE(catcher->Errors.find("1.5"), std::string::npos) << catcher->Errors;
+}
+
+TEST(FiberTubes, TubesKeepTheModelsFieldData)
+{
+  // A periodic cube solved: its tubes carry the same solved, collisions and periodic_cell values
+  // (they used to be dropped, so a saved tubes file no longer said what it was).
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPopulations(1);
+  cube->SetNumberOfFibers(4);
+  cube->SetEdgeLength(12.0);
+  cube->SetPeriodic(1);
+  cube->SetSeed(2);
+  vtkNew<vtkFiberCollisionSolver> solver;
+  solver->SetInputConnection(cube->GetOutputPort());
+  solver->SetMaxSteps(200);
+  solver->SetNumberOfThreads(1);
+  vtkNew<vtkFiberTubes> tubes;
+  tubes->SetInputConnection(solver->GetOutputPort());
+  tubes->Update();
+  vtkFieldData* model = solver->GetOutput()->GetFieldData();
+  vtkFieldData* out = tubes->GetOutput()->GetFieldData();
+  ASSERT_GT(tubes->GetOutput()->GetNumberOfCells(), 0);
+  for (const char* name : { "solved", "collisions", "periodic_cell", "steps" })
+  {
+    vtkDataArray* a = model->GetArray(name);
+    vtkDataArray* b = out->GetArray(name);
+    ASSERT_NE(a, nullptr) << name;
+    ASSERT_NE(b, nullptr) << name << " dropped by FiberTubes";
+    ASSERT_EQ(b->GetNumberOfValues(), a->GetNumberOfValues()) << name;
+    for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+    {
+      EXPECT_EQ(b->GetTuple1(i), a->GetTuple1(i)) << name << " " << i;
+    }
+  }
+  EXPECT_EQ(out->GetArray("periodic_cell")->GetTuple1(1), 6.0);
 }

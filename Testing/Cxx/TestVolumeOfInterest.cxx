@@ -1,5 +1,5 @@
 // VolumeOfInterest is checked by one Core function for PLISimulation and
-// FiberOrientationGroundTruth (issue 11: the ground truth silently used the input bounds for a
+// FiberOrientationGroundTruth (the ground truth once silently used the input bounds for a
 // volume inverted on one axis, which PLISimulation rejects). Both refuse it with the same message
 // and both accept the all-axes sentinel.
 #include "ErrorCatcher.h"

@@ -1,4 +1,4 @@
-"""pvpython (issue 11): an abort applies to one execution only; NumberOfThreads follows one rule on
+"""pvpython: an abort applies to one execution only; NumberOfThreads follows one rule on
 every proxy; negative solver SegmentLength means off (not automatic); DefaultRadius 0 is an error;
 solver stacks of identical fibers are refused in bounded memory."""
 import os

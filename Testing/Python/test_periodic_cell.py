@@ -51,7 +51,7 @@ for s in closed_shift(solved):
 r = solved.GetPointData().GetArray("radius").GetRange()
 check(r[0] == 0.8 and r[1] == 0.8, "radii changed: %s" % (r,))
 
-# Gamma radii by name (docs/api.md §5): mean r, spread s; MEDUSA's alpha = 4, beta = 0.25 um.
+# Gamma radii by name (docs/api.md §1): mean r, spread s; MEDUSA's alpha = 4, beta = 0.25 um.
 gamma = FiberCubeSource(Populations=1, EdgeLength=20.0, Periodic=1, VolumeFraction=0.3,
                         FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma", Seed=2)
 gamma.UpdatePipeline()
@@ -86,7 +86,7 @@ dense.UpdatePipeline()
 check(any("the radii could not be separated" in w for w in catcher.warnings),
       "no infeasible seeding warning: %s" % catcher.warnings)
 check(dense.GetDataInformation().GetNumberOfCells() > 40, "fibers dropped")
-huge = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=1e5, SegmentLength=5e4, NumberOfFibers=2,
+huge = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=1e5, SegmentLength=2e4, NumberOfFibers=2,
                        FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma")
 catcher = ErrorCatcher(huge)
 huge.UpdatePipeline()
