@@ -1,6 +1,7 @@
 #include "FiberPolyData.h"
 
 #include "FiberFieldData.h"
+#include "FiberInnerRadii.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -384,6 +385,11 @@ const FiberConversion& FiberModelCache::Get(vtkPolyData* input, const std::strin
   if (!this->Valid || this->Input != input || this->Time != input->GetMTime())
   {
     this->Value = FiberPolyData::ToModel(input, who);
+    if (this->Value.ok())
+    {
+      // The PLI tissue is myelinated where fibers carry inner_radius (docs/pli-simulation.md §3.2).
+      this->Value.error = ReadInnerRadii(input, this->Value, who);
+    }
     this->Value.sourceCell = {};
     this->Value.sourcePoints = {};
     this->Input = input;

@@ -78,7 +78,8 @@ public:
 };
 
 /// The model of one input, converted again only when the input object or its MTime changes (the
-/// PLI filters keep their fibers between requests, docs/pli-simulation.md §7.3). Keeps the model,
+/// PLI filters keep their fibers between requests, docs/pli-simulation.md §7.3). Keeps the model
+/// with the fibers' inner radii (FiberInnerRadii.h; a bad inner_radius is the conversion's error),
 /// not the source ids (those filters pass no input arrays on).
 class FIBERPLICONVERSION_EXPORT FiberModelCache
 {

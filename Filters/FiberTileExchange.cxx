@@ -4,6 +4,7 @@
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
 #include "FiberSolverComm.h"
+#include "Model/InnerRadii.h"
 #include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 
@@ -30,7 +31,7 @@ namespace
 {
 // Per fiber: global index, fiber id, bundle id, number of points; per point x, y, z, radius.
 constexpr int kHeader = 4;
-constexpr int kPoint = 4;
+constexpr int kPoint = 5; // x, y, z, radius, inner radius (0 = none: a valid one is > 0)
 // A TileReach as doubles: box, radius scale, periodic flag, cell lo/hi, tiling box.
 constexpr int kReachDoubles = 20;
 
@@ -81,7 +82,8 @@ void Serialise(const FiberModel& model, const std::vector<std::size_t>& which, l
       { offset + static_cast<long long>(f), static_cast<long long>(fib.id), fib.bundle, static_cast<long long>(fib.size()) });
     for (std::size_t i = 0; i < fib.size(); ++i)
     {
-      points.insert(points.end(), { fib.points[i].x, fib.points[i].y, fib.points[i].z, fib.radii[i] });
+      const double inner = fib.innerRadii.empty() ? 0.0 : fib.innerRadii[i];
+      points.insert(points.end(), { fib.points[i].x, fib.points[i].y, fib.points[i].z, fib.radii[i], inner });
     }
   }
 }
@@ -99,10 +101,16 @@ void Deserialise(const std::vector<long long>& header, const std::vector<double>
     const std::size_t n = static_cast<std::size_t>(header[h + 3]);
     fib.points.resize(n);
     fib.radii.resize(n);
+    fib.innerRadii.resize(n);
     for (std::size_t i = 0; i < n; ++i, p += kPoint)
     {
       fib.points[i] = Vec3{ points[p], points[p + 1], points[p + 2] };
       fib.radii[i] = points[p + 3];
+      fib.innerRadii[i] = points[p + 4];
+    }
+    if (n == 0 || fib.innerRadii[0] <= 0.0) // a fiber has inner radii at every point or none
+    {
+      fib.innerRadii.clear();
     }
     out.emplace_back(header[h], std::move(fib));
   }
@@ -115,13 +123,15 @@ struct PieceSummary
   bool empty = true;
   long long fibers = 0;
   bool hasCell = false;
+  bool myelinated = false;
   std::vector<double> cell;
   std::vector<int> bundles;
 };
 
 vtkMultiProcessStream& operator<<(vtkMultiProcessStream& s, const PieceSummary& p)
 {
-  s << p.piece << p.empty << static_cast<vtkTypeInt64>(p.fibers) << p.hasCell << static_cast<int>(p.cell.size());
+  s << p.piece << p.empty << static_cast<vtkTypeInt64>(p.fibers) << p.hasCell << p.myelinated
+    << static_cast<int>(p.cell.size());
   for (double v : p.cell)
   {
     s << v;
@@ -138,7 +148,7 @@ vtkMultiProcessStream& operator>>(vtkMultiProcessStream& s, PieceSummary& p)
 {
   vtkTypeInt64 fibers = 0;
   int n = 0;
-  s >> p.piece >> p.empty >> fibers >> p.hasCell >> n;
+  s >> p.piece >> p.empty >> fibers >> p.hasCell >> p.myelinated >> n;
   p.fibers = fibers;
   p.cell.resize(static_cast<std::size_t>(n));
   for (double& v : p.cell)
@@ -168,6 +178,7 @@ long long Summarise(const std::vector<PieceSummary>& all, int myPiece, TileFiber
     cells.push_back(RankCell{ p.hasCell != 0, p.cell.size(), p.cell });
     out.emptyInput = out.emptyInput && p.empty;
     bundles.insert(p.bundles.begin(), p.bundles.end());
+    out.myelinated = out.myelinated || p.myelinated;
     out.modelFibers += p.fibers;
     offset += p.piece < myPiece ? p.fibers : 0;
     cellFrom = !cellFrom && p.hasCell ? &p : cellFrom; // the lowest rank that has one
@@ -313,6 +324,7 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
       bundles.insert(f.bundle);
     }
     result.bundleIds.assign(bundles.begin(), bundles.end());
+    result.myelinated = hasInnerRadii(in.model);
     result.modelFibers = result.pieceFibers;
     result.model = cache ? in.model : std::move(local.model);
     return result;
@@ -332,6 +344,7 @@ TileFibers FiberTileExchange::Receive(vtkInformation* outInfo, vtkPolyData* inpu
   mine.fibers = result.pieceFibers;
   mine.empty = FiberPolyData::IsEmpty(input);
   mine.hasCell = hasCell;
+  mine.myelinated = hasInnerRadii(in.model);
   mine.cell = cellValues;
   std::set<int> localBundles;
   for (const Fiber& f : in.model.fibers)

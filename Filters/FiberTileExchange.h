@@ -44,6 +44,7 @@ struct TileFibers
 {
   FiberModel model;            ///< the fibers reaching this rank's piece (all of them when serial), in model order
   std::vector<int> bundleIds;  ///< distinct bundle ids of the whole model, sorted
+  bool myelinated = false;     ///< some fiber of the whole model carries inner_radius
   bool periodic = false;       ///< the input carries field data periodic_cell (lowest rank that has it)
   PeriodicCell cell;           ///< that cell, when cellError is empty
   std::string cellError;       ///< why periodic_cell is unusable ("" when fine or absent)

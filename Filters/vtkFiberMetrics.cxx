@@ -2,6 +2,7 @@
 
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Metrics/FiberMetrics.h"
@@ -60,12 +61,84 @@ void AddCount(vtkTable* table, const char* name, long long value)
   table->AddColumn(a);
 }
 
+/// A bar-chart table of a histogram: bin_extents (the bin centres, under the name ParaView's own
+/// Histogram filter gives them, so that the Bar Chart View takes them as x and hides them as a
+/// series) and count; the field data `histogram_range` (lower edge of the first bin, upper edge of
+/// the last) and `bin_width`. No other column, so that the chart shows the counts alone.
+void FillHistogram(vtkTable* table, const fiberpli::Histogram& h)
+{
+  const auto bins = static_cast<vtkIdType>(h.count.size());
+  vtkDoubleArray* centre = AddColumn(table, "bin_extents", 1, bins);
+  vtkNew<vtkIdTypeArray> count;
+  count->SetName("count");
+  count->SetNumberOfTuples(bins);
+  table->AddColumn(count);
+  for (vtkIdType k = 0; k < bins; ++k)
+  {
+    const auto i = static_cast<std::size_t>(k);
+    centre->SetValue(k, h.centre(i));
+    count->SetValue(k, static_cast<vtkIdType>(h.count[i]));
+  }
+  vtkNew<vtkDoubleArray> range, width;
+  range->SetName("histogram_range");
+  range->InsertNextValue(h.lo);
+  range->InsertNextValue(h.hi);
+  width->SetName("bin_width");
+  width->InsertNextValue(h.width());
+  table->GetFieldData()->AddArray(range);
+  table->GetFieldData()->AddArray(width);
+}
+
+/// Output port 3: one row per population.
+void FillPopulations(vtkTable* table, const fiberpli::MetricsResult& m)
+{
+  const auto& populations = m.realism.populations;
+  const auto rows = static_cast<vtkIdType>(populations.size());
+  vtkNew<vtkIntArray> bundleId;
+  bundleId->SetName("bundle_id");
+  bundleId->SetNumberOfTuples(rows);
+  vtkNew<vtkIdTypeArray> fibers;
+  fibers->SetName("fibers");
+  fibers->SetNumberOfTuples(rows);
+  table->AddColumn(bundleId);
+  table->AddColumn(fibers);
+  vtkDoubleArray* tMin = AddColumn(table, "tortuosity_min", 1, rows);
+  vtkDoubleArray* tMean = AddColumn(table, "tortuosity_mean", 1, rows);
+  vtkDoubleArray* tMax = AddColumn(table, "tortuosity_max", 1, rows);
+  vtkDoubleArray* axis = AddColumn(table, "axis", 3, rows);
+  vtkDoubleArray* c2Ends = AddColumn(table, "c2_end_to_end", 1, rows);
+  vtkDoubleArray* c2Segments = AddColumn(table, "c2_segments", 1, rows);
+  vtkDoubleArray* cv = AddColumn(table, "radius_cv", 1, rows);
+  vtkDoubleArray* g = AddColumn(table, "g_ratio_mean", 1, rows);
+  vtkDoubleArray* mixing = AddColumn(table, "mixing_min_share", 1, rows);
+  vtkDoubleArray* share = AddColumn(table, "volume_share", 1, rows);
+  for (vtkIdType r = 0; r < rows; ++r)
+  {
+    const fiberpli::PopulationRealism& p = populations[static_cast<std::size_t>(r)];
+    bundleId->SetValue(r, p.bundle);
+    fibers->SetValue(r, static_cast<vtkIdType>(p.fibers));
+    tMin->SetValue(r, p.tortuosity.min);
+    tMean->SetValue(r, p.tortuosity.mean);
+    tMax->SetValue(r, p.tortuosity.max);
+    const double a[3] = { p.axis.x, p.axis.y, p.axis.z };
+    axis->SetTypedTuple(r, a);
+    c2Ends->SetValue(r, p.c2EndToEnd);
+    c2Segments->SetValue(r, p.c2Segments);
+    cv->SetValue(r, p.radiusCV);
+    g->SetValue(r, p.gRatio);
+    // The mixing result lists the same populations in the same (increasing) order when computed.
+    const bool mixed = static_cast<std::size_t>(r) < m.mixing.minShare.size();
+    mixing->SetValue(r, mixed ? m.mixing.minShare[static_cast<std::size_t>(r)] : vtkMath::Nan());
+    share->SetValue(r, mixed ? m.mixing.volumeShare[static_cast<std::size_t>(r)] : vtkMath::Nan());
+  }
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
 vtkFiberMetrics::vtkFiberMetrics()
 {
-  this->SetNumberOfOutputPorts(3);
+  this->SetNumberOfOutputPorts(8);
 }
 
 //------------------------------------------------------------------------------
@@ -110,9 +183,17 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
     vtkTable* summary = vtkTable::GetData(outputVector, 1);
     vtkTable* bundles = vtkTable::GetData(outputVector, 2);
+    vtkTable* populations = vtkTable::GetData(outputVector, 3);
+    vtkTable* histograms[4] = { vtkTable::GetData(outputVector, 4), vtkTable::GetData(outputVector, 5),
+      vtkTable::GetData(outputVector, 6), vtkTable::GetData(outputVector, 7) };
     output->Initialize();
     summary->Initialize();
     bundles->Initialize();
+    populations->Initialize();
+    for (vtkTable* h : histograms)
+    {
+      h->Initialize();
+    }
     vtkInformation* outInfo = outputVector->GetInformationObject(0);
     const bool firstPiece = fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
     if (fiberpli::FiberPolyData::IsEmpty(input) || !firstPiece)
@@ -130,6 +211,12 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     {
       vtkWarningMacro(<< in.warning);
     }
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMetrics");
+    if (!innerError.empty())
+    {
+      vtkErrorMacro(<< innerError);
+      return 0;
+    }
     fiberpli::MetricsOptions options;
     options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
     options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
@@ -139,6 +226,8 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
     options.volumeFraction = this->ComputeVolumeFraction;
     options.pairs = this->ComputeCollisions;
+    options.mixing = this->ComputeMixing;
+    options.histogramBins = this->HistogramBins;
     options.numberOfThreads = this->NumberOfThreads;
     if (this->UsePeriodicCell)
     {
@@ -188,6 +277,25 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     }
     output->GetCellData()->AddArray(length);
     output->GetCellData()->AddArray(tortuosity);
+    // Realism per fiber: the along-fiber radius CV, and the g-ratio of myelinated fibers.
+    vtkNew<vtkDoubleArray> radiusCV, gRatio;
+    radiusCV->SetName("radius_cv");
+    gRatio->SetName("g_ratio");
+    for (vtkDoubleArray* a : { radiusCV.Get(), gRatio.Get() })
+    {
+      a->SetNumberOfTuples(input->GetNumberOfCells());
+      a->Fill(vtkMath::Nan());
+    }
+    for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
+    {
+      radiusCV->SetValue(in.sourceCell[f], m.realism.fiberRadiusCV[f]);
+      gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
+    }
+    output->GetCellData()->AddArray(radiusCV);
+    if (fiberpli::hasInnerRadii(in.model))
+    {
+      output->GetCellData()->AddArray(gRatio);
+    }
 
     const fiberpli::ShapeResult& s = m.shape;
     AddCount(summary, "fibers", static_cast<long long>(m.fibers));
@@ -216,6 +324,13 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     AddValue(summary, "radius_min", { s.radius.min });
     AddValue(summary, "radius_mean", { s.radius.mean });
     AddValue(summary, "radius_max", { s.radius.max });
+    AddValue(summary, "radius_cv", { m.realism.radiusCV });
+    AddValue(summary, "g_ratio_mean", { m.realism.gRatio });
+    AddValue(summary, "mixing_min_share", { m.mixing.minimum });
+    AddValue(summary, "axon_fraction", { m.axonVolume.fraction });
+    AddValue(summary, "axon_fraction_error", { m.axonVolume.errorBound });
+    AddValue(summary, "myelin_fraction", { m.myelinFraction });
+    AddValue(summary, "extra_axonal_fraction", { m.extraAxonalFraction });
     for (vtkIdType c = 0; c < summary->GetNumberOfColumns(); ++c)
     {
       output->GetFieldData()->AddArray(summary->GetColumn(c)); // replaces same-named input arrays
@@ -245,6 +360,12 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
       tortuosityMean->SetValue(b, shape.tortuosity.mean);
       lengthMean->SetValue(b, shape.fiberLength.mean);
     }
+
+    FillPopulations(populations, m);
+    FillHistogram(histograms[0], m.realism.radiusHistogram);
+    FillHistogram(histograms[1], m.realism.tortuosityHistogram);
+    FillHistogram(histograms[2], m.realism.gRatioHistogram);
+    FillHistogram(histograms[3], m.realism.segmentAngleHistogram);
     return 1;
   });
 }
@@ -262,5 +383,7 @@ void vtkFiberMetrics::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ComputeVolumeFraction: " << this->ComputeVolumeFraction << "\n";
   os << indent << "ComputeCollisions: " << this->ComputeCollisions << "\n";
+  os << indent << "ComputeMixing: " << this->ComputeMixing << "\n";
+  os << indent << "HistogramBins: " << this->HistogramBins << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

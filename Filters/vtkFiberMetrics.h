@@ -9,7 +9,12 @@
  * Output port 0: the input fibers passed through, with cell arrays `fiber_length` and
  * `tortuosity` (arc length / end-to-end distance) and field data holding every value of the
  * summary table. Output port 1 ("Summary"): a one-row vtkTable. Output port 2 ("Bundles"): one row
- * per bundle_id. Column and field-data names are listed in the README (FiberMetrics section).
+ * per bundle_id. Output port 3 ("Populations"): the realism of each population (bundle_id) —
+ * tortuosity range, c2 of end-to-end directions and of segments about the population's axis,
+ * radius CV along fibers, g-ratio, mixing share. Output ports 4–7: histogram tables of point radii,
+ * fiber tortuosity, point g-ratios and link angles to their population's axis (columns
+ * bin_extents = bin centres and count; field data histogram_range and bin_width; Bar Chart View). Column and field-data
+ * names are listed in docs/metrics.md.
  *
  * Volume fraction: the covered fraction of `Box` (xmin xmax ymin ymax zmin zmax; any min > max,
  * the default, means the bounds of the fiber points), or — when the input carries the
@@ -97,6 +102,24 @@ public:
 
   ///@{
   /**
+   * Compute the mixing figure of the populations (Monte Carlo with Samples points from Seed in the
+   * volume fraction's region; 1 unsampled for one population). Default is on.
+   */
+  vtkSetMacro(ComputeMixing, bool);
+  vtkGetMacro(ComputeMixing, bool);
+  vtkBooleanMacro(ComputeMixing, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Bins of the histogram outputs (4–7), 1 to 1000000. Default is 20.
+   */
+  vtkSetMacro(HistogramBins, int); // checked by the Core
+  vtkGetMacro(HistogramBins, int);
+  ///@}
+
+  ///@{
+  /**
    * Number of threads, 0 = all cores. Default is 0. Results do not depend on it.
    */
   vtkSetMacro(NumberOfThreads, int);
@@ -122,6 +145,8 @@ private:
   int Seed = 0;
   bool ComputeVolumeFraction = true;
   bool ComputeCollisions = true;
+  bool ComputeMixing = true;
+  int HistogramBins = 20;
   int NumberOfThreads = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "vtkFiberTubes.h"
 
 #include "FiberGuard.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Mesh/TubeMesher.h"
@@ -21,6 +22,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 
@@ -54,11 +56,21 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     {
       vtkWarningMacro(<< in.warning);
     }
+    if (this->InnerTubes)
+    {
+      const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberTubes");
+      if (!innerError.empty())
+      {
+        vtkErrorMacro(<< innerError);
+        return 0;
+      }
+    }
 
     this->SetProgressText("Meshing tubes");
     fiberpli::TubeOptions options;
     options.sides = this->NumberOfSides;
     options.capping = this->Capping;
+    options.innerTubes = this->InnerTubes;
     options.numberOfThreads = this->NumberOfThreads;
     const std::string optionError = fiberpli::checkTubeOptions(options);
     if (!optionError.empty())
@@ -118,6 +130,14 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     output->GetPointData()->SetNormals(normals);
     output->GetCellData()->AddArray(fiberId);
     output->GetCellData()->AddArray(bundleId);
+    if (this->InnerTubes)
+    {
+      vtkNew<vtkUnsignedCharArray> surface;
+      surface->SetName("tube_surface");
+      surface->SetNumberOfTuples(numTriangles);
+      std::copy(mesh.triangleSurface.begin(), mesh.triangleSurface.end(), surface->GetPointer(0));
+      output->GetCellData()->AddArray(surface);
+    }
     output->GetCellData()->SetActiveScalars("bundle_id");
     // The model's field data (solved, collisions, periodic_cell, seed, …) describe the tubes as
     // well: a saved tubes file still says what it is.
@@ -132,5 +152,6 @@ void vtkFiberTubes::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfSides: " << this->NumberOfSides << "\n";
   os << indent << "Capping: " << this->Capping << "\n";
+  os << indent << "InnerTubes: " << this->InnerTubes << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -437,6 +437,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
         return std::string(); // this request computes nothing: no fiber is needed
       }
       options.bundleIds = whole.bundleIds;
+      options.myelin = whole.myelinated;
       tissueStatus = fiberpli::pli::planPLITissue(fiberpli::FiberModel(), options, plan);
       tissuePlanned = true;
       if (!tissueStatus.ok())
@@ -467,6 +468,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   }
   // The layer table and labels of the whole model, also on a rank that holds some bundles only.
   options.bundleIds = in.bundleIds;
+  options.myelin = in.myelinated; // the same layer table on every rank
   // A periodic cell (field data periodic_cell) owns its tissue modulo the cell: the volume of
   // interest is filled with the lattice translates of its fibers, so a larger one tiles the cell
   // (under MPI only the translates this rank's piece reads).

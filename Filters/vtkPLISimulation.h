@@ -209,7 +209,9 @@ public:
 
   ///@{
   /**
-   * Birefringence Δn of the fibers (one parallel layer) when Layers is empty. Default is -0.001.
+   * Birefringence Δn of the fibers (one parallel layer) when Layers is empty. Fibers with the
+   * point array inner_radius get the axon (no birefringence) inside it and the myelin sheath
+   * (radial axis, Δn = -Birefringence) up to radius (docs/pli-simulation.md §3.2). Default is -0.001.
    */
   vtkSetMacro(Birefringence, double);
   vtkGetMacro(Birefringence, double);

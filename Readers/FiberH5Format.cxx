@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -97,6 +98,86 @@ std::string readCellAttribute(hid_t group, PeriodicCell& cell)
   }
   const std::string bad = periodicCellFromBounds(b, 6, cell);
   return bad.empty() ? bad : "attribute " + bad;
+}
+
+/// Values per inner_radius attribute: HDF5's original object header (the file format fastPLI's files
+/// have) holds no attribute message above 64 KiB, so a long fiber's inner radii are split into
+/// "inner_radius", "inner_radius_1", "inner_radius_2", … of at most this many float64 values.
+constexpr std::size_t kInnerRadiiPerAttribute = 4096;
+
+std::string innerRadiusAttributeName(std::size_t part)
+{
+  return part == 0 ? "inner_radius" : "inner_radius_" + std::to_string(part);
+}
+
+/// The fiber's inner radii as float64 attributes of its dataset: fastPLI reads only the (n, 4)
+/// datasets and ignores attributes, so its files stay readable.
+bool writeInnerRadiusAttribute(hid_t data, const std::vector<double>& inner)
+{
+  for (std::size_t first = 0, part = 0; first < inner.size() || part == 0; first += kInnerRadiiPerAttribute, ++part)
+  {
+    const hsize_t n = std::min(kInnerRadiiPerAttribute, inner.size() - first);
+    Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
+    Handle attr(H5Acreate2(data, innerRadiusAttributeName(part).c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                  H5P_DEFAULT),
+      H5Aclose);
+    if (!attr.ok() || H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, inner.data() + first) < 0)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// Reads the attributes `inner_radius`, `inner_radius_1`, … of a fiber's dataset into f.innerRadii
+/// when present; an error text when together they do not hold one value per point, finite in
+/// (0, radius].
+std::string readInnerRadiusAttribute(hid_t data, Fiber& f)
+{
+  if (H5Aexists(data, "inner_radius") <= 0)
+  {
+    return {};
+  }
+  f.innerRadii.clear();
+  for (std::size_t part = 0; H5Aexists(data, innerRadiusAttributeName(part).c_str()) > 0; ++part)
+  {
+    const std::string name = innerRadiusAttributeName(part);
+    Handle attr(H5Aopen(data, name.c_str(), H5P_DEFAULT), H5Aclose);
+    Handle space(attr.ok() ? H5Aget_space(attr.get()) : -1, H5Sclose);
+    const hssize_t n = space.ok() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+    if (n < 0 || f.innerRadii.size() + static_cast<std::size_t>(n) > f.size())
+    {
+      const std::size_t total = f.innerRadii.size() + static_cast<std::size_t>(std::max<hssize_t>(n, 0));
+      f.innerRadii.clear();
+      return "attribute inner_radius has " + std::to_string(total) + " values for " + std::to_string(f.size()) + " points";
+    }
+    const std::size_t first = f.innerRadii.size();
+    f.innerRadii.resize(first + static_cast<std::size_t>(n));
+    if (n > 0 && H5Aread(attr.get(), H5T_NATIVE_DOUBLE, f.innerRadii.data() + first) < 0)
+    {
+      f.innerRadii.clear();
+      return "attribute " + name + " cannot be read as float64";
+    }
+  }
+  if (f.innerRadii.size() != f.size())
+  {
+    const std::string message = "attribute inner_radius has " + std::to_string(f.innerRadii.size()) + " values for " +
+      std::to_string(f.size()) + " points";
+    f.innerRadii.clear();
+    return message;
+  }
+  for (std::size_t i = 0; i < f.size(); ++i)
+  {
+    if (!std::isfinite(f.innerRadii[i]) || f.innerRadii[i] <= 0.0 || f.innerRadii[i] > f.radii[i])
+    {
+      std::ostringstream msg;
+      msg << "attribute inner_radius of point " << i << " is " << f.innerRadii[i] << " (must be finite, > 0 and <= radius "
+          << f.radii[i] << ")";
+      f.innerRadii.clear();
+      return msg.str();
+    }
+  }
+  return {};
 }
 
 /// "a soft link", "an external link", …: what a link of this type is, for error messages.
@@ -446,6 +527,12 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
       f.points[i] = { values[4 * i], values[4 * i + 1], values[4 * i + 2] };
       f.radii[i] = values[4 * i + 3];
     }
+    const std::string innerError = readInnerRadiusAttribute(data.get(), f);
+    if (!innerError.empty())
+    {
+      model.fibers.clear();
+      return where + " " + innerError;
+    }
     model.fibers.push_back(std::move(f));
   }
   return {};
@@ -527,6 +614,11 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
         if (!data.ok() || H5Dwrite(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
         {
           error = path + ": cannot write dataset '/" + groupName + "/" + name + "'";
+          break;
+        }
+        if (f.innerRadii.size() == f.points.size() && !writeInnerRadiusAttribute(data.get(), f.innerRadii))
+        {
+          error = path + ": cannot write the attribute inner_radius of dataset '/" + groupName + "/" + name + "'";
           break;
         }
       }

@@ -35,15 +35,19 @@ public:
   /// 0 .. INT_MAX, and the total of the declared points (a dataset hard-linked n times counts n
   /// times) is checked against the file size and the memory budget before any allocation.
   /// cell (optional) receives the attribute `periodic_cell` (6 float64: xmin xmax ymin ymax zmin
-  /// zmax) of the group when present (else it is left disabled); a malformed one is an error.
+  /// zmax) of the group when present (else it is left disabled); a malformed one is an error. A
+  /// fiber dataset's float64 attributes `inner_radius`, `inner_radius_1`, … (together one value per
+  /// point, finite in (0, r]) become Fiber::innerRadii; malformed ones are an error naming the dataset.
   static std::string Read(const std::string& path, const std::string& group, FiberModel& model,
     PeriodicCell* cell = nullptr);
 
   /// Writes `model` to `path` the way every FiberPLI writer does (IO/AtomicFile.h): the HDF5 file
   /// is built in memory and written to an exclusive temporary file that replaces the target only
   /// when complete; the target's permission bits are kept. Fibers are grouped by bundle_id in
-  /// increasing order. An enabled cell is stored as the root attribute `periodic_cell` (fastPLI
-  /// ignores attributes it does not know). Returns an empty string or an error naming the file.
+  /// increasing order. An enabled cell is stored as the root attribute `periodic_cell`, a fiber's
+  /// inner radii as attributes of its dataset (`inner_radius`, then `inner_radius_1`, … for every
+  /// further 4096 points: the original HDF5 object header holds no attribute above 64 KiB) (fastPLI ignores attributes it does
+  /// not know; the (n, 4) datasets are unchanged). Returns an empty string or an error naming the file.
   static std::string Write(const std::string& path, const FiberModel& model, const PeriodicCell& cell = PeriodicCell{});
 };
 

@@ -4,6 +4,7 @@
 #include "FiberGuard.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
 
@@ -116,6 +117,7 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
     }
     this->UpdateProgress(0.8);
     fiberpli::FiberPolyData::FromModel(result.model, output);
+    fiberpli::AddInnerRadii(result.model, output); // .h5 files can hold them
     if (cell.enabled())
     {
       fiberpli::AddPeriodicCell(output, cell);

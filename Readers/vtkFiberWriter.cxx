@@ -4,6 +4,7 @@
 #include "FiberGuard.h"
 #include "FiberProgress.h"
 #include "FiberH5Format.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
 
@@ -57,6 +58,12 @@ void vtkFiberWriter::WriteData()
     if (!in.warning.empty())
     {
       vtkWarningMacro(<< in.warning);
+    }
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 only
+    if (!innerError.empty())
+    {
+      this->Fail(vtkErrorCode::UserError, innerError);
+      return 0;
     }
 
     std::string ext = path.size() >= 3 ? path.substr(path.size() - 3) : "";

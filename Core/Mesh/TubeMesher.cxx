@@ -161,20 +161,8 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
   }
 }
 
-} // namespace
-
-std::string checkTubeOptions(const TubeOptions& options)
-{
-  if (options.sides >= 3 && options.sides <= kMaxTubeSides)
-  {
-    return {};
-  }
-  std::ostringstream m;
-  m << "NumberOfSides is " << options.sides << ", must be in [3, " << kMaxTubeSides << "]";
-  return m.str();
-}
-
-TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const ProgressFn& progress)
+/// The tubes of `model` at its radii (fiber indices as in the model).
+TubeMesh meshTubesAtRadii(const FiberModel& model, const TubeOptions& o, const ProgressFn& progress)
 {
   TubeMesh mesh;
   const std::size_t nf = model.fibers.size();
@@ -211,5 +199,69 @@ TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const Progress
   }
   return mesh;
 }
+
+
+} // namespace
+
+std::string checkTubeOptions(const TubeOptions& options)
+{
+  if (options.sides >= 3 && options.sides <= kMaxTubeSides)
+  {
+    return {};
+  }
+  std::ostringstream m;
+  m << "NumberOfSides is " << options.sides << ", must be in [3, " << kMaxTubeSides << "]";
+  return m.str();
+}
+
+TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const ProgressFn& progress)
+{
+  if (!o.innerTubes)
+  {
+    return meshTubesAtRadii(model, o, progress);
+  }
+  // The axons: the fibers that have inner radii, with them as radii; meshed after the outer tubes
+  // (the same rings and frames, since the points are the same) and appended behind them.
+  FiberModel axons;
+  std::vector<std::int64_t> axonFiber;
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    const Fiber& fiber = model.fibers[f];
+    if (fiber.innerRadii.size() == fiber.size())
+    {
+      axons.fibers.push_back(fiber);
+      axons.fibers.back().radii = fiber.innerRadii;
+      axonFiber.push_back(static_cast<std::int64_t>(f));
+    }
+  }
+  const double outerShare = static_cast<double>(model.fibers.size()) /
+    static_cast<double>(std::max<std::size_t>(1, model.fibers.size() + axons.fibers.size()));
+  TubeMesh mesh = meshTubesAtRadii(model, o, [&](double f) { return reportProgress(progress, outerShare * f); });
+  if (mesh.aborted)
+  {
+    return mesh;
+  }
+  TubeMesh inner = meshTubesAtRadii(axons, o,
+    [&](double f) { return reportProgress(progress, outerShare + (1.0 - outerShare) * f); });
+  if (inner.aborted)
+  {
+    return inner;
+  }
+  const auto offset = static_cast<std::int64_t>(mesh.numberOfPoints());
+  mesh.triangleSurface.assign(mesh.numberOfTriangles(), 0);
+  mesh.points.insert(mesh.points.end(), inner.points.begin(), inner.points.end());
+  mesh.normals.insert(mesh.normals.end(), inner.normals.begin(), inner.normals.end());
+  for (std::int64_t v : inner.triangles)
+  {
+    mesh.triangles.push_back(v + offset);
+  }
+  for (std::int64_t f : inner.triangleFiber)
+  {
+    mesh.triangleFiber.push_back(axonFiber[static_cast<std::size_t>(f)]);
+  }
+  mesh.triangleSurface.resize(mesh.numberOfTriangles(), 1);
+  return mesh;
+}
+
 
 } // namespace fiberpli

@@ -26,6 +26,9 @@ struct TubeOptions
 {
   int sides = 12;      ///< vertices per ring, 3 to kMaxTubeSides
   bool capping = true; ///< close the ends (watertight tubes)
+  /// Also a tube at the inner radius of every fiber that has inner radii (Fiber::innerRadii, the
+  /// axon inside the myelin), after all outer tubes; each tube is closed and outward on its own.
+  bool innerTubes = false;
   int numberOfThreads = 0;
 };
 
@@ -35,6 +38,8 @@ struct TubeMesh : Status
   std::vector<float> normals;           ///< unit normal per vertex
   std::vector<std::int64_t> triangles;  ///< 3 vertex indices per triangle, counter-clockwise seen from outside
   std::vector<std::int64_t> triangleFiber; ///< index of the fiber (in model order) of each triangle
+  /// With TubeOptions::innerTubes: 0 for a triangle of an outer tube, 1 of an inner tube; else empty.
+  std::vector<std::uint8_t> triangleSurface;
 
   std::size_t numberOfPoints() const { return points.size() / 3; }
   std::size_t numberOfTriangles() const { return triangles.size() / 3; }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace fiberpli
 {
@@ -76,6 +77,30 @@ double voxelEdge(const MetricsOptions& options, const MetricsResult& result)
   return std::max(result.shape.radius.min / 8.0, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
 }
 
+/// One measurement of the volume fraction kind (outer capsules or axons) with the chosen method.
+VolumeFractionResult measureVolume(const CapsuleSet& set, const MetricsOptions& options, const MetricsResult& result,
+  double h, const ProgressFn& progress)
+{
+  if (options.monteCarlo)
+  {
+    return monteCarloVolumeFraction(set, result.regionLo, result.regionHi, options.samples, options.seed,
+      options.cell, options.numberOfThreads, progress);
+  }
+  return volumeFraction(set, result.regionLo, result.regionHi, h, options.cell, options.numberOfThreads, progress);
+}
+
+/// Copies an error or abort of a part into the result; true when the run must stop.
+bool stops(const Status& part, MetricsResult& result)
+{
+  if (!part.error.empty() || part.aborted)
+  {
+    result.error = part.error;
+    result.aborted = part.aborted;
+    return true;
+  }
+  return false;
+}
+
 } // namespace
 
 namespace
@@ -122,6 +147,11 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   MetricsResult result;
   result.volume.fraction = NaN;
   result.volume.errorBound = NaN;
+  result.axonVolume.fraction = NaN;
+  result.axonVolume.errorBound = NaN;
+  result.myelinFraction = NaN;
+  result.extraAxonalFraction = NaN;
+  result.mixing.minimum = NaN;
   result.pairs.collisions = -1;
   result.pairs.minGap = NaN;
   result.error = checkCell(options.cell);
@@ -140,33 +170,61 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
     result.error = s.str();
     return result;
   }
+  if (options.histogramBins < 1 || options.histogramBins > 1000000)
+  {
+    result.error = "HistogramBins " + std::to_string(options.histogramBins) + " must be in [1, 1000000]";
+    return result;
+  }
+  result.error = validateInnerRadii(model);
+  if (!result.error.empty())
+  {
+    return result;
+  }
   result.fibers = model.fibers.size();
   result.points = model.numberOfPoints();
   result.links = model.numberOfLinks();
   const CapsuleSet set = makeCapsules(model, options.cell);
   result.shape = fiberShape(model, set);
+  result.realism = measureRealism(model, result.shape, static_cast<std::size_t>(options.histogramBins));
   if (model.empty())
   {
     return result;
   }
 
-  const double volumeShare = options.volumeFraction ? (options.pairs ? 0.7 : 1.0) : 0.0;
-  if (options.volumeFraction)
+  // Progress: the parts that run share [0, 1] by their rough cost (today's default run, volume and
+  // pairs, keeps its 0.7 / 0.3 split).
+  const bool axons = options.volumeFraction && hasInnerRadii(model);
+  const bool sampledMixing = options.mixing && result.realism.populations.size() > 1;
+  const double volumeCost = options.volumeFraction ? 0.7 : 0.0;
+  const double axonCost = axons ? 0.7 : 0.0;
+  const double mixingCost = sampledMixing ? 0.7 : 0.0;
+  const double pairsCost = options.pairs ? 0.3 : 0.0;
+  const double total = std::max(1e-300, volumeCost + axonCost + mixingCost + pairsCost);
+  double done = 0.0;
+  const auto part = [&](double cost) {
+    const double offset = done / total, share = cost / total;
+    done += cost;
+    return ProgressFn([&progress, offset, share](double f) { return reportProgress(progress, offset + share * f); });
+  };
+
+  bool haveRegion = false;
+  if (options.volumeFraction || sampledMixing)
   {
-    result.error = chooseRegion(model, options, result.regionLo, result.regionHi);
-    if (!result.error.empty())
+    // Without the volume fraction a region enclosing no volume (a flat model) only leaves the
+    // mixing figure NaN, as before the mixing existed.
+    const std::string regionError = chooseRegion(model, options, result.regionLo, result.regionHi);
+    haveRegion = regionError.empty();
+    if (!haveRegion && options.volumeFraction)
     {
+      result.error = regionError;
       return result;
     }
-    const ProgressFn volumeProgress = [&](double f) { return reportProgress(progress, volumeShare * f); };
-    if (options.monteCarlo)
+  }
+  if (options.volumeFraction)
+  {
+    const double h = options.monteCarlo ? 0.0 : voxelEdge(options, result);
+    if (!options.monteCarlo)
     {
-      result.volume = monteCarloVolumeFraction(set, result.regionLo, result.regionHi, options.samples, options.seed,
-        options.cell, options.numberOfThreads, volumeProgress);
-    }
-    else
-    {
-      const double h = voxelEdge(options, result);
       const double voxels = voxelCount(result.regionLo, result.regionHi, h);
       if (voxels > options.voxelLimit)
       {
@@ -176,20 +234,49 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
         result.error = s.str();
         return result;
       }
-      result.volume = volumeFraction(set, result.regionLo, result.regionHi, h, options.cell, options.numberOfThreads,
-        volumeProgress);
     }
-    if (!result.volume.error.empty() || result.volume.aborted)
+    result.volume = measureVolume(set, options, result, h, part(volumeCost));
+    if (stops(result.volume, result))
     {
-      result.error = result.volume.error;
-      result.aborted = result.volume.aborted;
       return result;
+    }
+    if (axons)
+    {
+      // The same estimator on the inner capsules: the same voxels (or points) judge both, so the
+      // myelin fraction is a difference of two counts over one grid.
+      const CapsuleSet axonSet = makeCapsules(axonModel(model), options.cell);
+      result.axonVolume = measureVolume(axonSet, options, result, h, part(axonCost));
+      if (stops(result.axonVolume, result))
+      {
+        return result;
+      }
+      result.myelinFraction = result.volume.fraction - result.axonVolume.fraction;
+    }
+    result.extraAxonalFraction = 1.0 - result.volume.fraction;
+  }
+  if (options.mixing)
+  {
+    if (sampledMixing && haveRegion)
+    {
+      result.mixing = measureMixing(model, set, result.regionLo, result.regionHi, options.samples, options.seed,
+        options.cell, options.numberOfThreads, part(mixingCost));
+      if (stops(result.mixing, result))
+      {
+        return result;
+      }
+    }
+    else if (!sampledMixing)
+    {
+      // One population holds all the fiber volume of every sub-cube.
+      result.mixing.bundles = { model.fibers.front().bundle };
+      result.mixing.minShare = { 1.0 };
+      result.mixing.volumeShare = { 1.0 };
+      result.mixing.minimum = 1.0;
     }
   }
   if (options.pairs)
   {
-    result.pairs = compareCapsulePairs(set, options.cell, options.numberOfThreads,
-      [&](double f) { return reportProgress(progress, volumeShare + (1.0 - volumeShare) * f); });
+    result.pairs = compareCapsulePairs(set, options.cell, options.numberOfThreads, part(pairsCost));
     result.aborted = result.pairs.aborted;
   }
   return result;

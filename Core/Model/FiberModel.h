@@ -20,6 +20,10 @@ struct Fiber
   std::vector<double> radii; ///< one per point, > 0
   std::int64_t id = 0;       ///< unique within a model (cell array fiber_id)
   int bundle = 0;            ///< bundle / population (cell array bundle_id)
+  /// Optional point array inner_radius (Model/InnerRadii.h): empty, or one axon radius per point
+  /// inside the myelin sheath, 0 < inner <= radius. Filled only where an algorithm uses it
+  /// (metrics, PLI); algorithms that reshape fibers (the solver) leave it out.
+  std::vector<double> innerRadii;
 
   std::size_t size() const { return points.size(); }
   /// Capsule radius of link k (paper eq. 1).

@@ -1,5 +1,6 @@
 #include "PLI/PLIPipeline.h"
 
+#include "Model/InnerRadii.h"
 #include "PLI/OptionLimits.h"
 #include "Util/NumberFormat.h"
 #include "PLI/Optics.h"
@@ -177,7 +178,8 @@ Status planPLITissue(const FiberModel& model, const PLIOptions& o, PLIPlan& plan
   if (bundles.empty())
     for (const Fiber& f : model.fibers)
       bundles.push_back(f.bundle);
-  Status st = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue);
+  Status st = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue,
+    o.myelin || hasInnerRadii(model));
   if (!st.ok())
     return st;
   plan.tissue.radius = o.radiusModel;

@@ -46,6 +46,9 @@ struct PLIOptions
   /// The bundle ids of the whole model when `model` holds only the fibers of one MPI tile (§6.3),
   /// so that every tile has the same layer table and labels; empty = those of the model.
   std::vector<int> bundleIds;
+  /// The whole model carries inner_radius (set by the caller for an MPI tile, like bundleIds;
+  /// a model with Fiber::innerRadii counts by itself): myelinated tissue when `layers` is empty (§3.2).
+  bool myelin = false;
   // Core-only switches (§2.1).
   TiltConvention tiltConvention = TiltConvention::Physical;
   StepRule stepRule = StepRule::ExactLength;

@@ -28,12 +28,15 @@ enum class AxisModel : std::uint8_t
 };
 
 /// One concentric layer (§3.2): covers s_{l-1}·r < ρ <= scale·r of the local fiber radius r.
+/// An inner-radius layer (§3.2, myelinated fibers) covers ρ <= the local inner_radius instead
+/// (the axon; `scale` 1 is then only its upper bound).
 struct Layer
 {
   double scale = 1.0;
   double dn = -0.001;
   double muPerMm = 0.0;
   AxisModel model = AxisModel::Parallel;
+  bool innerRadius = false;
 };
 
 /// Optic-axis interpolation (§4.5).

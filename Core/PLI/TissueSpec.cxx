@@ -149,7 +149,7 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
 }
 
 Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bundleIds,
-  double defaultDn, double defaultMu, double backgroundMu, TissueSpec& spec)
+  double defaultDn, double defaultMu, double backgroundMu, TissueSpec& spec, bool myelin)
 {
   Status st;
   spec = TissueSpec();
@@ -167,7 +167,17 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
   std::map<int, std::vector<Layer>> specific;
   if (trim(layersText).empty())
   {
-    general.push_back(Layer{ 1.0, defaultDn, defaultMu, AxisModel::Parallel });
+    if (myelin)
+    {
+      // The sheath's optic axis is radial (§2.2): its Δn has the opposite sign of a parallel
+      // layer's for the same net birefringence along the fiber.
+      general.push_back(Layer{ 1.0, 0.0, defaultMu, AxisModel::Background, true });
+      general.push_back(Layer{ 1.0, -defaultDn, defaultMu, AxisModel::Radial });
+    }
+    else
+    {
+      general.push_back(Layer{ 1.0, defaultDn, defaultMu, AxisModel::Parallel });
+    }
     haveGeneral = true;
     if (!std::isfinite(defaultMu) || defaultMu < 0.0)
     {

@@ -68,8 +68,23 @@ struct BlockColumn
   std::int32_t strand;
   std::int32_t labelBase;
   bool* overlap;
+  double cx, cy;          ///< the column's voxel centre (for the inner radius of an axon layer)
+  RadiusModel radius;
 
   bool skip(std::int64_t k) const { return out > 0 && out > (*reach)[static_cast<std::size_t>(k)]; }
+  /// Outer d² of a layer at voxel k: (scale·r)², or the local inner radius² of an axon layer.
+  double layerBound(const Layer& layer, std::int64_t k, double r) const
+  {
+    if (!layer.innerRadius)
+      return layer.scale * layer.scale * r * r;
+    const SectionLink& lk = table->links[g];
+    const Vec3 c{ cx, cy, static_cast<double>(k) + 0.5 };
+    const Vec3 ax = lk.q - lk.p;
+    double tt = dot(c - lk.p, ax) / norm2(ax);
+    tt = tt < 0.0 ? 0.0 : (tt > 1.0 ? 1.0 : tt);
+    const double ri = innerRadiusAt(lk, tt, radius);
+    return ri * ri;
+  }
   void cover(std::int64_t k, double d2, double r)
   {
     std::uint32_t* cell = col + 4 * k;
@@ -83,7 +98,7 @@ struct BlockColumn
     {
       int l = 0;
       const std::vector<Layer>& ls = *layers;
-      while (l + 1 < static_cast<int>(ls.size()) && d2 > ls[l].scale * ls[l].scale * r * r)
+      while (l + 1 < static_cast<int>(ls.size()) && d2 > layerBound(ls[l], k, r))
         ++l;
       std::memcpy(cell, &d2, sizeof(double));
       cell[2] = g;
@@ -125,7 +140,7 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
         out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
       }
       return BlockColumn{ w + 4 * block.index(i, j, 0), &t, layers, shape ? &shape->reach : &noReach, out, g,
-        lk.strand, 1 + lk.slot * L, &stats.overlap };
+        lk.strand, 1 + lk.slot * L, &stats.overlap, static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5, spec.radius };
     });
   }
 

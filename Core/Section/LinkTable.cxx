@@ -15,7 +15,8 @@ double magnitude(const Vec3& v)
 // Whether b is a translated by the closure of a (b starts where a ends), see fiberStrands.
 bool continues(const Fiber& a, const Fiber& b)
 {
-  if (a.bundle != b.bundle || a.size() < 2 || a.size() != b.size() || a.radii != b.radii)
+  if (a.bundle != b.bundle || a.size() < 2 || a.size() != b.size() || a.radii != b.radii ||
+    a.innerRadii != b.innerRadii)
     return false;
   const Vec3 t = b.points.front() - a.points.front();
   const double tol = 1e-9 * std::max(1.0, magnitude(t) + magnitude(a.points.back()));
@@ -125,6 +126,9 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
         L.q = (fib.points[k + 1] - o) * inv;
         L.rp = fib.radii[k] * inv;
         L.rq = fib.radii[k + 1] * inv;
+        const bool sheath = fib.innerRadii.size() == fib.points.size();
+        L.ip = sheath ? fib.innerRadii[k] * inv : L.rp;
+        L.iq = sheath ? fib.innerRadii[k + 1] * inv : L.rq;
         L.slot = static_cast<std::int32_t>(slot);
         L.fiber = f;
         L.strand = strand[static_cast<std::size_t>(f)];

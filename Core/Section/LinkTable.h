@@ -35,6 +35,7 @@ struct SectionLink
 {
   Vec3 p, q;          ///< voxel units: (point − origin)/voxel
   double rp = 0, rq = 0;
+  double ip = 0, iq = 0;  ///< inner radii (voxel units): Fiber::innerRadii, or rp, rq without a sheath
   std::int32_t slot = 0;  ///< bundle slot
   std::int32_t fiber = 0; ///< index in FiberModel::fibers
   std::int32_t strand = 0; ///< fiberStrands: the same for the periodic translates of one closed fiber
@@ -83,6 +84,12 @@ inline bool ownerWins(double d2, std::uint32_t g, double storedD2, std::uint32_t
 inline double radiusAt(const SectionLink& l, double t, RadiusModel m)
 {
   return m == RadiusModel::Linear ? (1.0 - t) * l.rp + t * l.rq : std::max(l.rp, l.rq);
+}
+
+/// Local inner radius at t, tapered like the radius.
+inline double innerRadiusAt(const SectionLink& l, double t, RadiusModel m)
+{
+  return m == RadiusModel::Linear ? (1.0 - t) * l.ip + t * l.iq : std::max(l.ip, l.iq);
 }
 
 /// Visits every voxel centre of the columns `fill` × [0, nz) that link g covers (the capsule test

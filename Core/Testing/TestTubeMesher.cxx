@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -203,4 +204,46 @@ TEST(TubeMesher, SidesOutsideTheRangeAreNamed)
     o.sides = good;
     EXPECT_EQ(checkTubeOptions(o), "");
   }
+}
+
+TEST(TubeMesher, InnerTubesAreClosedOutwardAndFollowTheInnerRadius)
+{
+  // Two straight fibers, one myelinated (inner radius 0.9 of 1.5), one not: the inner tube of the
+  // first is a closed outward tube of the polygonal volume at 0.9; the second has none.
+  FiberModel model;
+  model.fibers.push_back(makeFiber({ { 0, 0, 0 }, { 0, 0, 4 }, { 0, 0, 10 } }, { 1.5, 1.5, 1.5 }));
+  model.fibers.back().innerRadii = { 0.9, 0.9, 0.9 };
+  model.fibers.push_back(makeFiber({ { 5, 0, 0 }, { 5, 0, 10 } }, { 1.0, 1.0 }));
+  TubeOptions o;
+  o.sides = 16;
+  const TubeMesh plain = meshTubes(model, o);
+  EXPECT_TRUE(plain.triangleSurface.empty()); // off: today's mesh
+  o.innerTubes = true;
+  const TubeMesh both = meshTubes(model, o);
+  checkClosedAndOriented(both);
+  ASSERT_EQ(both.triangleSurface.size(), both.numberOfTriangles());
+  // The outer tubes come first, unchanged.
+  ASSERT_GT(both.points.size(), plain.points.size());
+  EXPECT_TRUE(std::equal(plain.points.begin(), plain.points.end(), both.points.begin()));
+  EXPECT_TRUE(std::equal(plain.triangles.begin(), plain.triangles.end(), both.triangles.begin()));
+  TubeMesh inner, outer;
+  for (std::size_t t = 0; t < both.numberOfTriangles(); ++t)
+  {
+    TubeMesh& part = both.triangleSurface[t] ? inner : outer;
+    part.triangles.insert(part.triangles.end(), both.triangles.begin() + 3 * t, both.triangles.begin() + 3 * t + 3);
+    part.triangleFiber.push_back(both.triangleFiber[t]);
+  }
+  inner.points = outer.points = both.points;
+  const auto polygon = [](double r) { return 0.5 * 16 * r * r * std::sin(2.0 * M_PI / 16); };
+  EXPECT_NEAR(signedVolume(inner), 10.0 * polygon(0.9), 1e-9);
+  EXPECT_NEAR(signedVolume(outer), 10.0 * polygon(1.5) + 10.0 * polygon(1.0), 1e-9);
+  for (std::int64_t f : inner.triangleFiber)
+  {
+    ASSERT_EQ(f, 0); // only the myelinated fiber
+  }
+  // The same for any thread count.
+  o.numberOfThreads = 1;
+  const TubeMesh one = meshTubes(model, o);
+  o.numberOfThreads = 2;
+  EXPECT_EQ(one.points, meshTubes(model, o).points);
 }

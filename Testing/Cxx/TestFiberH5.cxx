@@ -10,12 +10,15 @@
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 
 #include "vtk_hdf5.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <dirent.h>
@@ -354,4 +357,94 @@ TEST(FiberH5, FullFileSystemKeepsTheOldFile)
   EXPECT_EQ(status, 0);
   EXPECT_EQ(Slurp(path), before);
   EXPECT_EQ(FilesIn(dir).size(), 1u) << "temporary file left behind";
+}
+
+// inner_radius (myelinated fibers) round-trips through .h5 as an attribute of each fiber's dataset,
+// also past HDF5's 64 KiB object-header limit (a 10 000-point fiber), while the (n, 4) datasets that
+// fastPLI reads stay exactly as they were and nothing else is added to the bundle groups.
+TEST(FiberH5, InnerRadiusRoundTripsBesideTheFastPLIDatasets)
+{
+  std::vector<std::vector<std::array<double, 4>>> fibers(2);
+  for (int k = 0; k < 10000; ++k)
+  {
+    fibers[0].push_back({ 0.01 * k, 0.0, 0.0, 1.0 + 0.1 * std::sin(0.01 * k) });
+  }
+  for (int k = 0; k < 5; ++k)
+  {
+    fibers[1].push_back({ 0.0, 5.0, 1.0 * k, 0.8 });
+  }
+  auto pd = MakeFibers(fibers);
+  vtkNew<vtkDoubleArray> inner;
+  inner->SetName("inner_radius");
+  vtkDataArray* radius = pd->GetPointData()->GetArray("radius");
+  for (vtkIdType p = 0; p < pd->GetNumberOfPoints(); ++p)
+  {
+    inner->InsertNextValue((0.55 + 0.1 * (p % 3)) * radius->GetTuple1(p));
+  }
+  pd->GetPointData()->AddArray(inner);
+  const std::string path = kTmp + "/myelin.h5";
+  ASSERT_EQ(Write(pd, path), "");
+
+  const ReadResult r = Read(path);
+  ASSERT_TRUE(r.errors.empty()) << r.errors;
+  vtkDataArray* back = r.data->GetPointData()->GetArray("inner_radius");
+  ASSERT_NE(back, nullptr);
+  ASSERT_EQ(back->GetNumberOfTuples(), pd->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < pd->GetNumberOfPoints(); ++p)
+  {
+    ASSERT_EQ(back->GetTuple1(p), inner->GetValue(p)) << p; // float64 both ways: exact
+    ASSERT_EQ(r.data->GetPointData()->GetArray("radius")->GetTuple1(p), radius->GetTuple1(p));
+  }
+
+  // What fastPLI sees: group "0" with exactly one (n, 4) float64 dataset "0" holding x, y, z, r.
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  H5G_info_t info;
+  const hid_t group = H5Gopen2(file, "0", H5P_DEFAULT);
+  ASSERT_GE(H5Gget_info(group, &info), 0);
+  EXPECT_EQ(info.nlinks, 1u);
+  const hid_t data = H5Dopen2(group, "0", H5P_DEFAULT);
+  const hid_t space = H5Dget_space(data);
+  hsize_t dims[2] = { 0, 0 };
+  ASSERT_EQ(H5Sget_simple_extent_dims(space, dims, nullptr), 2);
+  EXPECT_EQ(dims[0], 10000u);
+  EXPECT_EQ(dims[1], 4u);
+  std::vector<double> values(4 * 10000);
+  ASSERT_GE(H5Dread(data, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+  EXPECT_EQ(values[4 * 123], pd->GetPoint(123)[0]);
+  EXPECT_EQ(values[4 * 123 + 3], radius->GetTuple1(123));
+  EXPECT_GT(H5Aexists(data, "inner_radius_2"), 0); // 10 000 values in attributes of 4096
+  EXPECT_EQ(H5Aexists(data, "inner_radius_3"), 0);
+  EXPECT_GT(H5Aexists(data, "inner_radius"), 0);
+  H5Sclose(space);
+  H5Dclose(data);
+  H5Gclose(group);
+  H5Fclose(file);
+
+  // Without the array: no attribute, no inner_radius read back.
+  pd->GetPointData()->RemoveArray("inner_radius");
+  ASSERT_EQ(Write(pd, path), "");
+  EXPECT_EQ(Read(path).data->GetPointData()->GetArray("inner_radius"), nullptr);
+}
+
+TEST(FiberH5, MalformedInnerRadiusAttributeIsNamed)
+{
+  const std::string path = kTmp + "/badmyelin.h5";
+  {
+    H5File f(path);
+    f.group("0");
+    f.fiber("0/0", 4);
+    const hid_t data = H5Dopen2(f.id, "0/0", H5P_DEFAULT);
+    const hsize_t n = 3; // one value short
+    const hid_t space = H5Screate_simple(1, &n, nullptr);
+    const hid_t attr = H5Acreate2(data, "inner_radius", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+    const double v[3] = { 0.5, 0.5, 0.5 };
+    H5Awrite(attr, H5T_NATIVE_DOUBLE, v);
+    H5Aclose(attr);
+    H5Sclose(space);
+    H5Dclose(data);
+  }
+  const ReadResult r = Read(path);
+  EXPECT_NE(r.errors.find("'/0/0' attribute inner_radius has 3 values for 4 points"), std::string::npos) << r.errors;
+  EXPECT_EQ(r.data->GetNumberOfPoints(), 0);
 }

@@ -5,10 +5,14 @@
 #include "vtkFiberCubeSource.h"
 #include "vtkFiberTubes.h"
 
+#include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkMassProperties.h>
+#include <vtkPointData.h>
 
 #include <gtest/gtest.h>
 
@@ -153,6 +157,71 @@ TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 2 * 8 + 2); // two rings and two cap centres
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfCells(), 2 * 8 + 2 * 8); // side quads as triangles, two fans
+}
+
+TEST(FiberTubes, InnerTubesOnRequestAreWatertightOutwardAndLabelled)
+{
+  // A myelinated cube (GRatio 0.6): with InnerTubes every fiber gets a second closed, outward tube
+  // at its inner radius, the tubes' volumes in the ratio g² (straight fibers of constant radius), and
+  // tube_surface tells them apart. Off (the default) is the mesh of before, without tube_surface.
+  vtkNew<vtkFiberCubeSource> cube;
+  cube->SetPopulations(2);
+  cube->SetNumberOfFibers(12);
+  cube->SetEdgeLength(20.0);
+  cube->SetSeed(3);
+  cube->SetGRatio(0.6);
+  vtkNew<vtkFiberTubes> plain;
+  plain->SetInputConnection(cube->GetOutputPort());
+  plain->SetNumberOfSides(10);
+  plain->Update();
+  EXPECT_EQ(plain->GetOutput()->GetCellData()->GetArray("tube_surface"), nullptr);
+  vtkNew<vtkFiberTubes> tubes;
+  tubes->SetInputConnection(cube->GetOutputPort());
+  tubes->SetNumberOfSides(10);
+  tubes->InnerTubesOn();
+  tubes->Update();
+  vtkPolyData* out = tubes->GetOutput();
+  ExpectWatertight(out);
+  ASSERT_EQ(out->GetNumberOfCells(), 2 * plain->GetOutput()->GetNumberOfCells());
+  vtkDataArray* surface = out->GetCellData()->GetArray("tube_surface");
+  ASSERT_NE(surface, nullptr);
+  // Split the triangles by surface and compare the signed volumes of the two closed sets.
+  vtkNew<vtkPolyData> outer, inner;
+  vtkNew<vtkCellArray> outerPolys, innerPolys;
+  auto it = vtk::TakeSmartPointer(out->GetPolys()->NewIterator());
+  vtkIdType t = 0;
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell(), ++t)
+  {
+    vtkIdType n;
+    const vtkIdType* ids;
+    it->GetCurrentCell(n, ids);
+    (surface->GetTuple1(t) == 0 ? outerPolys.Get() : innerPolys.Get())->InsertNextCell(n, ids);
+  }
+  outer->SetPoints(out->GetPoints());
+  outer->SetPolys(outerPolys);
+  inner->SetPoints(out->GetPoints());
+  inner->SetPolys(innerPolys);
+  ExpectWatertight(inner);
+  ExpectWatertight(outer);
+  const double vOuter = SignedVolume(outer), vInner = SignedVolume(inner);
+  EXPECT_NEAR(vOuter, SignedVolume(plain->GetOutput()), 1e-9 * vOuter); // the outer tubes unchanged
+  EXPECT_GT(vInner, 0.0);                                                 // outward
+  EXPECT_NEAR(vInner / vOuter, 0.36, 1e-9);                              // g² for a constant g
+  // A bad inner_radius is an error naming it.
+  auto fibers = MakeFibers({ { { 0, 0, 0, 1.0 }, { 5, 0, 0, 1.0 } } });
+  vtkNew<vtkDoubleArray> bad;
+  bad->SetName("inner_radius");
+  bad->InsertNextValue(0.5);
+  bad->InsertNextValue(1.5);
+  fibers->GetPointData()->AddArray(bad);
+  vtkNew<vtkFiberTubes> badTubes;
+  vtkNew<ErrorCatcher> catcher;
+  catcher->Watch(badTubes);
+  badTubes->SetInputData(fibers);
+  badTubes->InnerTubesOn();
+  badTubes->Update();
+  EXPECT_NE(catcher->Errors.find("inner_radius"), std::string::npos) << catcher->Errors;
+  EXPECT_NE(catcher->Errors.find("1.5"), std::string::npos) << catcher->Errors;
 }
 
 TEST(FiberTubes, TubesKeepTheModelsFieldData)

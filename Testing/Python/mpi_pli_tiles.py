@@ -5,7 +5,8 @@ bit for bit the one-process result of the same pipeline, computed afterwards on 
 (client-side objects, one piece). Checked as well: every rank held fewer fibers than the model
 (field data tile_fibers < model_fibers), a rank whose tile no fiber reaches gives the background
 of the serial image, a periodic cell tiled into a larger section, input that sits on rank 0 only
-(FiberReader cannot make pieces), the bounds sentinel, and a distributed solve upstream."""
+(FiberReader cannot make pieces), the bounds sentinel, a distributed solve upstream, and myelinated
+fibers (inner_radius)."""
 import os
 import sys
 
@@ -157,6 +158,14 @@ simSolved = PLISimulation(Input=solver, VolumeOfInterest=[-4, 4, -4, 4, -1, 1], 
 simSolved.UpdatePipeline()
 imageSolved, _ = gathered(simSolved, IMAGE)
 
+# Myelinated fibers (inner_radius sent with the fibers, the layer table agreed by every rank).
+myelinated = FiberCubeSource(Populations=2, NumberOfFibers=60, EdgeLength=12.0, FiberRadius=0.6, SegmentLength=1.0,
+                             Displacement=0.3, Seed=3, GRatio=0.6)
+simMyelin = PLISimulation(Input=myelinated, VolumeOfInterest=VOI, VoxelSize=0.25, PixelSize=0.5, NumberOfRotations=6,
+                          TiltAngle=5.5, Birefringence=-0.004, Seed=4, NoiseGain=0.0, NumberOfThreads=1)
+simMyelin.UpdatePipeline()
+imageMyelin, _ = gathered(simMyelin, IMAGE)
+
 # The one-process results, on rank 0 alone, after every parallel update.
 same(image, serial(sim, IMAGE), "PLISimulation")
 same(gt, serial(truth, TRUTH), "FiberOrientationGroundTruth")
@@ -164,6 +173,7 @@ same(maps, serial(ana, MAPS), "PLIAnalysis")
 same(imageRead, serial(simRead, IMAGE), "PLISimulation (input on rank 0)")
 same(imageCell, serial(simCell, IMAGE), "PLISimulation (periodic cell)")
 same(imageSolved, serial(simSolved, IMAGE), "PLISimulation (solved cube)")
+same(imageMyelin, serial(simMyelin, IMAGE), "PLISimulation (myelinated cube)")
 check(numpy.nanmax(gt["fraction"]) > 0.3 and numpy.nanmin(gt["fraction"]) == 0.0, "the ground truth is flat")
 check(numpy.ptp(image["intensity"]) > 100.0, "the image is flat: not a real comparison")
 print("mpi_pli_tiles passed on %d ranks: image, ground truth, analysis, rank-0 input and periodic cell equal "
