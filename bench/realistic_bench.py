@@ -22,7 +22,7 @@ from scipy.spatial import cKDTree
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 CASES = {
-    "cc": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.76, Tortuosity=1.04, UndulationWavelength=10.0,
+    "cc": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.82, Tortuosity=1.04, UndulationWavelength=10.0,
                BeadingCV=0.16, BeadingLength=8.0),
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
