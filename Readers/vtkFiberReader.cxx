@@ -6,7 +6,10 @@
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
 
+#include <vtkDoubleArray.h>
 #include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
 
@@ -111,8 +114,27 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
     vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
                     << " fiber(s) with fewer than 2 points dropped");
   }
+  for (const std::string& warning : result.warnings)
+  {
+    vtkWarningMacro(<< "FiberReader: " << warning);
+  }
   this->UpdateProgress(0.8);
   fiberpli::FiberPolyData::FromModel(result.model, output);
+  if (!result.innerRadii.empty()) // CATERPillar axons with myelin: FromModel's point order
+  {
+    vtkNew<vtkDoubleArray> inner;
+    inner->SetName("inner_radius");
+    inner->SetNumberOfTuples(output->GetNumberOfPoints());
+    vtkIdType next = 0;
+    for (const std::vector<double>& fiber : result.innerRadii)
+    {
+      for (double r : fiber)
+      {
+        inner->SetValue(next++, r);
+      }
+    }
+    output->GetPointData()->AddArray(inner);
+  }
   if (cell.enabled())
   {
     fiberpli::AddPeriodicCell(output, cell);

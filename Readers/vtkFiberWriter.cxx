@@ -6,7 +6,9 @@
 #include "FiberPolyData.h"
 #include "IO/FiberFile.h"
 
+#include <vtkDataArray.h>
 #include <vtkErrorCode.h>
+#include <vtkPointData.h>
 #include <vtkInformation.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
@@ -67,8 +69,22 @@ void vtkFiberWriter::WriteData()
     this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
     return;
   }
-  const std::string error =
-    ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell) : fiberpli::writeFiberFile(path, in.model);
+  // CATERPillar .csv keeps the axon radius inside the outer one; CACTUS .txt the cell's edge.
+  fiberpli::FiberFileExtras extras;
+  extras.cell = cell;
+  if (vtkDataArray* inner = input->GetPointData()->GetArray("inner_radius"))
+  {
+    extras.innerRadii.resize(in.model.fibers.size());
+    for (std::size_t f = 0; f < in.sourcePoints.size(); ++f)
+    {
+      for (long long id : in.sourcePoints[f])
+      {
+        extras.innerRadii[f].push_back(inner->GetTuple1(static_cast<vtkIdType>(id)));
+      }
+    }
+  }
+  const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell)
+                                         : fiberpli::writeFiberFile(path, in.model, &extras);
   if (!error.empty())
   {
     this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);
