@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -348,4 +350,174 @@ TEST(SubstrateMesher, OptionsAreChecked)
   o.ringSpacing = -1.0;
   EXPECT_NE(checkSubstrateMeshOptions(o).find("RingSpacing is -1"), std::string::npos);
   EXPECT_EQ(substrateSidesForTolerance(1.0, 1.0 - std::cos(M_PI / 10.0)), 10);
+}
+
+namespace
+{
+
+/// First crossing of the segment p → p + s with a triangle: parameter in (0, 1], or > 1 for none.
+/// Edges count as hits on both triangles (inclusive bounds), so a step along a shared edge can
+/// not slip between them.
+double firstHit(const Collected& c, const Vec3& p, const Vec3& s, Vec3& normal)
+{
+  double best = 2.0;
+  for (const auto& t : c.triangles)
+  {
+    const Vec3& a = c.vertices[static_cast<std::size_t>(t[0])];
+    const Vec3 e1 = c.vertices[static_cast<std::size_t>(t[1])] - a;
+    const Vec3 e2 = c.vertices[static_cast<std::size_t>(t[2])] - a;
+    const Vec3 h = cross(s, e2);
+    const double det = dot(e1, h);
+    if (std::abs(det) < 1e-300)
+    {
+      continue;
+    }
+    const Vec3 q = p - a;
+    const double u = dot(q, h) / det;
+    if (u < -1e-9 || u > 1.0 + 1e-9)
+    {
+      continue;
+    }
+    const Vec3 r = cross(q, e1);
+    const double v = dot(s, r) / det;
+    if (v < -1e-9 || u + v > 1.0 + 1e-9)
+    {
+      continue;
+    }
+    const double tt = dot(e2, r) / det;
+    if (tt > 1e-12 && tt <= 1.0 && tt < best)
+    {
+      best = tt;
+      normal = normalized(cross(e1, e2));
+    }
+  }
+  return best;
+}
+
+/// Distance from p to the nearest lattice image of the infinite line a + t·d.
+double periodicAxisDistance(const Vec3& p, const Vec3& a, const Vec3& d, const PeriodicCell& cell)
+{
+  const Vec3 e = cell.edge();
+  const Vec3 u = normalized(d);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = -2; i <= 2; ++i)
+  {
+    for (int j = -2; j <= 2; ++j)
+    {
+      for (int k = -2; k <= 2; ++k)
+      {
+        const Vec3 q = p - a - Vec3{ i * e.x, j * e.y, k * e.z };
+        best = std::min(best, norm(q - u * dot(q, u)));
+      }
+    }
+  }
+  return best;
+}
+
+/// One step of a walker reflecting at the mesh and wrapping at the cell faces.
+void walkStep(const Collected& c, const PeriodicCell& cell, Vec3& p, Vec3 s)
+{
+  for (int bounce = 0; bounce < 100 && norm2(s) > 0.0; ++bounce)
+  {
+    // Up to the nearest cell face first: the mesh is wrapped into the cell.
+    double tFace = 1.0;
+    int faceAxis = -1;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (s[a] > 0.0 && (cell.hi[a] - p[a]) / s[a] < tFace)
+      {
+        tFace = (cell.hi[a] - p[a]) / s[a];
+        faceAxis = a;
+      }
+      if (s[a] < 0.0 && (cell.lo[a] - p[a]) / s[a] < tFace)
+      {
+        tFace = (cell.lo[a] - p[a]) / s[a];
+        faceAxis = a;
+      }
+    }
+    Vec3 n;
+    const double tHit = firstHit(c, p, s * tFace, n);
+    if (tHit <= 1.0)
+    {
+      const Vec3 hit = p + s * (tFace * tHit);
+      Vec3 rest = s * (1.0 - tFace * tHit);
+      const double side = dot(s, n) > 0.0 ? -1.0 : 1.0; // back to where the walker came from
+      rest = rest - n * (2.0 * dot(rest, n));
+      p = hit + n * (side * 1e-9);
+      s = rest;
+      continue;
+    }
+    p = p + s * tFace;
+    s = s * (1.0 - tFace);
+    if (faceAxis < 0)
+    {
+      return;
+    }
+    // Wrap to the opposite face.
+    p[faceAxis] = s[faceAxis] > 0.0 ? cell.lo[faceAxis] : cell.hi[faceAxis];
+  }
+}
+
+} // namespace
+
+TEST(SubstrateMesher, RandomWalkersNeverCrossThePeriodicMesh)
+{
+  const PeriodicCell cell = boxCell();
+  const FiberModel m = straightPeriodicModel();
+  SubstrateMeshOptions o;
+  o.sides = 10;
+  const Collected c = collect(m, cell, o);
+  const double inscribed = std::cos(M_PI / o.sides);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  auto axisDistance = [&](const Vec3& p, std::size_t f) {
+    const Fiber& fiber = m.fibers[f];
+    return periodicAxisDistance(p, fiber.points.front(), fiber.points.back() - fiber.points.front(), cell);
+  };
+  const double step = 0.15;
+  int crossedIn = 0;
+  int crossedOut = 0;
+  for (int w = 0; w < 24; ++w)
+  {
+    const std::size_t f = static_cast<std::size_t>(w % 4);
+    const bool intra = w < 16;
+    Vec3 p;
+    // Intra-axonal: inside the polygon of fiber f; extra-axonal: outside every circle.
+    for (;;)
+    {
+      p = { cell.lo.x + uni(rng) * 10.0, cell.lo.y + uni(rng) * 12.0, cell.lo.z + uni(rng) * 8.0 };
+      bool ok = intra ? axisDistance(p, f) < 0.9 * inscribed * m.fibers[f].radii[0] : true;
+      for (std::size_t g = 0; g < 4 && !intra; ++g)
+      {
+        ok = ok && axisDistance(p, g) > m.fibers[g].radii[0] * 1.05;
+      }
+      if (ok)
+      {
+        break;
+      }
+    }
+    for (int k = 0; k < 1500; ++k)
+    {
+      const Vec3 s = normalized(Vec3{ gauss(rng), gauss(rng), gauss(rng) }) * step;
+      walkStep(c, cell, p, s);
+      if (intra && axisDistance(p, f) > m.fibers[f].radii[0] + 1e-7)
+      {
+        ++crossedOut;
+        break;
+      }
+      bool inside = false;
+      for (std::size_t g = 0; g < 4 && !intra; ++g)
+      {
+        inside = inside || axisDistance(p, g) < inscribed * m.fibers[g].radii[0] - 1e-7;
+      }
+      if (inside)
+      {
+        ++crossedIn;
+        break;
+      }
+    }
+  }
+  EXPECT_EQ(crossedOut, 0);
+  EXPECT_EQ(crossedIn, 0);
 }
