@@ -8,7 +8,6 @@
 #include <limits>
 #include <map>
 #include <sstream>
-#include <unordered_map>
 
 namespace fiberpli
 {
