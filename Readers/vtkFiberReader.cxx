@@ -115,9 +115,18 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
       vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
                       << " fiber(s) with fewer than 2 points dropped");
     }
+    for (const std::string& warning : result.warnings)
+    {
+      vtkWarningMacro(<< "FiberReader: " << warning);
+    }
+    // CATERPillar axons with myelin: their inner radii ride with the fibers like those of .h5.
+    for (std::size_t f = 0; f < result.innerRadii.size() && f < result.model.fibers.size(); ++f)
+    {
+      result.model.fibers[f].innerRadii = result.innerRadii[f];
+    }
     this->UpdateProgress(0.8);
     fiberpli::FiberPolyData::FromModel(result.model, output);
-    fiberpli::AddInnerRadii(result.model, output); // .h5 files can hold them
+    fiberpli::AddInnerRadii(result.model, output); // .h5 and CATERPillar files can hold them
     if (cell.enabled())
     {
       fiberpli::AddPeriodicCell(output, cell);

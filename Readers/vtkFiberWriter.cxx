@@ -59,7 +59,7 @@ void vtkFiberWriter::WriteData()
     {
       vtkWarningMacro(<< in.warning);
     }
-    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 only
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 and .csv
     if (!innerError.empty())
     {
       this->Fail(vtkErrorCode::UserError, innerError);
@@ -78,8 +78,23 @@ void vtkFiberWriter::WriteData()
       this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
       return 0;
     }
-    const std::string error =
-      ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell) : fiberpli::writeFiberFile(path, in.model);
+    // CATERPillar .csv keeps the axon radius inside the outer one; CACTUS .txt the cell's edge.
+    fiberpli::FiberFileExtras extras;
+    extras.cell = cell;
+    for (const fiberpli::Fiber& fiber : in.model.fibers)
+    {
+      if (!fiber.innerRadii.empty())
+      {
+        extras.innerRadii.resize(in.model.fibers.size());
+        break;
+      }
+    }
+    for (std::size_t f = 0; f < extras.innerRadii.size(); ++f)
+    {
+      extras.innerRadii[f] = in.model.fibers[f].innerRadii;
+    }
+    const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell)
+                                           : fiberpli::writeFiberFile(path, in.model, &extras);
     if (!error.empty())
     {
       this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);

@@ -3,6 +3,8 @@
 #include "Util/PrintableText.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/CactusFormat.h"
+#include "IO/CaterpillarFormat.h"
 #include "IO/DatFormat.h"
 #include "IO/MrtrixHeader.h"
 #include "IO/TckFormat.h"
@@ -178,6 +180,14 @@ FiberFileFormat fiberFileFormatFromPath(const std::string& path)
   {
     return FiberFileFormat::Trk;
   }
+  if (ext == "csv")
+  {
+    return FiberFileFormat::Caterpillar;
+  }
+  if (ext == "txt")
+  {
+    return FiberFileFormat::Cactus;
+  }
   return FiberFileFormat::Unknown;
 }
 
@@ -210,6 +220,8 @@ bool canReadFiberFile(const std::string& path)
     case FiberFileFormat::FastPliDat: return looksLikeFastPliDat(in);
     case FiberFileFormat::Tck: return looksLikeTck(in);
     case FiberFileFormat::Trk: return looksLikeTrk(in);
+    case FiberFileFormat::Caterpillar: return looksLikeCaterpillarCsv(in);
+    case FiberFileFormat::Cactus: return looksLikeCactusStrands(in);
     case FiberFileFormat::Unknown: break;
   }
   return false;
@@ -220,7 +232,7 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Unknown)
   {
-    return readFailure(path + ": unknown fiber file extension (expected .dat, .tck or .trk)");
+    return readFailure(path + ": unknown fiber file extension (expected .dat, .tck, .trk, .csv or .txt)");
   }
   const std::string special = checkRegularFile(path); // a FIFO would block the read forever
   if (!special.empty())
@@ -237,21 +249,53 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
     case FiberFileFormat::FastPliDat: return readFastPliDat(in, path);
     case FiberFileFormat::Tck: return readTckWithRadii(in, path, defaultRadius);
     case FiberFileFormat::Trk: return readTrk(in, path, defaultRadius);
+    case FiberFileFormat::Caterpillar: return readCaterpillarCsv(in, path);
+    case FiberFileFormat::Cactus:
+    {
+      struct stat info;
+      if (::stat(path.c_str(), &info) != 0)
+      {
+        return readFailure("cannot stat " + path + ": " + std::strerror(errno));
+      }
+      return readCactusStrands(in, path, static_cast<std::uintmax_t>(info.st_size));
+    }
     case FiberFileFormat::Unknown: break;
   }
   return {};
 }
 
-std::string writeFiberFile(const std::string& path, const FiberModel& model)
+std::string writeFiberFile(const std::string& path, const FiberModel& model, const FiberFileExtras* extras)
 {
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Tck)
   {
     return writeTckWithRadii(path, model);
   }
+  const FiberFileExtras none;
+  const FiberFileExtras& more = extras != nullptr ? *extras : none;
+  if (format == FiberFileFormat::Caterpillar)
+  {
+    return writeFileAtomically(path, [&](std::ostream& out) {
+      const std::string error = writeCaterpillarCsv(out, model, &more.innerRadii, more.sphereTolerance);
+      return error.empty() ? error : path + ": " + error;
+    });
+  }
+  if (format == FiberFileFormat::Cactus)
+  {
+    double box = -1.0;
+    if (more.cell.enabled())
+    {
+      const Vec3 e = more.cell.edge();
+      box = std::max({ e.x, e.y, e.z });
+    }
+    return writeFileAtomically(path, [&](std::ostream& out) {
+      const std::string error = writeCactusStrands(out, model, box);
+      return error.empty() ? error : path + ": " + error;
+    });
+  }
   if (format != FiberFileFormat::FastPliDat)
   {
-    return path + ": cannot write this extension (FiberWriter writes .dat and .tck here)";
+    return path + ": cannot write this extension (FiberWriter writes .dat, .tck, .csv and .txt here)";
   }
   return writeFileAtomically(path, [&](std::ostream& out) {
     const std::string error = writeFastPliDat(out, model);

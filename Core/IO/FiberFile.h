@@ -8,6 +8,7 @@
 #include "Model/FiberModel.h"
 
 #include <string>
+#include <vector>
 
 namespace fiberpli
 {
@@ -17,21 +18,24 @@ enum class FiberFileFormat
   Unknown,
   FastPliDat, ///< .dat
   Tck,        ///< .tck
-  Trk         ///< .trk
+  Trk,        ///< .trk
+  Caterpillar, ///< .csv with the CATERPillar header (CaterpillarFormat.h)
+  Cactus       ///< .txt holding a CACTUS strand list (CactusFormat.h)
 };
 
 /// Format from the extension of path (case-insensitive).
 FiberFileFormat fiberFileFormatFromPath(const std::string& path);
 
 /// True when the file at path has the content of the format its extension names (for
-/// CanReadFile; other readers claim .dat too). False for unknown extensions or unreadable files.
+/// CanReadFile; other readers claim .dat, .csv and .txt too: a .csv must start with the CATERPillar
+/// header, a .txt must open like a CACTUS strand list). False for unknown extensions or unreadable files.
 bool canReadFiberFile(const std::string& path);
 
 /// The track scalar file that holds the radii of the .tck at tckPath: the extension replaced by
 /// ".radius.tsf" ("dir/x.tck" -> "dir/x.radius.tsf"; TsfFormat.h).
 std::string tckRadiusPath(const std::string& tckPath);
 
-/// Reads .dat, .tck or .trk. defaultRadius (µm, > 0) is the radius of every point of formats
+/// Reads .dat, .tck, .trk, .csv (CATERPillar) or .txt (CACTUS). defaultRadius (µm, > 0) is the radius of every point of formats
 /// without radii (.trk, and .tck without a radius file). Errors name the path; an unknown extension
 /// or unopenable file is an error too.
 /// .tck: when tckRadiusPath(path) exists, its values are the radii. It must match the .tck (else
@@ -41,13 +45,24 @@ std::string tckRadiusPath(const std::string& tckPath);
 /// point gets defaultRadius as before.
 FiberReadResult readFiberFile(const std::string& path, double defaultRadius);
 
-/// Writes .dat or .tck (by extension) atomically: on failure an existing file is unchanged.
+/// What some formats store beside the model: the axon radii inside the outer radii (one vector per
+/// fiber, one value per point; written by .csv) and the periodic cell (its largest edge is the box
+/// size of a .txt strand list; without a cell the box size is -1, as CACTUS writes when it has none).
+struct FiberFileExtras
+{
+  std::vector<std::vector<double>> innerRadii;
+  PeriodicCell cell;
+  double sphereTolerance = 0.05; ///< .csv: µm, see CaterpillarFormat.h
+};
+
+/// Writes .dat, .tck, .csv (CATERPillar) or .txt (CACTUS) (by extension) atomically: on failure an
+/// existing file is unchanged.
 /// .tck also writes the radii to tckRadiusPath(path) (Float32LE .tsf, same timestamp as the .tck,
 /// see tckTimestamp), atomically too. Radii that float32 cannot hold (> 3.4e38, or rounding to 0)
 /// are refused before either file is touched. The two files are replaced as a pair
 /// (writeFilesAtomically): when either cannot be written (a full disk, an I/O error), neither
 /// old file is changed, so the old pair still reads.
 /// Returns "" on success, else a message naming the path.
-std::string writeFiberFile(const std::string& path, const FiberModel& model);
+std::string writeFiberFile(const std::string& path, const FiberModel& model, const FiberFileExtras* extras = nullptr);
 
 } // namespace fiberpli

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fiberpli
 {
@@ -23,6 +24,10 @@ struct FiberReadResult : Status
   /// contract needs >= 2 points) but keep their place in the fiber id numbering; the VTK side
   /// reports the count as one warning.
   std::size_t droppedFibers = 0;
+  /// Formats that store an axon radius inside the outer one (CATERPillar): one vector per fiber of
+  /// the model, one value per point (µm, > 0, <= the outer radius), for the point array
+  /// `inner_radius`. Empty when the file gives no inner radius that differs from the outer one.
+  std::vector<std::vector<double>> innerRadii;
 };
 
 /// A failed read: empty model, the given message.

@@ -3,6 +3,8 @@
 // with a fixed seed and fed to every reader and sniffer. Built with ASan/UBSan over the IO
 // sources directly; any sanitizer report aborts the run. Beyond "no crash", a successful read must
 // satisfy the data contract (validateModel), which the readers promise.
+#include "IO/CactusFormat.h"
+#include "IO/CaterpillarFormat.h"
 #include "IO/DatFormat.h"
 #include "IO/TckFormat.h"
 #include "IO/TrkFormat.h"
@@ -156,6 +158,8 @@ int main()
   std::vector<std::string> samples = { slurp(dir + "/fastpli/fastpli.dat"), slurp(dir + "/tracks/sample.tck"),
     slurp(dir + "/tracks/sample.trk"), slurp(dir + "/tracks/sample.radius.tsf") };
   samples.push_back(slurp(dir + "/fastpli/cube.dat").substr(0, 4000)); // a few fibers of the cube
+  samples.push_back(slurp(dir + "/substrates/voxel.csv"));   // CATERPillar
+  samples.push_back(slurp(dir + "/substrates/strands.txt")); // CACTUS
   for (const std::string& s : samples)
   {
     if (s.empty())
@@ -202,7 +206,22 @@ int main()
         checkTsf(r, sample, i);
         accepted += r.ok();
       }
-      runs += 4;
+      {
+        std::istringstream in(input);
+        looksLikeCaterpillarCsv(in);
+        looksLikeCactusStrands(in);
+        const FiberReadResult r = readCaterpillarCsv(in, "fuzz.in");
+        check(r, "csv", sample, i);
+        accepted += r.ok();
+      }
+      {
+        std::istringstream in(input);
+        // The size the file would have: counts are checked against it.
+        const CactusReadResult r = readCactusStrands(in, "fuzz.in", input.size());
+        check(r, "cactus", sample, i);
+        accepted += r.ok();
+      }
+      runs += 6;
       if ((i & 63) == 0 &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > budgetSeconds)
       {
