@@ -44,6 +44,7 @@ parser.add_argument("--threads", type=int, default=2)
 parser.add_argument("--max-steps", type=int, default=6000)
 parser.add_argument("--seed", type=int, default=42)
 parser.add_argument("--volume-fraction", type=float, default=0.0, help="instead of the case's VolumeFraction")
+parser.add_argument("--min-curvature-radius", type=float, default=0.0, help="the solver's MinCurvatureRadius (µm)")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 L = args.edge
@@ -179,7 +180,8 @@ for case in args.cases:
                              SegmentLength=2.0, Displacement=0.0, Seed=args.seed, **knobs)
     source.UpdatePipeline()
     solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, MaxSteps=args.max_steps, MaxDisplacement=0.4,
-                                  NumberOfThreads=args.threads, Tortuosity=knobs["Tortuosity"])
+                                  NumberOfThreads=args.threads, Tortuosity=knobs["Tortuosity"],
+                                  MinCurvatureRadius=args.min_curvature_radius)
     wall, cpu = time.time(), time.process_time()
     solver.UpdatePipeline()
     wall, cpu = time.time() - wall, time.process_time() - cpu
