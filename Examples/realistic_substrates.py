@@ -1,0 +1,104 @@
+"""Realistic periodic substrates (pvbatch): a corpus-callosum-like cell (one population, undulating,
+beaded, myelinated) and an interwoven crossing region (two populations at 90°), made by
+FiberCubeSource with its realism knobs, solved by FiberCollisionSolver keeping the tortuosity, and
+measured by FiberMetrics. Prints one row per cell and population (FiberMetrics' figures: volume
+fraction over the cell with all periodic images, collisions, tortuosity, c2 of segments, radius CV,
+g-ratio, myelin and axon fractions, mixing) and renders every cell: outer tubes coloured by fiber,
+and the axons inside the myelin (FiberTubes InnerTubes) in a cut-away view.
+
+    pvbatch Examples/realistic_substrates.py <FiberPLI.so> <output folder> [--edge 40] [--threads 2]
+        [--size 480]
+
+The figures and how they compare with the targets are in bench/README.md, "Realistic substrates"
+(measured there by the benchmark's own code); this example is the user's version of the recipe.
+"""
+import passive_openmp  # noqa: F401  (first: restarts once with OMP_WAIT_POLICY=PASSIVE when unset)
+import argparse
+import os
+import time
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+
+parser = argparse.ArgumentParser()
+parser.add_argument("plugin")
+parser.add_argument("out")
+parser.add_argument("--edge", type=float, default=40.0)
+parser.add_argument("--threads", type=int, default=2)
+parser.add_argument("--max-steps", type=int, default=6000)
+parser.add_argument("--size", type=int, default=480, help="pixels of every picture (square)")
+args = parser.parse_args()
+LoadPlugin(args.plugin, remote=False, ns=globals())
+os.makedirs(args.out, exist_ok=True)
+
+CELLS = {
+    # corpus callosum: tortuosity ≈ 1.03–1.06, radius CV 0.15–0.3, g-ratio 0.6–0.7
+    "corpus_callosum": (dict(Populations=1, Seeding="Lattice", VolumeFraction=0.82, Tortuosity=1.04,
+                             UndulationWavelength=10.0, BeadingCV=0.16, BeadingLength=8.0, GRatio=0.7),
+                        dict(Tortuosity=1.04)),
+    # crossing region: two populations interwoven at 90°, tortuosity ≈ 1.15
+    "crossing": (dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
+                      VolumeFraction=0.55, Tortuosity=1.15, UndulationWavelength=15.0, BeadingCV=0.2,
+                      BeadingLength=8.0, GRatio=0.7),
+                 dict(Tortuosity=1.15, MinCurvatureRadius=4.0)),
+}
+
+
+def table(proxy, port):
+    proxy.UpdatePipeline()
+    t = servermanager.Fetch(proxy, idx=port)
+    return [{t.GetColumnName(c): t.GetColumn(c).GetValue(r) for c in range(t.GetNumberOfColumns())}
+            for r in range(t.GetNumberOfRows())]
+
+
+def render(solved, name):
+    """Outer tubes coloured by fiber from a corner; beside it the axons (inner tubes) alone."""
+    tubes = FiberTubes(Input=solved, NumberOfSides=12, InnerTubes=1)
+    for part, surface in (("tubes", 0), ("axons", 1)):
+        only = Threshold(Input=tubes, Scalars=["CELLS", "tube_surface"], LowerThreshold=surface,
+                         UpperThreshold=surface)
+        view = CreateView("RenderView")
+        view.ViewSize = [args.size, args.size]
+        view.OrientationAxesVisibility = 0
+        display = Show(only, view)
+        ColorBy(display, ("CELLS", "fiber_id"))
+        display.LookupTable = GetColorTransferFunction("fiber_id")
+        display.LookupTable.ApplyPreset("Rainbow Uniform", True)
+        view.CameraPosition = [1.5, 1.2, 1.8]
+        view.CameraFocalPoint = [0.0, 0.0, 0.0]
+        view.CameraViewUp = [0, 1, 0]
+        view.ResetCamera()
+        Render(view)
+        SaveScreenshot(os.path.join(args.out, "%s_%s.png" % (name, part)), view, CompressionLevel="9")
+        Delete(view)
+        Delete(only)
+    Delete(tubes)
+
+
+print("| cell | population | fibers | steps | solve [s] | volume fraction | collisions | tortuosity mean [min, max] "
+      "| c2 segments | radius CV | g-ratio | myelin / axon fraction | mixing |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+for name, (knobs, solver_knobs) in CELLS.items():
+    cell = FiberCubeSource(Periodic=1, EdgeLength=args.edge, FiberRadius=1.0, RadiusDistribution="Gamma",
+                           RadiusSpread=0.5, SegmentLength=2.0, Displacement=0.0, Seed=42, **knobs)
+    cell.UpdatePipeline()
+    solved = FiberCollisionSolver(Input=cell, SegmentLength=2.0, MaxDisplacement=0.4, MaxSteps=args.max_steps,
+                                  NumberOfThreads=args.threads, **solver_knobs)
+    start = time.time()
+    solved.UpdatePipeline()
+    seconds = time.time() - start
+    steps = servermanager.Fetch(solved).GetFieldData().GetArray("steps").GetValue(0)
+    metrics = FiberMetrics(Input=solved, UsePeriodicCell=1, VolumeFractionMethod="MonteCarlo", Samples=400000,
+                           NumberOfThreads=args.threads)
+    summary = table(metrics, 1)[0]
+    for row in table(metrics, 3):
+        print("| %s | %d | %d | %d | %.1f | %.1f ± %.1f %% | %d | %.3f [%.3f, %.3f] | %.3f | %.3f | %.2f | %.1f / %.1f %% | %.2f |" % (
+            name, row["bundle_id"], row["fibers"], steps, seconds, 100 * summary["volume_fraction"],
+            100 * summary["volume_fraction_error"], summary["collisions"], row["tortuosity_mean"],
+            row["tortuosity_min"], row["tortuosity_max"], row["c2_segments"], row["radius_cv"], row["g_ratio_mean"],
+            100 * summary["myelin_fraction"], 100 * summary["axon_fraction"], row["mixing_min_share"]))
+    render(solved, name)
+    Delete(metrics)
+    Delete(solved)
+    Delete(cell)
+print("pictures in %s" % args.out)
