@@ -59,10 +59,13 @@ bool SolverEngine::localShapeWithinLimits() const
     {
       return false;
     }
-    const double tau = fiberTortuosity(fib, closure);
-    if (o_.tortuosity > 1.0 && tau > 1.0 && tau < o_.tortuosity - tortuosityTolerance())
+    if (o_.tortuosity > 1.0)
     {
-      return false;
+      const double tau = fiberTortuosity(fib, closure);
+      if (tau > 1.0 && tau < o_.tortuosity - tortuosityTolerance())
+      {
+        return false;
+      }
     }
     for (std::size_t i = 0; st_.segmentLength > 0.0 && i + 1 < fib.size(); ++i)
     {
