@@ -26,6 +26,7 @@
 #include <initializer_list>
 #include <new>
 #include <string>
+#include <utility>
 
 vtkStandardNewMacro(vtkFiberMetrics);
 
@@ -41,6 +42,21 @@ vtkDoubleArray* AddColumn(vtkTable* table, const char* name, int components, vtk
   a->SetNumberOfTuples(rows);
   table->AddColumn(a);
   return a;
+}
+
+/// The two columns every per-bundle and per-population table starts with: `bundle_id` and
+/// `fibers`, `rows` tuples each (owned by the table).
+std::pair<vtkIntArray*, vtkIdTypeArray*> AddBundleColumns(vtkTable* table, vtkIdType rows)
+{
+  vtkNew<vtkIntArray> bundleId;
+  bundleId->SetName("bundle_id");
+  bundleId->SetNumberOfTuples(rows);
+  vtkNew<vtkIdTypeArray> fibers;
+  fibers->SetName("fibers");
+  fibers->SetNumberOfTuples(rows);
+  table->AddColumn(bundleId);
+  table->AddColumn(fibers);
+  return { bundleId.GetPointer(), fibers.GetPointer() };
 }
 
 void AddValue(vtkTable* table, const char* name, std::initializer_list<double> values)
@@ -94,14 +110,7 @@ void FillPopulations(vtkTable* table, const fiberpli::MetricsResult& m)
 {
   const auto& populations = m.realism.populations;
   const auto rows = static_cast<vtkIdType>(populations.size());
-  vtkNew<vtkIntArray> bundleId;
-  bundleId->SetName("bundle_id");
-  bundleId->SetNumberOfTuples(rows);
-  vtkNew<vtkIdTypeArray> fibers;
-  fibers->SetName("fibers");
-  fibers->SetNumberOfTuples(rows);
-  table->AddColumn(bundleId);
-  table->AddColumn(fibers);
+  const auto [bundleId, fibers] = AddBundleColumns(table, rows);
   vtkDoubleArray* tMin = AddColumn(table, "tortuosity_min", 1, rows);
   vtkDoubleArray* tMean = AddColumn(table, "tortuosity_mean", 1, rows);
   vtkDoubleArray* tMax = AddColumn(table, "tortuosity_max", 1, rows);
@@ -337,14 +346,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     }
 
     const auto rows = static_cast<vtkIdType>(s.bundles.size());
-    vtkNew<vtkIntArray> bundleId;
-    bundleId->SetName("bundle_id");
-    bundleId->SetNumberOfTuples(rows);
-    vtkNew<vtkIdTypeArray> fibers;
-    fibers->SetName("fibers");
-    fibers->SetNumberOfTuples(rows);
-    bundles->AddColumn(bundleId);
-    bundles->AddColumn(fibers);
+    const auto [bundleId, fibers] = AddBundleColumns(bundles, rows);
     vtkDoubleArray* c2 = AddColumn(bundles, "c2", 1, rows);
     vtkDoubleArray* direction = AddColumn(bundles, "mean_direction", 3, rows);
     vtkDoubleArray* tortuosityMean = AddColumn(bundles, "tortuosity_mean", 1, rows);
