@@ -2,6 +2,7 @@
 #include "Util/PrintableText.h"
 
 #include "IO/LineReader.h"
+#include "IO/TextFields.h"
 
 #include <algorithm>
 #include <cctype>
@@ -20,7 +21,7 @@ namespace
 
 constexpr std::size_t maxLineLength = 4096; // a point line is < 100 characters
 
-bool isBlankChar(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+using textfields::isBlankChar;
 
 std::string_view trim(std::string_view s)
 {
@@ -49,31 +50,12 @@ enum class PointParse
 /// Parses "x y z r" into v[4]; count and bad token are returned for the message.
 PointParse parsePointLine(std::string_view line, double v[4], int& count, std::string_view& badToken)
 {
+  std::string_view tokens[4];
+  const std::size_t total = textfields::splitTokens(line, tokens, 4); // all tokens counted, for the message
   count = 0;
-  std::size_t i = 0;
-  const std::size_t n = line.size();
-  while (i < n)
+  while (static_cast<std::size_t>(count) < std::min<std::size_t>(total, 4))
   {
-    while (i < n && isBlankChar(line[i]))
-    {
-      ++i;
-    }
-    if (i == n)
-    {
-      break;
-    }
-    std::size_t e = i;
-    while (e < n && !isBlankChar(line[e]))
-    {
-      ++e;
-    }
-    const std::string_view token = line.substr(i, e - i);
-    i = e;
-    if (count >= 4)
-    {
-      ++count; // keep counting for the message
-      continue;
-    }
+    const std::string_view token = tokens[count];
     const char* first = token.data();
     const char* last = token.data() + token.size();
     if (last - first > 1 && *first == '+') // Python's float() (fastPLI's reader) accepts "+1.5"
@@ -99,6 +81,7 @@ PointParse parsePointLine(std::string_view line, double v[4], int& count, std::s
     }
     v[count++] = value;
   }
+  count = static_cast<int>(std::min<std::size_t>(total, 1 << 30));
   if (count != 4)
   {
     return PointParse::WrongCount;
