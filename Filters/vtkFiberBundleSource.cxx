@@ -2,7 +2,9 @@
 
 #include "FiberCollective.h"
 #include "FiberPolyData.h"
+#include "FiberInnerRadii.h"
 #include "FiberRealism.h"
+#include "Tissue/Myelin.h"
 #include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
 
@@ -98,13 +100,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
   options.ranvierDepth = this->RanvierDepth;
   options.ranvierLength = this->RanvierLength;
   options.seed = static_cast<std::uint64_t>(this->Seed);
-  options.realism.tortuosity = this->Tortuosity;
-  options.realism.undulationWavelength = this->UndulationWavelength;
-  options.realism.dispersionC2 = this->DispersionC2;
-  options.realism.beadingCV = this->BeadingCV;
-  options.realism.beadingLength = this->BeadingLength;
-  options.realism.gRatio = this->GRatio;
-  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
+  options.realism = fiberpli::RealismKnobs(this);
 
   std::vector<fiberpli::Vec3> trajectory;
   std::vector<double> scale;
@@ -183,13 +179,14 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
 
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this);
   progress(0.0);
-  const fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma, piece, pieces);
+  fiberpli::FiberModel model = fiberpli::generateBundle(options, path, sigma, piece, pieces);
   if (!progress(0.8))
   {
     return 1; // aborted: no partial model is passed on
   }
+  fiberpli::addMyelin(model, options.realism); // inner radii with myelin on
   fiberpli::FiberPolyData::FromModel(model, output);
-  fiberpli::AddInnerRadius(output, options.realism);
+  fiberpli::AddInnerRadii(model, output);
 
   // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);

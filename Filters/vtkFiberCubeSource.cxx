@@ -4,7 +4,9 @@
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "FiberPolyData.h"
+#include "FiberInnerRadii.h"
 #include "FiberRealism.h"
+#include "Tissue/Myelin.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <vtkInformation.h>
@@ -103,13 +105,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   options.segmentLength = this->SegmentLength;
   options.displacement = this->Displacement;
   options.seed = static_cast<std::uint64_t>(this->Seed);
-  options.realism.tortuosity = this->Tortuosity;
-  options.realism.undulationWavelength = this->UndulationWavelength;
-  options.realism.dispersionC2 = this->DispersionC2;
-  options.realism.beadingCV = this->BeadingCV;
-  options.realism.beadingLength = this->BeadingLength;
-  options.realism.gRatio = this->GRatio;
-  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
+  options.realism = fiberpli::RealismKnobs(this);
   options.crossingAngle = this->CrossingAngle;
   options.populationShares.assign(this->PopulationShares, this->PopulationShares + 3);
   options.arrangement = static_cast<fiberpli::CubeArrangement>(this->Arrangement);
@@ -130,7 +126,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   bool aborted = false;
   // Progress and abort over the polydisperse Lattice seeding's disk packing (the long part).
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this, 0.0, 0.7);
-  const fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning, [&](double f) {
+  fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning, [&](double f) {
     aborted = !progress(f);
     return !aborted;
   });
@@ -143,8 +139,9 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
     vtkWarningMacro(<< "FiberCubeSource: " << warning);
   }
   this->UpdateProgress(0.8);
+  fiberpli::addMyelin(model, options.realism); // inner radii with myelin on
   fiberpli::FiberPolyData::FromModel(model, output);
-  fiberpli::AddInnerRadius(output, options.realism);
+  fiberpli::AddInnerRadii(model, output);
 
   // The same field data on every piece, also on an empty one.
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);

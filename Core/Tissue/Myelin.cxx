@@ -29,4 +29,20 @@ double innerRadius(double R, double gRatio, GRatioModel model)
   return 0.25 * (lo + hi);
 }
 
+void addMyelin(FiberModel& model, const ShapeOptions& realism)
+{
+  if (!realism.myelinated())
+  {
+    return;
+  }
+  for (Fiber& f : model.fibers)
+  {
+    f.innerRadii.resize(f.radii.size());
+    for (std::size_t i = 0; i < f.radii.size(); ++i)
+    {
+      f.innerRadii[i] = innerRadius(f.radii[i], realism.gRatio, realism.gRatioModel);
+    }
+  }
+}
+
 } // namespace fiberpli

@@ -3,6 +3,7 @@
 /// the sheath is the shell between the inner radius and it.
 #pragma once
 
+#include "Model/FiberModel.h"
 #include "Tissue/ShapeOptions.h"
 
 namespace fiberpli
@@ -17,5 +18,9 @@ double lee2019MyelinThickness(double innerDiameter);
 /// there is exactly one d > 0 for every R > 0; found by bisection to 1e-12 relative). gRatio must
 /// be in (0, 1) for Constant and is not used by Lee2019.
 double innerRadius(double outerRadius, double gRatio, GRatioModel model);
+
+/// With myelin on (realism.myelinated()), gives every fiber its inner radii (Fiber::innerRadii,
+/// one per point, innerRadius of its radius); with myelin off the model is left as it is.
+void addMyelin(FiberModel& model, const ShapeOptions& realism);
 
 } // namespace fiberpli
