@@ -45,9 +45,28 @@ parser.add_argument("--max-steps", type=int, default=6000)
 parser.add_argument("--seed", type=int, default=42)
 parser.add_argument("--volume-fraction", type=float, default=0.0, help="instead of the case's VolumeFraction")
 parser.add_argument("--min-curvature-radius", type=float, default=0.0, help="the solver's MinCurvatureRadius (µm)")
+parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a FiberCubeSource property instead of the case's (repeatable), e.g. --set Tortuosity=1.25")
+parser.add_argument("--solver-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a FiberCollisionSolver property (repeatable), e.g. --solver-set Tortuosity=1.2")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 L = args.edge
+
+
+def assignments(pairs):
+    """KEY=VALUE strings → a property dict (numbers where they parse, text otherwise)."""
+    out = {}
+    for pair in pairs:
+        key, value = pair.split("=", 1)
+        try:
+            out[key] = int(value)
+        except ValueError:
+            try:
+                out[key] = float(value)
+            except ValueError:
+                out[key] = value
+    return out
 
 
 def fibers_of(pd):
@@ -176,12 +195,15 @@ for case in args.cases:
     knobs = dict(CASES[case])
     if args.volume_fraction > 0.0:
         knobs["VolumeFraction"] = args.volume_fraction
+    knobs.update(assignments(args.set))
     source = FiberCubeSource(Periodic=1, EdgeLength=L, FiberRadius=1.0, RadiusSpread=0.5, RadiusDistribution="Gamma",
                              SegmentLength=2.0, Displacement=0.0, Seed=args.seed, **knobs)
     source.UpdatePipeline()
     solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, MaxSteps=args.max_steps, MaxDisplacement=0.4,
                                   NumberOfThreads=args.threads, Tortuosity=knobs["Tortuosity"],
                                   MinCurvatureRadius=args.min_curvature_radius)
+    for key, value in assignments(args.solver_set).items():
+        setattr(solver, key, value)
     wall, cpu = time.time(), time.process_time()
     solver.UpdatePipeline()
     wall, cpu = time.time() - wall, time.process_time() - cpu

@@ -89,6 +89,18 @@ std::string checkFibers(const FiberModel& model, const CollisionSolverState& st,
       {
         return field("source index of " + which + " point " + formatNumber(i), ps.source[i], "finite and >= 0");
       }
+      if (!ps.inputRadii.empty() && ps.source[i] > static_cast<double>(ps.inputRadii.size() - 1))
+      {
+        return field("source index of " + which + " point " + formatNumber(i), ps.source[i],
+          "at most " + formatNumber(ps.inputRadii.size() - 1) + " (its input radius profile's last point)");
+      }
+    }
+    for (std::size_t i = 0; i < ps.inputRadii.size(); ++i)
+    {
+      if (!std::isfinite(ps.inputRadii[i]) || !(ps.inputRadii[i] > 0.0))
+      {
+        return field("input radius " + formatNumber(i) + " of " + which, ps.inputRadii[i], "finite and > 0");
+      }
     }
     if (!finite(st.closure[f]))
     {

@@ -29,7 +29,7 @@ namespace
 // input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
 // warnings, then the FNV-1a checksum of everything before it.
 const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
-constexpr std::uint32_t kVersion = 4; // 2: PushBoost and the push scale; 3: its pair cap (another push rule); 4: Tortuosity
+constexpr std::uint32_t kVersion = 5; // 2: PushBoost and the push scale; 3: its pair cap (another push rule); 4: Tortuosity; 5: input radius profiles
 constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
 constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
 
@@ -232,6 +232,9 @@ std::string writeSolverCheckpoint(const std::string& path, const FiberModel& mod
         w.vec(ps.velocity[i]);
         w.f64(ps.source[i]);
       }
+      w.u64(ps.inputRadii.size());
+      for (double r : ps.inputRadii)
+        w.f64(r);
       w.u64(static_cast<std::uint64_t>(st.active[f] ? 1 : 0) | (static_cast<std::uint64_t>(st.closed[f] ? 1 : 0) << 1));
       w.vec(st.closure[f]);
       // Global index and home rank (distributed runs; a serial state may leave them empty).
@@ -332,6 +335,9 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
       ps.velocity[i] = r.vec();
       ps.source[i] = r.f64();
     }
+    ps.inputRadii.resize(r.count(8));
+    for (double& radius : ps.inputRadii)
+      radius = r.f64();
     const std::uint64_t flags = r.u64();
     st.active[f] = (flags & 1) ? 1 : 0;
     st.closed[f] = (flags & 2) ? 1 : 0;

@@ -28,6 +28,7 @@ void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
   w.putVector(fib.radii);
   w.putVector(st.points[f].velocity);
   w.putVector(st.points[f].source);
+  w.putVector(st.points[f].inputRadii);
 }
 
 void readFiber(ByteReader& rd, RankFibers& r)
@@ -46,6 +47,7 @@ void readFiber(ByteReader& rd, RankFibers& r)
   FiberPointState ps;
   rd.getVector(ps.velocity);
   rd.getVector(ps.source);
+  rd.getVector(ps.inputRadii);
   st.points.push_back(std::move(ps));
   r.model.fibers.push_back(std::move(fib));
 }

@@ -35,15 +35,32 @@ void insertMidpoint(Fiber& f, FiberPointState& st, std::size_t i)
 {
   const auto off = static_cast<std::ptrdiff_t>(i + 1);
   const Vec3 p = 0.5 * (f.points[i] + f.points[i + 1]);
-  const double r = 0.5 * (f.radii[i] + f.radii[i + 1]);
   const Vec3 v = 0.5 * (st.velocity[i] + st.velocity[i + 1]);
   const double s = 0.5 * (st.source[i] + st.source[i + 1]);
+  const double r = st.inputRadii.empty() ? 0.5 * (f.radii[i] + f.radii[i + 1]) : profileRadius(st.inputRadii, s);
   f.points.insert(f.points.begin() + off, p);
   f.radii.insert(f.radii.begin() + off, r);
   st.velocity.insert(st.velocity.begin() + off, v);
   st.source.insert(st.source.begin() + off, s);
 }
 
+} // namespace
+
+double profileRadius(const std::vector<double>& profile, double s)
+{
+  const std::size_t n = profile.size();
+  if (n == 1 || !(s > 0.0))
+    return profile.front();
+  if (s >= static_cast<double>(n - 1))
+    return profile.back();
+  const auto k = static_cast<std::size_t>(s);
+  const double t = s - static_cast<double>(k);
+  // r_k + t·(r_{k+1} − r_k): exactly r_k on a constant profile, as the mean of equal radii is.
+  return profile[k] + t * (profile[k + 1] - profile[k]);
+}
+
+namespace
+{
 enum class Bend
 {
   Ok,

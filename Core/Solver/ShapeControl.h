@@ -21,19 +21,28 @@ enum class EndPointRule
 };
 
 /// Per-point data that travels with the points through split and merge: the velocity (drag
-/// memory) and the fractional input point index (3.5 = midpoint of input points 3 and 4).
+/// memory) and the fractional input point index (3.5 = midpoint of input points 3 and 4); and
+/// the fiber's radii as it entered the run (by input point index), from which a split takes the
+/// new point's radius, so that a radius profile (beading, nodes) survives any number of merges and
+/// splits instead of being averaged away.
 struct FiberPointState
 {
   std::vector<Vec3> velocity;
   std::vector<double> source;
+  std::vector<double> inputRadii; ///< empty: a split takes the mean of its two points' radii
 };
+
+/// The radius of a fiber's input profile at fractional input point index s (linear between input
+/// points, clamped to the ends); profile must not be empty.
+double profileRadius(const std::vector<double>& profile, double s);
 
 /// Applies the end-point rule to a displacement d of point i (0 or n−1) of fiber f; interior
 /// points are returned unchanged (docs/solver.md §4.2).
 Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule rule);
 
 /// Split / merge of docs/solver.md §5.1 with l_min = 2/3·L̄, l_max = 4/3·L̄ (segmentLength =
-/// L̄ > 0). A split inserts the mean position, radius, velocity and source index; a merge deletes
+/// L̄ > 0). A split inserts the mean position, velocity and source index, and the input radius
+/// profile's value at that index (or the mean radius without a profile); a merge deletes
 /// one point (never an end point, the one with the weaker radius feature). A fiber of minPoints
 /// points is never shortened (2; a fiber closed through a periodic cell needs 3). state arrays must
 /// have f.size() entries. Returns true when a point was inserted or removed. Bounded: a link whose

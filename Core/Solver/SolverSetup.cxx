@@ -53,6 +53,7 @@ void prepareFibers(SolverEngine& s, std::vector<std::string>& warnings)
     {
       st.source[i] = static_cast<double>(i);
     }
+    st.inputRadii = fib.radii;
     if (fib.points.size() >= 2)
     {
       // A fiber of identical points would collapse to one point: leave it as it came.

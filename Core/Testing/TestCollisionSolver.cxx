@@ -256,6 +256,49 @@ TEST(ShapeControl, RanvierNodeSurvivesMergePressure)
   }
 }
 
+// A beaded fiber squeezed (merges) and then stretched (splits): every new point takes its radius
+// from the input profile at its source index, so the beads are not averaged away; the mean of the
+// two neighbours (no profile) leaves points off the profile.
+TEST(ShapeControl, SplitsKeepTheInputRadiusProfile)
+{
+  for (const bool withProfile : { true, false })
+  {
+    Fiber f;
+    for (int i = 0; i <= 64; ++i)
+    {
+      f.points.push_back({ 0.5 * i, 0, 0 });
+      f.radii.push_back(1.0 + 0.3 * std::sin(2.0 * M_PI * i / 16.0));
+    }
+    FiberPointState st;
+    st.velocity.assign(f.size(), Vec3{});
+    for (std::size_t i = 0; i < f.size(); ++i)
+      st.source.push_back(double(i));
+    if (withProfile)
+      st.inputRadii = f.radii;
+    const std::vector<double> input = f.radii;
+    while (controlSegmentLength(f, st, 2.0)) // links of 0.5 µm merge up to [4/3, 8/3] µm
+    {
+    }
+    ASSERT_LT(f.size(), 40u);
+    for (Vec3& p : f.points)
+      p = 3.0 * p; // links of 4–8 µm split down again
+    while (controlSegmentLength(f, st, 2.0))
+    {
+    }
+    double worst = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i)
+      worst = std::max(worst, std::fabs(f.radii[i] - profileRadius(input, st.source[i])));
+    if (withProfile)
+      EXPECT_LT(worst, 1e-12);
+    else
+      EXPECT_GT(worst, 0.01);
+  }
+  EXPECT_DOUBLE_EQ(profileRadius({ 1.0, 3.0, 2.0 }, 0.5), 2.0);
+  EXPECT_DOUBLE_EQ(profileRadius({ 1.0, 3.0, 2.0 }, 1.25), 2.75);
+  EXPECT_DOUBLE_EQ(profileRadius({ 1.0, 3.0, 2.0 }, 7.0), 2.0);
+  EXPECT_DOUBLE_EQ(profileRadius({ 1.0, 3.0, 2.0 }, -1.0), 1.0);
+}
+
 TEST(ShapeControl, CurvatureFlattensSharpVertex)
 {
   Fiber f;

@@ -292,7 +292,7 @@ TEST(SolverCheckpoint, AVersion2FileIsRefusedNamingFileAndVersions)
   CollisionSolverState state;
   const std::string e = readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), model, state);
   EXPECT_NE(e.find(run.file.path), std::string::npos) << e;
-  EXPECT_NE(e.find("has version 2, this FiberPLI reads version 4"), std::string::npos) << e;
+  EXPECT_NE(e.find("has version 2, this FiberPLI reads version 5"), std::string::npos) << e;
 
   FiberModel resumed = run.in;
   const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 10, true });

@@ -7,6 +7,7 @@
 #include "Tissue/LatticeDispersion.h"
 #include "Tissue/LatticeSeeding.h"
 #include "Tissue/Seeds.h"
+#include "Tissue/Stratification.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Random.h"
 
@@ -446,6 +447,50 @@ void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const Latti
     p[other2] += shift2;
   }
 }
+// Random seeding with Arrangement Interwoven: fiber j of population k (along a coordinate axis) is
+// moved from its drawn transverse position (the first two draws of its stream) into its stratum
+// (Tissue/Stratification.h), the drawn position's fraction of the edge kept inside the stratum.
+void placeInStratum(const CubeOptions& o, std::size_t k, std::size_t j, int stratum, int perSide, Fiber& f)
+{
+  const double half = 0.5 * o.edgeLength;
+  const int other1 = static_cast<int>(k + 1) % 3;
+  const int other2 = static_cast<int>(k + 2) % 3;
+  RandomStream drawn(o.seed, k, j);
+  const double t1 = drawn.uniform(-half, half);
+  const double t2 = drawn.uniform(-half, half);
+  const double shift1 = intoStratum(t1, stratum % perSide, perSide, o.edgeLength) - t1;
+  const double shift2 = intoStratum(t2, stratum / perSide, perSide, o.edgeLength) - t2;
+  for (Vec3& p : f.points)
+  {
+    p[other1] += shift1;
+    p[other2] += shift2;
+  }
+}
+
+// The strata of every population for placeInStratum, balanced by the fibers' volumes (empty lists
+// where fibers stay where drawn):
+// Random seeding with Arrangement Interwoven, populations along a coordinate axis (a crossing-angle
+// population wraps obliquely through the cell and spreads by itself).
+std::vector<std::vector<int>> populationStrata(const CubeOptions& o, const std::vector<int>& counts,
+  std::vector<int>& perSide)
+{
+  std::vector<std::vector<int>> strata(counts.size());
+  perSide.assign(counts.size(), 0);
+  if (o.seeding != CubeSeeding::Random || o.arrangement != CubeArrangement::Interwoven)
+    return strata;
+  for (std::size_t k = 0; k < counts.size(); ++k)
+  {
+    if (!cubePopulationAxes(o)[k].standard)
+      continue;
+    std::vector<double> volumes(static_cast<std::size_t>(counts[k]));
+    for (std::size_t j = 0; j < volumes.size(); ++j)
+      volumes[j] = fiberVolume(o, static_cast<int>(k), static_cast<int>(j));
+    perSide[k] = strataPerSide(volumes.size());
+    strata[k] = assignStrata(volumes, perSide[k], o.seed, shapeStreamKey(ShapeFeature::Stratum, k));
+  }
+  return strata;
+}
+
 // Lattice seeding by a disk packing (packedSites) rather than the lattice: one population with
 // varying radii; two with varying radii (slabs) unless Interwoven is asked for, or with Sheets.
 bool packsDisks(const CubeOptions& o)
@@ -787,6 +832,8 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     sites = packsDisks(o) ? packedSites(o, counts, packed, progress, aborted) : shuffledSites(o, counts, spacing);
   const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
     ? sheetHeights(o, counts) : std::vector<double>{};
+  std::vector<int> perSide;
+  const std::vector<std::vector<int>> strata = populationStrata(o, counts, perSide);
   if (warning)
     *warning = packed;
   if (aborted)
@@ -813,6 +860,10 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
       if (!sheets.empty())
       {
         placeInSheet(o, k, j, sheets, f);
+      }
+      if (!strata[k].empty())
+      {
+        placeInStratum(o, k, j, strata[k][j], perSide[k], f);
       }
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));

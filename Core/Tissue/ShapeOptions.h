@@ -69,19 +69,26 @@ enum class ShapeFeature : std::uint64_t
   Dispersion = 1,
   Beading = 2,
   Jitter = 3, ///< the point displacements of a shaped fiber (its point count differs from the straight one's)
-  Placement = 4 ///< the cube: the along-axis start of a fiber of a crossing-angle population
+  Placement = 4, ///< the cube: the along-axis start of a fiber of a crossing-angle population
+  Stratum = 5 ///< the cube: the order in which a population's fibers fill the strata (one stream a round)
 };
 
 /// The index of the one stream of a group that is not a fiber's: its draws are shared by the whole
 /// group (the dispersion quantiles' offset).
 constexpr std::uint64_t kGroupStream = ~std::uint64_t{ 0 };
 
-/// The stream of a shape feature for fiber `index` of `group` (the cube's population or the
-/// bundle's cross-section): (seed, 1000 + 16·feature + group, index). Key1 >= 1000 never meets the
-/// generators' own streams (population / cross-section 0..3, lattice 3..8).
+/// The first key of a shape feature's streams for `group` (the cube's population or the bundle's
+/// cross-section): 1000 + 16·feature + group. Keys >= 1000 never meet the generators' own streams
+/// (population / cross-section 0..3, lattice 3..8).
+constexpr std::uint64_t shapeStreamKey(ShapeFeature feature, std::uint64_t group)
+{
+  return 1000 + 16 * static_cast<std::uint64_t>(feature) + group;
+}
+
+/// The stream of a shape feature for fiber `index` of `group`: (seed, shapeStreamKey, index).
 inline RandomStream shapeStream(std::uint64_t seed, ShapeFeature feature, std::uint64_t group, std::uint64_t index)
 {
-  return RandomStream(seed, 1000 + 16 * static_cast<std::uint64_t>(feature) + group, index);
+  return RandomStream(seed, shapeStreamKey(feature, group), index);
 }
 
 } // namespace fiberpli
