@@ -93,7 +93,8 @@ huge.UpdatePipeline()
 check(huge.GetDataInformation().GetNumberOfCells() == 2 and not catcher.errors and not catcher.warnings,
       "two fibers in a (1e5)^3 cell: %s %s" % (catcher.errors, catcher.warnings))
 
-# The packing reports progress and honours an abort: no output, and the next update packs again.
+# The packing reports progress and honours an abort: no output, no new packing at the next
+# request, and a property change packs again.
 packed = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=30.0, FiberRadius=1.0, RadiusSpread=0.5,
                          RadiusDistribution="Gamma", VolumeFraction=0.85, Seed=42)
 source = packed.GetClientSideObject()
@@ -113,6 +114,9 @@ check(calls["n"] == 1, "the packing reported no progress")
 check(source.GetOutputDataObject(0).GetNumberOfCells() == 0, "an aborted seeding passes nothing on")
 check(not source.GetAbortExecute(), "the abort request must end with the execution")
 source.Update()
+check(source.GetOutputDataObject(0).GetNumberOfCells() == 0, "the request after an abort packed again")
+packed.Seed = 43
+packed.UpdatePipeline()
 check(source.GetOutputDataObject(0).GetNumberOfCells() > 150, "the update after an abort must pack again")
 
 tubes = FiberTubes(Input=solver, NumberOfSides=8)
