@@ -783,8 +783,12 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   std::vector<std::vector<LatticeSite>> sites;
   std::string packed;
   bool aborted = false;
+  // Progress: the disk packing (when there is one) the first 70 %, the fibers' points the rest.
+  const bool packing = o.seeding == CubeSeeding::Lattice && packsDisks(o);
+  const double made = packing ? 0.7 : 0.0;
+  const ProgressFn packingProgress = [&](double f) { return reportProgress(progress, made * f); };
   if (o.seeding == CubeSeeding::Lattice)
-    sites = packsDisks(o) ? packedSites(o, counts, packed, progress, aborted) : shuffledSites(o, counts, spacing);
+    sites = packing ? packedSites(o, counts, packed, packingProgress, aborted) : shuffledSites(o, counts, spacing);
   const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
     ? sheetHeights(o, counts) : std::vector<double>{};
   if (warning)
@@ -803,6 +807,11 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     const std::size_t to = std::min(range.end, first + count);
     for (std::size_t j = from; first + j < to; ++j)
     {
+      // Every 256 fibers: a (100 µm)^3 cell of thousands of fibers takes seconds here.
+      const std::size_t done = model.fibers.size();
+      if (done % 256 == 0 && done > 0 &&
+        !reportProgress(progress, made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
+        return {};
       bool reached = true;
       Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
       unreached += reached ? 0 : 1;

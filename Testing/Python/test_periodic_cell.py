@@ -119,6 +119,17 @@ packed.Seed = 43
 packed.UpdatePipeline()
 check(source.GetOutputDataObject(0).GetNumberOfCells() > 150, "the update after an abort must pack again")
 
+# Equal radii on the lattice: no packing, but thousands of fibers' points take seconds in a large
+# cell; progress runs over them (not only 0 % and the end).
+large = FiberCubeSource(Periodic=1, Seeding="Lattice", Populations=2, EdgeLength=60.0, VolumeFraction=0.7, Seed=42)
+seen = []
+tag = large.GetClientSideObject().AddObserver("ProgressEvent", lambda obj, event: seen.append(obj.GetProgress()))
+large.UpdatePipeline()
+large.GetClientSideObject().RemoveObserver(tag)
+inside = sorted({round(p, 6) for p in seen if 0.0 < p < 0.7})
+check(large.GetDataInformation().GetNumberOfCells() > 1000 and len(inside) >= 3,
+      "lattice seeding of %d fibers reported progress %r" % (large.GetDataInformation().GetNumberOfCells(), inside))
+
 tubes = FiberTubes(Input=solver, NumberOfSides=8)
 compare_image(tubes, "bundle_id", position=(30, 24, 36))
 print("test_periodic_cell passed")
