@@ -6,7 +6,8 @@
  * MakeProgress(algorithm) returns a fiberpli::ProgressFn that calls UpdateProgress and returns
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
- * AbortScope, the first line of every RequestData, makes an abort apply to one execution only.
+ * AbortScope, the first line of every RequestData, makes an abort apply to one execution only and
+ * ends it as a finished execution with empty outputs and a warning (no new run by the next request).
  * CheckThreads applies the NumberOfThreads rule of Util/Threads.h, CheckSeed the Seed rule of
  * Util/Random.h, with VTK messages.
  */
@@ -19,6 +20,8 @@
 #include "Util/Threads.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkDataObject.h>
+#include <vtkExecutive.h>
 #include <vtkVersion.h>
 
 #include <string>
@@ -39,12 +42,15 @@ inline ProgressFn MakeProgress(vtkAlgorithm* algorithm, double begin = 0.0, doub
   };
 }
 
-/// Clears the abort request when the execution ends. VTK leaves AbortExecute set after an abort
-/// (from a progress observer or the GUI), so every later update of this algorithm, and of every
-/// algorithm downstream (CheckAbort looks upstream), would stop at once and pass empty output on.
-/// The aborted execution itself is still reported to the executive (its output is marked aborted
-/// and is made again by the next update). While the scope lasts the execution is listed in
-/// FiberExecutions, where the GUI's abort button finds it.
+/// Ends an aborted execution as a finished one. VTK leaves AbortExecute set after an abort (from a
+/// progress observer or the GUI), so every later update of this algorithm, and of every algorithm
+/// downstream (CheckAbort looks upstream), would stop at once; and an output marked ABORTED is made
+/// again by the very next pipeline request, which in the GUI is the view's update right after the
+/// aborted Apply: a new run would start from 0 % and need a second click. So an aborted execution
+/// leaves its outputs empty, says so once (a warning, shown in the GUI's Output Messages), clears
+/// the request and counts as done: the filter runs again when its input or a property changes.
+/// While the scope lasts the execution is listed in FiberExecutions, where the GUI's abort button
+/// finds it.
 class AbortScope
 {
 public:
@@ -58,10 +64,24 @@ public:
     FiberExecutions::Leave(this->Algorithm);
     if (this->Algorithm->GetAbortExecute())
     {
-#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
-      this->Algorithm->CheckAbort(); // marks the output as aborted
-#endif
       this->Algorithm->SetAbortExecute(0);
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
+      this->Algorithm->SetAbortOutput(false); // not ABORTED: no new run at the next request
+#endif
+      for (int port = 0; port < this->Algorithm->GetNumberOfOutputPorts(); ++port)
+      {
+        if (vtkDataObject* output = this->Algorithm->GetExecutive()->GetOutputData(port))
+        {
+          output->Initialize(); // a partial result is never passed on
+        }
+      }
+      std::string name = this->Algorithm->GetClassName();
+      if (name.rfind("vtk", 0) == 0)
+      {
+        name.erase(0, 3);
+      }
+      vtkWarningWithObjectMacro(this->Algorithm, << name << ": aborted by the user; the output stays "
+        "empty until the input or a property changes (then Apply runs it again)");
     }
   }
   AbortScope(const AbortScope&) = delete;

@@ -124,7 +124,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   this->UpdateProgress(0.0);
   std::string warning;
   bool aborted = false;
-  // Progress and abort over the polydisperse Lattice seeding's disk packing (the long part).
+  // Progress and abort over the polydisperse Lattice seeding's disk packing and the fibers' points.
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this, 0.0, 0.7);
   fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning, [&](double f) {
     aborted = !progress(f);

@@ -78,7 +78,8 @@ public:
   /**
    * How the volume fraction is measured: 0 Voxels (deterministic count, volume_fraction_error is
    * a rigorous bound), 1 MonteCarlo (Samples random points from Seed, volume_fraction_error is the
-   * standard error). Default is 0.
+   * standard error, 0.05 % at the default 10⁶ samples). Default is 1: the voxel bound at automatic
+   * voxels is often ±10–25 points, far wider than the count's real error.
    */
   vtkSetMacro(VolumeFractionMethod, int); // checked at execution
   vtkGetMacro(VolumeFractionMethod, int);
@@ -140,7 +141,7 @@ private:
   double Box[6] = { 1, -1, 1, -1, 1, -1 };
   bool UsePeriodicCell = true;
   double VoxelSize = 0.0;
-  int VolumeFractionMethod = VOXELS;
+  int VolumeFractionMethod = MONTE_CARLO;
   int Samples = 1000000;
   int Seed = 0;
   bool ComputeVolumeFraction = true;

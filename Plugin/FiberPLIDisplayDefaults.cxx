@@ -11,13 +11,16 @@
 #include "vtkSMProxyManager.h"
 #include "vtkSMSessionProxyManager.h"
 #include "vtkSMSourceProxy.h"
+#include "vtkSMTransferFunctionManager.h"
 #include "vtkSMTransferFunctionProxy.h"
 
 #include "vtkSMProperty.h"
 #include "vtkWeakPointer.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -113,6 +116,9 @@ void showIntensityComponent(vtkSMProxy* repr)
   repr->UpdateVTKObjects();
 }
 
+// bundle_id has one colour table for every display (ParaView keeps one per array name). Its
+// categories only grow: a value keeps its colour (kBundleColors by value) and a model with fewer
+// bundles shown later does not take the colours of another model's bundles away.
 void showBundlesAsCategories(vtkSMProxy* repr, vtkPVArrayInformation* bundles)
 {
   vtkSMPVRepresentationProxy::SetScalarColoring(repr, "bundle_id", vtkDataObject::CELL);
@@ -123,10 +129,25 @@ void showBundlesAsCategories(vtkSMProxy* repr, vtkPVArrayInformation* bundles)
   {
     return; // no table, or too many bundles for one colour each: keep the continuous map
   }
-  const int first = static_cast<int>(range[0]);
-  const int count = static_cast<int>(range[1]) - first + 1;
+  int first = static_cast<int>(range[0]);
+  int last = static_cast<int>(range[1]);
   vtkSMPropertyHelper annotations(lut, "Annotations");
+  if (vtkSMPropertyHelper(lut, "IndexedLookup").GetAsInt() == 1)
+  {
+    for (unsigned int k = 0; k + 1 < annotations.GetNumberOfElements(); k += 2)
+    {
+      const int value = std::atoi(annotations.GetAsString(k));
+      first = std::min(first, value);
+      last = std::max(last, value);
+    }
+  }
+  if (last - first >= kMaxCategories)
+  {
+    return; // the union is too wide: leave the table as it is
+  }
+  const int count = last - first + 1;
   vtkSMPropertyHelper colors(lut, "IndexedColors");
+  std::vector<std::string> values(static_cast<std::size_t>(count));
   annotations.SetNumberOfElements(2 * count);
   colors.SetNumberOfElements(3 * count);
   for (int k = 0; k < count; ++k)
@@ -134,14 +155,80 @@ void showBundlesAsCategories(vtkSMProxy* repr, vtkPVArrayInformation* bundles)
     const std::string value = std::to_string(first + k);
     annotations.Set(2 * k, value.c_str());
     annotations.Set(2 * k + 1, ("bundle " + value).c_str());
+    const int slot = ((first + k) % kNumberOfBundleColors + kNumberOfBundleColors) % kNumberOfBundleColors;
     for (int c = 0; c < 3; ++c)
     {
-      colors.Set(3 * k + c, kBundleColors[(first + k) % kNumberOfBundleColors][c]);
+      colors.Set(3 * k + c, kBundleColors[slot][c]);
     }
   }
   vtkSMPropertyHelper(lut, "IndexedLookup").Set(1);
   lut->UpdateVTKObjects();
 }
+
+// PLIAnalysis' and the ground truth's `direction` is an axis angle in [0, 180) degrees: 0 and 180
+// are the same orientation, so its colour table is cyclic ("hsv", whose two ends are one colour)
+// over exactly [0, 180], kept there (no automatic rescale to the data's range). Set once, when
+// FiberPLI first shows such an output; the user's later changes stay.
+void prepareDirectionTable(vtkSMProxy* repr)
+{
+  vtkSMSessionProxyManager* pxm = repr->GetSessionProxyManager();
+  if (!pxm)
+  {
+    return;
+  }
+  static std::map<vtkSMSessionProxyManager*, vtkWeakPointer<vtkSMProxy>> prepared;
+  vtkNew<vtkSMTransferFunctionManager> manager;
+  vtkSMProxy* lut = manager->GetColorTransferFunction("direction", pxm);
+  auto known = prepared.find(pxm);
+  if (!lut || (known != prepared.end() && known->second == lut))
+  {
+    return;
+  }
+  prepared[pxm] = lut;
+  vtkSMTransferFunctionProxy::ApplyPreset(lut, "hsv", false);
+  vtkSMPropertyHelper(lut, "AutomaticRescaleRangeMode").Set(-1); // "Never"
+  vtkSMTransferFunctionProxy::RescaleTransferFunction(lut, 0.0, 180.0);
+  // Else the first display coloured by it rescales the table to its data once.
+  if (lut->GetProperty("ScalarRangeInitialized"))
+  {
+    vtkSMPropertyHelper(lut, "ScalarRangeInitialized").Set(1);
+  }
+  lut->UpdateVTKObjects();
+}
+
+void applyDefaults(vtkSMProxy* repr);
+
+// A display created while its producer's output is empty (e.g. after an aborted first run) has no
+// array to colour by, and ParaView then paints it in one plain colour for good. It gets the
+// starting colouring once, at the first update that brings data, if nobody coloured it meanwhile.
+class FirstDataObserver : public vtkCommand
+{
+public:
+  static FirstDataObserver* New() { return new FirstDataObserver; }
+  vtkWeakPointer<vtkSMProxy> Representation;
+  void Execute(vtkObject* caller, unsigned long, void*) override
+  {
+    auto* producer = vtkSMSourceProxy::SafeDownCast(caller);
+    if (!this->Representation)
+    {
+      caller->RemoveObserver(this);
+      return;
+    }
+    vtkSMPropertyHelper input(this->Representation, "Input", true);
+    vtkPVDataInformation* info = producer ? producer->GetDataInformation(input.GetOutputPort()) : nullptr;
+    if (!info || info->GetNumberOfPoints() == 0)
+    {
+      return; // still empty
+    }
+    vtkSMProxy* repr = this->Representation;
+    caller->RemoveObserver(this); // deletes this command once Execute returns
+    auto* pv = vtkSMPVRepresentationProxy::SafeDownCast(repr);
+    if (pv && !pv->GetUsingScalarColoring())
+    {
+      applyDefaults(repr);
+    }
+  }
+};
 
 // Sets the starting colouring of a new representation from what its input carries.
 void applyDefaults(vtkSMProxy* repr)
@@ -162,6 +249,14 @@ void applyDefaults(vtkSMProxy* repr)
   {
     return;
   }
+  if (info->GetNumberOfPoints() == 0 && producer->GetXMLGroup() &&
+    (std::string(producer->GetXMLGroup()) == "sources" || std::string(producer->GetXMLGroup()) == "filters"))
+  {
+    vtkNew<FirstDataObserver> later;
+    later->Representation = repr;
+    producer->AddObserver(vtkCommand::UpdateDataEvent, later);
+    return;
+  }
   vtkPVArrayInformation* fom = pointArray(info, "fom");
   if (fom && fom->GetDataType() == VTK_UNSIGNED_CHAR && fom->GetNumberOfComponents() == 3)
   {
@@ -173,6 +268,10 @@ void applyDefaults(vtkSMProxy* repr)
   {
     showIntensityComponent(repr);
     return;
+  }
+  if (pointArray(info, "direction") && pointArray(info, "inclination"))
+  {
+    prepareDirectionTable(repr);
   }
   vtkPVArrayInformation* bundles = cellArray(info, "bundle_id");
   if (bundles && cellArray(info, "fiber_id") && bundles->GetNumberOfComponents() == 1)

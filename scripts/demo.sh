@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds in build/ and runs the demo (Examples/demo.py) with pvbatch
-# under Xvfb: a dense two-population cube solved to zero overlaps, tubes coloured by bundle,
-# PLISimulation -> PLIAnalysis -> FOM with its legend; writes demo.png (all views in one picture),
-# demo_tubes.vtp and demo_fibers.dat into the printed folder and prints fibers, volume fraction,
-# collisions and seconds (about 15 s after the build on two idle cores).
+# under Xvfb: a dense two-population periodic cell solved to zero overlaps, measured by
+# FiberMetrics, tubes coloured by population, PLISimulation -> PLIAnalysis -> FOM with its legend;
+# writes demo.png (all views in one picture), demo_tubes.vtp and demo_fibers.h5 into the printed
+# folder and prints fibers, steps, collisions, volume fraction and seconds (a few seconds after the
+# build; README "FiberPLI" says what the time depends on).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # ctest -j2 runs multi-threaded tests side by side on 2 cores: spinning OpenMP threads then wait

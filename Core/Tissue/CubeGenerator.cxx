@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 namespace fiberpli
@@ -632,8 +633,61 @@ std::string sharesProblem(const CubeOptions& o)
 }
 } // namespace
 
+namespace
+{
+// The values that are wrong on their own, whatever the others are, all of them: a user who typed
+// several bad values learns of all at once instead of one per Apply.
+std::string independentProblems(const CubeOptions& o)
+{
+  std::vector<std::string> problems;
+  const auto add = [&problems](bool bad, const std::function<void(std::ostream&)>& say) {
+    if (bad)
+    {
+      std::ostringstream m;
+      say(m);
+      problems.push_back(m.str());
+    }
+  };
+  add(o.populations < 1 || o.populations > 3,
+    [&](std::ostream& m) { m << "Populations is " << o.populations << ", must be 1, 2 or 3"; });
+  add(o.numberOfFibers < 0, [&](std::ostream& m) { m << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0"; });
+  add(!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0,
+    [&](std::ostream& m) { m << "FiberRadius is " << o.fiberRadius << ", must be > 0"; });
+  add(!std::isfinite(o.edgeLength) || o.edgeLength <= 0.0,
+    [&](std::ostream& m) { m << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius"; });
+  add(!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0,
+    [&](std::ostream& m) { m << "SegmentLength is " << o.segmentLength << ", must be > 0"; });
+  add(!std::isfinite(o.displacement) || o.displacement < 0.0,
+    [&](std::ostream& m) { m << "Displacement is " << o.displacement << ", must be >= 0"; });
+  add(o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice, [&](std::ostream& m) {
+    m << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
+  });
+  add(!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0, [&](std::ostream& m) {
+    m << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
+  });
+  add(!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
+    [&](std::ostream& m) { m << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees"; });
+  add(static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2, [&](std::ostream& m) {
+    m << "Arrangement is " << static_cast<int>(o.arrangement) << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+  });
+  std::string all;
+  for (const std::string& p : problems)
+  {
+    all += (all.empty() ? "" : "; ") + p;
+  }
+  return all;
+}
+} // namespace
+
 std::string validateCubeOptions(const CubeOptions& o, int pieces)
 {
+  // Several wrong values: all named in one message. One alone: the checks below say it in the
+  // same words, after the rules that depend on other values.
+  const std::string independent = independentProblems(o);
+  if (independent.find("; ") != std::string::npos)
+  {
+    return independent;
+  }
   std::ostringstream msg;
   const std::string radius = validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
   if (o.populations < 1 || o.populations > 3)
@@ -828,8 +882,12 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   std::vector<std::vector<LatticeSite>> sites;
   std::string packed;
   bool aborted = false;
+  // Progress: the disk packing (when there is one) the first 70 %, the fibers' points the rest.
+  const bool packing = o.seeding == CubeSeeding::Lattice && packsDisks(o);
+  const double made = packing ? 0.7 : 0.0;
+  const ProgressFn packingProgress = [&](double f) { return reportProgress(progress, made * f); };
   if (o.seeding == CubeSeeding::Lattice)
-    sites = packsDisks(o) ? packedSites(o, counts, packed, progress, aborted) : shuffledSites(o, counts, spacing);
+    sites = packing ? packedSites(o, counts, packed, packingProgress, aborted) : shuffledSites(o, counts, spacing);
   const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
     ? sheetHeights(o, counts) : std::vector<double>{};
   std::vector<int> perSide;
@@ -850,6 +908,11 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
     const std::size_t to = std::min(range.end, first + count);
     for (std::size_t j = from; first + j < to; ++j)
     {
+      // Every 256 fibers: a (100 µm)^3 cell of thousands of fibers takes seconds here.
+      const std::size_t done = model.fibers.size();
+      if (done % 256 == 0 && done > 0 &&
+        !reportProgress(progress, made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
+        return {};
       bool reached = true;
       Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
       unreached += reached ? 0 : 1;

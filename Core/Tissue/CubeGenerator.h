@@ -116,8 +116,9 @@ int cubePopulationSize(const CubeOptions& options, int k);
 /// Precondition: validateCubeOptions(options, pieces) is empty.
 /// warning (if given): empty, or why the polydisperse Lattice seeding leaves fibers overlapping
 /// (docs/periodic-cells.md, "Polydisperse seeding"); the same on every piece.
-/// progress (Util/Progress.h): over that seeding's disk packing, the only long part; when it
-/// returns false the generator stops and returns an empty model.
+/// progress (Util/Progress.h): over that seeding's disk packing (the first 70 % when there is one)
+/// and over the fibers' points (every 256 fibers); when it returns false the generator stops and
+/// returns an empty model.
 FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1, std::string* warning = nullptr,
   const ProgressFn& progress = {});
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Checks the server-manager XML (docs/architecture.md §6 (c)): every proxy and property is documented,
-every command= setter exists in the class header, and every proxy has a pvpython-safe label.
+every command= setter exists in the class header, every proxy has a pvpython-safe label, and every
+list property has the unit hint that names it in the panel.
 
     check_xml.py <XML dir: build/Plugin/xml, the XML with Plugin/Shared put in> <source dir>"""
 import glob
@@ -61,6 +62,11 @@ for xml_path in sorted(glob.glob(os.path.join(plugin_dir, "*.xml"))):
             pname = prop.get("name")
             if prop.find("Documentation") is None:
                 errors.append("%s: %s.%s has no Documentation" % (xml_path, name, pname))
+            # The panel shows units from this hint (Plugin/FiberPLIUnitLabels.h); a list gets its
+            # name there only with a unit.
+            if prop.get("repeat_command") == "1" and prop.find("Hints/FiberPLIUnit") is None:
+                errors.append("%s: %s.%s is a list without Hints/FiberPLIUnit (shown without its name)" % (
+                    xml_path, name, pname))
             if "label" in prop.attrib and re.sub(r"[^A-Za-z0-9_]", "", prop.get("label")) != pname:
                 errors.append("%s: %s.%s label changes the Python name" % (xml_path, name, pname))
             command = prop.get("command")

@@ -54,7 +54,8 @@ def summary(metrics):
 # 3 x 3 fibers along x crossing the whole box [-5, 5]^3: phi = 9 pi r^2 10 / 10^3 exactly.
 r = 1.0
 lattice = [line((-8, 2.5 * j, 2.5 * k), (8, 2.5 * j, 2.5 * k), 8, r) for j in (-1, 0, 1) for k in (-1, 0, 1)]
-metrics = FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5], VoxelSize=0.05)
+metrics = FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5], VoxelSize=0.05,
+                       VolumeFractionMethod="Voxels")
 s = summary(metrics)
 exact = 9 * math.pi * r * r * 10 / 1000
 print("lattice:", s["volume_fraction"], "+-", s["volume_fraction_error"], "exact", exact)
@@ -73,6 +74,13 @@ mc = summary(FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5], Vo
 print("lattice, Monte Carlo:", mc["volume_fraction"], "+-", mc["volume_fraction_error"])
 check(mc["volume_fraction_method"] == "MonteCarlo" and abs(mc["volume_fraction"][0] - exact) <= 4 * mc["volume_fraction_error"][0]
       and abs(mc["volume_fraction_error"][0] - math.sqrt(exact * (1 - exact) / 200000)) < 1e-4, "Monte Carlo %s" % mc)
+# The default is the Monte Carlo estimate with 10^6 samples: its error is the standard error
+# (at most 0.05 points), not a voxel bound of several points.
+default = summary(FiberMetrics(Input=polydata(lattice), Box=[-5, 5, -5, 5, -5, 5], ComputeCollisions=0))
+print("lattice, default:", default["volume_fraction"], "+-", default["volume_fraction_error"])
+check(default["volume_fraction_method"] == "MonteCarlo" and default["volume_fraction_error"][0] <= 0.0005
+      and abs(default["volume_fraction"][0] - exact) <= 4 * default["volume_fraction_error"][0],
+      "default volume fraction %s" % default)
 bundles = servermanager.Fetch(metrics, idx=2)
 check(bundles.GetNumberOfRows() == 1 and bundles.GetColumnByName("fibers").GetValue(0) == 9, "Bundles table")
 
@@ -85,7 +93,8 @@ for g in (0.2, 1e-6, -1e-6, -0.3):
 # A periodic cell (field data periodic_cell): a fiber near the +y face wraps to -y; the fiber at
 # y = -4.8 and the one at y = 4.8 are 0.4 apart through the boundary.
 cell = {"periodic_cell": [-5, 5, -5, 5, -5, 5]}
-s = summary(FiberMetrics(Input=polydata([line((-5, 4.5, 0), (5, 4.5, 0), 10, 1.0)], cell), VoxelSize=0.05))
+s = summary(FiberMetrics(Input=polydata([line((-5, 4.5, 0), (5, 4.5, 0), 10, 1.0)], cell), VoxelSize=0.05,
+                         VolumeFractionMethod="Voxels"))
 check(s["periodic"][0] == 1 and abs(s["volume_fraction"][0] - math.pi * 10 / 1000) < 1e-3, "periodic phi %s" % s)
 two = [line((-1.5, -4.8, 0), (1.5, -4.8, 0), 3, 0.5), line((-1.5, 4.8, 0), (1.5, 4.8, 0), 3, 0.5)]
 check(abs(summary(FiberMetrics(Input=polydata(two, cell), ComputeVolumeFraction=0))["min_gap"][0] + 0.6) < 1e-12,
@@ -140,4 +149,19 @@ empty = FiberMetrics(Input=polydata([]))
 errors = ErrorCatcher(empty)
 empty.UpdatePipeline()
 check(not errors.errors and servermanager.Fetch(empty, idx=1).GetNumberOfRows() == 0, "empty input")
+# What the GUI's Apply does with the outputs (pqApplyBehavior: ShowInPreferredView per port, the
+# current view a render view): the fibers in that view and one spreadsheet for the Summary; the
+# other six tables open no view of their own.
+from paraview.modules.vtkRemotingViews import vtkSMParaViewPipelineControllerWithRendering  # noqa: E402
+
+render = CreateView("RenderView")
+shown = FiberMetrics(Input=polydata(lattice), ComputeCollisions=0)
+controller = vtkSMParaViewPipelineControllerWithRendering()
+views = [controller.ShowInPreferredView(shown.SMProxy, port, render.SMProxy) for port in range(8)]
+spreadsheets = {v.GetGlobalIDAsString() for v in views if v is not None and v.GetXMLName() == "SpreadSheetView"}
+check(views[0] is not None and views[0].GetXMLName() == "RenderView", "fibers shown in %r" % (views[0],))
+check(len(spreadsheets) == 1 and views[1] is not None and views[1].GetXMLName() == "SpreadSheetView",
+      "Apply opens %d spreadsheet views: %r" % (len(spreadsheets), [v.GetXMLName() if v else None for v in views]))
+for v in GetViews():
+    Delete(v)
 print("FiberMetrics checks passed")

@@ -1,4 +1,4 @@
-"""pvpython: an abort applies to one execution only; NumberOfThreads follows one rule on
+"""pvpython: an abort applies to one execution only and is not redone by the next request; NumberOfThreads follows one rule on
 every proxy; negative solver SegmentLength means off (not automatic); DefaultRadius 0 is an error;
 solver stacks of identical fibers are refused in bounded memory."""
 import os
@@ -34,12 +34,25 @@ check(aborts["n"] > 0, "the solver reported no progress")
 check(alg.GetOutputDataObject(0).GetNumberOfPoints() == 0, "an aborted solve passes nothing on")
 check(not alg.GetAbortExecute(), "the abort request must end with the execution")
 alg.RemoveObserver(tag)
-# The next pipeline update (what a render or Fetch does) solves again: the aborted output is
-# marked as such. (A proxy's UpdatePipeline() without a time skips proxies ParaView considers up
-# to date; after a property change it runs, see below.)
+# The aborted execution counts as done: the next pipeline request (what a render or Fetch does,
+# and in the GUI the view's update right after Apply) must not start the solve again from 0 %;
+# a property change does.
+starts = {"n": 0}
+
+
+def count_start(obj, event):
+    starts["n"] += 1
+
+
+start_tag = alg.AddObserver("StartEvent", count_start)
 alg.Update()
+check(starts["n"] == 0, "the request after an abort ran the solver again")
+check(alg.GetOutputDataObject(0).GetNumberOfPoints() == 0, "the aborted output must stay empty")
+alg.RemoveObserver(start_tag)
+sol.MaxSteps = 301
+sol.UpdatePipeline()
 solved = alg.GetOutputDataObject(0).GetNumberOfPoints()
-check(solved > 0, "the update after an abort must solve again")
+check(solved > 0, "the update after an abort and a property change must solve again")
 tub.GetClientSideObject().Update()
 check(tub.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints() > 0, "downstream works again")
 tag = alg.AddObserver("ProgressEvent", abort_once)

@@ -93,7 +93,8 @@ huge.UpdatePipeline()
 check(huge.GetDataInformation().GetNumberOfCells() == 2 and not catcher.errors and not catcher.warnings,
       "two fibers in a (1e5)^3 cell: %s %s" % (catcher.errors, catcher.warnings))
 
-# The packing reports progress and honours an abort: no output, and the next update packs again.
+# The packing reports progress and honours an abort: no output, no new packing at the next
+# request, and a property change packs again.
 packed = FiberCubeSource(Periodic=1, Seeding="Lattice", EdgeLength=30.0, FiberRadius=1.0, RadiusSpread=0.5,
                          RadiusDistribution="Gamma", VolumeFraction=0.85, Seed=42)
 source = packed.GetClientSideObject()
@@ -113,7 +114,21 @@ check(calls["n"] == 1, "the packing reported no progress")
 check(source.GetOutputDataObject(0).GetNumberOfCells() == 0, "an aborted seeding passes nothing on")
 check(not source.GetAbortExecute(), "the abort request must end with the execution")
 source.Update()
+check(source.GetOutputDataObject(0).GetNumberOfCells() == 0, "the request after an abort packed again")
+packed.Seed = 43
+packed.UpdatePipeline()
 check(source.GetOutputDataObject(0).GetNumberOfCells() > 150, "the update after an abort must pack again")
+
+# Equal radii on the lattice: no packing, but thousands of fibers' points take seconds in a large
+# cell; progress runs over them (not only 0 % and the end).
+large = FiberCubeSource(Periodic=1, Seeding="Lattice", Populations=2, EdgeLength=60.0, VolumeFraction=0.7, Seed=42)
+seen = []
+tag = large.GetClientSideObject().AddObserver("ProgressEvent", lambda obj, event: seen.append(obj.GetProgress()))
+large.UpdatePipeline()
+large.GetClientSideObject().RemoveObserver(tag)
+inside = sorted({round(p, 6) for p in seen if 0.0 < p < 0.7})
+check(large.GetDataInformation().GetNumberOfCells() > 1000 and len(inside) >= 3,
+      "lattice seeding of %d fibers reported progress %r" % (large.GetDataInformation().GetNumberOfCells(), inside))
 
 tubes = FiberTubes(Input=solver, NumberOfSides=8)
 compare_image(tubes, "bundle_id", position=(30, 24, 36))

@@ -97,7 +97,7 @@ check(sum(angles.GetColumnByName("count").GetValue(k) for k in range(20)) == 3 *
 # --- myelin: straight fibers through the cell, inner radius g r: closed-form fractions ---
 L, R, g = 12.0, 1.5, 0.6
 straight = [(b, [(x, y, L * k / 6, R, g * R) for k in range(7)]) for b, (x, y) in enumerate(((3, 3), (9, 9)))]
-metrics = FiberMetrics(Input=polydata(straight, L), VoxelSize=0.04, ComputeCollisions=0)
+metrics = FiberMetrics(Input=polydata(straight, L), VoxelSize=0.04, VolumeFractionMethod="Voxels", ComputeCollisions=0)
 s = table(metrics, 1)
 fiber, axon = 2 * math.pi * R * R / (L * L), 2 * math.pi * (g * R) ** 2 / (L * L)
 err, axon_err = column(s, "volume_fraction_error"), column(s, "axon_fraction_error")
