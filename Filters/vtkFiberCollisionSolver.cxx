@@ -350,35 +350,35 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     const fiberpli::PeriodicCell& cell = this->Cache->cell;
     const std::size_t collisions = final ? r.collisions
                                          : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
-    fiberpli::AddFieldInt(output, "steps", shownStep);
-    fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
-    fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSteps, shownStep);
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kCollisions, static_cast<int>(collisions));
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSolved, collisions == 0 ? 1 : 0);
     if (final) // only known for the solver's last state
     {
-      fiberpli::AddFieldDoubles(output, "max_overlap", { r.maxOverlap });
-      fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMaxOverlap, { r.maxOverlap });
+      fiberpli::AddFieldInt(output, fiberpli::fiberfield::kShapeOk, r.shapeOk ? 1 : 0);
     }
-    fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kSegmentLength, { r.segmentLength });
     if (this->Cache->periodic)
     {
       fiberpli::AddPeriodicCell(output, cell);
     }
     // Of the periodic cell, else of the model's bounding box.
-    fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kVolumeFraction, { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
     if (final)
     {
-      fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
-      fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMinGap, { r.minGap });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRadiusScale, { r.radiusScale });
     }
     if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
     {
-      fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
-      fiberpli::AddFieldDoubles(output, "halo_links", { static_cast<double>(r.peakHaloLinks) });
-      fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
-      fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
-      fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
-      fiberpli::AddFieldDoubles(output, "tester_recuts", { static_cast<double>(r.testerRecuts) });
-      fiberpli::AddFieldDoubles(output, "tester_cut_move", { r.testerCutMove });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRankPoints, { static_cast<double>(r.peakRankPoints) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloLinks, { static_cast<double>(r.peakHaloLinks) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHeldLinks, { static_cast<double>(r.peakHeldLinks) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloBytesPerStep, { r.haloBytesPerStep });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMigrations, { static_cast<double>(r.migrations) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterRecuts, { static_cast<double>(r.testerRecuts) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterCutMove, { r.testerCutMove });
     }
     this->UpdateProgress(1.0);
     return 1;

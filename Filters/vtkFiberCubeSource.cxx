@@ -32,7 +32,7 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     {
       values.insert(values.end(), { a.direction.x, a.direction.y, a.direction.z });
     }
-    fiberpli::AddFieldDoubles(output, "population_axes", values);
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kPopulationAxes, values);
     const double achieved = fiberpli::axesAngle(axes);
     if (std::fabs(achieved - options.crossingAngle) > 1.0 && piece == 0)
     {
@@ -44,7 +44,7 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
   if (options.realism.dispersed())
   {
     const std::vector<double> c2 = fiberpli::cubeDispersionC2(options);
-    fiberpli::AddFieldDoubles(output, "dispersion_c2", c2);
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kDispersionC2, c2);
     for (std::size_t k = 0; k < c2.size() && piece == 0; ++k)
     {
       if (std::fabs(c2[k] - options.realism.dispersionC2) > 0.02)

@@ -8,17 +8,14 @@
 #include "FiberTileExchange.h"
 #include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
-#include "Section/PLIFields.h"
+#include "PLIImage.h"
 #include "Section/SectionPlan.h"
 
 #include <vtkAlgorithmOutput.h>
-#include <vtkDoubleArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -27,12 +24,6 @@
 #include <sstream>
 
 vtkStandardNewMacro(vtkFiberOrientationGroundTruth);
-
-namespace
-{
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-} // namespace
 
 //------------------------------------------------------------------------------
 // Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.4, PixelSize 2,
@@ -247,28 +238,8 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   output->SetExtent(ext);
   output->SetOrigin(section.imageOrigin);
   output->SetSpacing(this->PixelSize, this->PixelSize, this->PixelSize);
-  auto addMap = [&](const char* name, const std::vector<double>& map, double scale) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(range.count()));
-    vtkIdType k = 0;
-    for (std::int64_t j = range.j0; j < range.j1; ++j)
-    {
-      for (std::int64_t i = range.i0; i < range.i1; ++i)
-      {
-        a->SetValue(k++, map[static_cast<std::size_t>(i + nx * j)] * scale);
-      }
-    }
-    output->GetPointData()->AddArray(a);
-  };
-  addMap("direction", maps.direction, kRadToDeg);
-  addMap("inclination", maps.inclination, kRadToDeg);
-  addMap("inclination_signed", maps.inclinationSigned, kRadToDeg);
-  addMap("fraction", maps.fraction, 1.0);
-  addMap("anisotropy", maps.anisotropy, 1.0);
-  output->GetPointData()->SetActiveScalars("direction");
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { static_cast<double>(c.model.fibers.size()) });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { static_cast<double>(c.modelFibers) });
+  fiberpli::WriteGroundTruthMaps(maps, nx, range,
+    { static_cast<double>(c.model.fibers.size()), static_cast<double>(c.modelFibers) }, output);
   this->UpdateProgress(1.0);
   return 1;
 }

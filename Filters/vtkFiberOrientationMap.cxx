@@ -6,7 +6,7 @@
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
 #include "FiberGuard.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -50,8 +50,8 @@ std::string SelectedName(vtkAlgorithm* self, int idx)
 vtkFiberOrientationMap::vtkFiberOrientationMap()
 {
   this->SetNumberOfOutputPorts(2);
-  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "direction");
-  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "inclination");
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kDirection);
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kInclination);
 }
 
 //------------------------------------------------------------------------------
@@ -149,7 +149,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   legend->SetSpacing(2.0 / n, 2.0 / n, 2.0 / n);
   legend->SetOrigin(-1.0 + 1.0 / n, -1.0 + 1.0 / n, 0.0);
   vtkNew<vtkUnsignedCharArray> legendFom;
-  legendFom->SetName("fom");
+  legendFom->SetName(fiberpli::plifield::kFom);
   legendFom->SetNumberOfComponents(3);
   legendFom->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
   std::memcpy(legendFom->GetPointer(0), rgb.data(), rgb.size());
@@ -191,7 +191,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   const double* i = fiberpli::AsDoubles(inclination, inclinationBuffer);
   const auto count = static_cast<std::size_t>(direction->GetNumberOfTuples());
   vtkNew<vtkUnsignedCharArray> fom;
-  fom->SetName("fom");
+  fom->SetName(fiberpli::plifield::kFom);
   fom->SetNumberOfComponents(3);
   fom->SetNumberOfTuples(static_cast<vtkIdType>(count));
   this->UpdateProgress(0.0);
@@ -204,7 +204,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   }
   if (this->Mask != MASK_NONE)
   {
-    const char* name = this->Mask == MASK_RETARDATION ? "retardation" : "transmittance";
+    const char* name = this->Mask == MASK_RETARDATION ? fiberpli::plifield::kRetardation : fiberpli::plifield::kTransmittance;
     vtkDataArray* values = input->GetPointData()->GetArray(name);
     if (!values)
     {
@@ -234,7 +234,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     reduced = true;
     double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;
-    mask->SetName("mask");
+    mask->SetName(fiberpli::plifield::kMask);
     mask->SetNumberOfTuples(static_cast<vtkIdType>(count));
     err = fiberpli::fomMaskThreshold(kind, this->MaskThreshold, largest, threshold);
     if (err.empty())
@@ -251,7 +251,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     fiberpli::AddFieldDoubles(output, fiberpli::plifield::kMaskThreshold, { threshold });
   }
   output->GetPointData()->AddArray(fom);
-  output->GetPointData()->SetActiveScalars("fom");
+  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kFom);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -5,6 +5,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Mesh/TubeMesher.h"
+#include "Model/DataNames.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -112,10 +113,10 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     polys->SetData(offsets, connectivity);
 
     vtkNew<vtkIdTypeArray> fiberId;
-    fiberId->SetName("fiber_id");
+    fiberId->SetName(fiberpli::fiberfield::kFiberId);
     fiberId->SetNumberOfTuples(numTriangles);
     vtkNew<vtkIntArray> bundleId;
-    bundleId->SetName("bundle_id");
+    bundleId->SetName(fiberpli::fiberfield::kBundleId);
     bundleId->SetNumberOfTuples(numTriangles);
     for (vtkIdType t = 0; t < numTriangles; ++t)
     {
@@ -138,7 +139,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
       std::copy(mesh.triangleSurface.begin(), mesh.triangleSurface.end(), surface->GetPointer(0));
       output->GetCellData()->AddArray(surface);
     }
-    output->GetCellData()->SetActiveScalars("bundle_id");
+    output->GetCellData()->SetActiveScalars(fiberpli::fiberfield::kBundleId);
     // The model's field data (solved, collisions, periodic_cell, seed, …) describe the tubes as
     // well: a saved tubes file still says what it is.
     output->GetFieldData()->PassData(input->GetFieldData());

@@ -11,19 +11,15 @@
 #include "PLI/PLIPipeline.h"
 #include "PLI/PLIReach.h"
 #include "PLI/TissueExport.h"
-#include "Section/PLIFields.h"
+#include "PLIImage.h"
 #include "Section/TiltConvention.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDataObject.h>
-#include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
-#include <vtkFieldData.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -175,14 +171,6 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
     fiberpli::sectionTiling(reach, whole.cell, options.volumeOfInterest);
   }
   return {};
-}
-
-/// True when the fibers carry FiberCollisionSolver's field data collisions = 0 (solved). Under MPI
-/// the rank holding the solver's piece decides for itself (a warning only, no collective).
-bool ClaimsSolved(vtkPolyData* fibers)
-{
-  vtkDataArray* collisions = fibers ? fibers->GetFieldData()->GetArray("collisions") : nullptr;
-  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
 }
 
 } // namespace
@@ -502,10 +490,12 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   this->NumberOfTileFibers = static_cast<double>(in.model.fibers.size());
   this->NumberOfModelFibers = static_cast<double>(in.modelFibers);
   int ok = 1;
+  // Whether the input claims to be collision-free decides a warning only: under MPI the rank that
+  // holds the solver's piece decides for itself, no collective is needed.
   if (wantImage)
   {
     ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image,
-      ClaimsSolved(input));
+      fiberpli::ClaimsCollisionFree(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
@@ -573,36 +563,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   output->SetExtent(ext);
   output->SetSpacing(spacing);
   output->SetOrigin(plan.imageOrigin);
-  const int nrho = static_cast<int>(plan.rho.size());
-  const vtkIdType n = static_cast<vtkIdType>(range.nx() * range.ny());
-  for (std::size_t v = 0; v < image.views.size(); ++v)
-  {
-    const std::string name = v == 0 ? fiberpli::plifield::kIntensity : fiberpli::plifield::intensityTilt(v - 1);
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name.c_str());
-    a->SetNumberOfComponents(nrho);
-    a->SetNumberOfTuples(n);
-    // Core stacks are x fastest then y, rotations innermost: the VTK point order exactly.
-    std::copy(image.views[v].data.begin(), image.views[v].data.end(), a->GetPointer(0));
-    output->GetPointData()->AddArray(a);
-  }
-  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kIntensity);
-
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPolarizerAngles, plan.rhoDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngle, { plan.tiltInTissue * 180.0 / M_PI });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngles, plan.tiltDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltDirections, plan.azimuthDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kSectionThickness, { plan.thickness });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kWavelength, { options.wavelength });
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltConvention, fiberpli::tiltConventionCode(options.tiltConvention));
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltedSensor, options.tiltedSensor ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kNoiseGain, { options.noiseGain });
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kEmptySection, image.emptySection ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { options.voxelSize });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPixelSize, { options.pixelSize });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLightIntensity, { options.lightIntensity });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
+  fiberpli::WritePliStack(image, plan, options, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -654,26 +615,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   output->SetSpacing(voxel, voxel, voxel);
   output->SetOrigin(plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
     plan.lattice.origin[2] + 0.5 * voxel);
-  const vtkIdType n = static_cast<vtkIdType>(tv.label.size());
-  vtkNew<vtkIntArray> label;
-  label->SetName(fiberpli::plifield::kLabel);
-  label->SetNumberOfValues(n);
-  std::copy(tv.label.begin(), tv.label.end(), label->GetPointer(0));
-  vtkNew<vtkFloatArray> axis;
-  axis->SetName(fiberpli::plifield::kOpticAxis);
-  axis->SetNumberOfComponents(3);
-  axis->SetNumberOfTuples(n);
-  std::copy(tv.axis.begin(), tv.axis.end(), axis->GetPointer(0));
-  output->GetPointData()->AddArray(label);
-  output->GetPointData()->AddArray(axis);
-  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kLabel);
-  // What a label means: 1 + b·L + l for layer l of the b-th bundle id; 0 = embedding medium.
-  std::vector<double> bundles(plan.tissue.bundleIds.begin(), plan.tissue.bundleIds.end());
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLabelBundleIds, bundles);
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kLayersPerBundle, plan.tissue.maxLayers());
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { voxel });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
+  fiberpli::WritePliTissue(tv, plan, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,7 +1,7 @@
 #include "Analysis/PliAnalysis.h"
 
 #include "Analysis/RetardationInclination.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 #include "Util/EnumCode.h"
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "Analysis/TiltFit.h"
 #include "Analysis/ForEachPixel.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 
 #include "Analysis/Axis.h"
 #include "Util/Angles.h"
