@@ -26,31 +26,19 @@
 vtkStandardNewMacro(vtkFiberOrientationGroundTruth);
 
 //------------------------------------------------------------------------------
-// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.4, PixelSize 2,
-// all threads.
 /// The section of the properties and the planned volume, made by RequestInformation once per change
 /// of either and used by every RequestData.
 struct vtkFiberOrientationGroundTruth::SectionPlanned
 {
-  vtkMTimeType time = 0;
-  double volume[6] = { 1, -1, 1, -1, 1, -1 };
+  PlanStamp stamp;
   fiberpli::SectionPlan section;
   std::string error; ///< of planSection
 };
 
 //------------------------------------------------------------------------------
-vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth()
-  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
-{
-}
+// Construct with the section of vtkFiberSectionAlgorithm and all threads.
+vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth() = default;
 vtkFiberOrientationGroundTruth::~vtkFiberOrientationGroundTruth() = default;
-
-//------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
 
 //------------------------------------------------------------------------------
 int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
@@ -59,30 +47,16 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
+  bool noFibers = false; // the sentinel then stays the volume, and planSection names it
+  const std::string error =
+    this->VolumeToPlan(inputVector[0], "FiberOrientationGroundTruth", this->PlannedVolume, noFibers);
+  this->PlanSection();
+  const fiberpli::SectionPlan& section = this->Plan->section;
+  if (error.empty() && this->Plan->error.empty()) // errors are reported by RequestData
   {
-    // An explicit VolumeOfInterest does not need the fibers; the sentinel needs the bounds of the
-    // whole model: the input is brought up to date here with the piece RequestUpdateExtent then
-    // asks for (under MPI the ranks' bounds are reduced).
-    std::string error;
-    std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
-    if (fiberpli::isBoundsSentinel(this->VolumeOfInterest) && this->GetNumberOfInputConnections(0) > 0)
-    {
-      double bounds[6];
-      error = fiberpli::FiberTileExchange::UpdateBounds(
-        this, inputVector[0]->GetInformationObject(0), "FiberOrientationGroundTruth", bounds, this->Fibers.get());
-      if (bounds[0] <= bounds[1])
-      {
-        std::copy(bounds, bounds + 6, this->PlannedVolume);
-      }
-    }
-    this->PlanSection();
-    const fiberpli::SectionPlan& section = this->Plan->section;
-    if (error.empty() && this->Plan->error.empty())
-    {
-      extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
-      std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
-    }
-  } // errors are reported by RequestData
+    extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
+    std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
+  }
   const double spacing[3] = { this->PixelSize, this->PixelSize, this->PixelSize };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -95,25 +69,14 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
 //------------------------------------------------------------------------------
 void vtkFiberOrientationGroundTruth::PlanSection()
 {
-  if (this->Plan && this->Plan->time == this->GetMTime() &&
-    std::equal(this->PlannedVolume, this->PlannedVolume + 6, this->Plan->volume))
+  if (this->Plan && this->PlanHolds(this->Plan->stamp, this->PlannedVolume))
   {
     return; // planned for these properties and this volume already
   }
   auto p = std::make_unique<SectionPlanned>();
-  p->time = this->GetMTime();
-  std::copy(this->PlannedVolume, this->PlannedVolume + 6, p->volume);
+  p->stamp = this->StampFor(this->PlannedVolume);
   p->error = fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, p->section);
   this->Plan = std::move(p);
-}
-
-//------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
-  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
-  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -163,7 +126,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   // fibers its pixels read, in model order (FiberTileExchange.h).
   // A periodic cell is tiled into the volume of interest as PLISimulation tiles it (one rule,
   // Model/PeriodicTiling.h), so both see the same tissue pixel by pixel.
-  const double* volume = this->Plan->volume;
+  const double* volume = this->Plan->stamp.volume;
   fiberpli::TileReach pieceReach;
   fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
     localError, [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach) {
@@ -248,12 +211,5 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
 void vtkFiberOrientationGroundTruth::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "VolumeOfInterest:";
-  for (double v : this->VolumeOfInterest)
-  {
-    os << " " << v;
-  }
-  os << "\n" << indent << "VoxelSize: " << this->VoxelSize << "\n";
-  os << indent << "PixelSize: " << this->PixelSize << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

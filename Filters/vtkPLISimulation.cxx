@@ -180,7 +180,7 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
 /// (sentinel), by RequestInformation, and used by every RequestData.
 struct vtkPLISimulation::ImagePlan
 {
-  vtkMTimeType time = 0;             ///< this->GetMTime() the plan is for
+  PlanStamp stamp;                   ///< the time and (resolved) volume the plan is for
   fiberpli::pli::PLIOptions options; ///< the properties, VolumeOfInterest resolved for the sentinel
   fiberpli::pli::PLIPlan plan;       ///< planPLIImage of the options
   std::string error;                 ///< the options' or the plan's error, reported by RequestData
@@ -189,7 +189,6 @@ struct vtkPLISimulation::ImagePlan
 
 //------------------------------------------------------------------------------
 vtkPLISimulation::vtkPLISimulation()
-  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2); // 0: the image stack, 1: the voxelised tissue (ExportTissue)
@@ -222,13 +221,6 @@ FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleVa
 FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths,
   fiberpli::pli::kMaxTiltAzimuths)
 #undef FIBERPLI_LIST_ACCESSORS
-
-//------------------------------------------------------------------------------
-int vtkPLISimulation::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
@@ -292,29 +284,17 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   std::string error = MakeOptions(this, options);
   error = error.empty() ? error : "PLISimulation: " + error;
   bool noFibers = false;
-  if (error.empty() && fiberpli::isBoundsSentinel(options.volumeOfInterest))
+  if (error.empty()) // the same properties on every rank: all of them skip the bounds, or none
   {
-    // The image size depends on the bounds of the whole model, which only the input data knows:
-    // the input is brought up to date now with the piece RequestUpdateExtent asks for anyway, so
-    // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced, so
-    // every rank calls it on every pass, planned already or not).
-    double bounds[6];
-    error = fiberpli::FiberTileExchange::UpdateBounds(this, inputVector->GetInformationObject(0), "PLISimulation", bounds,
-      this->Fibers.get());
-    noFibers = error.empty() && !(bounds[0] <= bounds[1]); // no fiber on any rank
-    if (error.empty() && !noFibers)
-    {
-      std::copy(bounds, bounds + 6, options.volumeOfInterest);
-    }
+    error = this->VolumeToPlan(inputVector, "PLISimulation", options.volumeOfInterest, noFibers);
   }
   if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() && !this->Plan->noFibers &&
-    this->Plan->time == this->GetMTime() &&
-    std::equal(options.volumeOfInterest, options.volumeOfInterest + 6, this->Plan->options.volumeOfInterest))
+    this->PlanHolds(this->Plan->stamp, options.volumeOfInterest))
   {
     return; // planned for these properties and this volume already
   }
   auto p = std::make_unique<ImagePlan>();
-  p->time = this->GetMTime();
+  p->stamp = this->StampFor(options.volumeOfInterest);
   p->options = options;
   p->error = error;
   p->noFibers = noFibers;
@@ -325,15 +305,6 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
     p->error = st.ok() ? "" : "PLISimulation: " + st.error;
   }
   this->Plan = std::move(p);
-}
-
-//------------------------------------------------------------------------------
-int vtkPLISimulation::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
-  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
-  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -624,11 +595,6 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
 void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const double* v = this->VolumeOfInterest;
-  os << indent << "VolumeOfInterest: " << v[0] << " " << v[1] << " " << v[2] << " " << v[3] << " " << v[4] << " "
-     << v[5] << "\n";
-  os << indent << "VoxelSize: " << this->VoxelSize << "\n";
-  os << indent << "PixelSize: " << this->PixelSize << "\n";
   os << indent << "Wavelength: " << this->Wavelength << "\n";
   os << indent << "LightIntensity: " << this->LightIntensity << "\n";
   os << indent << "NumberOfRotations: " << this->NumberOfRotations << "\n";
