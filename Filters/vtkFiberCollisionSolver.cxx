@@ -1,5 +1,6 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
@@ -63,7 +64,7 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
   vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, nullptr, "FiberCollisionSolver", [&]() -> int {
+  return fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
     vtkInformation* outInfo = outputVector->GetInformationObject(0);
     if (!this->IterationsAsTime) // the input's own time steps pass through
     {
@@ -175,7 +176,7 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
     }
     if (error.empty() && c[0] > 0.0 && cache.periodic && !(agreed.lo == cache.cell.lo && agreed.hi == cache.cell.hi))
     {
-      error = "FiberCollisionSolver: the input pieces have different periodic_cell field data";
+      error = fiberpli::ProxyMessage(this, "the input pieces have different periodic_cell field data");
     }
     if (c[0] > 0.0)
     {
@@ -199,19 +200,19 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   const std::string threads = fiberpli::validateThreadCount(this->NumberOfThreads);
   if (!threads.empty())
   {
-    return "FiberCollisionSolver: " + threads;
+    return fiberpli::ProxyMessage(this, threads);
   }
   const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
   if (!threadWarning.empty())
   {
-    vtkWarningMacro(<< "FiberCollisionSolver: " << threadWarning);
+    fiberpliWarningMacro(<< threadWarning);
   }
   if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
   {
-    return "FiberCollisionSolver: TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
-      " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2";
+    return fiberpli::ProxyMessage(this, "TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
+        " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
   }
-  cache.input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
+  cache.input = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!cache.input.ok())
   {
     return cache.input.error;
@@ -225,7 +226,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   cache.periodic = fiberpli::ReadPeriodicCell(input, cache.cell, cellError);
   if (!cache.periodic && !cellError.empty())
   {
-    return "FiberCollisionSolver: input field data " + cellError;
+    return fiberpli::ProxyMessage(this, "input field data " + cellError);
   }
   options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
@@ -248,7 +249,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
         std::to_string(cache.input.model.numberOfPoints()) + " points");
     if (!problem.empty())
     {
-      return "FiberCollisionSolver: " + problem + "; lower MaximumSnapshots";
+      return fiberpli::ProxyMessage(this, problem + "; lower MaximumSnapshots");
     }
   }
   return {};
@@ -273,7 +274,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
     fiberpli::solveWithCheckpoints(model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
-    return "FiberCollisionSolver: " + cache.result.error;
+    return fiberpli::ProxyMessage(this, cache.result.error);
   }
   if (cache.result.aborted)
   {
@@ -282,7 +283,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
   // One warning per kind; an unsolved model is among them, naming the collisions left.
   for (const std::string& w : cache.result.warnings)
   {
-    vtkWarningMacro(<< "FiberCollisionSolver: " << w);
+    fiberpliWarningMacro(<< w);
   }
   cache.states.finish(std::move(model), cache.result.steps);
   return {};
@@ -292,7 +293,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
 int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberCollisionSolver", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
     vtkPolyData* output = vtkPolyData::GetData(outputVector);

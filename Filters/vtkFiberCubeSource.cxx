@@ -1,5 +1,6 @@
 #include "vtkFiberCubeSource.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
@@ -80,7 +81,7 @@ int vtkFiberCubeSource::RequestInformation(vtkInformation*, vtkInformationVector
 int vtkFiberCubeSource::RequestData(vtkInformation* request, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberCubeSource",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(outputVector); });
 }
 
@@ -93,7 +94,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
   const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
 
-  if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
+  if (!fiberpli::CheckSeed(this, this->Seed))
   {
     return 0;
   }
@@ -117,7 +118,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   const std::string invalid = fiberpli::validateCubeOptions(options, pieces);
   if (!invalid.empty())
   {
-    vtkErrorMacro(<< "FiberCubeSource: " << invalid);
+    fiberpliErrorMacro(<< invalid);
     return 0;
   }
 
@@ -136,7 +137,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   }
   if (!warning.empty())
   {
-    vtkWarningMacro(<< "FiberCubeSource: " << warning);
+    fiberpliWarningMacro(<< warning);
   }
   this->UpdateProgress(0.8);
   fiberpli::addMyelin(model, options.realism); // inner radii with myelin on

@@ -1,5 +1,6 @@
 #include "vtkFiberOrientationGroundTruth.h"
 
+#include "FiberAdapter.h"
 #include "Analysis/GroundTruth.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
@@ -49,7 +50,7 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   double origin[3] = { 0, 0, 0 };
   bool noFibers = false; // the sentinel then stays the volume, and planSection names it
   const std::string error =
-    this->VolumeToPlan(inputVector[0], "FiberOrientationGroundTruth", this->PlannedVolume, noFibers);
+    this->VolumeToPlan(inputVector[0], this->PlannedVolume, noFibers);
   this->PlanSection();
   const fiberpli::SectionPlan& section = this->Plan->section;
   if (error.empty() && this->Plan->error.empty()) // errors are reported by RequestData
@@ -85,7 +86,7 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInfo
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h).
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberOrientationGroundTruth",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(inputVector, outputVector); });
 }
 
@@ -93,9 +94,9 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInfo
 int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   std::string localError;
-  if (!fiberpli::CheckThreads(this, "FiberOrientationGroundTruth", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
-    localError = "FiberOrientationGroundTruth: " + fiberpli::validateThreadCount(this->NumberOfThreads);
+    localError = fiberpli::ProxyMessage(this, fiberpli::validateThreadCount(this->NumberOfThreads));
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -120,7 +121,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
       range = fiberpli::GridRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
         std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
     }
-    return e.empty() ? e : "FiberOrientationGroundTruth: " + e;
+    return e.empty() ? e : fiberpli::ProxyMessage(this, e);
   };
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
   // fibers its pixels read, in model order (FiberTileExchange.h).
@@ -128,7 +129,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   // Model/PeriodicTiling.h), so both see the same tissue pixel by pixel.
   const double* volume = this->Plan->stamp.volume;
   fiberpli::TileReach pieceReach;
-  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
+  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, fiberpli::ProxyName(this),
     localError, [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach) {
       fiberpli::GridRange range;
       const std::string e = pieceRange(range);
@@ -167,7 +168,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
   if (!cellError.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << cellError);
+    fiberpliErrorMacro(<< cellError);
     return 0;
   }
   fiberpli::GridRange range;
@@ -194,7 +195,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
   if (!status.ok())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << status.error);
+    fiberpliErrorMacro(<< status.error);
     return 0;
   }
 

@@ -1,5 +1,6 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberAdapter.h"
 #include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
@@ -96,7 +97,7 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberOrientationMap", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     // The mask's reference (the largest value) is taken over all pieces of a parallel update:
     // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
@@ -113,20 +114,16 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
 //------------------------------------------------------------------------------
 int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
 {
-  if (!fiberpli::CheckThreads(this, "FiberOrientationMap", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
     return 0;
   }
-  if (this->ColorScheme != HSV_BLACK && this->ColorScheme != RGB)
+  fiberpli::FomScheme scheme;
+  fiberpli::FomMask kind;
+  if (!fiberpli::CheckEnum(this, this->ColorScheme, RGB, "ColorScheme", "0 (HSV-black) or 1 (RGB)", scheme) ||
+    !fiberpli::CheckEnum(this, this->Mask, MASK_TRANSMITTANCE, "Mask", "0 (None), 1 (Retardation) or 2 (Transmittance)",
+      kind))
   {
-    vtkErrorMacro(<< "FiberOrientationMap: ColorScheme is " << this->ColorScheme
-                  << ", must be 0 (HSV-black) or 1 (RGB)");
-    return 0;
-  }
-  if (this->Mask < MASK_NONE || this->Mask > MASK_TRANSMITTANCE)
-  {
-    vtkErrorMacro(<< "FiberOrientationMap: Mask is " << this->Mask
-                  << ", must be 0 (None), 1 (Retardation) or 2 (Transmittance)");
     return 0;
   }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
@@ -134,14 +131,13 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   vtkImageData* legend = vtkImageData::GetData(outputVector, 1);
   output->Initialize();
   legend->Initialize();
-  const auto scheme = this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb : fiberpli::FomScheme::HsvBlack;
 
   // Legend first: it does not depend on the input.
   std::vector<std::uint8_t> rgb;
   std::string err = fiberpli::fomLegend(this->LegendSize, scheme, rgb);
   if (!err.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: LegendSize " << this->LegendSize << ": " << err);
+    fiberpliErrorMacro(<< "LegendSize " << this->LegendSize << ": " << err);
     return 0;
   }
   const int n = this->LegendSize;
@@ -163,7 +159,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   vtkDataArray* inclination = this->GetInputArrayToProcess(1, input);
   if (!direction || !inclination)
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the input has no point array '" << SelectedName(this, direction ? 1 : 0)
+    fiberpliErrorMacro(<< "the input has no point array '" << SelectedName(this, direction ? 1 : 0)
                   << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
     output->Initialize();
     return 0;
@@ -171,7 +167,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   if (inclination->GetNumberOfTuples() != direction->GetNumberOfTuples() ||
     direction->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the point arrays '" << direction->GetName() << "' ("
+    fiberpliErrorMacro(<< "the point arrays '" << direction->GetName() << "' ("
                   << direction->GetNumberOfTuples() << " tuples) and '" << inclination->GetName() << "' ("
                   << inclination->GetNumberOfTuples() << " tuples) differ in length or from the "
                   << input->GetNumberOfPoints() << " points");
@@ -198,7 +194,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   err = fiberpli::fomMap(d, i, count, scheme, this->NumberOfThreads, fom->GetPointer(0));
   if (!err.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: " << err);
+    fiberpliErrorMacro(<< err);
     output->Initialize();
     return 0;
   }
@@ -208,14 +204,14 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     vtkDataArray* values = input->GetPointData()->GetArray(name);
     if (!values)
     {
-      vtkErrorMacro(<< "FiberOrientationMap: Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
+      fiberpliErrorMacro(<< "Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
                     << " needs the point array '" << name << "' (PLIAnalysis makes it)");
       output->Initialize();
       return 0;
     }
     if (values->GetNumberOfTuples() != direction->GetNumberOfTuples())
     {
-      vtkErrorMacro(<< "FiberOrientationMap: the Mask array '" << name << "' has " << values->GetNumberOfTuples()
+      fiberpliErrorMacro(<< "the Mask array '" << name << "' has " << values->GetNumberOfTuples()
                     << " tuples, '" << direction->GetName() << "' has " << direction->GetNumberOfTuples()
                     << " (they must match)");
       output->Initialize();
@@ -229,7 +225,6 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     }
     std::vector<double> valueBuffer;
     const double* v = fiberpli::AsDoubles(values, valueBuffer);
-    const auto kind = static_cast<fiberpli::FomMask>(this->Mask);
     const double largest = fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), fiberpli::fomMaskReference(v, count));
     reduced = true;
     double threshold = 0.0;
@@ -243,7 +238,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     }
     if (!err.empty())
     {
-      vtkErrorMacro(<< "FiberOrientationMap: MaskThreshold " << this->MaskThreshold << ": " << err);
+      fiberpliErrorMacro(<< "MaskThreshold " << this->MaskThreshold << ": " << err);
       output->Initialize();
       return 0;
     }

@@ -1,5 +1,6 @@
 #include "vtkFiberSectionAlgorithm.h"
 
+#include "FiberAdapter.h"
 #include "FiberPolyData.h"
 #include "FiberTileExchange.h"
 #include "Model/VolumeOfInterest.h"
@@ -27,26 +28,28 @@ int vtkFiberSectionAlgorithm::FillInputPortInformation(int, vtkInformation* info
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberSectionAlgorithm::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberSectionAlgorithm::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
+  fiberpli::FiberTileExchange::RequestPiece(
+    request, outputVector, inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFiberSectionAlgorithm::VolumeToPlan(vtkInformationVector* inputVector, const char* who,
-  double volume[6], bool& noFibers)
+std::string vtkFiberSectionAlgorithm::VolumeToPlan(
+  vtkInformationVector* inputVector, double volume[6], bool& noFibers)
 {
   std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, volume);
   noFibers = false;
-  if (!fiberpli::isBoundsSentinel(this->VolumeOfInterest) || this->GetNumberOfInputConnections(0) == 0)
+  if (!fiberpli::isBoundsSentinel(this->VolumeOfInterest) ||
+    this->GetNumberOfInputConnections(0) == 0)
   {
     return {};
   }
   double bounds[6];
-  const std::string error = fiberpli::FiberTileExchange::UpdateBounds(
-    this, inputVector->GetInformationObject(0), who, bounds, this->Fibers.get());
+  const std::string error = fiberpli::FiberTileExchange::UpdateBounds(this,
+    inputVector->GetInformationObject(0), fiberpli::ProxyName(this), bounds, this->Fibers.get());
   noFibers = error.empty() && !(bounds[0] <= bounds[1]); // no fiber on any rank
   if (bounds[0] <= bounds[1])
   {

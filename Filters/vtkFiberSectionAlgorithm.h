@@ -78,7 +78,7 @@ protected:
   /// ranks' bounds are reduced, so every rank calls this on every information pass, planned already
   /// or not. Returns this rank's conversion error ("" when usable); `noFibers` is set when the
   /// sentinel met no fiber on any rank (`volume` then stays the sentinel).
-  std::string VolumeToPlan(vtkInformationVector* inputVector, const char* who, double volume[6], bool& noFibers);
+  std::string VolumeToPlan(vtkInformationVector* inputVector, double volume[6], bool& noFibers);
 
   /// The stamp of a plan made now, for `volume`.
   PlanStamp StampFor(const double volume[6]);

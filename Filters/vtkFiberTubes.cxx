@@ -1,5 +1,6 @@
 #include "vtkFiberTubes.h"
 
+#include "FiberAdapter.h"
 #include "FiberGuard.h"
 #include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
@@ -33,9 +34,9 @@ vtkStandardNewMacro(vtkFiberTubes);
 int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberTubes", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    if (!fiberpli::CheckThreads(this, "FiberTubes", this->NumberOfThreads))
+    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
     {
       return 0;
     }
@@ -47,7 +48,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
       return 1;
     }
 
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberTubes");
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
     if (!in.ok())
     {
       vtkErrorMacro(<< in.error);
@@ -59,7 +60,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     }
     if (this->InnerTubes)
     {
-      const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberTubes");
+      const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
       if (!innerError.empty())
       {
         vtkErrorMacro(<< innerError);
@@ -76,7 +77,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     const std::string optionError = fiberpli::checkTubeOptions(options);
     if (!optionError.empty())
     {
-      vtkErrorMacro(<< "FiberTubes: " << optionError);
+      fiberpliErrorMacro(<< optionError);
       return 0;
     }
     const fiberpli::TubeMesh mesh = fiberpli::meshTubes(in.model, options, fiberpli::MakeProgress(this, 0.0, 0.8));

@@ -1,5 +1,6 @@
 #include "vtkPLIAnalysis.h"
 
+#include "FiberAdapter.h"
 #include "Analysis/PliAnalysis.h"
 #include "FiberCollective.h"
 #include "FiberGuard.h"
@@ -40,10 +41,10 @@ int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** 
   // Exactly one AllReduce per call on every rank, whatever path this rank takes, then one
   // agreement on the error state (FiberCollective.h): all ranks fail together or none does.
   bool reduced = false;
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLIAnalysis", [&] {
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this), [&] {
     // Guarded here already (FiberGuard.h), so that an exception still leaves this rank's reduction.
     const int rc = fiberpli::GuardRequest(
-      this, outputVector, "PLIAnalysis", [&]() -> int { return this->ExecutePiece(inputVector, outputVector, reduced); });
+      this, outputVector, fiberpli::ProxyName(this), [&]() -> int { return this->ExecutePiece(inputVector, outputVector, reduced); });
     if (!reduced)
     {
       fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);
@@ -76,11 +77,11 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
   if (optionError.empty() && !threadWarning.empty())
   {
-    vtkWarningMacro(<< "PLIAnalysis: " << threadWarning);
+    fiberpliWarningMacro(<< threadWarning);
   }
   if (!optionError.empty())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << optionError);
+    fiberpliErrorMacro(<< optionError);
     return 0;
   }
   if (!input || input->GetNumberOfPoints() == 0)
@@ -92,7 +93,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   const std::string stackError = fiberpli::ReadPliStack(input, options.method, in);
   if (!stackError.empty())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << stackError);
+    fiberpliErrorMacro(<< stackError);
     return 0;
   }
   int inExt[6], ext[6];
@@ -118,7 +119,7 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   }
   if (!status.ok())
   {
-    vtkErrorMacro(<< "PLIAnalysis: " << status.error);
+    fiberpliErrorMacro(<< status.error);
     return 0;
   }
 

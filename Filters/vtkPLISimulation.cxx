@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
@@ -35,13 +36,6 @@ vtkStandardNewMacro(vtkPLISimulation);
 
 namespace
 {
-/// "" when `value` of the switch `name` is 0 or 1, else the message naming both.
-std::string CheckSwitch(const char* name, int value)
-{
-  return value == 0 || value == 1 ? std::string()
-                                  : std::string(name) + " is " + std::to_string(value) + ", must be 0 or 1";
-}
-
 /// The Core options of the properties; "" or the error naming the property whose value the Core
 /// options cannot hold (an enumeration code, a switch or a negative Seed).
 std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
@@ -50,10 +44,11 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
   std::string error = fiberpli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
   if (error.empty())
     error = fiberpli::pli::interpolationFromCode(self->GetInterpolation(), o.interpolation);
+  bool exportTissue = false; // only checked here: the tissue port reads the property itself
   if (error.empty())
-    error = CheckSwitch("TiltedSensor", self->GetTiltedSensor());
+    error = fiberpli::switchFromCode(self->GetTiltedSensor(), "TiltedSensor", o.tiltedSensor);
   if (error.empty())
-    error = CheckSwitch("ExportTissue", self->GetExportTissue());
+    error = fiberpli::switchFromCode(self->GetExportTissue(), "ExportTissue", exportTissue);
   if (error.empty())
     error = fiberpli::validateSeed(self->GetSeed());
   self->GetVolumeOfInterest(o.volumeOfInterest);
@@ -84,7 +79,6 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
   o.opticalSigma = self->GetOpticalSigma();
   o.noiseGain = self->GetNoiseGain();
   o.refractiveIndex = self->GetRefractiveIndex();
-  o.tiltedSensor = self->GetTiltedSensor() != 0;
   o.numberOfThreads = self->GetNumberOfThreads();
   return error;
 }
@@ -282,11 +276,11 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
 {
   fiberpli::pli::PLIOptions options;
   std::string error = MakeOptions(this, options);
-  error = error.empty() ? error : "PLISimulation: " + error;
+  error = error.empty() ? error : fiberpli::ProxyMessage(this, error);
   bool noFibers = false;
   if (error.empty()) // the same properties on every rank: all of them skip the bounds, or none
   {
-    error = this->VolumeToPlan(inputVector, "PLISimulation", options.volumeOfInterest, noFibers);
+    error = this->VolumeToPlan(inputVector, options.volumeOfInterest, noFibers);
   }
   if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() && !this->Plan->noFibers &&
     this->PlanHolds(this->Plan->stamp, options.volumeOfInterest))
@@ -302,7 +296,7 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   {
     // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
     const fiberpli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
-    p->error = st.ok() ? "" : "PLISimulation: " + st.error;
+    p->error = st.ok() ? "" : fiberpli::ProxyMessage(this, st.error);
   }
   this->Plan = std::move(p);
 }
@@ -336,7 +330,7 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
   // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLISimulation",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(request, inputVector, outputVector); });
 }
 
@@ -357,9 +351,9 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     return 1;
   }
   std::string localError = this->Plan->error;
-  if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
-    localError = "PLISimulation: " + fiberpli::validateThreadCount(this->NumberOfThreads);
+    localError = fiberpli::ProxyMessage(this, fiberpli::validateThreadCount(this->NumberOfThreads));
   }
   else if (!localError.empty())
   {
@@ -389,7 +383,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // fibers its piece reads, in model order (FiberTileExchange.h).
   fiberpli::TileReach reach;
   fiberpli::TileFibers in = fiberpli::FiberTileExchange::Receive(
-    outputVector->GetInformationObject(std::max(port, 0)), input, "PLISimulation", localError,
+    outputVector->GetInformationObject(std::max(port, 0)), input, fiberpli::ProxyName(this), localError,
     [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
       if (!work)
       {
@@ -401,7 +395,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
       tissuePlanned = true;
       if (!tissueStatus.ok())
       {
-        return "PLISimulation: " + tissueStatus.error;
+        return fiberpli::ProxyMessage(this, tissueStatus.error);
       }
       const std::string e =
         PieceReach(this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
@@ -438,7 +432,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   }
   if (!cellError.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << cellError);
+    fiberpliErrorMacro(<< cellError);
     return 0;
   }
   if (!tissuePlanned)
@@ -455,7 +449,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   }
   if (!tissueStatus.ok())
   {
-    vtkErrorMacro(<< "PLISimulation: " << tissueStatus.error);
+    fiberpliErrorMacro(<< tissueStatus.error);
     return 0;
   }
   this->NumberOfTileFibers = static_cast<double>(in.model.fibers.size());
@@ -501,7 +495,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     });
   if (!st.error.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   // The plan's warnings first, as one runPLI call (planning and running) reports them.
@@ -545,14 +539,14 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
 {
   if (!this->TissueError.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << this->TissueError);
+    fiberpliErrorMacro(<< this->TissueError);
     return 0;
   }
   fiberpli::pli::VoxelBox box;
   fiberpli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
   if (!st.ok())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   // This piece: the update extent (global voxel indices) inside the box.
@@ -573,7 +567,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   st = fiberpli::pli::exportTissue(model, plan, options, piece, tv, fiberpli::MakeProgress(this));
   if (!st.error.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   if (st.aborted)
