@@ -66,8 +66,8 @@ PliStackFields StackFields(vtkImageData* image)
 } // namespace
 
 //------------------------------------------------------------------------------
-void WritePliStack(const pli::PLIImage& image, const pli::PLIPlan& plan, const pli::PLIOptions& options,
-  const PieceFibers& fibers, vtkImageData* output)
+void WritePliStack(const pli::PLIImage& image, const pli::PLIPlan& plan,
+  const pli::PLIOptions& options, const PieceFibers& fibers, vtkImageData* output)
 {
   const int nrho = static_cast<int>(plan.rho.size());
   const vtkIdType n = static_cast<vtkIdType>(image.range.count());
@@ -100,8 +100,8 @@ void WritePliStack(const pli::PLIImage& image, const pli::PLIPlan& plan, const p
 }
 
 //------------------------------------------------------------------------------
-void WritePliTissue(const pli::TissueVolume& tissue, const pli::PLIPlan& plan, const PieceFibers& fibers,
-  vtkImageData* output)
+void WritePliTissue(const pli::TissueVolume& tissue, const pli::PLIPlan& plan,
+  const PieceFibers& fibers, vtkImageData* output)
 {
   const vtkIdType n = static_cast<vtkIdType>(tissue.label.size());
   vtkNew<vtkIntArray> label;
@@ -141,12 +141,13 @@ std::string ReadPliStack(vtkImageData* image, InclinationMethod method, PliStack
   stack.ny = ext[3] - ext[2] + 1;
   stack.rho = layout.rho;
   input.copies.emplace_back();
-  stack.intensity = AsDoubles(image->GetPointData()->GetArray(plifield::kIntensity), input.copies.back());
+  stack.intensity =
+    AsDoubles(image->GetPointData()->GetArray(plifield::kIntensity), input.copies.back());
   for (std::size_t v = 0; v < layout.tiltStacks; ++v)
   {
     input.copies.emplace_back();
-    stack.tilts.push_back(
-      AsDoubles(image->GetPointData()->GetArray(plifield::intensityTilt(v).c_str()), input.copies.back()));
+    stack.tilts.push_back(AsDoubles(
+      image->GetPointData()->GetArray(plifield::intensityTilt(v).c_str()), input.copies.back()));
   }
   stack.tiltViews = layout.tiltViews;
   stack.convention = layout.convention;
@@ -155,8 +156,8 @@ std::string ReadPliStack(vtkImageData* image, InclinationMethod method, PliStack
 }
 
 //------------------------------------------------------------------------------
-void AddCroppedMap(vtkImageData* output, const char* name, const std::vector<double>& map, std::int64_t nx,
-  const GridRange& range, double scale)
+void AddCroppedMap(vtkImageData* output, const char* name, const std::vector<double>& map,
+  std::int64_t nx, const GridRange& range, double scale)
 {
   if (map.empty())
   {
@@ -177,18 +178,21 @@ void AddCroppedMap(vtkImageData* output, const char* name, const std::vector<dou
 }
 
 //------------------------------------------------------------------------------
-void WriteAnalysisMaps(const PliAnalysisMaps& maps, std::int64_t nx, const GridRange& range, vtkImageData* output)
+void WriteAnalysisMaps(
+  const PliAnalysisMaps& maps, std::int64_t nx, const GridRange& range, vtkImageData* output)
 {
   AddCroppedMap(output, plifield::kTransmittance, maps.transmittance, nx, range, 1.0);
   AddCroppedMap(output, plifield::kDirection, maps.direction, nx, range, 1.0 / kDeg);
   AddCroppedMap(output, plifield::kRetardation, maps.retardation, nx, range, 1.0);
   AddCroppedMap(output, plifield::kInclination, maps.inclination, nx, range, 1.0 / kDeg);
-  AddCroppedMap(output, plifield::kInclinationSigned, maps.inclinationSigned, nx, range, 1.0 / kDeg);
+  AddCroppedMap(
+    output, plifield::kInclinationSigned, maps.inclinationSigned, nx, range, 1.0 / kDeg);
   AddCroppedMap(output, plifield::kRelativeThickness, maps.relativeThickness, nx, range, 1.0);
   AddCroppedMap(output, plifield::kFitChi2, maps.chi2, nx, range, 1.0);
   output->GetPointData()->SetActiveScalars(plifield::kDirection);
   // Directions just below 180° can round to exactly 180 in degrees: keep the [0, 180) contract.
-  if (auto* direction = vtkDoubleArray::SafeDownCast(output->GetPointData()->GetArray(plifield::kDirection)))
+  if (auto* direction =
+        vtkDoubleArray::SafeDownCast(output->GetPointData()->GetArray(plifield::kDirection)))
   {
     for (vtkIdType k = 0; k < direction->GetNumberOfValues(); ++k)
     {

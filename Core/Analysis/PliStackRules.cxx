@@ -30,7 +30,8 @@ std::vector<double> polarizerAnglesOf(const PliStackFields& fields)
   return rho;
 }
 
-std::string tiltViewsOf(const PliStackFields& fields, std::size_t stacks, std::vector<TiltView>& views)
+std::string tiltViewsOf(
+  const PliStackFields& fields, std::size_t stacks, std::vector<TiltView>& views)
 {
   views.clear();
   if (stacks == 0)
@@ -50,14 +51,14 @@ std::string tiltViewsOf(const PliStackFields& fields, std::size_t stacks, std::v
   std::ostringstream msg;
   if (angles.size() != stacks)
   {
-    msg << "field data '" << plifield::kTiltAngles << "' has " << angles.size() << " values for " << stacks
-        << " tilted views (" << plifield::kIntensityTiltPrefix << "*)";
+    msg << "field data '" << plifield::kTiltAngles << "' has " << angles.size() << " values for "
+        << stacks << " tilted views (" << plifield::kIntensityTiltPrefix << "*)";
     return msg.str();
   }
   if (azimuths.size() != stacks)
   {
-    msg << "field data '" << plifield::kTiltDirections << "' has " << azimuths.size() << " values for " << stacks
-        << " tilted views (" << plifield::kIntensityTiltPrefix << "*)";
+    msg << "field data '" << plifield::kTiltDirections << "' has " << azimuths.size()
+        << " values for " << stacks << " tilted views (" << plifield::kIntensityTiltPrefix << "*)";
     return msg.str();
   }
   for (std::size_t v = 0; v < stacks; ++v)
@@ -67,18 +68,21 @@ std::string tiltViewsOf(const PliStackFields& fields, std::size_t stacks, std::v
   return {};
 }
 
-std::string decodePliStack(const PliStackFields& fields, InclinationMethod method, PliStackLayout& layout)
+std::string decodePliStack(
+  const PliStackFields& fields, InclinationMethod method, PliStackLayout& layout)
 {
   layout = PliStackLayout();
   std::ostringstream msg;
   if (fields.slices != 1)
   {
-    msg << "the input has " << fields.slices << " slices along z; expected one slice (the PLISimulation image)";
+    msg << "the input has " << fields.slices
+        << " slices along z; expected one slice (the PLISimulation image)";
     return msg.str();
   }
   if (!fields.hasIntensity)
   {
-    msg << "the input has no point array '" << plifield::kIntensity << "' (one component per polarizer angle)";
+    msg << "the input has no point array '" << plifield::kIntensity
+        << "' (one component per polarizer angle)";
     return msg.str();
   }
   const int n = fields.components;
@@ -91,16 +95,17 @@ std::string decodePliStack(const PliStackFields& fields, InclinationMethod metho
   }
   if (static_cast<std::size_t>(n) != layout.rho.size())
   {
-    msg << "point array '" << plifield::kIntensity << "' has " << n << " components but field data '"
-        << plifield::kPolarizerAngles << "' has " << layout.rho.size() << " angles; they must be equal";
+    msg << "point array '" << plifield::kIntensity << "' has " << n
+        << " components but field data '" << plifield::kPolarizerAngles << "' has "
+        << layout.rho.size() << " angles; they must be equal";
     return msg.str();
   }
   for (std::size_t v = 0; v < fields.tiltComponents.size(); ++v)
   {
     if (fields.tiltComponents[v] != n)
     {
-      msg << "point array '" << plifield::intensityTilt(v) << "' has " << fields.tiltComponents[v] << " components, '"
-          << plifield::kIntensity << "' has " << n << "; they must be equal";
+      msg << "point array '" << plifield::intensityTilt(v) << "' has " << fields.tiltComponents[v]
+          << " components, '" << plifield::kIntensity << "' has " << n << "; they must be equal";
       return msg.str();
     }
   }
@@ -114,16 +119,19 @@ std::string decodePliStack(const PliStackFields& fields, InclinationMethod metho
   {
     if (method == InclinationMethod::Tilt)
     {
-      msg << "InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, but these are on "
+      msg << "InclinationMethod Tilt needs tilted views registered onto the sample's pixel grid, "
+             "but these are on "
              "the tilted sensor's grid (field data "
-          << plifield::kTiltedSensor << " = 1): simulate with TiltedSensor off, or use InclinationMethod Retardation";
+          << plifield::kTiltedSensor
+          << " = 1): simulate with TiltedSensor off, or use InclinationMethod Retardation";
       return msg.str();
     }
     layout.tiltStacks = 0; // Auto: the retardation method, from the untilted view alone
     layout.tiltViews.clear();
   }
-  layout.convention = fields.tiltConvention == tiltConventionCode(TiltConvention::FastPLI) ? TiltConvention::FastPLI
-                                                                                           : TiltConvention::Physical;
+  layout.convention = fields.tiltConvention == tiltConventionCode(TiltConvention::FastPLI)
+    ? TiltConvention::FastPLI
+    : TiltConvention::Physical;
   layout.noiseGain = fields.noiseGain;
   return {};
 }

@@ -24,7 +24,10 @@ PliStackFields stackOf(int n, std::size_t tilts)
   return f;
 }
 
-bool mentions(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool mentions(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
 } // namespace
 
 TEST(PliStackRules, EquidistantAnglesWithoutField)
@@ -71,7 +74,8 @@ TEST(PliStackRules, ImageShapeErrors)
   EXPECT_TRUE(mentions(decodePliStack(f, InclinationMethod::Auto, layout), "3 slices along z"));
   f = stackOf(4, 0);
   f.hasIntensity = false;
-  EXPECT_TRUE(mentions(decodePliStack(f, InclinationMethod::Auto, layout), "no point array 'intensity'"));
+  EXPECT_TRUE(
+    mentions(decodePliStack(f, InclinationMethod::Auto, layout), "no point array 'intensity'"));
   f = stackOf(4, 3);
   f.tiltComponents[1] = 6;
   const std::string e = decodePliStack(f, InclinationMethod::Auto, layout);

@@ -29,15 +29,22 @@ TEST(ValueCheck, Rules)
   EXPECT_EQ(ValueChecks().atLeast("b", std::nan(""), 0.0).error(), "b is nan, must be >= 0");
   EXPECT_EQ(ValueChecks().atLeast("n", -1, 0).error(), "n is -1, must be >= 0");
   EXPECT_EQ(ValueChecks().within("c", 1.0, 0.0, 1.0).error(), "");
-  EXPECT_EQ(ValueChecks().within("c", std::nan(""), 0.0, 1.0).error(), "c is nan, must be in [0, 1]");
+  EXPECT_EQ(
+    ValueChecks().within("c", std::nan(""), 0.0, 1.0).error(), "c is nan, must be in [0, 1]");
   EXPECT_EQ(ValueChecks().within("c", 2.0, 0.0, 1e15, " (x)").error(), "");
-  EXPECT_EQ(ValueChecks().within("c", 2e15, 0.0, 1e15, " (x)").error(), "c is 2e+15, must be in [0, 1e+15] (x)");
+  EXPECT_EQ(ValueChecks().within("c", 2e15, 0.0, 1e15, " (x)").error(),
+    "c is 2e+15, must be in [0, 1e+15] (x)");
 }
 
 TEST(ValueCheck, FirstRefusalWins)
 {
   ValueChecks c;
-  c.positive("first", 1.0).then("").atLeast("second", -2.0, 0.0).positive("third", 0.0).then("fourth");
+  c.positive("first", 1.0)
+    .then("")
+    .atLeast("second", -2.0, 0.0)
+    .positive("third", 0.0)
+    .then("fourth");
   EXPECT_EQ(c.error(), "second is -2, must be >= 0");
-  EXPECT_EQ(ValueChecks().then("written elsewhere").positive("x", 0.0).error(), "written elsewhere");
+  EXPECT_EQ(
+    ValueChecks().then("written elsewhere").positive("x", 0.0).error(), "written elsewhere");
 }
