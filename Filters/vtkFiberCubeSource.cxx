@@ -37,7 +37,7 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     const double achieved = fiberpli::axesAngle(axes);
     if (std::fabs(achieved - options.crossingAngle) > 1.0 && piece == 0)
     {
-      vtkWarningWithObjectMacro(self, "FiberCubeSource: CrossingAngle " << options.crossingAngle
+      vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": CrossingAngle " << options.crossingAngle
                       << ": the nearest lattice direction of the periodic cell is (" << axes[1].lattice.x << ", "
                       << axes[1].lattice.y << ", 0), " << achieved << " degrees from population 0");
     }
@@ -50,7 +50,7 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     {
       if (std::fabs(c2[k] - options.realism.dispersionC2) > 0.02)
       {
-        vtkWarningWithObjectMacro(self, "FiberCubeSource: DispersionC2 " << options.realism.dispersionC2 << ": population " << k
+        vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": DispersionC2 " << options.realism.dispersionC2 << ": population " << k
                         << " reaches " << c2[k]
                         << (options.periodic ? " with the lattice directions of the periodic cell" : "")
                         << " (field data dispersion_c2)");

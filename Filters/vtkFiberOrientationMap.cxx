@@ -30,11 +30,12 @@ vtkStandardNewMacro(vtkFiberOrientationMap);
 namespace
 {
 /// Empty when `a` has one component (a value per pixel), else the message naming it.
-std::string OneComponent(vtkDataArray* a)
+std::string OneComponent(vtkAlgorithm* self, vtkDataArray* a)
 {
-  return a->GetNumberOfComponents() == 1 ? std::string()
-                                         : std::string("FiberOrientationMap: the point array '") + a->GetName() +
-      "' has " + std::to_string(a->GetNumberOfComponents()) + " components, must have 1";
+  return a->GetNumberOfComponents() == 1
+    ? std::string()
+    : fiberpli::ProxyMessage(self, std::string("the point array '") + a->GetName() + "' has " +
+        std::to_string(a->GetNumberOfComponents()) + " components, must have 1");
 }
 
 /// The name of input array `idx` as set by SetInputArrayToProcess ("" when it is not set by name).
@@ -174,7 +175,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     output->Initialize();
     return 0;
   }
-  const std::string components = OneComponent(direction) + OneComponent(inclination);
+  const std::string components = OneComponent(this, direction) + OneComponent(this, inclination);
   if (!components.empty())
   {
     vtkErrorMacro(<< components);
@@ -217,9 +218,9 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
       output->Initialize();
       return 0;
     }
-    if (!OneComponent(values).empty())
+    if (!OneComponent(this, values).empty())
     {
-      vtkErrorMacro(<< OneComponent(values));
+      vtkErrorMacro(<< OneComponent(this, values));
       output->Initialize();
       return 0;
     }

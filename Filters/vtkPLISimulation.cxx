@@ -92,7 +92,7 @@ bool ResizeList(vtkPLISimulation* self, std::vector<double>& list, int n, int ma
   std::size_t size = static_cast<std::size_t>(std::max(0, n));
   if (n < 0 || n > max)
   {
-    vtkErrorWithObjectMacro(self, << "PLISimulation: " << name << " has " << n << " values, at most " << max
+    vtkErrorWithObjectMacro(self, << fiberpli::ProxyName(self) << ": " << name << " has " << n << " values, at most " << max
                                   << " are allowed");
     size = static_cast<std::size_t>(max) + 1;
   }
