@@ -106,58 +106,6 @@ inline bool ReadPeriodicCell(vtkDataObject* data, PeriodicCell& cell, std::strin
   return error.empty();
 }
 
-/// The field `periodic_cell` of one rank's piece in a parallel update.
-struct RankCell
-{
-  bool present = false;       ///< the piece carries the field
-  std::size_t count = 0;      ///< its number of values
-  std::vector<double> values; ///< its values when count is 6 (a malformed count needs none)
-};
-
-/// The one rule for `periodic_cell` across the ranks of a parallel update, the same for every
-/// filter that reads it there: every piece that carries the field must carry a usable cell
-/// (Model/PeriodicCellRule.h) and all of them the same one (pieces without fibers may lack it).
-/// "" when so, else a message naming the first rank that breaks the rule; computed from the
-/// same gathered values on every rank, it is the same on every rank.
-inline std::string CompareRankCells(const std::vector<RankCell>& ranks)
-{
-  const RankCell* first = nullptr;
-  std::size_t firstRank = 0;
-  for (std::size_t r = 0; r < ranks.size(); ++r)
-  {
-    const RankCell& c = ranks[r];
-    if (!c.present)
-    {
-      continue;
-    }
-    PeriodicCell cell;
-    const std::string error = periodicCellFromBounds(c.values.data(), c.count, cell);
-    if (!error.empty())
-    {
-      return (ranks.size() > 1 ? "rank " + std::to_string(r) + "'s " : std::string()) + "input field data " + error;
-    }
-    if (!first)
-    {
-      first = &c;
-      firstRank = r;
-    }
-    else if (c.values != first->values)
-    {
-      const auto text = [](const std::vector<double>& v) {
-        std::string t;
-        for (double x : v)
-        {
-          t += (t.empty() ? "" : " ") + formatNumber(x);
-        }
-        return t;
-      };
-      return "the input pieces have different periodic_cell field data: rank " + std::to_string(firstRank) + " has " +
-        text(first->values) + ", rank " + std::to_string(r) + " has " + text(c.values);
-    }
-  }
-  return {};
-}
-
 } // namespace fiberpli
 
 #endif
