@@ -18,6 +18,19 @@
 
 vtkStandardNewMacro(vtkPLIAnalysis);
 
+namespace
+{
+/// The Core options of the properties: "" or the error naming the first bad property.
+std::string MakeOptions(vtkPLIAnalysis* self, fiberpli::PliAnalysisOptions& options)
+{
+  const std::string method = fiberpli::inclinationMethodFromCode(self->GetInclinationMethod(), options.method);
+  options.referenceRetardation = self->GetReferenceRetardation();
+  options.noiseGain = self->GetNoiseGain();
+  options.threads = self->GetNumberOfThreads();
+  return method.empty() ? fiberpli::checkPliAnalysisOptions(options) : method;
+}
+} // namespace
+
 //------------------------------------------------------------------------------
 // Construct with InclinationMethod Auto, ReferenceRetardation 0 (automatic), NoiseGain −1 (field
 // data), all threads.
@@ -61,27 +74,16 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   output->Initialize();
 
+  // Checked inside the collective path: a bad value on one rank must not hang the others.
   fiberpli::PliAnalysisOptions options;
-  std::string optionError = fiberpli::inclinationMethodFromCode(this->InclinationMethod, options.method);
-  options.referenceRetardation = this->ReferenceRetardation;
-  options.noiseGain = this->NoiseGain;
-  options.threads = this->NumberOfThreads;
-  if (optionError.empty())
-  {
-    optionError = fiberpli::checkPliAnalysisOptions(options);
-  }
-  if (optionError.empty()) // inside the collective path: a bad value on one rank must not hang the others
-  {
-    optionError = fiberpli::validateThreadCount(this->NumberOfThreads);
-  }
-  const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
-  if (optionError.empty() && !threadWarning.empty())
-  {
-    fiberpliWarningMacro(<< threadWarning);
-  }
+  const std::string optionError = MakeOptions(this, options);
   if (!optionError.empty())
   {
     fiberpliErrorMacro(<< optionError);
+    return 0;
+  }
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
+  {
     return 0;
   }
   if (!input || input->GetNumberOfPoints() == 0)
