@@ -3,6 +3,7 @@
 #include "Checkpoint/CheckpointState.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/BinaryIO.h"
 #include "IO/RegularFile.h"
 #include "Util/NumberFormat.h"
 #include "Util/Fnv1a.h"
@@ -76,8 +77,7 @@ public:
   void u64(std::uint64_t v)
   {
     unsigned char b[8];
-    for (int i = 0; i < 8; ++i)
-      b[i] = static_cast<unsigned char>(v >> (8 * i));
+    binary::store64LE(b, v);
     bytes(b, 8);
   }
   void f64(double v) { u64(bitsOf(v)); }
@@ -123,10 +123,7 @@ public:
   {
     unsigned char b[8];
     bytes(b, 8);
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-      v |= static_cast<std::uint64_t>(b[i]) << (8 * i);
-    return v;
+    return binary::load64(b, true);
   }
   double f64() { return doubleOf(u64()); }
   Vec3 vec()
