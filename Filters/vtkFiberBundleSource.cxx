@@ -5,6 +5,7 @@
 #include "FiberPolyData.h"
 #include "FiberInnerRadii.h"
 #include "FiberRealism.h"
+#include "Model/DataNames.h"
 #include "Tissue/Myelin.h"
 #include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
@@ -126,7 +127,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
       fiberpliErrorMacro(<< "the Trajectory input has no line cell (polyline)");
       return 0;
     }
-    vtkDataArray* scaleArray = input->GetPointData()->GetArray("scale");
+    vtkDataArray* scaleArray = input->GetPointData()->GetArray(fiberpli::fiberfield::kTrajectoryScale);
     if (scaleArray && scaleArray->GetNumberOfComponents() != 1)
     {
       fiberpliErrorMacro(<< "the Trajectory point array 'scale' has "

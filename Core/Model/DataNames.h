@@ -19,6 +19,7 @@ constexpr const char* kRadius = "radius";            ///< point array, µm
 constexpr const char* kInnerRadius = "inner_radius"; ///< point array, µm (myelinated fibers)
 constexpr const char* kFiberId = "fiber_id";         ///< cell array
 constexpr const char* kBundleId = "bundle_id";       ///< cell array
+constexpr const char* kTrajectoryScale = "scale";    ///< point array of a bundle's trajectory
 
 // Field data of the sources.
 constexpr const char* kSegmentLength = "segment_length";   ///< µm (the sources and the solver)
