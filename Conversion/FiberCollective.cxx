@@ -135,7 +135,7 @@ std::string FiberCollective::AgreeOnPeriodicCell(vtkInformation* info, const std
       cell.values.assign(slot + 2, slot + 2 + std::min<std::size_t>(6, cell.count));
     }
   }
-  const std::string error = CompareRankCells(all);
+  const std::string error = compareRankCells(all);
   return error.empty() ? error : who + ": " + error;
 }
 

@@ -50,7 +50,7 @@ public:
   static double GlobalMax(vtkInformation* info, double local);
 
   /// Collective over ControllerFor(info) (local only without it): FiberFieldData.h's
-  /// CompareRankCells over every rank's `periodic_cell` of `piece`; "" or, on every rank, "<who>: "
+  /// compareRankCells (Model/PeriodicCellRule.h) over every rank's `periodic_cell` of `piece`; "" or, on every rank, "<who>: "
   /// and the message naming the rank whose cell is malformed or differs. Without a controller the
   /// one piece's cell is checked alone.
   static std::string AgreeOnPeriodicCell(vtkInformation* info, const std::string& who, vtkDataObject* piece);

@@ -1,11 +1,13 @@
 /**
  * @file FiberFieldData.h
- * @brief the one way FiberPLI filters write field-data values (steps, seed, polarizer_angles, …)
+ * @brief the one way FiberPLI filters write and read field-data values (steps, seed,
+ * polarizer_angles, …; the names are in Core/Model/DataNames.h)
  */
 #ifndef FiberFieldData_h
 #define FiberFieldData_h
 
 #include "Geometry/PeriodicCell.h"
+#include "Model/DataNames.h"
 #include "Model/PeriodicCellRule.h"
 #include "Util/NumberFormat.h"
 
@@ -43,23 +45,51 @@ inline void AddFieldInt(vtkDataObject* data, const char* name, int value)
   data->GetFieldData()->AddArray(a);
 }
 
+/// The field data array `name` of `data`, or null when it (or the field data) is absent.
+inline vtkDataArray* FieldArray(vtkDataObject* data, const char* name)
+{
+  return data && data->GetFieldData() ? data->GetFieldData()->GetArray(name) : nullptr;
+}
+
+/// All values of the field data array `name`, component by component (empty when absent).
+inline std::vector<double> FieldValues(vtkDataObject* data, const char* name)
+{
+  std::vector<double> values;
+  vtkDataArray* a = FieldArray(data, name);
+  const vtkIdType n = a ? a->GetNumberOfValues() : 0;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    values.push_back(a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
+  }
+  return values;
+}
+
+/// The first value of the field data array `name`, or `fallback` when it is absent or empty.
+inline double FieldValue(vtkDataObject* data, const char* name, double fallback)
+{
+  vtkDataArray* a = FieldArray(data, name);
+  return a && a->GetNumberOfValues() > 0 ? a->GetComponent(0, 0) : fallback;
+}
+
+/// True when the fibers carry FiberCollisionSolver's field data collisions = 0: they claim to be
+/// collision-free.
+inline bool ClaimsCollisionFree(vtkDataObject* fibers)
+{
+  vtkDataArray* collisions = FieldArray(fibers, fiberfield::kCollisions);
+  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
+}
+
 /// Adds the field `periodic_cell` (xmin xmax ymin ymax zmin zmax) of a periodic substrate.
 inline void AddPeriodicCell(vtkDataObject* data, const PeriodicCell& cell)
 {
-  AddFieldDoubles(data, "periodic_cell", { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
+  AddFieldDoubles(data, fiberfield::kPeriodicCell, { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
 }
 
 /// The values of the field `periodic_cell` as they are (false when absent).
 inline bool PeriodicCellValues(vtkDataObject* data, std::vector<double>& values)
 {
-  vtkDataArray* a = data && data->GetFieldData() ? data->GetFieldData()->GetArray("periodic_cell") : nullptr;
-  values.clear();
-  const vtkIdType n = a ? a->GetNumberOfTuples() * a->GetNumberOfComponents() : 0;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    values.push_back(a->GetComponent(i / a->GetNumberOfComponents(), static_cast<int>(i % a->GetNumberOfComponents())));
-  }
-  return a != nullptr;
+  values = FieldValues(data, fiberfield::kPeriodicCell);
+  return FieldArray(data, fiberfield::kPeriodicCell) != nullptr;
 }
 
 /// Reads the field `periodic_cell`: false and an empty error when absent; false and a message
@@ -74,58 +104,6 @@ inline bool ReadPeriodicCell(vtkDataObject* data, PeriodicCell& cell, std::strin
   }
   error = periodicCellFromBounds(values.data(), values.size(), cell);
   return error.empty();
-}
-
-/// The field `periodic_cell` of one rank's piece in a parallel update.
-struct RankCell
-{
-  bool present = false;       ///< the piece carries the field
-  std::size_t count = 0;      ///< its number of values
-  std::vector<double> values; ///< its values when count is 6 (a malformed count needs none)
-};
-
-/// The one rule for `periodic_cell` across the ranks of a parallel update, the same for every
-/// filter that reads it there: every piece that carries the field must carry a usable cell
-/// (Model/PeriodicCellRule.h) and all of them the same one (pieces without fibers may lack it).
-/// "" when so, else a message naming the first rank that breaks the rule; computed from the
-/// same gathered values on every rank, it is the same on every rank.
-inline std::string CompareRankCells(const std::vector<RankCell>& ranks)
-{
-  const RankCell* first = nullptr;
-  std::size_t firstRank = 0;
-  for (std::size_t r = 0; r < ranks.size(); ++r)
-  {
-    const RankCell& c = ranks[r];
-    if (!c.present)
-    {
-      continue;
-    }
-    PeriodicCell cell;
-    const std::string error = periodicCellFromBounds(c.values.data(), c.count, cell);
-    if (!error.empty())
-    {
-      return (ranks.size() > 1 ? "rank " + std::to_string(r) + "'s " : std::string()) + "input field data " + error;
-    }
-    if (!first)
-    {
-      first = &c;
-      firstRank = r;
-    }
-    else if (c.values != first->values)
-    {
-      const auto text = [](const std::vector<double>& v) {
-        std::string t;
-        for (double x : v)
-        {
-          t += (t.empty() ? "" : " ") + formatNumber(x);
-        }
-        return t;
-      };
-      return "the input pieces have different periodic_cell field data: rank " + std::to_string(firstRank) + " has " +
-        text(first->values) + ", rank " + std::to_string(r) + " has " + text(c.values);
-    }
-  }
-  return {};
 }
 
 } // namespace fiberpli

@@ -10,6 +10,8 @@
  * outputs and returns 0, so the pipeline stays usable. Every RequestData (and a writer's
  * WriteData) runs its work through it; FiberCollective::RunCollectively does so for the filters
  * that agree on errors over MPI ranks, so that the other ranks learn of the failure too.
+ * TryInMemory is the same out-of-memory rule for a step that can say more than "out of memory"
+ * (which file it was reading, how many fibers it was measuring).
  */
 #ifndef FiberGuard_h
 #define FiberGuard_h
@@ -25,6 +27,22 @@
 
 namespace fiberpli
 {
+
+/// Runs `work` and returns true, or false when it ran out of memory (std::bad_alloc); any other
+/// exception is left to GuardRequest.
+template <typename Work>
+bool TryInMemory(Work&& work)
+{
+  try
+  {
+    work();
+    return true;
+  }
+  catch (const std::bad_alloc&)
+  {
+    return false;
+  }
+}
 
 /// Runs `work` (returns 1 on success, 0 on a reported error) and returns its result; an exception
 /// escaping it becomes a VTK error of `self` naming `who`, the data objects of `outputs` (may be

@@ -1,5 +1,7 @@
 #include "FiberInnerRadii.h"
 
+#include "Model/DataNames.h"
+
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkNew.h>
@@ -15,7 +17,7 @@ std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion, cons
   {
     f.innerRadii.clear();
   }
-  vtkDataArray* array = input ? input->GetPointData()->GetArray(kInnerRadiusArray) : nullptr;
+  vtkDataArray* array = input ? input->GetPointData()->GetArray(fiberfield::kInnerRadius) : nullptr;
   if (array == nullptr)
   {
     return {};
@@ -61,7 +63,7 @@ void AddInnerRadii(const FiberModel& model, vtkPolyData* output)
     return;
   }
   vtkNew<vtkDoubleArray> inner;
-  inner->SetName(kInnerRadiusArray);
+  inner->SetName(fiberfield::kInnerRadius);
   inner->SetNumberOfTuples(static_cast<vtkIdType>(model.numberOfPoints()));
   vtkIdType p = 0;
   for (const Fiber& f : model.fibers)

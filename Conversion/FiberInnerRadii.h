@@ -17,9 +17,6 @@ class vtkPolyData;
 namespace fiberpli
 {
 
-/// Name of the point array of the axon radius inside the myelin sheath.
-constexpr const char* kInnerRadiusArray = "inner_radius";
-
 /// Reads `inner_radius` of `input` into Fiber::innerRadii of the fibers of `conversion` (made by
 /// FiberPolyData::ToModel from the same input, with its sourcePoints); without the array the
 /// fibers keep none. Returns "" or an error prefixed by `who` (the inner radii then cleared): more

@@ -103,8 +103,8 @@ void FiberPolyData::UpdateAllFibers(vtkAlgorithm* algorithm, vtkInformation* inp
 
 void FiberPolyData::AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed)
 {
-  AddFieldDoubles(output, "segment_length", { segmentLength });
-  AddFieldInt(output, "seed", seed);
+  AddFieldDoubles(output, fiberfield::kSegmentLength, { segmentLength });
+  AddFieldInt(output, fiberfield::kSeed, seed);
 }
 
 bool FiberPolyData::IsEmpty(vtkPolyData* input)
@@ -127,7 +127,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
       " cells but no line cell: fibers are polylines";
     return result;
   }
-  vtkDataArray* radius = input->GetPointData()->GetArray("radius");
+  vtkDataArray* radius = input->GetPointData()->GetArray(fiberfield::kRadius);
   if (radius == nullptr)
   {
     result.error = who + ": the input has no point array 'radius' (fiber radius in µm at each point)";
@@ -147,8 +147,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
       " values for " + std::to_string(numPoints) + " points";
     return result;
   }
-  vtkDataArray* fiberIds = input->GetCellData()->GetArray("fiber_id");
-  vtkDataArray* bundleIds = input->GetCellData()->GetArray("bundle_id");
+  vtkDataArray* fiberIds = input->GetCellData()->GetArray(fiberfield::kFiberId);
+  vtkDataArray* bundleIds = input->GetCellData()->GetArray(fiberfield::kBundleId);
   for (vtkDataArray* ids : { fiberIds, bundleIds })
   {
     if (ids && ids->GetNumberOfTuples() != input->GetNumberOfCells())
@@ -193,7 +193,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     {
       if (!readId(fiberIds, cellId, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max(), value, text))
       {
-        badId("fiber_id", "[-2^63, 2^63)");
+        badId(fiberfield::kFiberId, "[-2^63, 2^63)");
         return result;
       }
       f.id = value;
@@ -202,7 +202,7 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     {
       if (!readId(bundleIds, cellId, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), value, text))
       {
-        badId("bundle_id", "[-2^31, 2^31)");
+        badId(fiberfield::kBundleId, "[-2^31, 2^31)");
         return result;
       }
       f.bundle = static_cast<int>(value);
@@ -267,7 +267,7 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
 {
   const auto isContract = [](const char* name) {
     const std::string n = name ? name : "";
-    return n == "radius" || n == "fiber_id" || n == "bundle_id";
+    return n == fiberfield::kRadius || n == fiberfield::kFiberId || n == fiberfield::kBundleId;
   };
   vtkCellData* inCells = input->GetCellData();
   for (int a = 0; a < inCells->GetNumberOfArrays(); ++a)
@@ -337,17 +337,17 @@ void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(numPoints);
   vtkNew<vtkDoubleArray> radius;
-  radius->SetName("radius");
+  radius->SetName(fiberfield::kRadius);
   radius->SetNumberOfTuples(numPoints);
   vtkNew<vtkIdTypeArray> offsets;
   offsets->SetNumberOfTuples(numFibers + 1);
   vtkNew<vtkIdTypeArray> connectivity;
   connectivity->SetNumberOfTuples(numPoints);
   vtkNew<vtkIdTypeArray> fiberId;
-  fiberId->SetName("fiber_id");
+  fiberId->SetName(fiberfield::kFiberId);
   fiberId->SetNumberOfTuples(numFibers);
   vtkNew<vtkIntArray> bundleId;
-  bundleId->SetName("bundle_id");
+  bundleId->SetName(fiberfield::kBundleId);
   bundleId->SetNumberOfTuples(numFibers);
 
   vtkIdType next = 0;
@@ -373,7 +373,7 @@ void FiberPolyData::FromModel(const FiberModel& model, vtkPolyData* output)
   output->SetPoints(points);
   output->SetLines(lines);
   output->GetPointData()->AddArray(radius);
-  output->GetPointData()->SetActiveScalars("radius");
+  output->GetPointData()->SetActiveScalars(fiberfield::kRadius);
   output->GetCellData()->AddArray(fiberId);
   output->GetCellData()->AddArray(bundleId);
 }

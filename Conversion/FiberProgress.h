@@ -1,30 +1,24 @@
 /**
  * @file FiberProgress.h
- * @brief the one bridge from Core progress callbacks to VTK progress and abort, and the thread
- * count check, for every FiberPLI filter, source, reader and writer
+ * @brief the one bridge from Core progress callbacks to VTK progress and abort, for every
+ * FiberPLI filter, source, reader and writer
  *
  * MakeProgress(algorithm) returns a fiberpli::ProgressFn that calls UpdateProgress and returns
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
  * AbortScope, the first line of every RequestData, makes an abort apply to one execution only and
  * ends it as a finished execution with empty outputs and a warning (no new run by the next request).
- * CheckThreads applies the NumberOfThreads rule of Util/Threads.h, CheckSeed the Seed rule of
- * Util/Random.h, with VTK messages.
  */
 #ifndef FiberProgress_h
 #define FiberProgress_h
 
 #include "FiberExecutions.h"
 #include "Util/Progress.h"
-#include "Util/Random.h"
-#include "Util/Threads.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkDataObject.h>
 #include <vtkExecutive.h>
 #include <vtkVersion.h>
-
-#include <string>
 
 namespace fiberpli
 {
@@ -90,36 +84,6 @@ public:
 private:
   vtkAlgorithm* Algorithm;
 };
-
-/// NumberOfThreads rule: false (with an error naming the value) outside [0, kMaxThreads]; a
-/// warning when it is clamped to 4 × the cores.
-inline bool CheckThreads(vtkAlgorithm* algorithm, const char* who, int requested)
-{
-  const std::string error = validateThreadCount(requested);
-  if (!error.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << who << ": " << error);
-    return false;
-  }
-  const std::string warning = threadCountWarning(requested);
-  if (!warning.empty())
-  {
-    vtkWarningWithObjectMacro(algorithm, << who << ": " << warning);
-  }
-  return true;
-}
-
-/// Seed rule: false (with an error naming the value) for a negative Seed.
-inline bool CheckSeed(vtkAlgorithm* algorithm, const char* who, long long seed)
-{
-  const std::string error = validateSeed(seed);
-  if (!error.empty())
-  {
-    vtkErrorWithObjectMacro(algorithm, << who << ": " << error);
-    return false;
-  }
-  return true;
-}
 
 } // namespace fiberpli
 

@@ -1,9 +1,11 @@
 #include "vtkFiberBundleSource.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberPolyData.h"
 #include "FiberInnerRadii.h"
 #include "FiberRealism.h"
+#include "Model/DataNames.h"
 #include "Tissue/Myelin.h"
 #include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
@@ -65,7 +67,7 @@ int vtkFiberBundleSource::RequestData(vtkInformation* request, vtkInformationVec
   vtkInformationVector* outputVector)
 {
   // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberBundleSource",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(inputVector, outputVector); });
 }
 
@@ -79,7 +81,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
   const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
   const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
 
-  if (!fiberpli::CheckSeed(this, "FiberBundleSource", this->Seed))
+  if (!fiberpli::CheckSeed(this, this->Seed))
   {
     return 0;
   }
@@ -112,7 +114,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
       : nullptr;
     if (!input)
     {
-      vtkErrorMacro(<< "FiberBundleSource: Shape is Trajectory but no polyline is connected to input port 0 "
+      fiberpliErrorMacro(<< "Shape is Trajectory but no polyline is connected to input port 0 "
                        "(Trajectory); connect one or choose another Shape");
       return 0;
     }
@@ -122,19 +124,19 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
     }
     if (!input->GetLines() || input->GetLines()->GetNumberOfCells() == 0)
     {
-      vtkErrorMacro(<< "FiberBundleSource: the Trajectory input has no line cell (polyline)");
+      fiberpliErrorMacro(<< "the Trajectory input has no line cell (polyline)");
       return 0;
     }
-    vtkDataArray* scaleArray = input->GetPointData()->GetArray("scale");
+    vtkDataArray* scaleArray = input->GetPointData()->GetArray(fiberpli::fiberfield::kTrajectoryScale);
     if (scaleArray && scaleArray->GetNumberOfComponents() != 1)
     {
-      vtkErrorMacro(<< "FiberBundleSource: the Trajectory point array 'scale' has "
+      fiberpliErrorMacro(<< "the Trajectory point array 'scale' has "
                     << scaleArray->GetNumberOfComponents() << " components, must have 1");
       return 0;
     }
     if (scaleArray && scaleArray->GetNumberOfTuples() != input->GetNumberOfPoints())
     {
-      vtkErrorMacro(<< "FiberBundleSource: the Trajectory point array 'scale' has "
+      fiberpliErrorMacro(<< "the Trajectory point array 'scale' has "
                     << scaleArray->GetNumberOfTuples() << " values for " << input->GetNumberOfPoints()
                     << " points");
       return 0;
@@ -148,7 +150,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
     {
       if (ids[i] < 0 || ids[i] >= input->GetNumberOfPoints())
       {
-        vtkErrorMacro(<< "FiberBundleSource: the Trajectory line refers to point " << ids[i]
+        fiberpliErrorMacro(<< "the Trajectory line refers to point " << ids[i]
                       << ", but the input has " << input->GetNumberOfPoints() << " points");
         return 0;
       }
@@ -168,13 +170,13 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
   const std::string invalid = fiberpli::validateBundleOptions(options, path, sigma, pieces);
   if (!invalid.empty())
   {
-    vtkErrorMacro(<< "FiberBundleSource: " << invalid);
+    fiberpliErrorMacro(<< invalid);
     return 0;
   }
   const std::string warning = fiberpli::bundleWarnings(options, path, sigma);
   if (!warning.empty() && piece == 0) // once, not once per rank
   {
-    vtkWarningMacro(<< "FiberBundleSource: " << warning);
+    fiberpliWarningMacro(<< warning);
   }
 
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this);

@@ -1,5 +1,6 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
@@ -63,7 +64,7 @@ int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationV
   vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, nullptr, "FiberCollisionSolver", [&]() -> int {
+  return fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
     vtkInformation* outInfo = outputVector->GetInformationObject(0);
     if (!this->IterationsAsTime) // the input's own time steps pass through
     {
@@ -175,7 +176,7 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
     }
     if (error.empty() && c[0] > 0.0 && cache.periodic && !(agreed.lo == cache.cell.lo && agreed.hi == cache.cell.hi))
     {
-      error = "FiberCollisionSolver: the input pieces have different periodic_cell field data";
+      error = fiberpli::ProxyMessage(this, "the input pieces have different periodic_cell field data");
     }
     if (c[0] > 0.0)
     {
@@ -199,19 +200,19 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   const std::string threads = fiberpli::validateThreadCount(this->NumberOfThreads);
   if (!threads.empty())
   {
-    return "FiberCollisionSolver: " + threads;
+    return fiberpli::ProxyMessage(this, threads);
   }
   const std::string threadWarning = fiberpli::threadCountWarning(this->NumberOfThreads);
   if (!threadWarning.empty())
   {
-    vtkWarningMacro(<< "FiberCollisionSolver: " << threadWarning);
+    fiberpliWarningMacro(<< threadWarning);
   }
   if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
   {
-    return "FiberCollisionSolver: TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
-      " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2";
+    return fiberpli::ProxyMessage(this, "TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
+        " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
   }
-  cache.input = fiberpli::FiberPolyData::ToModel(input, "FiberCollisionSolver");
+  cache.input = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!cache.input.ok())
   {
     return cache.input.error;
@@ -225,7 +226,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   cache.periodic = fiberpli::ReadPeriodicCell(input, cache.cell, cellError);
   if (!cache.periodic && !cellError.empty())
   {
-    return "FiberCollisionSolver: input field data " + cellError;
+    return fiberpli::ProxyMessage(this, "input field data " + cellError);
   }
   options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
@@ -248,7 +249,7 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
         std::to_string(cache.input.model.numberOfPoints()) + " points");
     if (!problem.empty())
     {
-      return "FiberCollisionSolver: " + problem + "; lower MaximumSnapshots";
+      return fiberpli::ProxyMessage(this, problem + "; lower MaximumSnapshots");
     }
   }
   return {};
@@ -273,7 +274,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
     fiberpli::solveWithCheckpoints(model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
-    return "FiberCollisionSolver: " + cache.result.error;
+    return fiberpli::ProxyMessage(this, cache.result.error);
   }
   if (cache.result.aborted)
   {
@@ -282,7 +283,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
   // One warning per kind; an unsolved model is among them, naming the collisions left.
   for (const std::string& w : cache.result.warnings)
   {
-    vtkWarningMacro(<< "FiberCollisionSolver: " << w);
+    fiberpliWarningMacro(<< w);
   }
   cache.states.finish(std::move(model), cache.result.steps);
   return {};
@@ -292,7 +293,7 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
 int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberCollisionSolver", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -350,35 +351,35 @@ int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector**
     const fiberpli::PeriodicCell& cell = this->Cache->cell;
     const std::size_t collisions = final ? r.collisions
                                          : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
-    fiberpli::AddFieldInt(output, "steps", shownStep);
-    fiberpli::AddFieldInt(output, "collisions", static_cast<int>(collisions));
-    fiberpli::AddFieldInt(output, "solved", collisions == 0 ? 1 : 0);
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSteps, shownStep);
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kCollisions, static_cast<int>(collisions));
+    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSolved, collisions == 0 ? 1 : 0);
     if (final) // only known for the solver's last state
     {
-      fiberpli::AddFieldDoubles(output, "max_overlap", { r.maxOverlap });
-      fiberpli::AddFieldInt(output, "shape_ok", r.shapeOk ? 1 : 0);
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMaxOverlap, { r.maxOverlap });
+      fiberpli::AddFieldInt(output, fiberpli::fiberfield::kShapeOk, r.shapeOk ? 1 : 0);
     }
-    fiberpli::AddFieldDoubles(output, "segment_length", { r.segmentLength });
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kSegmentLength, { r.segmentLength });
     if (this->Cache->periodic)
     {
       fiberpli::AddPeriodicCell(output, cell);
     }
     // Of the periodic cell, else of the model's bounding box.
-    fiberpli::AddFieldDoubles(output, "volume_fraction", { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kVolumeFraction, { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
     if (final)
     {
-      fiberpli::AddFieldDoubles(output, "min_gap", { r.minGap });
-      fiberpli::AddFieldDoubles(output, "radius_scale", { r.radiusScale });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMinGap, { r.minGap });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRadiusScale, { r.radiusScale });
     }
     if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
     {
-      fiberpli::AddFieldDoubles(output, "rank_points", { static_cast<double>(r.peakRankPoints) });
-      fiberpli::AddFieldDoubles(output, "halo_links", { static_cast<double>(r.peakHaloLinks) });
-      fiberpli::AddFieldDoubles(output, "held_links", { static_cast<double>(r.peakHeldLinks) });
-      fiberpli::AddFieldDoubles(output, "halo_bytes_per_step", { r.haloBytesPerStep });
-      fiberpli::AddFieldDoubles(output, "migrations", { static_cast<double>(r.migrations) });
-      fiberpli::AddFieldDoubles(output, "tester_recuts", { static_cast<double>(r.testerRecuts) });
-      fiberpli::AddFieldDoubles(output, "tester_cut_move", { r.testerCutMove });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRankPoints, { static_cast<double>(r.peakRankPoints) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloLinks, { static_cast<double>(r.peakHaloLinks) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHeldLinks, { static_cast<double>(r.peakHeldLinks) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloBytesPerStep, { r.haloBytesPerStep });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMigrations, { static_cast<double>(r.migrations) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterRecuts, { static_cast<double>(r.testerRecuts) });
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterCutMove, { r.testerCutMove });
     }
     this->UpdateProgress(1.0);
     return 1;

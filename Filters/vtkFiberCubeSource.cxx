@@ -1,5 +1,6 @@
 #include "vtkFiberCubeSource.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
@@ -32,11 +33,11 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     {
       values.insert(values.end(), { a.direction.x, a.direction.y, a.direction.z });
     }
-    fiberpli::AddFieldDoubles(output, "population_axes", values);
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kPopulationAxes, values);
     const double achieved = fiberpli::axesAngle(axes);
     if (std::fabs(achieved - options.crossingAngle) > 1.0 && piece == 0)
     {
-      vtkWarningWithObjectMacro(self, "FiberCubeSource: CrossingAngle " << options.crossingAngle
+      vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": CrossingAngle " << options.crossingAngle
                       << ": the nearest lattice direction of the periodic cell is (" << axes[1].lattice.x << ", "
                       << axes[1].lattice.y << ", 0), " << achieved << " degrees from population 0");
     }
@@ -44,12 +45,12 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
   if (options.realism.dispersed())
   {
     const std::vector<double> c2 = fiberpli::cubeDispersionC2(options);
-    fiberpli::AddFieldDoubles(output, "dispersion_c2", c2);
+    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kDispersionC2, c2);
     for (std::size_t k = 0; k < c2.size() && piece == 0; ++k)
     {
       if (std::fabs(c2[k] - options.realism.dispersionC2) > 0.02)
       {
-        vtkWarningWithObjectMacro(self, "FiberCubeSource: DispersionC2 " << options.realism.dispersionC2 << ": population " << k
+        vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": DispersionC2 " << options.realism.dispersionC2 << ": population " << k
                         << " reaches " << c2[k]
                         << (options.periodic ? " with the lattice directions of the periodic cell" : "")
                         << " (field data dispersion_c2)");
@@ -80,7 +81,7 @@ int vtkFiberCubeSource::RequestInformation(vtkInformation*, vtkInformationVector
 int vtkFiberCubeSource::RequestData(vtkInformation* request, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberCubeSource",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(outputVector); });
 }
 
@@ -93,7 +94,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
   const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
 
-  if (!fiberpli::CheckSeed(this, "FiberCubeSource", this->Seed))
+  if (!fiberpli::CheckSeed(this, this->Seed))
   {
     return 0;
   }
@@ -117,7 +118,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   const std::string invalid = fiberpli::validateCubeOptions(options, pieces);
   if (!invalid.empty())
   {
-    vtkErrorMacro(<< "FiberCubeSource: " << invalid);
+    fiberpliErrorMacro(<< invalid);
     return 0;
   }
 
@@ -136,7 +137,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   }
   if (!warning.empty())
   {
-    vtkWarningMacro(<< "FiberCubeSource: " << warning);
+    fiberpliWarningMacro(<< warning);
   }
   this->UpdateProgress(0.8);
   fiberpli::addMyelin(model, options.realism); // inner radii with myelin on

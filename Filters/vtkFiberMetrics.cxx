@@ -1,5 +1,6 @@
 #include "vtkFiberMetrics.h"
 
+#include "FiberAdapter.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
 #include "FiberInnerRadii.h"
@@ -172,19 +173,19 @@ int vtkFiberMetrics::RequestUpdateExtent(vtkInformation*, vtkInformationVector**
 int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberMetrics", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    if (!fiberpli::CheckThreads(this, "FiberMetrics", this->NumberOfThreads))
+    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
     {
       return 0;
     }
-    if (this->VolumeFractionMethod != VOXELS && this->VolumeFractionMethod != MONTE_CARLO)
+    bool monteCarlo = false;
+    if (!fiberpli::CheckEnum(
+          this, this->VolumeFractionMethod, MONTE_CARLO, "VolumeFractionMethod", "0 (Voxels) or 1 (MonteCarlo)", monteCarlo))
     {
-      vtkErrorMacro(<< "FiberMetrics: VolumeFractionMethod is " << this->VolumeFractionMethod
-                    << ", must be 0 (Voxels) or 1 (MonteCarlo)");
       return 0;
     }
-    if (!fiberpli::CheckSeed(this, "FiberMetrics", this->Seed))
+    if (!fiberpli::CheckSeed(this, this->Seed))
     {
       return 0;
     }
@@ -210,7 +211,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
       return 1;
     }
 
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberMetrics");
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
     if (!in.ok())
     {
       vtkErrorMacro(<< in.error);
@@ -220,7 +221,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     {
       vtkWarningMacro(<< in.warning);
     }
-    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMetrics");
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
     if (!innerError.empty())
     {
       vtkErrorMacro(<< innerError);
@@ -230,7 +231,7 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
     options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
     options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
     options.voxelSize = this->VoxelSize;
-    options.monteCarlo = this->VolumeFractionMethod == MONTE_CARLO;
+    options.monteCarlo = monteCarlo;
     options.samples = this->Samples;
     options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
     options.volumeFraction = this->ComputeVolumeFraction;
@@ -243,26 +244,22 @@ int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVe
       std::string error;
       if (!fiberpli::ReadPeriodicCell(input, options.cell, error) && !error.empty())
       {
-        vtkErrorMacro(<< "FiberMetrics: " << error);
+        fiberpliErrorMacro(<< error);
         return 0;
       }
     }
 
     this->SetProgressText("Measuring fibers");
     fiberpli::MetricsResult m;
-    try
+    if (!fiberpli::TryInMemory([&] { m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this)); }))
     {
-      m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
-    }
-    catch (const std::bad_alloc&) // no Core exception may leave through VTK (it would end pvpython)
-    {
-      vtkErrorMacro(<< "FiberMetrics: out of memory measuring " << in.model.fibers.size()
-                    << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
+      fiberpliErrorMacro(<< "out of memory measuring " << in.model.fibers.size()
+                         << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
       return 0;
     }
     if (!m.error.empty())
     {
-      vtkErrorMacro(<< "FiberMetrics: " << m.error);
+      fiberpliErrorMacro(<< m.error);
       return 0;
     }
     if (m.aborted)

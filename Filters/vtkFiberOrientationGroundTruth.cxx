@@ -1,5 +1,6 @@
 #include "vtkFiberOrientationGroundTruth.h"
 
+#include "FiberAdapter.h"
 #include "Analysis/GroundTruth.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
@@ -8,17 +9,14 @@
 #include "FiberTileExchange.h"
 #include "Model/PeriodicTiling.h"
 #include "Model/VolumeOfInterest.h"
-#include "Section/PLIFields.h"
+#include "PLIImage.h"
 #include "Section/SectionPlan.h"
 
 #include <vtkAlgorithmOutput.h>
-#include <vtkDoubleArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -28,38 +26,20 @@
 
 vtkStandardNewMacro(vtkFiberOrientationGroundTruth);
 
-namespace
-{
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-} // namespace
-
 //------------------------------------------------------------------------------
-// Construct with VolumeOfInterest 1 −1 1 −1 1 −1 (input bounds), VoxelSize 0.4, PixelSize 2,
-// all threads.
 /// The section of the properties and the planned volume, made by RequestInformation once per change
 /// of either and used by every RequestData.
 struct vtkFiberOrientationGroundTruth::SectionPlanned
 {
-  vtkMTimeType time = 0;
-  double volume[6] = { 1, -1, 1, -1, 1, -1 };
+  PlanStamp stamp;
   fiberpli::SectionPlan section;
   std::string error; ///< of planSection
 };
 
 //------------------------------------------------------------------------------
-vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth()
-  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
-{
-}
+// Construct with the section of vtkFiberSectionAlgorithm and all threads.
+vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth() = default;
 vtkFiberOrientationGroundTruth::~vtkFiberOrientationGroundTruth() = default;
-
-//------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
 
 //------------------------------------------------------------------------------
 int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
@@ -68,30 +48,16 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
+  bool noFibers = false; // the sentinel then stays the volume, and planSection names it
+  const std::string error =
+    this->VolumeToPlan(inputVector[0], this->PlannedVolume, noFibers);
+  this->PlanSection();
+  const fiberpli::SectionPlan& section = this->Plan->section;
+  if (error.empty() && this->Plan->error.empty()) // errors are reported by RequestData
   {
-    // An explicit VolumeOfInterest does not need the fibers; the sentinel needs the bounds of the
-    // whole model: the input is brought up to date here with the piece RequestUpdateExtent then
-    // asks for (under MPI the ranks' bounds are reduced).
-    std::string error;
-    std::copy(this->VolumeOfInterest, this->VolumeOfInterest + 6, this->PlannedVolume);
-    if (fiberpli::isBoundsSentinel(this->VolumeOfInterest) && this->GetNumberOfInputConnections(0) > 0)
-    {
-      double bounds[6];
-      error = fiberpli::FiberTileExchange::UpdateBounds(
-        this, inputVector[0]->GetInformationObject(0), "FiberOrientationGroundTruth", bounds, this->Fibers.get());
-      if (bounds[0] <= bounds[1])
-      {
-        std::copy(bounds, bounds + 6, this->PlannedVolume);
-      }
-    }
-    this->PlanSection();
-    const fiberpli::SectionPlan& section = this->Plan->section;
-    if (error.empty() && this->Plan->error.empty())
-    {
-      extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
-      std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
-    }
-  } // errors are reported by RequestData
+    extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
+    std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
+  }
   const double spacing[3] = { this->PixelSize, this->PixelSize, this->PixelSize };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -104,25 +70,14 @@ int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInfor
 //------------------------------------------------------------------------------
 void vtkFiberOrientationGroundTruth::PlanSection()
 {
-  if (this->Plan && this->Plan->time == this->GetMTime() &&
-    std::equal(this->PlannedVolume, this->PlannedVolume + 6, this->Plan->volume))
+  if (this->Plan && this->PlanHolds(this->Plan->stamp, this->PlannedVolume))
   {
     return; // planned for these properties and this volume already
   }
   auto p = std::make_unique<SectionPlanned>();
-  p->time = this->GetMTime();
-  std::copy(this->PlannedVolume, this->PlannedVolume + 6, p->volume);
+  p->stamp = this->StampFor(this->PlannedVolume);
   p->error = fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, p->section);
   this->Plan = std::move(p);
-}
-
-//------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
-  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
-  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -131,7 +86,7 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInfo
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h).
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberOrientationGroundTruth",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(inputVector, outputVector); });
 }
 
@@ -139,9 +94,9 @@ int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInfo
 int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   std::string localError;
-  if (!fiberpli::CheckThreads(this, "FiberOrientationGroundTruth", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
-    localError = "FiberOrientationGroundTruth: " + fiberpli::validateThreadCount(this->NumberOfThreads);
+    localError = fiberpli::ProxyMessage(this, fiberpli::validateThreadCount(this->NumberOfThreads));
   }
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -166,15 +121,15 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
       range = fiberpli::GridRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
         std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
     }
-    return e.empty() ? e : "FiberOrientationGroundTruth: " + e;
+    return e.empty() ? e : fiberpli::ProxyMessage(this, e);
   };
   // Every rank takes part in the exchange, whatever its own state: under MPI it receives the
   // fibers its pixels read, in model order (FiberTileExchange.h).
   // A periodic cell is tiled into the volume of interest as PLISimulation tiles it (one rule,
   // Model/PeriodicTiling.h), so both see the same tissue pixel by pixel.
-  const double* volume = this->Plan->volume;
+  const double* volume = this->Plan->stamp.volume;
   fiberpli::TileReach pieceReach;
-  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, "FiberOrientationGroundTruth",
+  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, fiberpli::ProxyName(this),
     localError, [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach) {
       fiberpli::GridRange range;
       const std::string e = pieceRange(range);
@@ -213,7 +168,7 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
   if (!cellError.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << cellError);
+    fiberpliErrorMacro(<< cellError);
     return 0;
   }
   fiberpli::GridRange range;
@@ -240,35 +195,15 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   }
   if (!status.ok())
   {
-    vtkErrorMacro(<< "FiberOrientationGroundTruth: " << status.error);
+    fiberpliErrorMacro(<< status.error);
     return 0;
   }
 
   output->SetExtent(ext);
   output->SetOrigin(section.imageOrigin);
   output->SetSpacing(this->PixelSize, this->PixelSize, this->PixelSize);
-  auto addMap = [&](const char* name, const std::vector<double>& map, double scale) {
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name);
-    a->SetNumberOfValues(static_cast<vtkIdType>(range.count()));
-    vtkIdType k = 0;
-    for (std::int64_t j = range.j0; j < range.j1; ++j)
-    {
-      for (std::int64_t i = range.i0; i < range.i1; ++i)
-      {
-        a->SetValue(k++, map[static_cast<std::size_t>(i + nx * j)] * scale);
-      }
-    }
-    output->GetPointData()->AddArray(a);
-  };
-  addMap("direction", maps.direction, kRadToDeg);
-  addMap("inclination", maps.inclination, kRadToDeg);
-  addMap("inclination_signed", maps.inclinationSigned, kRadToDeg);
-  addMap("fraction", maps.fraction, 1.0);
-  addMap("anisotropy", maps.anisotropy, 1.0);
-  output->GetPointData()->SetActiveScalars("direction");
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { static_cast<double>(c.model.fibers.size()) });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { static_cast<double>(c.modelFibers) });
+  fiberpli::WriteGroundTruthMaps(maps, nx, range,
+    { static_cast<double>(c.model.fibers.size()), static_cast<double>(c.modelFibers) }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -277,12 +212,5 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
 void vtkFiberOrientationGroundTruth::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "VolumeOfInterest:";
-  for (double v : this->VolumeOfInterest)
-  {
-    os << " " << v;
-  }
-  os << "\n" << indent << "VoxelSize: " << this->VoxelSize << "\n";
-  os << indent << "PixelSize: " << this->PixelSize << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

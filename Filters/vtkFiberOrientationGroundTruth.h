@@ -18,46 +18,19 @@
 #define vtkFiberOrientationGroundTruth_h
 
 #include "FiberPLIFiltersModule.h" // for export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkFiberSectionAlgorithm.h"
 
 #include <memory> // for the plan
 
-namespace fiberpli
-{
-class FiberModelCache;
-}
-
-class FIBERPLIFILTERS_EXPORT vtkFiberOrientationGroundTruth : public vtkImageAlgorithm
+class FIBERPLIFILTERS_EXPORT vtkFiberOrientationGroundTruth : public vtkFiberSectionAlgorithm
 {
 public:
   static vtkFiberOrientationGroundTruth* New();
-  vtkTypeMacro(vtkFiberOrientationGroundTruth, vtkImageAlgorithm);
+  vtkTypeMacro(vtkFiberOrientationGroundTruth, vtkFiberSectionAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /**
-   * Section volume xmin xmax ymin ymax zmin zmax in µm; z is the section's thickness. min > max
-   * on every axis means the input's bounds (radii included). Default is 1 −1 1 −1 1 −1.
-   */
-  vtkSetVector6Macro(VolumeOfInterest, double);
-  vtkGetVector6Macro(VolumeOfInterest, double);
-  ///@}
-
-  ///@{
-  /**
-   * Edge of a tissue voxel in µm, > 0 (else an error). Default is 0.4 (as PLISimulation).
-   */
-  vtkSetMacro(VoxelSize, double);
-  vtkGetMacro(VoxelSize, double);
-  ///@}
-
-  ///@{
-  /**
-   * Edge of an output pixel in µm, >= VoxelSize (else an error). Default is 2.
-   */
-  vtkSetMacro(PixelSize, double);
-  vtkGetMacro(PixelSize, double);
-  ///@}
+  // VolumeOfInterest, VoxelSize and PixelSize: the section, as PLISimulation's
+  // (vtkFiberSectionAlgorithm).
 
   ///@{
   /**
@@ -70,9 +43,7 @@ public:
 protected:
   vtkFiberOrientationGroundTruth();
   ~vtkFiberOrientationGroundTruth() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// This rank's part of RequestData (which makes its outcome collective under MPI).
   int ExecutePiece(vtkInformationVector**, vtkInformationVector*);
@@ -81,9 +52,6 @@ private:
   vtkFiberOrientationGroundTruth(const vtkFiberOrientationGroundTruth&) = delete;
   void operator=(const vtkFiberOrientationGroundTruth&) = delete;
 
-  double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
-  double VoxelSize = 0.4;
-  double PixelSize = 2.0;
   int NumberOfThreads = 0;
   /// The volume RequestInformation planned the image for (the input bounds when VolumeOfInterest is
   /// the sentinel): RequestData uses the same one, so its pixels always match WHOLE_EXTENT.
@@ -91,8 +59,6 @@ private:
   /// The section of PlannedVolume and the sizes (Section/SectionPlan.h), planned once per change.
   struct SectionPlanned;
   std::unique_ptr<SectionPlanned> Plan;
-  /// The input's fibers, converted once per input MTime (docs/pli-simulation.md §7.3).
-  std::unique_ptr<fiberpli::FiberModelCache> Fibers;
   void PlanSection();
 };
 

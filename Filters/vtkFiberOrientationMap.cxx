@@ -1,12 +1,13 @@
 #include "vtkFiberOrientationMap.h"
 
+#include "FiberAdapter.h"
 #include "ArrayValues.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberProgress.h"
 #include "Analysis/FiberOrientationMap.h"
 #include "FiberGuard.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -29,11 +30,12 @@ vtkStandardNewMacro(vtkFiberOrientationMap);
 namespace
 {
 /// Empty when `a` has one component (a value per pixel), else the message naming it.
-std::string OneComponent(vtkDataArray* a)
+std::string OneComponent(vtkAlgorithm* self, vtkDataArray* a)
 {
-  return a->GetNumberOfComponents() == 1 ? std::string()
-                                         : std::string("FiberOrientationMap: the point array '") + a->GetName() +
-      "' has " + std::to_string(a->GetNumberOfComponents()) + " components, must have 1";
+  return a->GetNumberOfComponents() == 1
+    ? std::string()
+    : fiberpli::ProxyMessage(self, std::string("the point array '") + a->GetName() + "' has " +
+        std::to_string(a->GetNumberOfComponents()) + " components, must have 1");
 }
 
 /// The name of input array `idx` as set by SetInputArrayToProcess ("" when it is not set by name).
@@ -50,8 +52,8 @@ std::string SelectedName(vtkAlgorithm* self, int idx)
 vtkFiberOrientationMap::vtkFiberOrientationMap()
 {
   this->SetNumberOfOutputPorts(2);
-  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "direction");
-  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "inclination");
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kDirection);
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kInclination);
 }
 
 //------------------------------------------------------------------------------
@@ -96,7 +98,7 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberOrientationMap", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     // The mask's reference (the largest value) is taken over all pieces of a parallel update:
     // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
@@ -113,20 +115,16 @@ int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** 
 //------------------------------------------------------------------------------
 int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
 {
-  if (!fiberpli::CheckThreads(this, "FiberOrientationMap", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
     return 0;
   }
-  if (this->ColorScheme != HSV_BLACK && this->ColorScheme != RGB)
+  fiberpli::FomScheme scheme;
+  fiberpli::FomMask kind;
+  if (!fiberpli::CheckEnum(this, this->ColorScheme, RGB, "ColorScheme", "0 (HSV-black) or 1 (RGB)", scheme) ||
+    !fiberpli::CheckEnum(this, this->Mask, MASK_TRANSMITTANCE, "Mask", "0 (None), 1 (Retardation) or 2 (Transmittance)",
+      kind))
   {
-    vtkErrorMacro(<< "FiberOrientationMap: ColorScheme is " << this->ColorScheme
-                  << ", must be 0 (HSV-black) or 1 (RGB)");
-    return 0;
-  }
-  if (this->Mask < MASK_NONE || this->Mask > MASK_TRANSMITTANCE)
-  {
-    vtkErrorMacro(<< "FiberOrientationMap: Mask is " << this->Mask
-                  << ", must be 0 (None), 1 (Retardation) or 2 (Transmittance)");
     return 0;
   }
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
@@ -134,14 +132,13 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   vtkImageData* legend = vtkImageData::GetData(outputVector, 1);
   output->Initialize();
   legend->Initialize();
-  const auto scheme = this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb : fiberpli::FomScheme::HsvBlack;
 
   // Legend first: it does not depend on the input.
   std::vector<std::uint8_t> rgb;
   std::string err = fiberpli::fomLegend(this->LegendSize, scheme, rgb);
   if (!err.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: LegendSize " << this->LegendSize << ": " << err);
+    fiberpliErrorMacro(<< "LegendSize " << this->LegendSize << ": " << err);
     return 0;
   }
   const int n = this->LegendSize;
@@ -149,7 +146,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   legend->SetSpacing(2.0 / n, 2.0 / n, 2.0 / n);
   legend->SetOrigin(-1.0 + 1.0 / n, -1.0 + 1.0 / n, 0.0);
   vtkNew<vtkUnsignedCharArray> legendFom;
-  legendFom->SetName("fom");
+  legendFom->SetName(fiberpli::plifield::kFom);
   legendFom->SetNumberOfComponents(3);
   legendFom->SetNumberOfTuples(static_cast<vtkIdType>(n) * n);
   std::memcpy(legendFom->GetPointer(0), rgb.data(), rgb.size());
@@ -163,7 +160,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   vtkDataArray* inclination = this->GetInputArrayToProcess(1, input);
   if (!direction || !inclination)
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the input has no point array '" << SelectedName(this, direction ? 1 : 0)
+    fiberpliErrorMacro(<< "the input has no point array '" << SelectedName(this, direction ? 1 : 0)
                   << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
     output->Initialize();
     return 0;
@@ -171,14 +168,14 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   if (inclination->GetNumberOfTuples() != direction->GetNumberOfTuples() ||
     direction->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: the point arrays '" << direction->GetName() << "' ("
+    fiberpliErrorMacro(<< "the point arrays '" << direction->GetName() << "' ("
                   << direction->GetNumberOfTuples() << " tuples) and '" << inclination->GetName() << "' ("
                   << inclination->GetNumberOfTuples() << " tuples) differ in length or from the "
                   << input->GetNumberOfPoints() << " points");
     output->Initialize();
     return 0;
   }
-  const std::string components = OneComponent(direction) + OneComponent(inclination);
+  const std::string components = OneComponent(this, direction) + OneComponent(this, inclination);
   if (!components.empty())
   {
     vtkErrorMacro(<< components);
@@ -191,50 +188,49 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   const double* i = fiberpli::AsDoubles(inclination, inclinationBuffer);
   const auto count = static_cast<std::size_t>(direction->GetNumberOfTuples());
   vtkNew<vtkUnsignedCharArray> fom;
-  fom->SetName("fom");
+  fom->SetName(fiberpli::plifield::kFom);
   fom->SetNumberOfComponents(3);
   fom->SetNumberOfTuples(static_cast<vtkIdType>(count));
   this->UpdateProgress(0.0);
   err = fiberpli::fomMap(d, i, count, scheme, this->NumberOfThreads, fom->GetPointer(0));
   if (!err.empty())
   {
-    vtkErrorMacro(<< "FiberOrientationMap: " << err);
+    fiberpliErrorMacro(<< err);
     output->Initialize();
     return 0;
   }
   if (this->Mask != MASK_NONE)
   {
-    const char* name = this->Mask == MASK_RETARDATION ? "retardation" : "transmittance";
+    const char* name = this->Mask == MASK_RETARDATION ? fiberpli::plifield::kRetardation : fiberpli::plifield::kTransmittance;
     vtkDataArray* values = input->GetPointData()->GetArray(name);
     if (!values)
     {
-      vtkErrorMacro(<< "FiberOrientationMap: Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
+      fiberpliErrorMacro(<< "Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
                     << " needs the point array '" << name << "' (PLIAnalysis makes it)");
       output->Initialize();
       return 0;
     }
     if (values->GetNumberOfTuples() != direction->GetNumberOfTuples())
     {
-      vtkErrorMacro(<< "FiberOrientationMap: the Mask array '" << name << "' has " << values->GetNumberOfTuples()
+      fiberpliErrorMacro(<< "the Mask array '" << name << "' has " << values->GetNumberOfTuples()
                     << " tuples, '" << direction->GetName() << "' has " << direction->GetNumberOfTuples()
                     << " (they must match)");
       output->Initialize();
       return 0;
     }
-    if (!OneComponent(values).empty())
+    if (!OneComponent(this, values).empty())
     {
-      vtkErrorMacro(<< OneComponent(values));
+      vtkErrorMacro(<< OneComponent(this, values));
       output->Initialize();
       return 0;
     }
     std::vector<double> valueBuffer;
     const double* v = fiberpli::AsDoubles(values, valueBuffer);
-    const auto kind = static_cast<fiberpli::FomMask>(this->Mask);
     const double largest = fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), fiberpli::fomMaskReference(v, count));
     reduced = true;
     double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;
-    mask->SetName("mask");
+    mask->SetName(fiberpli::plifield::kMask);
     mask->SetNumberOfTuples(static_cast<vtkIdType>(count));
     err = fiberpli::fomMaskThreshold(kind, this->MaskThreshold, largest, threshold);
     if (err.empty())
@@ -243,7 +239,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     }
     if (!err.empty())
     {
-      vtkErrorMacro(<< "FiberOrientationMap: MaskThreshold " << this->MaskThreshold << ": " << err);
+      fiberpliErrorMacro(<< "MaskThreshold " << this->MaskThreshold << ": " << err);
       output->Initialize();
       return 0;
     }
@@ -251,7 +247,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     fiberpli::AddFieldDoubles(output, fiberpli::plifield::kMaskThreshold, { threshold });
   }
   output->GetPointData()->AddArray(fom);
-  output->GetPointData()->SetActiveScalars("fom");
+  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kFom);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -1,10 +1,12 @@
 #include "vtkFiberTubes.h"
 
+#include "FiberAdapter.h"
 #include "FiberGuard.h"
 #include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Mesh/TubeMesher.h"
+#include "Model/DataNames.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -32,9 +34,9 @@ vtkStandardNewMacro(vtkFiberTubes);
 int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberTubes", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    if (!fiberpli::CheckThreads(this, "FiberTubes", this->NumberOfThreads))
+    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
     {
       return 0;
     }
@@ -46,7 +48,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
       return 1;
     }
 
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberTubes");
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
     if (!in.ok())
     {
       vtkErrorMacro(<< in.error);
@@ -58,7 +60,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     }
     if (this->InnerTubes)
     {
-      const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberTubes");
+      const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
       if (!innerError.empty())
       {
         vtkErrorMacro(<< innerError);
@@ -75,7 +77,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     const std::string optionError = fiberpli::checkTubeOptions(options);
     if (!optionError.empty())
     {
-      vtkErrorMacro(<< "FiberTubes: " << optionError);
+      fiberpliErrorMacro(<< optionError);
       return 0;
     }
     const fiberpli::TubeMesh mesh = fiberpli::meshTubes(in.model, options, fiberpli::MakeProgress(this, 0.0, 0.8));
@@ -112,10 +114,10 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
     polys->SetData(offsets, connectivity);
 
     vtkNew<vtkIdTypeArray> fiberId;
-    fiberId->SetName("fiber_id");
+    fiberId->SetName(fiberpli::fiberfield::kFiberId);
     fiberId->SetNumberOfTuples(numTriangles);
     vtkNew<vtkIntArray> bundleId;
-    bundleId->SetName("bundle_id");
+    bundleId->SetName(fiberpli::fiberfield::kBundleId);
     bundleId->SetNumberOfTuples(numTriangles);
     for (vtkIdType t = 0; t < numTriangles; ++t)
     {
@@ -138,7 +140,7 @@ int vtkFiberTubes::RequestData(vtkInformation*, vtkInformationVector** inputVect
       std::copy(mesh.triangleSurface.begin(), mesh.triangleSurface.end(), surface->GetPointer(0));
       output->GetCellData()->AddArray(surface);
     }
-    output->GetCellData()->SetActiveScalars("bundle_id");
+    output->GetCellData()->SetActiveScalars(fiberpli::fiberfield::kBundleId);
     // The model's field data (solved, collisions, periodic_cell, seed, …) describe the tubes as
     // well: a saved tubes file still says what it is.
     output->GetFieldData()->PassData(input->GetFieldData());

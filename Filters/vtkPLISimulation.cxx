@@ -1,5 +1,6 @@
 #include "vtkPLISimulation.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
@@ -11,19 +12,15 @@
 #include "PLI/PLIPipeline.h"
 #include "PLI/PLIReach.h"
 #include "PLI/TissueExport.h"
-#include "Section/PLIFields.h"
+#include "PLIImage.h"
 #include "Section/TiltConvention.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDataObject.h>
-#include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
-#include <vtkFieldData.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -39,13 +36,6 @@ vtkStandardNewMacro(vtkPLISimulation);
 
 namespace
 {
-/// "" when `value` of the switch `name` is 0 or 1, else the message naming both.
-std::string CheckSwitch(const char* name, int value)
-{
-  return value == 0 || value == 1 ? std::string()
-                                  : std::string(name) + " is " + std::to_string(value) + ", must be 0 or 1";
-}
-
 /// The Core options of the properties; "" or the error naming the property whose value the Core
 /// options cannot hold (an enumeration code, a switch or a negative Seed).
 std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
@@ -54,10 +44,11 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
   std::string error = fiberpli::tiltConventionFromCode(self->GetTiltConvention(), o.tiltConvention);
   if (error.empty())
     error = fiberpli::pli::interpolationFromCode(self->GetInterpolation(), o.interpolation);
+  bool exportTissue = false; // only checked here: the tissue port reads the property itself
   if (error.empty())
-    error = CheckSwitch("TiltedSensor", self->GetTiltedSensor());
+    error = fiberpli::switchFromCode(self->GetTiltedSensor(), "TiltedSensor", o.tiltedSensor);
   if (error.empty())
-    error = CheckSwitch("ExportTissue", self->GetExportTissue());
+    error = fiberpli::switchFromCode(self->GetExportTissue(), "ExportTissue", exportTissue);
   if (error.empty())
     error = fiberpli::validateSeed(self->GetSeed());
   self->GetVolumeOfInterest(o.volumeOfInterest);
@@ -88,7 +79,6 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
   o.opticalSigma = self->GetOpticalSigma();
   o.noiseGain = self->GetNoiseGain();
   o.refractiveIndex = self->GetRefractiveIndex();
-  o.tiltedSensor = self->GetTiltedSensor() != 0;
   o.numberOfThreads = self->GetNumberOfThreads();
   return error;
 }
@@ -102,7 +92,7 @@ bool ResizeList(vtkPLISimulation* self, std::vector<double>& list, int n, int ma
   std::size_t size = static_cast<std::size_t>(std::max(0, n));
   if (n < 0 || n > max)
   {
-    vtkErrorWithObjectMacro(self, << "PLISimulation: " << name << " has " << n << " values, at most " << max
+    vtkErrorWithObjectMacro(self, << fiberpli::ProxyName(self) << ": " << name << " has " << n << " values, at most " << max
                                   << " are allowed");
     size = static_cast<std::size_t>(max) + 1;
   }
@@ -177,14 +167,6 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
   return {};
 }
 
-/// True when the fibers carry FiberCollisionSolver's field data collisions = 0 (solved). Under MPI
-/// the rank holding the solver's piece decides for itself (a warning only, no collective).
-bool ClaimsSolved(vtkPolyData* fibers)
-{
-  vtkDataArray* collisions = fibers ? fibers->GetFieldData()->GetArray("collisions") : nullptr;
-  return collisions && collisions->GetNumberOfTuples() == 1 && collisions->GetTuple1(0) == 0.0;
-}
-
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -192,7 +174,7 @@ bool ClaimsSolved(vtkPolyData* fibers)
 /// (sentinel), by RequestInformation, and used by every RequestData.
 struct vtkPLISimulation::ImagePlan
 {
-  vtkMTimeType time = 0;             ///< this->GetMTime() the plan is for
+  PlanStamp stamp;                   ///< the time and (resolved) volume the plan is for
   fiberpli::pli::PLIOptions options; ///< the properties, VolumeOfInterest resolved for the sentinel
   fiberpli::pli::PLIPlan plan;       ///< planPLIImage of the options
   std::string error;                 ///< the options' or the plan's error, reported by RequestData
@@ -201,7 +183,6 @@ struct vtkPLISimulation::ImagePlan
 
 //------------------------------------------------------------------------------
 vtkPLISimulation::vtkPLISimulation()
-  : Fibers(std::make_unique<fiberpli::FiberModelCache>())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2); // 0: the image stack, 1: the voxelised tissue (ExportTissue)
@@ -234,13 +215,6 @@ FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleVa
 FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths,
   fiberpli::pli::kMaxTiltAzimuths)
 #undef FIBERPLI_LIST_ACCESSORS
-
-//------------------------------------------------------------------------------
-int vtkPLISimulation::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
 
 //------------------------------------------------------------------------------
 int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
@@ -302,31 +276,19 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
 {
   fiberpli::pli::PLIOptions options;
   std::string error = MakeOptions(this, options);
-  error = error.empty() ? error : "PLISimulation: " + error;
+  error = error.empty() ? error : fiberpli::ProxyMessage(this, error);
   bool noFibers = false;
-  if (error.empty() && fiberpli::isBoundsSentinel(options.volumeOfInterest))
+  if (error.empty()) // the same properties on every rank: all of them skip the bounds, or none
   {
-    // The image size depends on the bounds of the whole model, which only the input data knows:
-    // the input is brought up to date now with the piece RequestUpdateExtent asks for anyway, so
-    // the data pass does not execute upstream again (under MPI the ranks' bounds are reduced, so
-    // every rank calls it on every pass, planned already or not).
-    double bounds[6];
-    error = fiberpli::FiberTileExchange::UpdateBounds(this, inputVector->GetInformationObject(0), "PLISimulation", bounds,
-      this->Fibers.get());
-    noFibers = error.empty() && !(bounds[0] <= bounds[1]); // no fiber on any rank
-    if (error.empty() && !noFibers)
-    {
-      std::copy(bounds, bounds + 6, options.volumeOfInterest);
-    }
+    error = this->VolumeToPlan(inputVector, options.volumeOfInterest, noFibers);
   }
   if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() && !this->Plan->noFibers &&
-    this->Plan->time == this->GetMTime() &&
-    std::equal(options.volumeOfInterest, options.volumeOfInterest + 6, this->Plan->options.volumeOfInterest))
+    this->PlanHolds(this->Plan->stamp, options.volumeOfInterest))
   {
     return; // planned for these properties and this volume already
   }
   auto p = std::make_unique<ImagePlan>();
-  p->time = this->GetMTime();
+  p->stamp = this->StampFor(options.volumeOfInterest);
   p->options = options;
   p->error = error;
   p->noFibers = noFibers;
@@ -334,18 +296,9 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   {
     // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
     const fiberpli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
-    p->error = st.ok() ? "" : "PLISimulation: " + st.error;
+    p->error = st.ok() ? "" : fiberpli::ProxyMessage(this, st.error);
   }
   this->Plan = std::move(p);
-}
-
-//------------------------------------------------------------------------------
-int vtkPLISimulation::RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
-{
-  // Under MPI this rank's piece of fibers; ExecutePiece receives those its tile reads.
-  fiberpli::FiberTileExchange::RequestPiece(request, outputVector, inputVector[0]->GetInformationObject(0));
-  return 1;
 }
 
 //------------------------------------------------------------------------------
@@ -377,7 +330,7 @@ int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector*
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
   // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "PLISimulation",
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(request, inputVector, outputVector); });
 }
 
@@ -398,9 +351,9 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
     return 1;
   }
   std::string localError = this->Plan->error;
-  if (!fiberpli::CheckThreads(this, "PLISimulation", this->NumberOfThreads))
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
-    localError = "PLISimulation: " + fiberpli::validateThreadCount(this->NumberOfThreads);
+    localError = fiberpli::ProxyMessage(this, fiberpli::validateThreadCount(this->NumberOfThreads));
   }
   else if (!localError.empty())
   {
@@ -430,7 +383,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // fibers its piece reads, in model order (FiberTileExchange.h).
   fiberpli::TileReach reach;
   fiberpli::TileFibers in = fiberpli::FiberTileExchange::Receive(
-    outputVector->GetInformationObject(std::max(port, 0)), input, "PLISimulation", localError,
+    outputVector->GetInformationObject(std::max(port, 0)), input, fiberpli::ProxyName(this), localError,
     [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
       if (!work)
       {
@@ -442,7 +395,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
       tissuePlanned = true;
       if (!tissueStatus.ok())
       {
-        return "PLISimulation: " + tissueStatus.error;
+        return fiberpli::ProxyMessage(this, tissueStatus.error);
       }
       const std::string e =
         PieceReach(this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
@@ -479,7 +432,7 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   }
   if (!cellError.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << cellError);
+    fiberpliErrorMacro(<< cellError);
     return 0;
   }
   if (!tissuePlanned)
@@ -496,16 +449,18 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   }
   if (!tissueStatus.ok())
   {
-    vtkErrorMacro(<< "PLISimulation: " << tissueStatus.error);
+    fiberpliErrorMacro(<< tissueStatus.error);
     return 0;
   }
   this->NumberOfTileFibers = static_cast<double>(in.model.fibers.size());
   this->NumberOfModelFibers = static_cast<double>(in.modelFibers);
   int ok = 1;
+  // Whether the input claims to be collision-free decides a warning only: under MPI the rank that
+  // holds the solver's piece decides for itself, no collective is needed.
   if (wantImage)
   {
     ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image,
-      ClaimsSolved(input));
+      fiberpli::ClaimsCollisionFree(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
@@ -540,7 +495,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
     });
   if (!st.error.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   // The plan's warnings first, as one runPLI call (planning and running) reports them.
@@ -573,36 +528,7 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   output->SetExtent(ext);
   output->SetSpacing(spacing);
   output->SetOrigin(plan.imageOrigin);
-  const int nrho = static_cast<int>(plan.rho.size());
-  const vtkIdType n = static_cast<vtkIdType>(range.nx() * range.ny());
-  for (std::size_t v = 0; v < image.views.size(); ++v)
-  {
-    const std::string name = v == 0 ? fiberpli::plifield::kIntensity : fiberpli::plifield::intensityTilt(v - 1);
-    vtkNew<vtkDoubleArray> a;
-    a->SetName(name.c_str());
-    a->SetNumberOfComponents(nrho);
-    a->SetNumberOfTuples(n);
-    // Core stacks are x fastest then y, rotations innermost: the VTK point order exactly.
-    std::copy(image.views[v].data.begin(), image.views[v].data.end(), a->GetPointer(0));
-    output->GetPointData()->AddArray(a);
-  }
-  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kIntensity);
-
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPolarizerAngles, plan.rhoDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngle, { plan.tiltInTissue * 180.0 / M_PI });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltAngles, plan.tiltDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTiltDirections, plan.azimuthDeg);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kSectionThickness, { plan.thickness });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kWavelength, { options.wavelength });
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltConvention, fiberpli::tiltConventionCode(options.tiltConvention));
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kTiltedSensor, options.tiltedSensor ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kNoiseGain, { options.noiseGain });
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kEmptySection, image.emptySection ? 1 : 0);
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { options.voxelSize });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kPixelSize, { options.pixelSize });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLightIntensity, { options.lightIntensity });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
+  fiberpli::WritePliStack(image, plan, options, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -613,14 +539,14 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
 {
   if (!this->TissueError.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << this->TissueError);
+    fiberpliErrorMacro(<< this->TissueError);
     return 0;
   }
   fiberpli::pli::VoxelBox box;
   fiberpli::Status st = fiberpli::pli::tissueBox(plan, this->TissueVolume, box);
   if (!st.ok())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   // This piece: the update extent (global voxel indices) inside the box.
@@ -641,7 +567,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   st = fiberpli::pli::exportTissue(model, plan, options, piece, tv, fiberpli::MakeProgress(this));
   if (!st.error.empty())
   {
-    vtkErrorMacro(<< "PLISimulation: " << st.error);
+    fiberpliErrorMacro(<< st.error);
     return 0;
   }
   if (st.aborted)
@@ -654,26 +580,7 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
   output->SetSpacing(voxel, voxel, voxel);
   output->SetOrigin(plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
     plan.lattice.origin[2] + 0.5 * voxel);
-  const vtkIdType n = static_cast<vtkIdType>(tv.label.size());
-  vtkNew<vtkIntArray> label;
-  label->SetName(fiberpli::plifield::kLabel);
-  label->SetNumberOfValues(n);
-  std::copy(tv.label.begin(), tv.label.end(), label->GetPointer(0));
-  vtkNew<vtkFloatArray> axis;
-  axis->SetName(fiberpli::plifield::kOpticAxis);
-  axis->SetNumberOfComponents(3);
-  axis->SetNumberOfTuples(n);
-  std::copy(tv.axis.begin(), tv.axis.end(), axis->GetPointer(0));
-  output->GetPointData()->AddArray(label);
-  output->GetPointData()->AddArray(axis);
-  output->GetPointData()->SetActiveScalars(fiberpli::plifield::kLabel);
-  // What a label means: 1 + b·L + l for layer l of the b-th bundle id; 0 = embedding medium.
-  std::vector<double> bundles(plan.tissue.bundleIds.begin(), plan.tissue.bundleIds.end());
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kLabelBundleIds, bundles);
-  fiberpli::AddFieldInt(output, fiberpli::plifield::kLayersPerBundle, plan.tissue.maxLayers());
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kVoxelSize, { voxel });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kTileFibers, { this->NumberOfTileFibers });
-  fiberpli::AddFieldDoubles(output, fiberpli::plifield::kModelFibers, { this->NumberOfModelFibers });
+  fiberpli::WritePliTissue(tv, plan, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -682,11 +589,6 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
 void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  const double* v = this->VolumeOfInterest;
-  os << indent << "VolumeOfInterest: " << v[0] << " " << v[1] << " " << v[2] << " " << v[3] << " " << v[4] << " "
-     << v[5] << "\n";
-  os << indent << "VoxelSize: " << this->VoxelSize << "\n";
-  os << indent << "PixelSize: " << this->PixelSize << "\n";
   os << indent << "Wavelength: " << this->Wavelength << "\n";
   os << indent << "LightIntensity: " << this->LightIntensity << "\n";
   os << indent << "NumberOfRotations: " << this->NumberOfRotations << "\n";

@@ -40,7 +40,7 @@
 #define vtkPLISimulation_h
 
 #include "FiberPLIFiltersModule.h" // for export macro
-#include "vtkImageAlgorithm.h"
+#include "vtkFiberSectionAlgorithm.h"
 
 #include <memory> // for the plan
 #include <string> // for TissueError
@@ -49,7 +49,6 @@
 class vtkImageData;
 namespace fiberpli
 {
-class FiberModelCache;
 struct FiberModel;
 namespace pli
 {
@@ -58,11 +57,11 @@ struct PLIPlan;
 }
 }
 
-class FIBERPLIFILTERS_EXPORT vtkPLISimulation : public vtkImageAlgorithm
+class FIBERPLIFILTERS_EXPORT vtkPLISimulation : public vtkFiberSectionAlgorithm
 {
 public:
   static vtkPLISimulation* New();
-  vtkTypeMacro(vtkPLISimulation, vtkImageAlgorithm);
+  vtkTypeMacro(vtkPLISimulation, vtkFiberSectionAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Optic-axis interpolation along tilted rays (docs/pli-simulation.md §4.5).
@@ -73,31 +72,7 @@ public:
     SLERP = 2
   };
 
-  ///@{
-  /**
-   * Section, µm: xmin xmax ymin ymax zmin zmax; the z range is the section thickness. min > max on
-   * every axis means the input's bounds (with radii). Default is (1, -1, 1, -1, 1, -1).
-   */
-  vtkSetVector6Macro(VolumeOfInterest, double);
-  vtkGetVector6Macro(VolumeOfInterest, double);
-  ///@}
-
-  ///@{
-  /**
-   * Tissue voxel size, µm, > 0. Default is 0.4 (half the default fiber radius 0.8, so that the
-   * default fibers are resolved).
-   */
-  vtkSetMacro(VoxelSize, double);
-  vtkGetMacro(VoxelSize, double);
-  ///@}
-
-  ///@{
-  /**
-   * Camera pixel size, µm, >= VoxelSize. Default is 2.
-   */
-  vtkSetMacro(PixelSize, double);
-  vtkGetMacro(PixelSize, double);
-  ///@}
+  // VolumeOfInterest, VoxelSize and PixelSize: the section (vtkFiberSectionAlgorithm).
 
   ///@{
   /**
@@ -316,9 +291,7 @@ public:
 protected:
   vtkPLISimulation();
   ~vtkPLISimulation() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// This rank's part of RequestData (which makes its outcome collective under MPI).
   int ExecutePiece(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
@@ -328,9 +301,6 @@ private:
   vtkPLISimulation(const vtkPLISimulation&) = delete;
   void operator=(const vtkPLISimulation&) = delete;
 
-  double VolumeOfInterest[6] = { 1, -1, 1, -1, 1, -1 };
-  double VoxelSize = 0.4;
-  double PixelSize = 2.0;
   double Wavelength = 525.0;
   double LightIntensity = 26000.0;
   int NumberOfRotations = 18;
@@ -360,8 +330,6 @@ private:
   /// RequestData (docs/pli-simulation.md §7.3).
   struct ImagePlan;
   std::unique_ptr<ImagePlan> Plan;
-  /// The input's fibers, converted once per input MTime (docs/pli-simulation.md §7.3).
-  std::unique_ptr<fiberpli::FiberModelCache> Fibers;
   void PlanImage(vtkInformationVector* inputVector);
 
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.

@@ -1,5 +1,6 @@
 #include "vtkFiberMeshWriter.h"
 
+#include "FiberAdapter.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
 #include "FiberInnerRadii.h"
@@ -40,7 +41,7 @@ int vtkFiberMeshWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkFiberMeshWriter::WriteData()
 {
   // Any exception escaping the write becomes a VTK error (FiberGuard.h), never an abort.
-  const int ok = fiberpli::GuardRequest(this, nullptr, "FiberMeshWriter", [&]() -> int {
+  const int ok = fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
     this->WriteMesh();
     return 1;
   });
@@ -58,7 +59,7 @@ void vtkFiberMeshWriter::WriteMesh()
   this->VerticesWritten = this->TrianglesWritten = this->BytesWritten = 0.0;
   if (this->FileName == nullptr || this->FileName[0] == '\0')
   {
-    this->Fail(vtkErrorCode::NoFileNameError, "FiberMeshWriter: no FileName set");
+    this->Fail(vtkErrorCode::NoFileNameError, fiberpli::ProxyMessage(this, "no FileName set"));
     return;
   }
   const std::string path(this->FileName);
@@ -70,7 +71,7 @@ void vtkFiberMeshWriter::WriteMesh()
     return;
   }
   vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
-  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberMeshWriter");
+  fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!in.ok())
   {
     this->Fail(vtkErrorCode::UserError, in.error);
@@ -85,11 +86,11 @@ void vtkFiberMeshWriter::WriteMesh()
   fiberpli::ReadPeriodicCell(input, cell, cellError);
   if (!cellError.empty())
   {
-    this->Fail(vtkErrorCode::UserError, "FiberMeshWriter: input field data " + cellError);
+    this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "input field data " + cellError));
     return;
   }
   // The axon surfaces: inner_radius checked and read by the one rule of FiberInnerRadii.h.
-  const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberMeshWriter");
+  const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
   if (!innerError.empty())
   {
     this->Fail(vtkErrorCode::UserError, innerError);
@@ -114,7 +115,7 @@ void vtkFiberMeshWriter::WriteMesh()
   const std::string bad = fiberpli::checkSubstrateMeshOptions(options);
   if (!bad.empty())
   {
-    this->Fail(vtkErrorCode::UserError, "FiberMeshWriter: " + bad);
+    this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, bad));
     return;
   }
   this->SetProgressText("Writing the substrate mesh");
@@ -139,7 +140,7 @@ void vtkFiberMeshWriter::WriteMesh()
   }
   if (!ioError.empty())
   {
-    this->Fail(vtkErrorCode::CannotOpenFileError, "FiberMeshWriter: " + ioError);
+    this->Fail(vtkErrorCode::CannotOpenFileError, fiberpli::ProxyMessage(this, ioError));
     return;
   }
   struct stat info;
@@ -173,7 +174,7 @@ void vtkFiberMeshWriter::WriteMesh()
     });
     if (!confError.empty())
     {
-      this->Fail(vtkErrorCode::CannotOpenFileError, "FiberMeshWriter: " + path + " was written, its MC/DC configuration was not: " + confError);
+      this->Fail(vtkErrorCode::CannotOpenFileError, fiberpli::ProxyMessage(this, path + " was written, its MC/DC configuration was not: " + confError));
     }
   }
 }

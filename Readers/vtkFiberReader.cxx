@@ -1,5 +1,6 @@
 #include "vtkFiberReader.h"
 
+#include "FiberAdapter.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
 #include "FiberProgress.h"
@@ -65,13 +66,13 @@ int vtkFiberReader::CanReadFile(const char* fileName)
 int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, "FiberReader", [&]() -> int {
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
     output->Initialize();
     if (this->FileName == nullptr || this->FileName[0] == '\0')
     {
-      vtkErrorMacro(<< "FiberReader: no FileName set");
+      fiberpliErrorMacro(<< "no FileName set");
       return 0;
     }
     const std::string path(this->FileName);
@@ -80,8 +81,8 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
 
     fiberpli::FiberReadResult result;
     fiberpli::PeriodicCell cell;
-    try // the readers check sizes before allocating; this is the last line against a crash
-    {
+    // The readers check sizes before allocating; this is the last line against a crash.
+    const bool inMemory = fiberpli::TryInMemory([&] {
       if (HasH5Extension(path))
       {
         result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model, &cell);
@@ -99,25 +100,25 @@ int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInfo
       {
         result = fiberpli::readFiberFile(path, this->DefaultRadius);
       }
-    }
-    catch (const std::bad_alloc&)
+    });
+    if (!inMemory)
     {
       result = fiberpli::FiberReadResult{};
       result.error = path + ": not enough memory to read the file";
     }
     if (!result.ok())
     {
-      vtkErrorMacro(<< "FiberReader: " << result.error);
+      fiberpliErrorMacro(<< result.error);
       return 0;
     }
     if (result.droppedFibers > 0)
     {
-      vtkWarningMacro(<< "FiberReader: " << path << ": " << result.droppedFibers
+      fiberpliWarningMacro(<< path << ": " << result.droppedFibers
                       << " fiber(s) with fewer than 2 points dropped");
     }
     for (const std::string& warning : result.warnings)
     {
-      vtkWarningMacro(<< "FiberReader: " << warning);
+      fiberpliWarningMacro(<< warning);
     }
     // CATERPillar axons with myelin: their inner radii ride with the fibers like those of .h5.
     for (std::size_t f = 0; f < result.innerRadii.size() && f < result.model.fibers.size(); ++f)

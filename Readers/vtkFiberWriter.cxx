@@ -1,5 +1,6 @@
 #include "vtkFiberWriter.h"
 
+#include "FiberAdapter.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
 #include "FiberProgress.h"
@@ -38,18 +39,18 @@ void vtkFiberWriter::WriteData()
 {
   // Any exception escaping the write becomes a VTK error (FiberGuard.h), never an abort; the
   // parallel writer reads it from LastWriteError.
-  const int ok = fiberpli::GuardRequest(this, nullptr, "FiberWriter", [&]() -> int {
+  const int ok = fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
     const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
     this->SetErrorCode(vtkErrorCode::NoError);
     this->SetLastWriteError(nullptr);
     if (this->FileName == nullptr || this->FileName[0] == '\0')
     {
-      this->Fail(vtkErrorCode::NoFileNameError, "FiberWriter: no FileName set");
+      this->Fail(vtkErrorCode::NoFileNameError, fiberpli::ProxyMessage(this, "no FileName set"));
       return 0;
     }
     const std::string path(this->FileName);
     vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, "FiberWriter");
+    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
     if (!in.ok())
     {
       this->Fail(vtkErrorCode::UserError, in.error);
@@ -59,7 +60,7 @@ void vtkFiberWriter::WriteData()
     {
       vtkWarningMacro(<< in.warning);
     }
-    const std::string innerError = fiberpli::ReadInnerRadii(input, in, "FiberWriter"); // kept by .h5 and .csv
+    const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this)); // kept by .h5 and .csv
     if (!innerError.empty())
     {
       this->Fail(vtkErrorCode::UserError, innerError);
@@ -75,7 +76,7 @@ void vtkFiberWriter::WriteData()
     fiberpli::ReadPeriodicCell(input, cell, cellError);
     if (!cellError.empty())
     {
-      this->Fail(vtkErrorCode::UserError, "FiberWriter: input field data " + cellError);
+      this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "input field data " + cellError));
       return 0;
     }
     // CATERPillar .csv keeps the axon radius inside the outer one; CACTUS .txt the cell's edge.
@@ -97,7 +98,7 @@ void vtkFiberWriter::WriteData()
                                            : fiberpli::writeFiberFile(path, in.model, &extras);
     if (!error.empty())
     {
-      this->Fail(vtkErrorCode::CannotOpenFileError, "FiberWriter: " + error);
+      this->Fail(vtkErrorCode::CannotOpenFileError, fiberpli::ProxyMessage(this, error));
       return 0;
     }
     return 1;

@@ -11,7 +11,7 @@ packages=(
   libfreetype-dev libgdal-dev libgl2ps-dev libglew-dev libjpeg-dev liblz4-dev liblzma-dev
   libxml2-dev libgl-dev libpng-dev python3-dev libtheora-dev libtiff-dev libx11-dev libxt-dev
   libxcursor-dev zlib1g-dev libdouble-conversion-dev libutfcpp-dev python3-mpi4py
-  libgtest-dev xvfb xauth python3-numpy python3-scipy
+  libgtest-dev xvfb xauth python3-numpy python3-scipy clang-format
 )
 
 sudo_cmd=()

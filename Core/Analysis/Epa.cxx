@@ -1,6 +1,6 @@
 #include "Analysis/Epa.h"
 #include "Analysis/ForEachPixel.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 
 #include <cmath>
 #include <limits>

@@ -1,6 +1,7 @@
 #include "Analysis/FiberOrientationMap.h"
 
 #include "Util/Threads.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 #include <limits>
@@ -168,11 +169,10 @@ std::string fomMaskThreshold(FomMask mask, double fraction, double largest, doub
 
 std::string fomLegend(int size, FomScheme scheme, std::vector<std::uint8_t>& rgb, Rgb8 background)
 {
-  if (size < 1 || size > 16384)
+  const std::string sizeError = ValueChecks().within("legend size", size, 1, 16384).error();
+  if (!sizeError.empty())
   {
-    std::ostringstream msg;
-    msg << "legend size is " << size << ", must be in [1, 16384]";
-    return msg.str();
+    return sizeError;
   }
   rgb.assign(3 * static_cast<std::size_t>(size) * static_cast<std::size_t>(size), 0);
   for (int row = 0; row < size; ++row)

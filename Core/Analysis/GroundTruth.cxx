@@ -4,6 +4,7 @@
 #include "Section/SectionReach.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -56,11 +57,10 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   {
     return err;
   }
-  if (!std::isfinite(options.radiusScale) || options.radiusScale <= 0.0)
+  err = ValueChecks().positive("radius scale", options.radiusScale).error();
+  if (!err.empty())
   {
-    std::ostringstream msg;
-    msg << "radius scale is " << options.radiusScale << ", must be > 0";
-    return msg.str();
+    return err;
   }
   if (options.nPhi < 1 || options.nAlpha < 1)
   {

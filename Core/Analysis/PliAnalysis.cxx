@@ -1,8 +1,9 @@
 #include "Analysis/PliAnalysis.h"
 
 #include "Analysis/RetardationInclination.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 #include "Util/EnumCode.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 #include <limits>
@@ -18,17 +19,12 @@ std::string inclinationMethodFromCode(int code, InclinationMethod& method)
 
 std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)
 {
-  std::ostringstream msg;
-  if (!(options.referenceRetardation >= 0.0 && options.referenceRetardation <= 1.0))
-  {
-    msg << "ReferenceRetardation is " << options.referenceRetardation << ", must be in [0, 1] (0 = automatic)";
-  }
-  else if (!(options.noiseGain == -1.0 || (options.noiseGain >= 0.0 && options.noiseGain <= kMaxAnalysisNoiseGain)))
-  {
-    msg << "NoiseGain is " << options.noiseGain << ", must be -1 (from the data) or in [0, " << kMaxAnalysisNoiseGain
-        << "]";
-  }
-  return msg.str();
+  const double gain = options.noiseGain;
+  return ValueChecks()
+    .within("ReferenceRetardation", options.referenceRetardation, 0.0, 1.0, " (0 = automatic)")
+    .require(gain == -1.0 || (gain >= 0.0 && gain <= kMaxAnalysisNoiseGain), "NoiseGain", gain,
+      "-1 (from the data) or in [0, " + formatNumber(kMaxAnalysisNoiseGain) + "]")
+    .error();
 }
 
 Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const GridRange& range,

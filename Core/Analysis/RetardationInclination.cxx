@@ -1,5 +1,6 @@
 #include "Analysis/RetardationInclination.h"
 #include "Analysis/ForEachPixel.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 #include <limits>
@@ -51,11 +52,10 @@ std::string inclinationMapFromRetardation(const double* retardation, std::int64_
   {
     return err;
   }
-  if (!std::isfinite(referenceRetardation) || referenceRetardation < 0.0 || referenceRetardation > 1.0)
+  err = ValueChecks().within("ReferenceRetardation", referenceRetardation, 0.0, 1.0, " (0 = automatic)").error();
+  if (!err.empty())
   {
-    std::ostringstream msg;
-    msg << "ReferenceRetardation is " << referenceRetardation << ", must be in [0, 1] (0 = automatic)";
-    return msg.str();
+    return err;
   }
   if (!retardation && range.count() > 0)
   {

@@ -1,9 +1,10 @@
 #include "Analysis/TiltFit.h"
 #include "Analysis/ForEachPixel.h"
-#include "Section/PLIFields.h"
+#include "Model/DataNames.h"
 
 #include "Analysis/Axis.h"
 #include "Util/Angles.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -126,9 +127,7 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
   }
   if (options.maxIterations < 1)
   {
-    std::ostringstream msg;
-    msg << "maxIterations is " << options.maxIterations << ", must be >= 1";
-    return msg.str();
+    return mustBe("maxIterations", options.maxIterations, ">= 1");
   }
   maxIterations_ = options.maxIterations;
   gain_ = options.gain > 0.0 && std::isfinite(options.gain) ? options.gain : 1.0;

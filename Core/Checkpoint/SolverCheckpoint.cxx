@@ -3,8 +3,10 @@
 #include "Checkpoint/CheckpointState.h"
 
 #include "IO/AtomicFile.h"
+#include "IO/BinaryIO.h"
 #include "IO/RegularFile.h"
 #include "Util/NumberFormat.h"
+#include "Util/Fnv1a.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -30,16 +32,9 @@ namespace
 // warnings, then the FNV-1a checksum of everything before it.
 const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
 constexpr std::uint32_t kVersion = 5; // 2: PushBoost and the push scale; 3: its pair cap (another push rule); 4: Tortuosity; 5: input radius profiles
-constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL;
-constexpr std::uint64_t kFnvPrime = 1099511628211ULL;
-
-void fnv(std::uint64_t& h, const unsigned char* p, std::size_t n)
-{
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    h = (h ^ p[i]) * kFnvPrime;
-  }
-}
+// The checksum's start value: one digit short of FNV's offset basis (kFnv1aOffset) since the
+// first version; kept, so that the checksum rule stays the one every version has used.
+constexpr std::uint64_t kChecksumStart = 1469598103934665603ULL;
 
 std::uint64_t bitsOf(double v)
 {
@@ -76,14 +71,13 @@ public:
   explicit Writer(std::ostream& out) : out_(out) {}
   void bytes(const void* p, std::size_t n)
   {
-    fnv(hash_, static_cast<const unsigned char*>(p), n);
+    fnv1aAdd(hash_, p, n);
     out_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
   }
   void u64(std::uint64_t v)
   {
     unsigned char b[8];
-    for (int i = 0; i < 8; ++i)
-      b[i] = static_cast<unsigned char>(v >> (8 * i));
+    binary::store64LE(b, v);
     bytes(b, 8);
   }
   void f64(double v) { u64(bitsOf(v)); }
@@ -103,7 +97,7 @@ public:
 
 private:
   std::ostream& out_;
-  std::uint64_t hash_ = kFnvOffset;
+  std::uint64_t hash_ = kChecksumStart;
 };
 
 // Reads with the bytes left in the file known, so that a damaged count never allocates more than
@@ -123,16 +117,13 @@ public:
       return;
     }
     left_ -= n;
-    fnv(hash_, static_cast<const unsigned char*>(p), n);
+    fnv1aAdd(hash_, p, n);
   }
   std::uint64_t u64()
   {
     unsigned char b[8];
     bytes(b, 8);
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-      v |= static_cast<std::uint64_t>(b[i]) << (8 * i);
-    return v;
+    return binary::load64(b, true);
   }
   double f64() { return doubleOf(u64()); }
   Vec3 vec()
@@ -162,7 +153,7 @@ public:
 private:
   std::istream& in_;
   std::uint64_t left_;
-  std::uint64_t hash_ = kFnvOffset;
+  std::uint64_t hash_ = kChecksumStart;
   bool ok_ = true;
 };
 

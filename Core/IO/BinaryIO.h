@@ -1,5 +1,5 @@
-/// BinaryIO: byte-order-explicit decoding/encoding and stream sizing for the binary fiber formats
-/// (.tck, .trk). Values are assembled byte by byte, so the result never depends on the host's
+/// BinaryIO: byte-order-explicit decoding/encoding and stream sizing for the binary files FiberPLI
+/// reads and writes (.tck, .trk, solver checkpoints). Values are assembled byte by byte, so the result never depends on the host's
 /// byte order or alignment. Internal helper, not part of the public API.
 #pragma once
 
@@ -77,6 +77,14 @@ inline void storeFloat32LE(unsigned char* p, float value)
   for (int i = 0; i < 4; ++i)
   {
     p[i] = static_cast<unsigned char>(u >> (8 * i));
+  }
+}
+
+inline void store64LE(unsigned char* p, std::uint64_t value)
+{
+  for (int i = 0; i < 8; ++i)
+  {
+    p[i] = static_cast<unsigned char>(value >> (8 * i));
   }
 }
 

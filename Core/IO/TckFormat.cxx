@@ -3,6 +3,7 @@
 #include "IO/BinaryIO.h"
 #include "IO/MrtrixData.h"
 #include "IO/MrtrixHeader.h"
+#include "Util/Fnv1a.h"
 
 #include <cmath>
 #include <limits>
@@ -89,14 +90,11 @@ FiberReadResult readTck(std::istream& in, const std::string& fileName, double de
 
 std::string tckTimestamp(const FiberModel& model)
 {
-  std::uint64_t hash = 14695981039346656037ull; // FNV-1a 64
+  std::uint64_t hash = kFnv1aOffset;
   unsigned char bytes[4];
   forEachTckValue(model, [&](float value) {
     binary::storeFloat32LE(bytes, value);
-    for (unsigned char b : bytes)
-    {
-      hash = (hash ^ b) * 1099511628211ull;
-    }
+    fnv1aAdd(hash, bytes, sizeof bytes);
   });
   // Below 2^53, so MRtrix (which reads timestamps as doubles) sees the exact value.
   return std::to_string(hash % 1000000000000000ull);

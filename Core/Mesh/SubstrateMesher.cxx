@@ -1,6 +1,7 @@
 #include "Mesh/SubstrateMesher.h"
 
 #include "Geometry/MinimalRotation.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <charconv>
@@ -437,18 +438,13 @@ void refine(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool
 
 std::string checkSubstrateMeshOptions(const SubstrateMeshOptions& o)
 {
-  std::ostringstream m;
-  if (o.sides < 3 || o.sides > kMaxSubstrateSides)
-  {
-    m << "NumberOfSides is " << o.sides << ", must be in [3, " << kMaxSubstrateSides << "]";
-    return m.str();
-  }
-  if (!std::isfinite(o.ringSpacing) || o.ringSpacing < 0.0)
-  {
-    m << "RingSpacing is " << o.ringSpacing << " µm, must be finite and >= 0 (0: rings at the fiber points only)";
-    return m.str();
-  }
-  return {};
+  return ValueChecks()
+    .within("NumberOfSides", o.sides, 3, kMaxSubstrateSides)
+    .then(std::isfinite(o.ringSpacing) && o.ringSpacing >= 0.0
+        ? std::string()
+        : "RingSpacing is " + formatNumber(o.ringSpacing) +
+          " µm, must be finite and >= 0 (0: rings at the fiber points only)")
+    .error();
 }
 
 int substrateSidesForTolerance(double radius, double tolerance)

@@ -2,6 +2,7 @@
 
 #include "Geometry/MinimalRotation.h"
 #include "Util/Threads.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -205,13 +206,7 @@ TubeMesh meshTubesAtRadii(const FiberModel& model, const TubeOptions& o, const P
 
 std::string checkTubeOptions(const TubeOptions& options)
 {
-  if (options.sides >= 3 && options.sides <= kMaxTubeSides)
-  {
-    return {};
-  }
-  std::ostringstream m;
-  m << "NumberOfSides is " << options.sides << ", must be in [3, " << kMaxTubeSides << "]";
-  return m.str();
+  return ValueChecks().within("NumberOfSides", options.sides, 3, kMaxTubeSides).error();
 }
 
 TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const ProgressFn& progress)

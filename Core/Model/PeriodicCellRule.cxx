@@ -57,4 +57,43 @@ std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicC
   return error;
 }
 
+std::string compareRankCells(const std::vector<RankCell>& ranks)
+{
+  const RankCell* first = nullptr;
+  std::size_t firstRank = 0;
+  for (std::size_t r = 0; r < ranks.size(); ++r)
+  {
+    const RankCell& c = ranks[r];
+    if (!c.present)
+    {
+      continue;
+    }
+    PeriodicCell cell;
+    const std::string error = periodicCellFromBounds(c.values.data(), c.count, cell);
+    if (!error.empty())
+    {
+      return (ranks.size() > 1 ? "rank " + std::to_string(r) + "'s " : std::string()) + "input field data " + error;
+    }
+    if (!first)
+    {
+      first = &c;
+      firstRank = r;
+    }
+    else if (c.values != first->values)
+    {
+      const auto text = [](const std::vector<double>& v) {
+        std::string t;
+        for (double x : v)
+        {
+          t += (t.empty() ? "" : " ") + formatNumber(x);
+        }
+        return t;
+      };
+      return "the input pieces have different periodic_cell field data: rank " + std::to_string(firstRank) + " has " +
+        text(first->values) + ", rank " + std::to_string(r) + " has " + text(c.values);
+    }
+  }
+  return {};
+}
+
 } // namespace fiberpli

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace fiberpli
 {
@@ -30,5 +31,20 @@ std::string validatePeriodicCell(const PeriodicCell& cell);
 /// The cell from the six values of the `periodic_cell` field (xmin xmax ymin ymax zmin zmax):
 /// "" and `cell` filled when validatePeriodicCell accepts it, else why not (count or the rule).
 std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicCell& cell);
+
+/// The field `periodic_cell` of one rank's piece in a parallel update.
+struct RankCell
+{
+  bool present = false;       ///< the piece carries the field
+  std::size_t count = 0;      ///< its number of values
+  std::vector<double> values; ///< its values when count is 6 (a malformed count needs none)
+};
+
+/// The one rule for `periodic_cell` across the ranks of a parallel update, the same for every
+/// filter that reads it there: every piece that carries the field must carry a usable cell
+/// (Model/PeriodicCellRule.h) and all of them the same one (pieces without fibers may lack it).
+/// "" when so, else a message naming the first rank that breaks the rule; computed from the
+/// same gathered values on every rank, it is the same on every rank.
+std::string compareRankCells(const std::vector<RankCell>& ranks);
 
 } // namespace fiberpli

@@ -8,6 +8,7 @@
 #include "PLI/TissueSpec.h"
 #include "Util/EnumCode.h"
 #include "Util/MemoryBudget.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <chrono>
@@ -59,10 +60,10 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
   rotDeg = o.rotationAngles;
   if (rotDeg.empty())
   {
-    if (o.numberOfRotations < 3 || o.numberOfRotations > kMaxRotationAngles)
+    const std::string count = ValueChecks().within("NumberOfRotations", o.numberOfRotations, 3, kMaxRotationAngles).error();
+    if (!count.empty())
     {
-      m << "NumberOfRotations is " << o.numberOfRotations << ", must be in [3, " << kMaxRotationAngles << "]";
-      return m.str();
+      return count;
     }
     for (int k = 0; k < o.numberOfRotations; ++k)
       rotDeg.push_back(k * 180.0 / o.numberOfRotations);
@@ -75,8 +76,7 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
   {
     if (!(o.tiltAngle >= 0.0 && o.tiltAngle < 45.0))
     {
-      m << "TiltAngle is " << o.tiltAngle << ", must be in [0, 45)";
-      return m.str();
+      return mustBe("TiltAngle", o.tiltAngle, "in [0, 45)");
     }
     if (o.tiltAngle > 0.0)
       tiltDeg.push_back(o.tiltAngle);
@@ -106,32 +106,23 @@ Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
 {
   Status st;
   plan = PLIPlan();
-  std::ostringstream m;
-  const std::string sizeError = checkSectionSizes(o.voxelSize, o.pixelSize);
-  if (!sizeError.empty())
-    m << sizeError;
-  else if (!(o.wavelength > 0.0) || !std::isfinite(o.wavelength))
-    m << "Wavelength is " << o.wavelength << ", must be > 0";
-  else if (!(o.lightIntensity >= 0.0 && o.lightIntensity <= kMaxLightIntensity))
-    m << "LightIntensity is " << o.lightIntensity << ", must be in [0, " << kMaxLightIntensity << "]";
-  else if (!(o.stepSize > 0.0) || !std::isfinite(o.stepSize))
-    m << "StepSize is " << o.stepSize << ", must be > 0";
-  else if (!(o.opticalSigma >= 0.0) || !std::isfinite(o.opticalSigma))
-    m << "OpticalSigma is " << o.opticalSigma << ", must be >= 0";
-  else if (!(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain)))
-    m << "NoiseGain is " << o.noiseGain << ", must be 0 or in [1, " << kMaxNoiseGain << "]";
-  else if (!(o.refractiveIndex >= 1.0) || !std::isfinite(o.refractiveIndex))
-    m << "RefractiveIndex is " << o.refractiveIndex << ", must be >= 1";
-  else if (o.numberOfThreads < 0)
-    m << "NumberOfThreads is " << o.numberOfThreads << ", must be >= 0";
-  else if (o.tileSize < 1)
-    m << "tile size is " << o.tileSize << ", must be >= 1";
   std::vector<double> rotDeg, tiltDeg, azDeg;
-  if (m.str().empty())
-    m << polarimeterSetUp(o, rotDeg, tiltDeg, azDeg);
-  if (!m.str().empty())
+  ValueChecks checks;
+  checks.then(checkSectionSizes(o.voxelSize, o.pixelSize))
+    .positive("Wavelength", o.wavelength)
+    .within("LightIntensity", o.lightIntensity, 0.0, kMaxLightIntensity)
+    .positive("StepSize", o.stepSize)
+    .atLeast("OpticalSigma", o.opticalSigma, 0.0)
+    .require(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain), "NoiseGain", o.noiseGain,
+      "0 or in [1, " + formatNumber(kMaxNoiseGain) + "]")
+    .atLeast("RefractiveIndex", o.refractiveIndex, 1.0)
+    .atLeast("NumberOfThreads", o.numberOfThreads, 0)
+    .atLeast("tile size", o.tileSize, 1);
+  if (checks.error().empty())
+    checks.then(polarimeterSetUp(o, rotDeg, tiltDeg, azDeg));
+  if (!checks.error().empty())
   {
-    st.error = m.str();
+    st.error = checks.error();
     return st;
   }
   st.error = planSection(model, o.volumeOfInterest, o.voxelSize, o.pixelSize, plan);
@@ -161,6 +152,7 @@ Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   const double widestSide = static_cast<double>(std::max(plan.pixels[0], plan.pixels[1]));
   if (4.0 * o.opticalSigma > widestSide)
   {
+    std::ostringstream m;
     m << "OpticalSigma is " << o.opticalSigma << " pixels: the blur kernel (4 sigma) is wider than the image of "
       << plan.pixels[0] << " x " << plan.pixels[1] << " pixels; use at most " << widestSide / 4.0;
     st.error = m.str();

@@ -4,6 +4,7 @@
 #include "PLI/Voxeliser.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Threads.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -86,21 +87,23 @@ std::string validateSimulation(const SectionLattice& lat, const SimParams& par, 
   const GridRange& cols)
 {
   std::ostringstream m;
-  if (!std::isfinite(lat.voxel) || lat.voxel <= 0.0)
-    m << "VoxelSize is " << lat.voxel << ", must be > 0";
+  const std::string voxel = ValueChecks().positive("VoxelSize", lat.voxel).error();
+  const std::string optics = ValueChecks()
+                               .positive("Wavelength", par.wavelengthNm)
+                               .atLeast("LightIntensity", par.lightIntensity, 0.0)
+                               .positive("StepSize", par.step)
+                               .error();
+  if (!voxel.empty())
+    m << voxel;
   else if (lat.n[0] < 1 || lat.n[1] < 1 || lat.n[2] < 1)
     m << "VolumeOfInterest gives " << lat.n[0] << " x " << lat.n[1] << " x " << lat.n[2]
       << " voxels at VoxelSize " << lat.voxel << ", needs at least one voxel per axis";
-  else if (!(par.wavelengthNm > 0.0) || !std::isfinite(par.wavelengthNm))
-    m << "Wavelength is " << par.wavelengthNm << ", must be > 0";
-  else if (!(par.lightIntensity >= 0.0) || !std::isfinite(par.lightIntensity))
-    m << "LightIntensity is " << par.lightIntensity << ", must be >= 0";
-  else if (!(par.step > 0.0) || !std::isfinite(par.step))
-    m << "StepSize is " << par.step << ", must be > 0";
+  else if (!optics.empty())
+    m << optics;
   else if (par.rho.empty())
     m << "NumberOfRotations is 0, needs polarizer angles";
   else if (par.tile < 1)
-    m << "tile size is " << par.tile << ", must be >= 1";
+    m << mustBe("tile size", par.tile, ">= 1");
   else if (cols.nx() < 1 || cols.ny() < 1)
     m << "column range [" << cols.i0 << "," << cols.i1 << ")x[" << cols.j0 << "," << cols.j1 << ") is empty";
   if (!m.str().empty())

@@ -2,6 +2,7 @@
 
 #include "PLI/OptionLimits.h"
 #include "Util/NumberFormat.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -155,7 +156,7 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
   spec = TissueSpec();
   if (!std::isfinite(backgroundMu) || backgroundMu < 0.0)
   {
-    st.error = "BackgroundAbsorption is " + formatNumber(backgroundMu) + ", must be >= 0";
+    st.error = mustBe("BackgroundAbsorption", backgroundMu, ">= 0");
     return st;
   }
   spec.backgroundMu = backgroundMu;
@@ -181,15 +182,13 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
     haveGeneral = true;
     if (!std::isfinite(defaultMu) || defaultMu < 0.0)
     {
-      st.error = "Absorption is " + formatNumber(defaultMu) + ", must be >= 0";
+      st.error = mustBe("Absorption", defaultMu, ">= 0");
       return st;
     }
     if (!(std::fabs(defaultDn) <= kMaxBirefringence))
     {
-      std::ostringstream m;
-      m << "Birefringence is " << defaultDn << ", must be in [-" << kMaxBirefringence << ", " << kMaxBirefringence
-        << "]";
-      st.error = m.str();
+      st.error = mustBe("Birefringence", defaultDn,
+        "in [-" + formatNumber(kMaxBirefringence) + ", " + formatNumber(kMaxBirefringence) + "]");
       return st;
     }
   }

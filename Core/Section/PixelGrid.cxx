@@ -1,4 +1,5 @@
 #include "Section/PixelGrid.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,13 +62,14 @@ std::string checkPixelGrid(const PixelGrid& g, std::int64_t& nx, std::int64_t& n
 {
   const SectionLattice& l = g.lattice;
   std::ostringstream msg;
-  if (!std::isfinite(l.voxel) || l.voxel <= 0.0)
+  const std::string sizes = ValueChecks()
+                              .positive("VoxelSize", l.voxel)
+                              .require(std::isfinite(g.pixelSize) && g.pixelSize >= l.voxel, "PixelSize",
+                                g.pixelSize, ">= VoxelSize " + formatNumber(l.voxel))
+                              .error();
+  if (!sizes.empty())
   {
-    msg << "VoxelSize is " << l.voxel << ", must be > 0";
-  }
-  else if (!std::isfinite(g.pixelSize) || g.pixelSize < l.voxel)
-  {
-    msg << "PixelSize is " << g.pixelSize << ", must be >= VoxelSize " << l.voxel;
+    msg << sizes;
   }
   else if (l.n[0] < 0 || l.n[1] < 0 || l.n[2] < 0)
   {

@@ -1,6 +1,7 @@
 #include "Section/SectionPlan.h"
 
 #include "Model/VolumeOfInterest.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,12 +12,11 @@ namespace fiberpli
 
 std::string checkSectionSizes(double voxelSize, double pixelSize)
 {
-  std::ostringstream m;
-  if (!(voxelSize > 0.0) || !std::isfinite(voxelSize))
-    m << "VoxelSize is " << voxelSize << ", must be > 0";
-  else if (!(pixelSize >= voxelSize) || !std::isfinite(pixelSize))
-    m << "PixelSize is " << pixelSize << ", must be >= VoxelSize (" << voxelSize << ")";
-  return m.str();
+  return ValueChecks()
+    .positive("VoxelSize", voxelSize)
+    .require(pixelSize >= voxelSize && std::isfinite(pixelSize), "PixelSize", pixelSize,
+      ">= VoxelSize (" + formatNumber(voxelSize) + ")")
+    .error();
 }
 
 std::string planSection(const FiberModel& model, const double voiIn[6], double voxelSize, double pixelSize,

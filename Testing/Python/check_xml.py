@@ -17,10 +17,15 @@ errors = []
 
 
 def header_of(cls):
+    """The class's header followed by those of its FiberPLI base classes (a setter may be inherited,
+    e.g. the section properties of vtkFiberSectionAlgorithm)."""
     for folder in ("Filters", "Readers"):
         path = os.path.join(source_dir, folder, cls + ".h")
         if os.path.exists(path):
-            return open(path, encoding="utf-8").read()
+            text = open(path, encoding="utf-8").read()
+            base = re.search(r"class\s+\w+\s+%s\s*:\s*public\s+(\w+)" % re.escape(cls), text)
+            inherited = header_of(base.group(1)) if base else None
+            return text + (inherited or "")
     return None
 
 

@@ -1,16 +1,17 @@
 /**
  * @class   FiberTileExchange
- * @brief   the fibers of one MPI tile: each rank's piece of the model goes to the ranks whose tile it reaches
+ * @brief   the fibers of one MPI tile: each rank's piece of the model goes to the ranks whose tile
+ * it reaches
  *
  * PLISimulation and FiberOrientationGroundTruth compute their image (and tissue) piece by piece,
  * one piece per rank (docs/pli-simulation.md §6.3). Instead of asking every rank for the whole
  * model — which made every rank execute the whole upstream again — they ask the upstream for the
  * rank's own piece of fibers (RequestPiece). In RequestData every rank says which box its piece
  * reads (a Core TileReach) and each fiber is sent, through the global vtkMultiProcessController,
- * to the ranks whose box it reaches (Model/TileReach.h). A rank then holds only the fibers of its
- * tile, in the order of the whole model (global index = the fibers of the lower pieces + the
- * local index), so the one ownership rule of the voxels, which depends on that order, gives every
- * voxel the owner it has in one process: the pieces are bit for bit the crop of the serial result.
+ * to the ranks whose box it reaches: the exchange of Core/Parallel/TileExchange.h (where it is
+ * unit-tested), here over FiberSolverComm and with FiberCollective's error agreement. A rank then
+ * holds only the fibers of its tile, in the order of the whole model, so the pieces are bit for bit
+ * the crop of the serial result.
  *
  * Input that sits on one rank only (a reader that cannot make pieces gives piece 0 the whole
  * model and empty pieces elsewhere) is spread the same way. Errors on any rank (a bad input
@@ -21,10 +22,8 @@
 #ifndef FiberTileExchange_h
 #define FiberTileExchange_h
 
-#include "FiberPLIFiltersModule.h" // for export macro
-#include "Geometry/PeriodicCell.h"
-#include "Model/FiberModel.h"
-#include "Model/TileReach.h"
+#include "FiberPLIConversionModule.h" // for export macro
+#include "Parallel/TileExchange.h"
 
 #include <functional>
 #include <string>
@@ -39,34 +38,16 @@ namespace fiberpli
 {
 class FiberModelCache;
 
-/// The fibers one rank's piece reads and what every rank knows of the whole model.
-struct TileFibers
-{
-  FiberModel model;            ///< the fibers reaching this rank's piece (all of them when serial), in model order
-  std::vector<int> bundleIds;  ///< distinct bundle ids of the whole model, sorted
-  bool myelinated = false;     ///< some fiber of the whole model carries inner_radius
-  bool periodic = false;       ///< the input carries field data periodic_cell (lowest rank that has it)
-  PeriodicCell cell;           ///< that cell, when cellError is empty
-  std::string cellError;       ///< why periodic_cell is unusable ("" when fine or absent)
-  long long modelFibers = 0;   ///< fibers of the whole model
-  long long pieceFibers = 0;   ///< fibers of this rank's input piece
-  bool distributed = false;    ///< the fibers were exchanged between ranks
-  bool emptyInput = false;     ///< no rank's input piece holds points or cells (empty output, no error)
-  std::string error;           ///< the agreed error: "" on every rank or an error on every rank
-  std::string warning;         ///< this rank's conversion warning (FiberPolyData::ToModel)
-  bool ok() const { return error.empty(); }
-};
-
-class FIBERPLIFILTERS_EXPORT FiberTileExchange
+class FIBERPLICONVERSION_EXPORT FiberTileExchange
 {
 public:
-  /// What this rank's piece reads, from what every rank knows of the model (`whole`: bundleIds,
-  /// periodic cell; its `model` is not yet filled). Returns "" or an error.
-  using ReachFunction = std::function<std::string(const TileFibers& whole, TileReach& reach)>;
+  /// What this rank's piece reads (Parallel/TileExchange.h).
+  using ReachFunction = fiberpli::ReachFunction;
 
   /// RequestUpdateExtent: the input is asked for this rank's piece (the piece of the requesting
   /// output port, no ghost levels) in a parallel update, for all fibers (piece 0 of 1) otherwise.
-  static void RequestPiece(vtkInformation* request, vtkInformationVector* outputVector, vtkInformation* inInfo);
+  static void RequestPiece(
+    vtkInformation* request, vtkInformationVector* outputVector, vtkInformation* inInfo);
 
   /// RequestInformation of a filter whose image size depends on the fibers' bounds: updates input
   /// port 0 with the piece RequestPiece will ask for (so the data pass does not execute upstream
@@ -74,8 +55,8 @@ public:
   /// point); collective over every rank when the global controller has more than one. Returns
   /// this rank's conversion error ("" when its piece is usable).
   /// With a `cache` (FiberPolyData.h) the piece is converted only when its MTime changed.
-  static std::string UpdateBounds(vtkAlgorithm* algorithm, vtkInformation* inInfo, const std::string& who,
-    double bounds[6], FiberModelCache* cache = nullptr);
+  static std::string UpdateBounds(vtkAlgorithm* algorithm, vtkInformation* inInfo,
+    const std::string& who, double bounds[6], FiberModelCache* cache = nullptr);
 
   /// RequestData: converts this rank's input piece and, in a parallel update, exchanges the fibers
   /// so that this rank receives those reaching reachOf's box. `localError` (this rank's error so
