@@ -2,8 +2,8 @@
     pvpython bench/realistic_bench.py <FiberPLI.so> [case ...] [--edge L] [--threads T]
 Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.04 at wavelength
 10 µm, beading CV 0.16 over 8 µm), cc-straight (the same without beading), crossing-90 and
-crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.15 at 15 µm, beading 0.2),
-three (3 interwoven populations, tortuosity 1.10). Outer radii Gamma with mean 1 µm and spread 0.5
+crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
+`VolumeFraction` 0.65), three (3 interwoven populations, tortuosity 1.15, `VolumeFraction` 0.58). Outer radii Gamma with mean 1 µm and spread 0.5
 (α 4, β 0.25 µm); FiberCollisionSolver with the same Tortuosity and MaxDisplacement 0.4.
 Every figure is measured here with numpy, sharing no code with FiberPLI: φ = the union of the
 outer capsules with all their periodic images over the cell (Monte Carlo, 4·10⁵ points),
@@ -27,12 +27,12 @@ CASES = {
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
     "crossing-90": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
-                        VolumeFraction=0.55, Tortuosity=1.15, UndulationWavelength=15.0, BeadingCV=0.2,
+                        VolumeFraction=0.65, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
                         BeadingLength=8.0),
     "crossing-45": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=45.0,
-                        VolumeFraction=0.55, Tortuosity=1.15, UndulationWavelength=15.0, BeadingCV=0.2,
+                        VolumeFraction=0.65, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
                         BeadingLength=8.0),
-    "three": dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.45, Tortuosity=1.10,
+    "three": dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.58, Tortuosity=1.15,
                   UndulationWavelength=15.0),
 }
 
