@@ -1,5 +1,6 @@
 """Realistic periodic substrates (pvbatch): a corpus-callosum-like cell (one population, undulating,
-beaded, myelinated) and an interwoven crossing region (two populations at 90°), made by
+beaded, myelinated), interwoven crossing regions (two populations at 90° and at 45°) and three
+interwoven populations, made by
 FiberCubeSource with its realism knobs, solved by FiberCollisionSolver keeping the tortuosity, and
 measured by FiberMetrics. Prints one row per cell and population (FiberMetrics' figures: volume
 fraction over the cell with all periodic images, collisions, tortuosity, c2 of segments, radius CV,
@@ -33,14 +34,24 @@ os.makedirs(args.out, exist_ok=True)
 
 CELLS = {
     # corpus callosum: tortuosity ≈ 1.03–1.06, radius CV 0.15–0.3, g-ratio 0.6–0.7
-    "corpus_callosum": (dict(Populations=1, Seeding="Lattice", VolumeFraction=0.82, Tortuosity=1.04,
-                             UndulationWavelength=10.0, BeadingCV=0.16, BeadingLength=8.0, GRatio=0.7),
-                        dict(Tortuosity=1.04)),
-    # crossing region: two populations interwoven at 90°, tortuosity ≈ 1.15
+    "corpus_callosum": (dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03,
+                             UndulationWavelength=10.0, BeadingCV=0.16, BeadingLength=16.0, GRatio=0.7),
+                        dict(Tortuosity=1.03)),
+    # crossing region: two populations interwoven at 90° (or 45°: population 1 along (1, 1, 0)); in
+    # a dense crossing the fibers weave over and under each other, which adds about 0.1 to the
+    # tortuosity asked for
     "crossing": (dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
-                      VolumeFraction=0.55, Tortuosity=1.15, UndulationWavelength=15.0, BeadingCV=0.2,
+                      VolumeFraction=0.65, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
                       BeadingLength=8.0, GRatio=0.7),
-                 dict(Tortuosity=1.15, MinCurvatureRadius=4.0)),
+                 dict(Tortuosity=1.25)),
+    "crossing_45": (dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=45.0,
+                         VolumeFraction=0.65, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
+                         BeadingLength=8.0, GRatio=0.7),
+                    dict(Tortuosity=1.25)),
+    # three populations interwoven along x, y and z
+    "three_populations": (dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.58,
+                               Tortuosity=1.15, UndulationWavelength=15.0, GRatio=0.7),
+                          dict(Tortuosity=1.15)),
 }
 
 

@@ -1,7 +1,8 @@
 """Realistic periodic substrates (bench/README.md "Realistic substrates"):
     pvpython bench/realistic_bench.py <FiberPLI.so> [case ...] [--edge L] [--threads T]
-Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.04 at wavelength
-10 µm, beading CV 0.16 over 8 µm), cc-straight (the same without beading), crossing-90 and
+Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.03 at wavelength
+10 µm, beading CV 0.16 over 16 µm, `VolumeFraction` 0.87), cc-straight (tortuosity 1.04 without
+beading, 0.78), crossing-90 and
 crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
 `VolumeFraction` 0.65), three (3 interwoven populations, tortuosity 1.15, `VolumeFraction` 0.58). Outer radii Gamma with mean 1 µm and spread 0.5
 (α 4, β 0.25 µm); FiberCollisionSolver with the same Tortuosity and MaxDisplacement 0.4.
@@ -22,8 +23,8 @@ from scipy.spatial import cKDTree
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 CASES = {
-    "cc": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.82, Tortuosity=1.04, UndulationWavelength=10.0,
-               BeadingCV=0.16, BeadingLength=8.0),
+    "cc": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03, UndulationWavelength=10.0,
+               BeadingCV=0.16, BeadingLength=16.0),
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
     "crossing-90": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
