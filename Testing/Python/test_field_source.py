@@ -181,4 +181,30 @@ flat.OrientationArray = ["POINTS", "orientation"]
 catcher = ErrorCatcher(flat)
 flat.UpdatePipeline()
 check("1 point(s) along z" in catcher.text(), "flat image: %r" % catcher.text())
+
+# Progress during tracing, and an abort there stops it with an empty output; the next property
+# change runs it again.
+big = FiberFieldSource(Input=producer(image((40, 40, 40), {"orientation": lambda x, y, z: np.c_[x * 0 + 1, 0.5 + y * 0, z * 0]})),
+                       VolumeFraction=0.3, FiberRadius=0.3, SegmentLength=2.0)
+big.OrientationArray = ["POINTS", "orientation"]
+alg = big.GetClientSideObject()
+seen = []
+
+
+def abort_while_tracing(obj, event):
+    seen.append(obj.GetProgress())
+    if 0.0 < obj.GetProgress() < 0.9:
+        obj.SetAbortExecute(1)
+
+
+catcher = ErrorCatcher(big)
+tag = alg.AddObserver("ProgressEvent", abort_while_tracing)
+big.UpdatePipeline()
+alg.RemoveObserver(tag)
+check(any(0.0 < p < 0.9 for p in seen), "no progress while tracing: %s" % seen)
+check(alg.GetOutputDataObject(0).GetNumberOfCells() == 0, "an aborted run passed fibers on")
+check(any("aborted by the user" in w for w in catcher.warnings), "no abort message: %r" % catcher.warnings)
+big.Seed = 7
+big.UpdatePipeline()
+check(alg.GetOutputDataObject(0).GetNumberOfCells() > 64, "no fibers after the abort")
 print("field source checks passed")
