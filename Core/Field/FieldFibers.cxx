@@ -259,13 +259,16 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     }
     const double radius = drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, maxRadius);
     TracedLine line = traceFieldLine(field, seed, o.trace);
-    if (line.points.size() < 2)
+    // A line shorter than a third of a segment (a seed in a sliver of the field) is no fiber: it
+    // would add next to no volume, so a field of slivers could make fibers without end.
+    if (line.points.size() < 2 || line.length() < o.trace.segmentLength / 3.0)
     {
       ++result.discardedSeeds;
       if (++discardedInARow >= kDiscardLimit)
       {
         result.error = "the last " + std::to_string(kDiscardLimit) +
-          " seeds gave no fiber segment (the field is full only in slivers thinner than SegmentLength)";
+          " seeds gave no fiber of a third of SegmentLength or more (the field is full only in slivers thinner "
+          "than that across its direction)";
         return result;
       }
       continue;

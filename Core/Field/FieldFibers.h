@@ -41,7 +41,7 @@ struct FieldFiberResult : Status
   FiberModel model;            ///< fiber ids 0..N-1 in the order added, bundle = field index
   double regionVolume = 0.0;   ///< µm³, the box volume × the share of non-empty grid points
   double volumeFraction = 0.0; ///< Σ π r² · length / regionVolume reached
-  std::size_t discardedSeeds = 0; ///< seeds whose line had no segment (on the mask's edge)
+  std::size_t discardedSeeds = 0; ///< seeds whose line was shorter than a third of a segment
 };
 
 /// Empty when the options (with `fields` fields of `field`'s grid) are usable, else a message

@@ -249,6 +249,26 @@ TEST(FieldFibers, BadOptionsNameTheProperty)
   EXPECT_NE(r.error.find("empty everywhere"), std::string::npos) << r.error;
 }
 
+TEST(FieldFibers, SliversGiveAnErrorNotEndlessTinyFibers)
+{
+  // Along x but full only around the plane x = 5: every line is about 1 µm long, below a third of
+  // the 4 µm segment, so no fiber is accepted and the generator gives up with an error.
+  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },
+    [](const Vec3& p) { return p.x == 5.0 ? Vec3{ 1, 0, 0 } : Vec3{}; });
+  FieldFiberOptions o = options(0.3, 0.2, 4.0);
+  const FieldFiberResult r = generateFieldFibers({ &f }, o);
+  EXPECT_NE(r.error.find("slivers"), std::string::npos) << r.error;
+  EXPECT_TRUE(r.model.empty());
+  // With 2 µm segments the same lines are long enough: fibers 1 µm long through the sheet.
+  o.trace.segmentLength = 2.0;
+  const FieldFiberResult ok = generateFieldFibers({ &f }, o);
+  ASSERT_TRUE(ok.ok()) << ok.error;
+  for (const Fiber& fiber : ok.model.fibers)
+  {
+    EXPECT_NEAR(distance(fiber.points.front(), fiber.points.back()), 1.0, 1e-6);
+  }
+}
+
 TEST(FieldFibers, ProgressCanStopIt)
 {
   const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 31, 31, 31 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
