@@ -98,11 +98,13 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   // The arrays: the first is required, the second optional ("None").
   std::vector<fiberpli::OrientationField> fields;
   std::size_t notFinite = 0;
+  int firstAssociation = -1;
   for (int idx = 0; idx < 2; ++idx)
   {
     const std::string name = SelectedName(this, idx);
     const char* property = idx == 0 ? "OrientationArray" : "SecondOrientationArray";
-    vtkDataArray* vectors = this->GetInputArrayToProcess(idx, image);
+    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    vtkDataArray* vectors = this->GetInputArrayToProcess(idx, image, association);
     if (!vectors && idx == 1 && IsNone(name))
     {
       break;
@@ -110,12 +112,20 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
     if (!vectors)
     {
       vtkErrorMacro(<< "FiberFieldSource: " << property << " '" << name
-                    << "': the input has no such point array (a 3-component vector array is needed)");
+                    << "': the input has no such array (a 3-component point or cell array is needed)");
       return 0;
     }
+    const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    if (idx == 1 && association != firstAssociation)
+    {
+      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a " << (cells ? "cell" : "point")
+                    << " array and OrientationArray is not: both fields must be on the same grid");
+      return 0;
+    }
+    firstAssociation = association;
     fields.emplace_back();
     std::size_t bad = 0;
-    const std::string problem = fiberpli::ToOrientationField(image, vectors, fields.back(), bad);
+    const std::string problem = fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
     if (!problem.empty())
     {
       vtkErrorMacro(<< "FiberFieldSource: " << property << ": " << problem);

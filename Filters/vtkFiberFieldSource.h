@@ -2,8 +2,8 @@
  * @class   vtkFiberFieldSource
  * @brief   fills the region of a 3-D orientation field with fibers that follow it
  *
- * Input: a vtkImageData with a 3-component point array, the fiber axis at every grid point (its
- * sign does not matter; a zero vector marks an empty point where no fiber goes; NaN vectors count as
+ * Input: a vtkImageData with a 3-component point array, the fiber axis at every grid point, or a
+ * cell array, the axis at every cell centre (its sign does not matter; a zero vector marks an empty point where no fiber goes; NaN vectors count as
  * empty, with a warning). It is input array 0 (SetInputArrayToProcess; in ParaView the property
  * OrientationArray). An optional second array (input array 1, SecondOrientationArray) is a second,
  * crossing population.

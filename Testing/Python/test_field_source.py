@@ -137,6 +137,21 @@ for p, b in zip(lines, bundles):
     length[int(b)] += np.linalg.norm(d)
 check(abs(length[0] - length[1]) <= 15.0, "volume shares %s" % length)
 
+# A cell array lives on the cell centres: fibers along z from z = 0.5 to z = 10.5.
+cells = vtkImageData()
+cells.SetDimensions(12, 12, 12)
+axes = numpy_to_vtk(np.tile([0.0, 0.0, -2.0], (11 ** 3, 1)), deep=1)
+axes.SetName("cell_axis")
+cells.GetCellData().AddArray(axes)
+by_cell = FiberFieldSource(Input=producer(cells), NumberOfFibers=20, FiberRadius=0.3, SegmentLength=1.0)
+by_cell.OrientationArray = ["CELLS", "cell_axis"]
+lines, _, _ = fibers_of(by_cell)
+check(len(lines) == 20, "%d fibers from the cell array" % len(lines))
+for p in lines:
+    check(np.allclose(sorted([p[0, 2], p[-1, 2]]), [0.5, 10.5], atol=1e-9, rtol=0), "cell field ends %s %s" % (p[0], p[-1]))
+    check(np.all(np.abs(p[:, :2] - p[0, :2]) < 1e-9), "cell field fiber not along z")
+    check(0.5 <= p[0, 0] <= 10.5 and 0.5 <= p[0, 1] <= 10.5, "outside the cell centres' box: %s" % p[0])
+
 # 4. Bad input: errors name the property and value; the pipeline recovers.
 bad = FiberFieldSource(Input=field, VolumeFraction=0.95, FiberRadius=0.5, SegmentLength=1.0)
 bad.OrientationArray = ["POINTS", "orientation"]
