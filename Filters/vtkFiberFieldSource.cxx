@@ -2,6 +2,7 @@
 
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
+#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "OrientationFieldData.h"
@@ -150,6 +151,10 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   options.trace.maxLength = this->MaxFiberLength;
   options.seed = static_cast<std::uint64_t>(this->Seed);
   options.populationShares.assign(this->PopulationShares, this->PopulationShares + 2);
+  options.realism.beadingCV = this->BeadingCV;
+  options.realism.beadingLength = this->BeadingLength;
+  options.realism.gRatio = this->GRatio;
+  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
   std::vector<const fiberpli::OrientationField*> pointers;
   for (const fiberpli::OrientationField& f : fields)
   {
@@ -177,6 +182,7 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   mine.fibers.assign(std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.end)));
   fiberpli::FiberPolyData::FromModel(mine, output);
+  fiberpli::AddInnerRadii(mine, output);
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
   fiberpli::AddFieldDoubles(output, "traced_volume_fraction", { result.volumeFraction });
   this->UpdateProgress(1.0);
@@ -196,5 +202,9 @@ void vtkFiberFieldSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IntegrationScheme: " << this->IntegrationScheme << "\n";
   os << indent << "MaxFiberLength: " << this->MaxFiberLength << "\n";
   os << indent << "PopulationShares: " << this->PopulationShares[0] << " " << this->PopulationShares[1] << "\n";
+  os << indent << "BeadingCV: " << this->BeadingCV << "\n";
+  os << indent << "BeadingLength: " << this->BeadingLength << "\n";
+  os << indent << "GRatio: " << this->GRatio << "\n";
+  os << indent << "GRatioModel: " << this->GRatioModel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
 }

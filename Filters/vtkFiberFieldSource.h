@@ -8,7 +8,7 @@
  * OrientationArray). An optional second array (input array 1, SecondOrientationArray) is a second,
  * crossing population.
  * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius`
- * (µm), cell arrays `fiber_id` and `bundle_id` (the index of the field the fiber follows), field
+ * (µm; with GRatio > 0 also `inner_radius`), cell arrays `fiber_id` and `bundle_id` (the index of the field the fiber follows), field
  * data `segment_length`, `seed` and `traced_volume_fraction` (the Σ π r² · length reached over the
  * non-empty volume). Seeds are uniform over the non-empty part of the region, every fiber is traced
  * both ways with RK2 or RK4 steps of SegmentLength and ends on the region's boundary or the mask's
@@ -110,6 +110,41 @@ public:
 
   ///@{
   /**
+   * Coefficient of variation of the radius along each fiber, 0 to 1 (0 = off): a smooth log-normal
+   * profile whose mean over the fiber's points is its radius (docs/tissue-models.md §10.3).
+   * Default is 0.
+   */
+  vtkSetMacro(BeadingCV, double);
+  vtkGetMacro(BeadingCV, double);
+  ///@}
+
+  ///@{
+  /**
+   * Correlation length of the radius variation in µm, > 0. Default is 5.
+   */
+  vtkSetMacro(BeadingLength, double);
+  vtkGetMacro(BeadingLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * g-ratio (inner / outer radius) in (0, 1); 0 = no myelin. With myelin the output has the point
+   * array inner_radius beside radius (= the outer radius). Default is 0.
+   */
+  vtkSetMacro(GRatio, double);
+  vtkGetMacro(GRatio, double);
+  ///@}
+
+  ///@{
+  /**
+   * g-ratio model with myelin on: 0 = Constant (inner = GRatio · outer), 1 = Lee2019. Default is 0.
+   */
+  vtkSetMacro(GRatioModel, int);
+  vtkGetMacro(GRatioModel, int);
+  ///@}
+
+  ///@{
+  /**
    * Seed of the random seeding and radii; the same seed gives the same fibers. Default is 42.
    */
   vtkSetMacro(Seed, int);
@@ -138,6 +173,10 @@ private:
   int IntegrationScheme = 1;
   double MaxFiberLength = 0.0;
   double PopulationShares[2] = { 1.0, 1.0 };
+  double BeadingCV = 0.0;
+  double BeadingLength = 5.0;
+  double GRatio = 0.0;
+  int GRatioModel = 0;
   int Seed = 42;
 };
 

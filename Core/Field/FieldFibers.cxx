@@ -1,5 +1,7 @@
 #include "Field/FieldFibers.h"
 
+#include "Tissue/Beading.h"
+#include "Tissue/Myelin.h"
 #include "Util/MemoryBudget.h"
 #include "Util/NumberFormat.h"
 #include "Util/Random.h"
@@ -57,6 +59,33 @@ std::vector<int> splitCount(int n, const std::vector<double>& s)
     ++counts[remainders[r % remainders.size()].second];
   }
   return counts;
+}
+
+/// Σ over links of π · (r_i² + r_i+1²)/2 · length.
+double fiberVolume(const Fiber& f)
+{
+  double v = 0.0;
+  for (std::size_t i = 1; i < f.points.size(); ++i)
+  {
+    v += 0.5 * (f.radii[i - 1] * f.radii[i - 1] + f.radii[i] * f.radii[i]) * distance(f.points[i - 1], f.points[i]);
+  }
+  return M_PI * v;
+}
+
+/// Multiplies the radii by the fiber's beading profile along its points.
+void bead(Fiber& f, const ShapeOptions& realism, RandomStream&& rng)
+{
+  std::vector<double> arc(f.points.size(), 0.0);
+  for (std::size_t i = 1; i < f.points.size(); ++i)
+  {
+    arc[i] = arc[i - 1] + distance(f.points[i - 1], f.points[i]);
+  }
+  const std::vector<double> factors =
+    beadingFactors(drawBeading(rng, arc, realism.beadingLength, realism.beadingCV, false));
+  for (std::size_t i = 0; i < f.radii.size(); ++i)
+  {
+    f.radii[i] *= factors[i];
+  }
 }
 
 /// A seed uniform over the non-empty part of the field, from the fiber's stream.
@@ -129,6 +158,15 @@ std::string validateFieldFiberOptions(const FieldFiberOptions& o, const Orientat
         return "PopulationShares value " + std::to_string(k + 1) + " is " + formatNumber(s) + ", must be > 0";
       }
     }
+  }
+  problem = validateShapeOptions(o.realism);
+  if (problem.empty() && (o.realism.undulating() || o.realism.dispersed()))
+  {
+    problem = "Tortuosity and DispersionC2 are not offered by the field source (the field sets the fibers' course)";
+  }
+  if (!problem.empty())
+  {
+    return problem;
   }
   problem = validateOrientationField(field);
   if (!problem.empty())
@@ -248,7 +286,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
       }
     }
     const OrientationField& field = *fields[static_cast<std::size_t>(k)];
-    RandomStream rng(o.seed, static_cast<std::uint64_t>(k), drawn[static_cast<std::size_t>(k)]++);
+    const std::uint64_t index = drawn[static_cast<std::size_t>(k)]++;
+    RandomStream rng(o.seed, static_cast<std::uint64_t>(k), index);
     Vec3 seed;
     if (!drawSeed(field, rng, seed))
     {
@@ -274,15 +313,19 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
       continue;
     }
     discardedInARow = 0;
-    const double fiberVolume = M_PI * radius * radius * line.length();
-    volume[static_cast<std::size_t>(k)] += fiberVolume;
-    total += fiberVolume;
-    ++made[static_cast<std::size_t>(k)];
     Fiber fiber;
     fiber.id = static_cast<std::int64_t>(result.model.fibers.size());
     fiber.bundle = k;
     fiber.radii.assign(line.points.size(), radius);
     fiber.points = std::move(line.points);
+    if (o.realism.beaded())
+    {
+      bead(fiber, o.realism, shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), index));
+    }
+    const double added = fiberVolume(fiber);
+    volume[static_cast<std::size_t>(k)] += added;
+    total += added;
+    ++made[static_cast<std::size_t>(k)];
     result.model.fibers.push_back(std::move(fiber));
     if (result.model.fibers.size() % 64 == 0)
     {
@@ -295,6 +338,7 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
       }
     }
   }
+  addMyelin(result.model, o.realism); // inner radii with myelin on
   result.volumeFraction = result.regionVolume > 0.0 ? total / result.regionVolume : 0.0;
   return result;
 }

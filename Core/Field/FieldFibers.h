@@ -10,6 +10,7 @@
 #include "Field/OrientationField.h"
 #include "Model/FiberModel.h"
 #include "Tissue/RadiusDistribution.h"
+#include "Tissue/ShapeOptions.h"
 #include "Util/Progress.h"
 #include "Util/Status.h"
 
@@ -34,6 +35,10 @@ struct FieldFiberOptions
   /// Relative shares of the populations (of the volume, or of the count), one per field, each > 0.
   /// Empty: equal shares.
   std::vector<double> populationShares;
+  /// Realism (Tissue/ShapeOptions.h): beading (the radius varying along each traced fiber) and
+  /// myelin (inner radii); the field sets the fibers' course, so tortuosity and dispersion must
+  /// stay off. Defaults: off.
+  ShapeOptions realism;
 };
 
 struct FieldFiberResult : Status
@@ -55,9 +60,12 @@ double fieldRegionVolume(const std::vector<const OrientationField*>& fields);
 /// Generates the fibers. All fields must have the same grid, each already normalised
 /// (normalizeOrientationField). Fiber k-th drawn of population p takes its draws from the stream
 /// (seed, p, k): the seed position (three uniforms per try, until one falls on the non-empty
-/// field), then the radius. Volume mode adds each fiber to the population furthest below its share
-/// of the target volume and stops at the first fiber that reaches the target. Progress is reported
-/// every 64 fibers; when it returns false the result is `aborted` with an empty model.
+/// field), then the radius; with beading its profile along the traced points comes from the
+/// stream shapeStream(seed, Beading, p, k). A fiber's volume is Σ over links of π · (r_i² + r_i+1²)/2
+/// · link length (π r² · length without beading). Volume mode adds each fiber to the population
+/// furthest below its share of the target volume and stops at the first fiber that reaches the
+/// target. With myelin every fiber gets its inner radii. Progress is reported every 64 fibers;
+/// when it returns false the result is `aborted` with an empty model.
 FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>& fields,
   const FieldFiberOptions& options, const ProgressFn& progress = {});
 

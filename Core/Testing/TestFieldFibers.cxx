@@ -4,6 +4,7 @@
 #include "Field/FieldFibers.h"
 #include "FieldTestFields.h"
 #include "MemoryLimitGuard.h"
+#include "Tissue/Beading.h"
 
 #include <gtest/gtest.h>
 
@@ -267,6 +268,48 @@ TEST(FieldFibers, SliversGiveAnErrorNotEndlessTinyFibers)
   {
     EXPECT_NEAR(distance(fiber.points.front(), fiber.points.back()), 1.0, 1e-6);
   }
+}
+
+TEST(FieldFibers, BeadingAndMyelin)
+{
+  // Beading: along every traced fiber the radius has the requested coefficient of variation and its
+  // mean over the points is the radius drawn (FiberRadius, constant distribution); the volume
+  // counted is that of the beaded links. Myelin: inner radius = GRatio × radius at every point.
+  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 31, 31, 7 }, bendAbout(8.0, 26.0));
+  FieldFiberOptions o = options(0.2, 0.5, 1.0);
+  o.realism.beadingCV = 0.2;
+  o.realism.beadingLength = 4.0;
+  o.realism.gRatio = 0.6;
+  const FieldFiberResult r = generateFieldFibers({ &f }, o);
+  ASSERT_TRUE(r.ok()) << r.error;
+  double total = 0.0;
+  int checked = 0;
+  for (const Fiber& fiber : r.model.fibers)
+  {
+    ASSERT_EQ(fiber.innerRadii.size(), fiber.radii.size());
+    double mean = 0.0;
+    for (std::size_t i = 0; i < fiber.radii.size(); ++i)
+    {
+      EXPECT_NEAR(fiber.innerRadii[i], 0.6 * fiber.radii[i], 1e-12);
+      mean += fiber.radii[i] / static_cast<double>(fiber.radii.size());
+    }
+    EXPECT_NEAR(mean, 0.5, 1e-9);
+    if (fiber.size() >= 8)
+    {
+      EXPECT_NEAR(coefficientOfVariation(fiber.radii, false), 0.2, 1e-6) << "fiber " << fiber.id;
+      ++checked;
+    }
+    for (std::size_t i = 1; i < fiber.size(); ++i)
+    {
+      total += M_PI * 0.5 * (fiber.radii[i - 1] * fiber.radii[i - 1] + fiber.radii[i] * fiber.radii[i]) *
+        distance(fiber.points[i - 1], fiber.points[i]);
+    }
+  }
+  EXPECT_GT(checked, 10);
+  EXPECT_NEAR(r.volumeFraction, total / r.regionVolume, 1e-12);
+  // Tortuosity is not the field source's: refused by name.
+  o.realism.tortuosity = 1.1;
+  EXPECT_NE(validateFieldFiberOptions(o, f, 1).find("Tortuosity"), std::string::npos);
 }
 
 TEST(FieldFibers, ProgressCanStopIt)

@@ -152,6 +152,17 @@ for p in lines:
     check(np.all(np.abs(p[:, :2] - p[0, :2]) < 1e-9), "cell field fiber not along z")
     check(0.5 <= p[0, 0] <= 10.5 and 0.5 <= p[0, 1] <= 10.5, "outside the cell centres' box: %s" % p[0])
 
+# Realism: beading varies the radius along a fiber around the drawn one, myelin adds inner_radius.
+real = FiberFieldSource(Input=field, VolumeFraction=0.2, FiberRadius=0.5, SegmentLength=1.0, Seed=3,
+                        BeadingCV=0.2, BeadingLength=4.0, GRatio=0.6)
+real.OrientationArray = ["POINTS", "orientation"]
+real.UpdatePipeline()
+rdata = servermanager.Fetch(real)
+radius = vtk_to_numpy(rdata.GetPointData().GetArray("radius"))
+inner = rdata.GetPointData().GetArray("inner_radius")
+check(inner is not None and np.allclose(vtk_to_numpy(inner), 0.6 * radius, rtol=1e-12, atol=0), "inner_radius")
+check(radius.std() > 0.05 and abs(radius.mean() - 0.5) < 0.05, "beaded radii mean %g std %g" % (radius.mean(), radius.std()))
+
 # 4. Bad input: errors name the property and value; the pipeline recovers.
 bad = FiberFieldSource(Input=field, VolumeFraction=0.95, FiberRadius=0.5, SegmentLength=1.0)
 bad.OrientationArray = ["POINTS", "orientation"]
