@@ -12,6 +12,7 @@
 #define OrientationFieldData_h
 
 #include "Field/OrientationField.h"
+#include "Util/MemoryBudget.h"
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -68,6 +69,13 @@ inline std::string ToOrientationField(vtkImageData* image, vtkDataArray* vectors
     }
   }
   const vtkIdType n = vectors->GetNumberOfTuples();
+  // The field is a double copy of the array: refuse one that cannot fit before allocating it.
+  const std::string tooLarge = checkMemoryBudget(static_cast<double>(n) * sizeof(Vec3),
+    "the orientation field of the " + kind + " array '" + name + "' (" + std::to_string(n) + " vectors)");
+  if (!tooLarge.empty())
+  {
+    return tooLarge;
+  }
   field.vectors.resize(static_cast<std::size_t>(n));
   double t[3];
   for (vtkIdType i = 0; i < n; ++i)

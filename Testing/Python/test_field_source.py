@@ -187,6 +187,18 @@ catcher.clear()
 bad.UpdatePipeline()
 check(not catcher.errors and servermanager.Fetch(bad).GetNumberOfCells() > 0, "no recovery: %r" % catcher.text())
 
+# A field too large for the memory budget is refused before it is copied.
+os.environ["FIBERPLI_MEMORY_LIMIT"] = "100K"
+bad.Seed = 43
+catcher.clear()
+bad.UpdatePipeline()
+del os.environ["FIBERPLI_MEMORY_LIMIT"]
+check("OrientationArray" in catcher.text() and "memory budget" in catcher.text(), "budget: %r" % catcher.text())
+bad.Seed = 44
+catcher.clear()
+bad.UpdatePipeline()
+check(not catcher.errors and servermanager.Fetch(bad).GetNumberOfCells() > 0, "no recovery: %r" % catcher.text())
+
 # NaN vectors are empty, with a warning that counts them; a flat image is refused.
 def nan_bend(x, y, z):
     v = bend(x, y, z)
