@@ -26,25 +26,28 @@ namespace fiberpli
 /// Fills `field` from `image` and its point (or, with `cells`, cell) array `vectors`; returns "" or
 /// a message naming the array and what is wrong (components, tuple count, a rotated image).
 /// `notFinite` receives how many vectors were NaN or infinite.
-inline std::string ToOrientationField(vtkImageData* image, vtkDataArray* vectors, bool cells, OrientationField& field,
-  std::size_t& notFinite)
+inline std::string ToOrientationField(vtkImageData* image, vtkDataArray* vectors, bool cells,
+  OrientationField& field, std::size_t& notFinite)
 {
   const std::string name = vectors->GetName() ? vectors->GetName() : "(unnamed)";
   const std::string kind = cells ? "cell" : "point";
   if (vectors->GetNumberOfComponents() != 3)
   {
-    return "the " + kind + " array '" + name + "' has " + std::to_string(vectors->GetNumberOfComponents()) +
+    return "the " + kind + " array '" + name + "' has " +
+      std::to_string(vectors->GetNumberOfComponents()) +
       " components, an orientation field needs 3";
   }
   const vtkIdType expected = cells ? image->GetNumberOfCells() : image->GetNumberOfPoints();
   if (vectors->GetNumberOfTuples() != expected)
   {
-    return "the " + kind + " array '" + name + "' has " + std::to_string(vectors->GetNumberOfTuples()) +
-      " tuples for " + std::to_string(expected) + " " + kind + "s";
+    return "the " + kind + " array '" + name + "' has " +
+      std::to_string(vectors->GetNumberOfTuples()) + " tuples for " + std::to_string(expected) +
+      " " + kind + "s";
   }
   if (!image->GetDirectionMatrix()->IsIdentity())
   {
-    return "the image is rotated (its direction matrix is not the identity); resample it onto an axis-aligned grid";
+    return "the image is rotated (its direction matrix is not the identity); resample it onto an "
+           "axis-aligned grid";
   }
   int dims[3];
   image->GetDimensions(dims);
@@ -71,7 +74,8 @@ inline std::string ToOrientationField(vtkImageData* image, vtkDataArray* vectors
   const vtkIdType n = vectors->GetNumberOfTuples();
   // The field is a double copy of the array: refuse one that cannot fit before allocating it.
   const std::string tooLarge = checkMemoryBudget(static_cast<double>(n) * sizeof(Vec3),
-    "the orientation field of the " + kind + " array '" + name + "' (" + std::to_string(n) + " vectors)");
+    "the orientation field of the " + kind + " array '" + name + "' (" + std::to_string(n) +
+      " vectors)");
   if (!tooLarge.empty())
   {
     return tooLarge;

@@ -5,9 +5,10 @@
 #include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
-#include "OrientationFieldData.h"
 #include "Field/FieldFibers.h"
 #include "Model/FiberPieces.h"
+#include "OrientationFieldData.h"
+#include "Util/Random.h"
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -27,7 +28,8 @@ namespace
 std::string SelectedName(vtkAlgorithm* self, int idx)
 {
   vtkInformation* info = self->GetInputArrayInformation(idx);
-  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME())
+                                                        : "";
 }
 
 /// ParaView's array list offers "None" first for the optional second field.
@@ -56,7 +58,8 @@ int vtkFiberFieldSource::FillInputPortInformation(int, vtkInformation* info)
 
 //------------------------------------------------------------------------------
 // Every piece traces from the whole field (a fiber crosses the whole region).
-int vtkFiberFieldSource::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkFiberFieldSource::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
@@ -70,15 +73,18 @@ int vtkFiberFieldSource::RequestUpdateExtent(vtkInformation*, vtkInformationVect
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberFieldSource::RequestData(vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberFieldSource::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI all ranks fail together; an exception becomes an error (FiberCollective.h, FiberGuard.h).
+  // Under MPI all ranks fail together; an exception becomes an error (FiberCollective.h,
+  // FiberGuard.h).
   return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberFieldSource",
     [&] { return this->Execute(inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberFieldSource::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -86,14 +92,17 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   output->Initialize();
   const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
   const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
-  if (!fiberpli::CheckSeed(this, "FiberFieldSource", this->Seed))
+  const std::string badSeed = fiberpli::validateSeed(this->Seed);
+  if (!badSeed.empty())
   {
+    vtkErrorMacro(<< "FiberFieldSource: " << badSeed);
     return 0;
   }
   vtkImageData* image = vtkImageData::GetData(inputVector[0]);
   if (!image || image->GetNumberOfPoints() == 0)
   {
-    vtkErrorMacro(<< "FiberFieldSource: the input image has no points (an orientation field needs a 3-D grid)");
+    vtkErrorMacro(
+      << "FiberFieldSource: the input image has no points (an orientation field needs a 3-D grid)");
     return 0;
   }
   // The arrays: the first is required, the second optional ("None").
@@ -112,21 +121,24 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
     }
     if (!vectors)
     {
-      vtkErrorMacro(<< "FiberFieldSource: " << property << " '" << name
-                    << "': the input has no such array (a 3-component point or cell array is needed)");
+      vtkErrorMacro(
+        << "FiberFieldSource: " << property << " '" << name
+        << "': the input has no such array (a 3-component point or cell array is needed)");
       return 0;
     }
     const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
     if (idx == 1 && association != firstAssociation)
     {
-      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a " << (cells ? "cell" : "point")
+      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a "
+                    << (cells ? "cell" : "point")
                     << " array and OrientationArray is not: both fields must be on the same grid");
       return 0;
     }
     firstAssociation = association;
     fields.emplace_back();
     std::size_t bad = 0;
-    const std::string problem = fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
+    const std::string problem =
+      fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
     if (!problem.empty())
     {
       vtkErrorMacro(<< "FiberFieldSource: " << property << ": " << problem);
@@ -136,8 +148,9 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   }
   if (notFinite > 0)
   {
-    vtkWarningMacro(<< "FiberFieldSource: " << notFinite
-                    << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
+    vtkWarningMacro(
+      << "FiberFieldSource: " << notFinite
+      << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
   }
 
   fiberpli::FieldFiberOptions options;
@@ -162,7 +175,8 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
   }
 
   this->UpdateProgress(0.0);
-  fiberpli::FieldFiberResult result = fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, 0.0, 0.9));
+  fiberpli::FieldFiberResult result =
+    fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, 0.0, 0.9));
   if (result.aborted)
   {
     return 1; // an aborted source passes nothing on (AbortScope empties the output)
@@ -177,9 +191,11 @@ int vtkFiberFieldSource::Execute(vtkInformationVector** inputVector, vtkInformat
     vtkWarningMacro(<< "FiberFieldSource: " << w);
   }
   // This piece's share of the global fiber order (ids stay global).
-  const fiberpli::FiberRange range = fiberpli::pieceRange(result.model.fibers.size(), piece, pieces);
+  const fiberpli::FiberRange range =
+    fiberpli::pieceRange(result.model.fibers.size(), piece, pieces);
   fiberpli::FiberModel mine;
-  mine.fibers.assign(std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
+  mine.fibers.assign(
+    std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.end)));
   fiberpli::FiberPolyData::FromModel(mine, output);
   fiberpli::AddInnerRadii(mine, output);
@@ -201,7 +217,8 @@ void vtkFiberFieldSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SegmentLength: " << this->SegmentLength << "\n";
   os << indent << "IntegrationScheme: " << this->IntegrationScheme << "\n";
   os << indent << "MaxFiberLength: " << this->MaxFiberLength << "\n";
-  os << indent << "PopulationShares: " << this->PopulationShares[0] << " " << this->PopulationShares[1] << "\n";
+  os << indent << "PopulationShares: " << this->PopulationShares[0] << " "
+     << this->PopulationShares[1] << "\n";
   os << indent << "BeadingCV: " << this->BeadingCV << "\n";
   os << indent << "BeadingLength: " << this->BeadingLength << "\n";
   os << indent << "GRatio: " << this->GRatio << "\n";

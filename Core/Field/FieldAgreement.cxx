@@ -36,7 +36,8 @@ Vec3 principalAxis(const double m[9])
           continue;
         }
         const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+        const double t =
+          (theta >= 0.0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
         const double c = 1.0 / std::sqrt(t * t + 1.0);
         const double s = t * c;
         for (int k = 0; k < 3; ++k) // A ← A·J
@@ -93,10 +94,12 @@ FieldAgreement fieldAgreement(const FiberModel& model, const OrientationField& f
       int ijk[3];
       for (int a = 0; a < 3; ++a)
       {
-        ijk[a] = std::min(std::max(static_cast<int>(std::lround((mid[a] - field.origin[a]) / field.spacing[a])), 0),
+        ijk[a] = std::min(
+          std::max(static_cast<int>(std::lround((mid[a] - field.origin[a]) / field.spacing[a])), 0),
           field.dimensions[a] - 1);
       }
-      std::array<double, 9>& t = tensors.try_emplace(field.index(ijk[0], ijk[1], ijk[2])).first->second;
+      std::array<double, 9>& t =
+        tensors.try_emplace(field.index(ijk[0], ijk[1], ijk[2])).first->second;
       const Vec3 d = seg / l;
       for (int i = 0; i < 3; ++i)
       {

@@ -21,7 +21,8 @@ struct FieldAgreement
 };
 
 /// The agreement of the fibers of `bundle` (-1: all fibers) with `field`.
-FieldAgreement fieldAgreement(const FiberModel& model, const OrientationField& field, int bundle = -1);
+FieldAgreement fieldAgreement(
+  const FiberModel& model, const OrientationField& field, int bundle = -1);
 
 /// The unit eigenvector of the largest eigenvalue of the symmetric 3×3 matrix m (row-major).
 Vec3 principalAxis(const double m[9]);

@@ -15,7 +15,7 @@ namespace fiberpli
 
 namespace
 {
-constexpr int kSeedTries = 100000;       // uniform tries for one seed position
+constexpr int kSeedTries = 100000;           // uniform tries for one seed position
 constexpr std::size_t kDiscardLimit = 10000; // consecutive seeds without a segment: give up
 
 double boxVolume(const OrientationField& f)
@@ -53,7 +53,8 @@ std::vector<int> splitCount(int n, const std::vector<double>& s)
     given += counts[k];
     remainders.emplace_back(exact - counts[k], k);
   }
-  std::stable_sort(remainders.begin(), remainders.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(remainders.begin(), remainders.end(),
+    [](const auto& a, const auto& b) { return a.first > b.first; });
   for (std::size_t r = 0; given < n; ++r, ++given)
   {
     ++counts[remainders[r % remainders.size()].second];
@@ -67,7 +68,8 @@ double fiberVolume(const Fiber& f)
   double v = 0.0;
   for (std::size_t i = 1; i < f.points.size(); ++i)
   {
-    v += 0.5 * (f.radii[i - 1] * f.radii[i - 1] + f.radii[i] * f.radii[i]) * distance(f.points[i - 1], f.points[i]);
+    v += 0.5 * (f.radii[i - 1] * f.radii[i - 1] + f.radii[i] * f.radii[i]) *
+      distance(f.points[i - 1], f.points[i]);
   }
   return M_PI * v;
 }
@@ -116,16 +118,19 @@ double fieldRegionVolume(const std::vector<const OrientationField*>& fields)
   std::size_t full = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    full += std::any_of(fields.begin(), fields.end(), [i](const OrientationField* f) { return norm2(f->vectors[i]) > 0.0; });
+    full += std::any_of(fields.begin(), fields.end(),
+      [i](const OrientationField* f) { return norm2(f->vectors[i]) > 0.0; });
   }
   return boxVolume(*fields[0]) * static_cast<double>(full) / static_cast<double>(n);
 }
 
-std::string validateFieldFiberOptions(const FieldFiberOptions& o, const OrientationField& field, int fields)
+std::string validateFieldFiberOptions(
+  const FieldFiberOptions& o, const OrientationField& field, int fields)
 {
   if (o.numberOfFibers < 0)
   {
-    return "NumberOfFibers is " + std::to_string(o.numberOfFibers) + ", must be >= 0 (0 = use VolumeFraction)";
+    return "NumberOfFibers is " + std::to_string(o.numberOfFibers) +
+      ", must be >= 0 (0 = use VolumeFraction)";
   }
   if (o.numberOfFibers == 0 && !(o.volumeFraction > 0.0 && o.volumeFraction <= 0.9))
   {
@@ -155,14 +160,16 @@ std::string validateFieldFiberOptions(const FieldFiberOptions& o, const Orientat
       const double s = o.populationShares[static_cast<std::size_t>(k)];
       if (!(std::isfinite(s) && s > 0.0))
       {
-        return "PopulationShares value " + std::to_string(k + 1) + " is " + formatNumber(s) + ", must be > 0";
+        return "PopulationShares value " + std::to_string(k + 1) + " is " + formatNumber(s) +
+          ", must be > 0";
       }
     }
   }
   problem = validateShapeOptions(o.realism);
   if (problem.empty() && (o.realism.undulating() || o.realism.dispersed()))
   {
-    problem = "Tortuosity and DispersionC2 are not offered by the field source (the field sets the fibers' course)";
+    problem = "Tortuosity and DispersionC2 are not offered by the field source (the field sets the "
+              "fibers' course)";
   }
   if (!problem.empty())
   {
@@ -177,8 +184,8 @@ std::string validateFieldFiberOptions(const FieldFiberOptions& o, const Orientat
   const double smallestEdge = std::min({ e.x, e.y, e.z });
   if (o.fiberRadius >= 0.5 * smallestEdge)
   {
-    return "FiberRadius is " + formatNumber(o.fiberRadius) + " µm, must be below half the region's smallest edge (" +
-      formatNumber(smallestEdge) + " µm)";
+    return "FiberRadius is " + formatNumber(o.fiberRadius) +
+      " µm, must be below half the region's smallest edge (" + formatNumber(smallestEdge) + " µm)";
   }
   // Memory: the points of the target total length (or of the count, each fiber one diagonal long).
   const double h = o.trace.segmentLength;
@@ -202,7 +209,8 @@ std::string validateFieldFiberOptions(const FieldFiberOptions& o, const Orientat
     "FiberFieldSource: about " + formatNumber(std::round(points)) + " fiber points (" +
       (o.numberOfFibers > 0 ? "NumberOfFibers " + std::to_string(o.numberOfFibers)
                             : "VolumeFraction " + formatNumber(o.volumeFraction)) +
-      ", SegmentLength " + formatNumber(h) + " µm, FiberRadius " + formatNumber(o.fiberRadius) + " µm)");
+      ", SegmentLength " + formatNumber(h) + " µm, FiberRadius " + formatNumber(o.fiberRadius) +
+      " µm)");
 }
 
 FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>& fields,
@@ -234,7 +242,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
   {
     if (nonEmptyShare(*fields[static_cast<std::size_t>(k)]) == 0.0)
     {
-      result.error = std::string("the ") + (k == 0 ? "orientation field" : "second orientation field") +
+      result.error = std::string("the ") +
+        (k == 0 ? "orientation field" : "second orientation field") +
         " is empty everywhere (every vector zero or not finite)";
       return result;
     }
@@ -242,7 +251,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
 
   const std::vector<double> share = shares(o, populations);
   const bool byCount = o.numberOfFibers > 0;
-  const std::vector<int> counts = byCount ? splitCount(o.numberOfFibers, share) : std::vector<int>();
+  const std::vector<int> counts =
+    byCount ? splitCount(o.numberOfFibers, share) : std::vector<int>();
   const double target = o.volumeFraction * result.regionVolume;
   const Vec3 extent = fields[0]->upper() - fields[0]->lower();
   const double maxRadius = 0.25 * std::min({ extent.x, extent.y, extent.z });
@@ -277,7 +287,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
       double deficit = -1.0;
       for (int p = 0; p < populations; ++p)
       {
-        const double d = 1.0 - volume[static_cast<std::size_t>(p)] / (share[static_cast<std::size_t>(p)] * target);
+        const double d =
+          1.0 - volume[static_cast<std::size_t>(p)] / (share[static_cast<std::size_t>(p)] * target);
         if (d > deficit)
         {
           deficit = d;
@@ -296,7 +307,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
         std::to_string(kSeedTries) + " uniform tries (it is almost all empty)";
       return result;
     }
-    const double radius = drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, maxRadius);
+    const double radius =
+      drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, maxRadius);
     TracedLine line = traceFieldLine(field, seed, o.trace);
     // A line shorter than a third of a segment (a seed in a sliver of the field) is no fiber: it
     // would add next to no volume, so a field of slivers could make fibers without end.
@@ -306,7 +318,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
       if (++discardedInARow >= kDiscardLimit)
       {
         result.error = "the last " + std::to_string(kDiscardLimit) +
-          " seeds gave no fiber of a third of SegmentLength or more (the field is full only in slivers thinner "
+          " seeds gave no fiber of a third of SegmentLength or more (the field is full only in "
+          "slivers thinner "
           "than that across its direction)";
         return result;
       }
@@ -320,7 +333,8 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     fiber.points = std::move(line.points);
     if (o.realism.beaded())
     {
-      bead(fiber, o.realism, shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), index));
+      bead(fiber, o.realism,
+        shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), index));
     }
     const double added = fiberVolume(fiber);
     volume[static_cast<std::size_t>(k)] += added;
@@ -329,7 +343,9 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     result.model.fibers.push_back(std::move(fiber));
     if (result.model.fibers.size() % 64 == 0)
     {
-      const double done = byCount ? static_cast<double>(result.model.fibers.size()) / o.numberOfFibers : total / target;
+      const double done = byCount
+        ? static_cast<double>(result.model.fibers.size()) / o.numberOfFibers
+        : total / target;
       if (!reportProgress(progress, std::min(done, 1.0)))
       {
         FieldFiberResult stopped;

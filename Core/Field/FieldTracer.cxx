@@ -71,7 +71,8 @@ double distanceToBoundary(const OrientationField& f, const Vec3& p, const Vec3& 
 
 /// Adds the side's last point: along the current heading to the boundary when that is within one
 /// step, else to the mask's edge found by bisection within that step. Returns why it ended.
-TraceEnd finish(const OrientationField& f, double h, std::vector<Vec3>& side, const Vec3& p, const Vec3& heading)
+TraceEnd finish(
+  const OrientationField& f, double h, std::vector<Vec3>& side, const Vec3& p, const Vec3& heading)
 {
   const double toBoundary = distanceToBoundary(f, p, heading);
   double reach = 0.0;
@@ -110,8 +111,8 @@ TraceEnd finish(const OrientationField& f, double h, std::vector<Vec3>& side, co
 }
 
 /// Traces one side from the seed along `heading`; `side` starts with the seed.
-TraceEnd traceSide(const OrientationField& f, const TraceOptions& o, double cap, const Vec3& seed, Vec3 heading,
-  std::vector<Vec3>& side, double& used, bool watchClosure)
+TraceEnd traceSide(const OrientationField& f, const TraceOptions& o, double cap, const Vec3& seed,
+  Vec3 heading, std::vector<Vec3>& side, double& used, bool watchClosure)
 {
   const double h = o.segmentLength;
   Vec3 p = seed;
@@ -164,7 +165,8 @@ std::string validateTraceOptions(const TraceOptions& o)
   }
   if (o.scheme != TraceScheme::RK2 && o.scheme != TraceScheme::RK4)
   {
-    return "IntegrationScheme is " + std::to_string(static_cast<int>(o.scheme)) + ", must be 0 (RK2) or 1 (RK4)";
+    return "IntegrationScheme is " + std::to_string(static_cast<int>(o.scheme)) +
+      ", must be 0 (RK2) or 1 (RK4)";
   }
   if (!(std::isfinite(o.maxLength) && o.maxLength >= 0.0))
   {

@@ -38,12 +38,12 @@ struct TraceOptions
 {
   double segmentLength = 2.0; ///< µm, the step; > 0
   TraceScheme scheme = TraceScheme::RK4;
-  double maxLength = 0.0;     ///< µm, cap on the whole line; <= 0: 4 × the region's diagonal
+  double maxLength = 0.0; ///< µm, cap on the whole line; <= 0: 4 × the region's diagonal
 };
 
 struct TracedLine
 {
-  std::vector<Vec3> points;   ///< backward end first, the seed inside, forward end last
+  std::vector<Vec3> points; ///< backward end first, the seed inside, forward end last
   TraceEnd backwardEnd = TraceEnd::Empty;
   TraceEnd forwardEnd = TraceEnd::Empty;
   double length() const;
@@ -60,6 +60,7 @@ double traceLengthCap(const OrientationField& field, const TraceOptions& options
 /// last on each side, which lands on the boundary or the mask's edge: it is appended when it is at
 /// least a third of a segment beyond the previous point and otherwise replaces it, so every
 /// segment is between 1/3 and 4/3 of segmentLength long.
-TracedLine traceFieldLine(const OrientationField& field, const Vec3& seed, const TraceOptions& options);
+TracedLine traceFieldLine(
+  const OrientationField& field, const Vec3& seed, const TraceOptions& options);
 
 } // namespace fiberpli

@@ -15,13 +15,14 @@ std::string validateOrientationField(const OrientationField& f)
   {
     if (f.dimensions[a] < 2)
     {
-      return std::string("the field has ") + std::to_string(f.dimensions[a]) + " point(s) along " + kAxis[a] +
+      return std::string("the field has ") + std::to_string(f.dimensions[a]) + " point(s) along " +
+        kAxis[a] +
         ", needs at least 2 along every axis (a region of zero thickness holds no fiber volume)";
     }
     if (!(std::isfinite(f.spacing[a]) && f.spacing[a] > 0.0))
     {
-      return std::string("the field's spacing along ") + kAxis[a] + " is " + formatNumber(f.spacing[a]) +
-        ", must be > 0";
+      return std::string("the field's spacing along ") + kAxis[a] + " is " +
+        formatNumber(f.spacing[a]) + ", must be > 0";
     }
   }
   if (!isFinite(f.origin))
@@ -30,8 +31,8 @@ std::string validateOrientationField(const OrientationField& f)
   }
   if (f.vectors.size() != f.size())
   {
-    return "the field has " + std::to_string(f.vectors.size()) + " vectors for " + std::to_string(f.size()) +
-      " grid points";
+    return "the field has " + std::to_string(f.vectors.size()) + " vectors for " +
+      std::to_string(f.size()) + " grid points";
   }
   return {};
 }
@@ -59,11 +60,13 @@ double nonEmptyShare(const OrientationField& f)
   {
     return 0.0;
   }
-  const auto full = std::count_if(f.vectors.begin(), f.vectors.end(), [](const Vec3& v) { return norm2(v) > 0.0; });
+  const auto full =
+    std::count_if(f.vectors.begin(), f.vectors.end(), [](const Vec3& v) { return norm2(v) > 0.0; });
   return static_cast<double>(full) / static_cast<double>(f.vectors.size());
 }
 
-bool fieldDirection(const OrientationField& f, const Vec3& p, const Vec3& reference, Vec3& direction)
+bool fieldDirection(
+  const OrientationField& f, const Vec3& p, const Vec3& reference, Vec3& direction)
 {
   if (!f.contains(p))
   {

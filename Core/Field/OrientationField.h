@@ -15,10 +15,10 @@ namespace fiberpli
 
 struct OrientationField
 {
-  Vec3 origin;                         ///< µm, position of grid point (0, 0, 0)
-  Vec3 spacing{ 1.0, 1.0, 1.0 };       ///< µm, > 0 along every axis
+  Vec3 origin;                              ///< µm, position of grid point (0, 0, 0)
+  Vec3 spacing{ 1.0, 1.0, 1.0 };            ///< µm, > 0 along every axis
   std::array<int, 3> dimensions{ 0, 0, 0 }; ///< grid points per axis, >= 2 each
-  std::vector<Vec3> vectors;           ///< x fastest; unit vectors or zero (empty)
+  std::vector<Vec3> vectors;                ///< x fastest; unit vectors or zero (empty)
 
   std::size_t size() const
   {
@@ -60,7 +60,8 @@ double nonEmptyShare(const OrientationField& field);
 /// corners that are not empty carry less than half the weight (so the mask's edge lies halfway
 /// between an empty and a full grid point), or where the aligned mean vanishes. `direction`
 /// receives a unit vector with dot(direction, reference) >= 0.
-bool fieldDirection(const OrientationField& field, const Vec3& p, const Vec3& reference, Vec3& direction);
+bool fieldDirection(
+  const OrientationField& field, const Vec3& p, const Vec3& reference, Vec3& direction);
 
 /// True where fieldDirection finds an axis.
 bool fieldIsFull(const OrientationField& field, const Vec3& p);

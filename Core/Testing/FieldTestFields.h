@@ -13,8 +13,8 @@ namespace testing
 {
 
 /// A grid of n[a] points from `origin` with `spacing`, filled by value(point).
-inline OrientationField makeField(Vec3 origin, double spacing, std::array<int, 3> n,
-  const std::function<Vec3(const Vec3&)>& value)
+inline OrientationField makeField(
+  Vec3 origin, double spacing, std::array<int, 3> n, const std::function<Vec3(const Vec3&)>& value)
 {
   OrientationField f;
   f.origin = origin;
@@ -39,7 +39,8 @@ inline OrientationField makeField(Vec3 origin, double spacing, std::array<int, 3
 /// e_φ = (−y, x, 0)/ρ about the z axis for inner <= ρ <= outer, empty elsewhere.
 inline std::function<Vec3(const Vec3&)> bendAbout(double inner, double outer)
 {
-  return [inner, outer](const Vec3& p) {
+  return [inner, outer](const Vec3& p)
+  {
     const double rho = std::hypot(p.x, p.y);
     return rho >= inner && rho <= outer ? Vec3{ -p.y / rho, p.x / rho, 0.0 } : Vec3{};
   };

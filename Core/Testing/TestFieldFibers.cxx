@@ -61,7 +61,8 @@ FieldFiberOptions options(double fraction, double radius, double segment)
 TEST(FieldFibers, UniformFieldGivesStraightFibersAtTheTargetFraction)
 {
   const Vec3 axis = normalized(Vec3{ 1, 1, 0 });
-  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 21, 21, 11 }, [&](const Vec3&) { return axis; });
+  const OrientationField f =
+    makeField({ 0, 0, 0 }, 1.0, { 21, 21, 11 }, [&](const Vec3&) { return axis; });
   const FieldFiberResult r = generateFieldFibers({ &f }, options(0.3, 0.5, 1.0));
   ASSERT_TRUE(r.ok()) << r.error;
   ASSERT_GT(r.model.fibers.size(), 50u);
@@ -89,7 +90,8 @@ TEST(FieldFibers, UniformFieldGivesStraightFibersAtTheTargetFraction)
 TEST(FieldFibers, BendFibersStayOnTheirCircleAndEndOnBoundaryOrMask)
 {
   const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 41, 41, 7 }, bendAbout(12.0, 28.0));
-  FieldFiberOptions o = options(0.25, 0.4, 1.0); // SegmentLength 1 µm: R/12 at the inner edge, R/28 at the outer
+  FieldFiberOptions o =
+    options(0.25, 0.4, 1.0); // SegmentLength 1 µm: R/12 at the inner edge, R/28 at the outer
   const FieldFiberResult r = generateFieldFibers({ &f }, o);
   ASSERT_TRUE(r.ok()) << r.error;
   // The region's volume is the box's times the share of non-empty grid points.
@@ -107,7 +109,8 @@ TEST(FieldFibers, BendFibersStayOnTheirCircleAndEndOnBoundaryOrMask)
     EXPECT_LT(hi - lo, 0.01 * 0.5 * (lo + hi)) << "fiber " << fiber.id;
     const std::size_t n = fiber.points.size();
     EXPECT_TRUE(endsOnBoundaryOrMask(f, fiber.points[0], fiber.points[0] - fiber.points[1]));
-    EXPECT_TRUE(endsOnBoundaryOrMask(f, fiber.points[n - 1], fiber.points[n - 1] - fiber.points[n - 2]));
+    EXPECT_TRUE(
+      endsOnBoundaryOrMask(f, fiber.points[n - 1], fiber.points[n - 1] - fiber.points[n - 2]));
   }
   const FieldAgreement a = fieldAgreement(r.model, f);
   EXPECT_GT(a.voxels, 200u);
@@ -163,8 +166,14 @@ TEST(FieldFibers, SameSeedSameModel)
 
 TEST(FieldFibers, TwoCrossingFieldsGiveTwoPopulations)
 {
-  const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, { 16, 16, 16 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
-  const OrientationField fy = makeField({ 0, 0, 0 }, 1.0, { 16, 16, 16 }, [](const Vec3&) { return Vec3{ 0, 1, 0 }; });
+  const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, { 16, 16, 16 },
+    [](const Vec3&) {
+      return Vec3{ 1, 0, 0 };
+    });
+  const OrientationField fy = makeField({ 0, 0, 0 }, 1.0, { 16, 16, 16 },
+    [](const Vec3&) {
+      return Vec3{ 0, 1, 0 };
+    });
   FieldFiberOptions o = options(0.3, 0.5, 1.0);
   o.populationShares = { 1.0, 3.0 };
   const FieldFiberResult r = generateFieldFibers({ &fx, &fy }, o);
@@ -188,8 +197,14 @@ TEST(FieldFibers, TwoCrossingFieldsGiveTwoPopulations)
 
 TEST(FieldFibers, CountModeSplitsByShares)
 {
-  const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
-  const OrientationField fz = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 }, [](const Vec3&) { return Vec3{ 0, 0, 1 }; });
+  const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },
+    [](const Vec3&) {
+      return Vec3{ 1, 0, 0 };
+    });
+  const OrientationField fz = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },
+    [](const Vec3&) {
+      return Vec3{ 0, 0, 1 };
+    });
   FieldFiberOptions o = options(0.3, 0.5, 1.0);
   o.numberOfFibers = 7;
   const FieldFiberResult r = generateFieldFibers({ &fx, &fz }, o);
@@ -228,7 +243,10 @@ TEST(FieldFibers, PrincipalAxisOfAKnownTensor)
 
 TEST(FieldFibers, BadOptionsNameTheProperty)
 {
-  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
+  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },
+    [](const Vec3&) {
+      return Vec3{ 1, 0, 0 };
+    });
   FieldFiberOptions o = options(0.95, 0.5, 1.0);
   EXPECT_EQ(validateFieldFiberOptions(o, f, 1), "VolumeFraction is 0.95, must be in (0, 0.9]");
   o.volumeFraction = 0.0;
@@ -245,7 +263,8 @@ TEST(FieldFibers, BadOptionsNameTheProperty)
     EXPECT_NE(problem.find("NumberOfFibers 2000000000"), std::string::npos) << problem;
     EXPECT_NE(problem.find("memory budget"), std::string::npos) << problem;
   }
-  const OrientationField empty = makeField({ 0, 0, 0 }, 1.0, { 5, 5, 5 }, [](const Vec3&) { return Vec3{}; });
+  const OrientationField empty =
+    makeField({ 0, 0, 0 }, 1.0, { 5, 5, 5 }, [](const Vec3&) { return Vec3{}; });
   const FieldFiberResult r = generateFieldFibers({ &empty }, options(0.3, 0.5, 1.0));
   EXPECT_NE(r.error.find("empty everywhere"), std::string::npos) << r.error;
 }
@@ -255,7 +274,9 @@ TEST(FieldFibers, SliversGiveAnErrorNotEndlessTinyFibers)
   // Along x but full only around the plane x = 5: every line is about 1 µm long, below a third of
   // the 4 µm segment, so no fiber is accepted and the generator gives up with an error.
   const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },
-    [](const Vec3& p) { return p.x == 5.0 ? Vec3{ 1, 0, 0 } : Vec3{}; });
+    [](const Vec3& p) {
+      return p.x == 5.0 ? Vec3{ 1, 0, 0 } : Vec3{};
+    });
   FieldFiberOptions o = options(0.3, 0.2, 4.0);
   const FieldFiberResult r = generateFieldFibers({ &f }, o);
   EXPECT_NE(r.error.find("slivers"), std::string::npos) << r.error;
@@ -301,7 +322,8 @@ TEST(FieldFibers, BeadingAndMyelin)
     }
     for (std::size_t i = 1; i < fiber.size(); ++i)
     {
-      total += M_PI * 0.5 * (fiber.radii[i - 1] * fiber.radii[i - 1] + fiber.radii[i] * fiber.radii[i]) *
+      total += M_PI * 0.5 *
+        (fiber.radii[i - 1] * fiber.radii[i - 1] + fiber.radii[i] * fiber.radii[i]) *
         distance(fiber.points[i - 1], fiber.points[i]);
     }
   }
@@ -314,9 +336,13 @@ TEST(FieldFibers, BeadingAndMyelin)
 
 TEST(FieldFibers, ProgressCanStopIt)
 {
-  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 31, 31, 31 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
+  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 31, 31, 31 },
+    [](const Vec3&) {
+      return Vec3{ 1, 0, 0 };
+    });
   int calls = 0;
-  const FieldFiberResult r = generateFieldFibers({ &f }, options(0.5, 0.3, 1.0), [&](double) { return ++calls < 2; });
+  const FieldFiberResult r =
+    generateFieldFibers({ &f }, options(0.5, 0.3, 1.0), [&](double) { return ++calls < 2; });
   EXPECT_TRUE(r.aborted);
   EXPECT_TRUE(r.error.empty());
   EXPECT_TRUE(r.model.empty());

@@ -29,7 +29,10 @@ double distanceToFaces(const OrientationField& f, const Vec3& p)
 
 TEST(OrientationField, RefusesFlatGridsAndCountsNaNVectors)
 {
-  OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 4, 4, 1 }, [](const Vec3&) { return Vec3{ 1, 0, 0 }; });
+  OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 4, 4, 1 },
+    [](const Vec3&) {
+      return Vec3{ 1, 0, 0 };
+    });
   EXPECT_NE(validateOrientationField(f).find("1 point(s) along z"), std::string::npos);
   f = makeField({ 0, 0, 0 }, 1.0, { 3, 3, 3 }, [](const Vec3&) { return Vec3{ 2, 0, 0 }; });
   EXPECT_EQ(validateOrientationField(f), "");
@@ -44,21 +47,23 @@ TEST(OrientationField, RefusesFlatGridsAndCountsNaNVectors)
 TEST(OrientationField, OppositeSignsDoNotCancel)
 {
   // Every other grid point stores −x: a plain average would vanish between them.
-  OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 4, 4, 4 }, [](const Vec3& p) {
-    return (static_cast<int>(p.x + p.y + p.z) % 2) ? Vec3{ -1, 0, 0 } : Vec3{ 1, 0, 0 };
-  });
+  OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 4, 4, 4 },
+    [](const Vec3& p) {
+      return (static_cast<int>(p.x + p.y + p.z) % 2) ? Vec3{ -1, 0, 0 } : Vec3{ 1, 0, 0 };
+    });
   Vec3 d;
   ASSERT_TRUE(fieldDirection(f, { 1.5, 1.5, 1.5 }, { 0.3, 1, 0 }, d));
   EXPECT_NEAR(d.x, 1.0, 1e-15);
   ASSERT_TRUE(fieldDirection(f, { 1.5, 1.5, 1.5 }, { -1, 0, 0 }, d));
-  EXPECT_NEAR(d.x, -1.0, 1e-15); // aligned to the reference
+  EXPECT_NEAR(d.x, -1.0, 1e-15);                         // aligned to the reference
   EXPECT_FALSE(fieldDirection(f, { 3.5, 1, 1 }, {}, d)); // outside the region
 }
 
 TEST(FieldTracer, UniformFieldGivesStraightLinesEndingOnTheBoundary)
 {
   const Vec3 axis = normalized(Vec3{ 1, 1, 0 });
-  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 21, 21, 11 }, [&](const Vec3&) { return axis; });
+  const OrientationField f =
+    makeField({ 0, 0, 0 }, 1.0, { 21, 21, 11 }, [&](const Vec3&) { return axis; });
   for (const TraceScheme scheme : { TraceScheme::RK2, TraceScheme::RK4 })
   {
     TraceOptions o;
@@ -92,7 +97,8 @@ TEST(FieldTracer, BendFieldKeepsTheRadiusWithRK4)
     TraceOptions o;
     o.segmentLength = radius / 20.0;
     const double phi = 0.7;
-    const TracedLine line = traceFieldLine(f, { radius * std::cos(phi), radius * std::sin(phi), 3.0 }, o);
+    const TracedLine line =
+      traceFieldLine(f, { radius * std::cos(phi), radius * std::sin(phi), 3.0 }, o);
     EXPECT_EQ(line.backwardEnd, TraceEnd::Boundary);
     EXPECT_EQ(line.forwardEnd, TraceEnd::Boundary);
     double worst = 0.0;
@@ -112,7 +118,9 @@ TEST(FieldTracer, LinesEndOnTheMaskEdge)
   // surface, to within the grid spacing (the mask's edge lies halfway between grid points).
   const Vec3 c{ 10, 10, 10 };
   const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 21, 21, 21 },
-    [&](const Vec3& p) { return distance(p, c) <= 8.0 ? Vec3{ 1, 0, 0 } : Vec3{}; });
+    [&](const Vec3& p) {
+      return distance(p, c) <= 8.0 ? Vec3{ 1, 0, 0 } : Vec3{};
+    });
   TraceOptions o;
   o.segmentLength = 1.0;
   for (const Vec3 seed : { Vec3{ 10, 10, 10 }, Vec3{ 12.2, 13.1, 9.4 }, Vec3{ 6.5, 7.0, 14.0 } })
@@ -151,7 +159,8 @@ TEST(FieldTracer, ClosedFieldLinesStop)
 
 TEST(FieldTracer, EmptySeedGivesOnePoint)
 {
-  const OrientationField f = makeField({ 0, 0, 0 }, 1.0, { 5, 5, 5 }, [](const Vec3&) { return Vec3{}; });
+  const OrientationField f =
+    makeField({ 0, 0, 0 }, 1.0, { 5, 5, 5 }, [](const Vec3&) { return Vec3{}; });
   EXPECT_EQ(traceFieldLine(f, { 2, 2, 2 }, TraceOptions{}).points.size(), 1u);
   TraceOptions bad;
   bad.segmentLength = 0.0;
