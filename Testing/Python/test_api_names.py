@@ -22,8 +22,8 @@ check(len(rows) >= 7, "docs/api.md §3 table not parsed: %s" % rows)
 built = [name for name in rows if name in globals()]
 check("FiberCubeSource" in built and "FiberTubes" in built, "core proxies missing: %s" % built)
 for name in built:
-    image_input = name in ("PLIAnalysis", "FiberOrientationMap")  # these take an image
-    proxy = globals()[name]() if name.endswith("Source") else globals()[name](
+    image_input = name in ("PLIAnalysis", "FiberOrientationMap", "FiberFieldSource")  # these take an image
+    proxy = globals()[name]() if name.endswith("Source") and not image_input else globals()[name](
         Input=Wavelet() if image_input else FiberCubeSource())
     props = proxy.ListProperties()
     for prop in rows[name]:

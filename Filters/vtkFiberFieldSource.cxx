@@ -1,0 +1,227 @@
+#include "vtkFiberFieldSource.h"
+
+#include "FiberCollective.h"
+#include "FiberFieldData.h"
+#include "FiberInnerRadii.h"
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
+#include "Field/FieldFibers.h"
+#include "Model/FiberPieces.h"
+#include "OrientationFieldData.h"
+#include "Util/Random.h"
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <string>
+
+vtkStandardNewMacro(vtkFiberFieldSource);
+
+namespace
+{
+/// The array name input array `idx` is set to ("" when it is not set by name).
+std::string SelectedName(vtkAlgorithm* self, int idx)
+{
+  vtkInformation* info = self->GetInputArrayInformation(idx);
+  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME())
+                                                        : "";
+}
+
+/// ParaView's array list offers "None" first for the optional second field.
+bool IsNone(const std::string& name)
+{
+  return name.empty() || name == "None";
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+// Construct with the point array "orientation" as the field, no second field, VolumeFraction 0.3,
+// radius 0.8 µm, segment length 2 µm, RK4, seed 42.
+vtkFiberFieldSource::vtkFiberFieldSource()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "orientation");
+  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "None");
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberFieldSource::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+// Every piece traces from the whole field (a fiber crosses the whole region).
+int vtkFiberFieldSource::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+      inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberFieldSource::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // Under MPI all ranks fail together; an exception becomes an error (FiberCollective.h,
+  // FiberGuard.h).
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, "FiberFieldSource",
+    [&] { return this->Execute(inputVector, outputVector); });
+}
+
+//------------------------------------------------------------------------------
+int vtkFiberFieldSource::Execute(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  const int piece = fiberpli::FiberPolyData::RequestedPiece(outInfo);
+  const int pieces = fiberpli::FiberPolyData::RequestedPieces(outInfo);
+  const std::string badSeed = fiberpli::validateSeed(this->Seed);
+  if (!badSeed.empty())
+  {
+    vtkErrorMacro(<< "FiberFieldSource: " << badSeed);
+    return 0;
+  }
+  vtkImageData* image = vtkImageData::GetData(inputVector[0]);
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro(
+      << "FiberFieldSource: the input image has no points (an orientation field needs a 3-D grid)");
+    return 0;
+  }
+  // The arrays: the first is required, the second optional ("None").
+  std::vector<fiberpli::OrientationField> fields;
+  std::size_t notFinite = 0;
+  int firstAssociation = -1;
+  for (int idx = 0; idx < 2; ++idx)
+  {
+    const std::string name = SelectedName(this, idx);
+    const char* property = idx == 0 ? "OrientationArray" : "SecondOrientationArray";
+    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+    vtkDataArray* vectors = this->GetInputArrayToProcess(idx, image, association);
+    if (!vectors && idx == 1 && IsNone(name))
+    {
+      break;
+    }
+    if (!vectors)
+    {
+      vtkErrorMacro(
+        << "FiberFieldSource: " << property << " '" << name
+        << "': the input has no such array (a 3-component point or cell array is needed)");
+      return 0;
+    }
+    const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    if (idx == 1 && association != firstAssociation)
+    {
+      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a "
+                    << (cells ? "cell" : "point")
+                    << " array and OrientationArray is not: both fields must be on the same grid");
+      return 0;
+    }
+    firstAssociation = association;
+    fields.emplace_back();
+    std::size_t bad = 0;
+    const std::string problem =
+      fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "FiberFieldSource: " << property << ": " << problem);
+      return 0;
+    }
+    notFinite += bad;
+  }
+  if (notFinite > 0)
+  {
+    vtkWarningMacro(
+      << "FiberFieldSource: " << notFinite
+      << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
+  }
+
+  fiberpli::FieldFiberOptions options;
+  options.volumeFraction = this->VolumeFraction;
+  options.numberOfFibers = this->NumberOfFibers;
+  options.fiberRadius = this->FiberRadius;
+  options.radiusSpread = this->RadiusSpread;
+  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
+  options.trace.segmentLength = this->SegmentLength;
+  options.trace.scheme = static_cast<fiberpli::TraceScheme>(this->IntegrationScheme);
+  options.trace.maxLength = this->MaxFiberLength;
+  options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.populationShares.assign(this->PopulationShares, this->PopulationShares + 2);
+  options.realism.beadingCV = this->BeadingCV;
+  options.realism.beadingLength = this->BeadingLength;
+  options.realism.gRatio = this->GRatio;
+  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
+  std::vector<const fiberpli::OrientationField*> pointers;
+  for (const fiberpli::OrientationField& f : fields)
+  {
+    pointers.push_back(&f);
+  }
+
+  this->UpdateProgress(0.0);
+  fiberpli::FieldFiberResult result =
+    fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, 0.0, 0.9));
+  if (result.aborted)
+  {
+    return 1; // an aborted source passes nothing on (AbortScope empties the output)
+  }
+  if (!result.error.empty())
+  {
+    vtkErrorMacro(<< "FiberFieldSource: " << result.error);
+    return 0;
+  }
+  for (const std::string& w : result.warnings)
+  {
+    vtkWarningMacro(<< "FiberFieldSource: " << w);
+  }
+  // This piece's share of the global fiber order (ids stay global).
+  const fiberpli::FiberRange range =
+    fiberpli::pieceRange(result.model.fibers.size(), piece, pieces);
+  fiberpli::FiberModel mine;
+  mine.fibers.assign(
+    std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
+    std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.end)));
+  fiberpli::FiberPolyData::FromModel(mine, output);
+  fiberpli::AddInnerRadii(mine, output);
+  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  fiberpli::AddFieldDoubles(output, "traced_volume_fraction", { result.volumeFraction });
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkFiberFieldSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "VolumeFraction: " << this->VolumeFraction << "\n";
+  os << indent << "NumberOfFibers: " << this->NumberOfFibers << "\n";
+  os << indent << "FiberRadius: " << this->FiberRadius << "\n";
+  os << indent << "RadiusSpread: " << this->RadiusSpread << "\n";
+  os << indent << "RadiusDistribution: " << this->RadiusDistribution << "\n";
+  os << indent << "SegmentLength: " << this->SegmentLength << "\n";
+  os << indent << "IntegrationScheme: " << this->IntegrationScheme << "\n";
+  os << indent << "MaxFiberLength: " << this->MaxFiberLength << "\n";
+  os << indent << "PopulationShares: " << this->PopulationShares[0] << " "
+     << this->PopulationShares[1] << "\n";
+  os << indent << "BeadingCV: " << this->BeadingCV << "\n";
+  os << indent << "BeadingLength: " << this->BeadingLength << "\n";
+  os << indent << "GRatio: " << this->GRatio << "\n";
+  os << indent << "GRatioModel: " << this->GRatioModel << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+}
