@@ -30,7 +30,8 @@ inline const double* AsDoubles(vtkDataArray* a, std::vector<double>& buffer)
   buffer.resize(static_cast<std::size_t>(n));
   for (vtkIdType k = 0; k < n; ++k)
   {
-    buffer[static_cast<std::size_t>(k)] = a->GetComponent(k / components, static_cast<int>(k % components));
+    buffer[static_cast<std::size_t>(k)] =
+      a->GetComponent(k / components, static_cast<int>(k % components));
   }
   return buffer.data();
 }

@@ -63,11 +63,14 @@ vtkMultiProcessController* FiberCollective::ControllerFor(vtkInformation* info)
   {
     return nullptr;
   }
-  return info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) == c->GetNumberOfProcesses() ? c
-                                                                                                             : nullptr;
+  return info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) ==
+      c->GetNumberOfProcesses()
+    ? c
+    : nullptr;
 }
 
-std::string FiberCollective::AgreeOnError(vtkInformation* info, const std::string& who, const std::string& localError)
+std::string FiberCollective::AgreeOnError(
+  vtkInformation* info, const std::string& who, const std::string& localError)
 {
   vtkMultiProcessController* c = ControllerFor(info);
   if (!c)
@@ -94,7 +97,8 @@ std::string FiberCollective::AgreeOnError(vtkInformation* info, const std::strin
   }
   std::string text;
   message >> text;
-  return who + ": rank " + fiberpli::formatNumber(first) + " failed, so no rank gives output: " + text;
+  return who + ": rank " + fiberpli::formatNumber(first) +
+    " failed, so no rank gives output: " + text;
 }
 
 double FiberCollective::GlobalMax(vtkInformation* info, double local)
@@ -109,7 +113,8 @@ double FiberCollective::GlobalMax(vtkInformation* info, double local)
   return global;
 }
 
-std::string FiberCollective::AgreeOnPeriodicCell(vtkInformation* info, const std::string& who, vtkDataObject* piece)
+std::string FiberCollective::AgreeOnPeriodicCell(
+  vtkInformation* info, const std::string& who, vtkDataObject* piece)
 {
   RankCell mine;
   mine.present = PeriodicCellValues(piece, mine.values);
@@ -120,7 +125,8 @@ std::string FiberCollective::AgreeOnPeriodicCell(vtkInformation* info, const std
     // Per rank: present, value count, then up to 6 values (a longer field is malformed anyway:
     // its count alone says so).
     constexpr int kSlot = 8;
-    double sent[kSlot] = { mine.present ? 1.0 : 0.0, static_cast<double>(mine.values.size()), 0, 0, 0, 0, 0, 0 };
+    double sent[kSlot] = { mine.present ? 1.0 : 0.0, static_cast<double>(mine.values.size()), 0, 0,
+      0, 0, 0, 0 };
     std::copy_n(mine.values.begin(), std::min<std::size_t>(6, mine.values.size()), sent + 2);
     const int ranks = c->GetNumberOfProcesses();
     std::vector<double> got(static_cast<std::size_t>(kSlot * ranks));
@@ -139,8 +145,8 @@ std::string FiberCollective::AgreeOnPeriodicCell(vtkInformation* info, const std
   return error.empty() ? error : who + ": " + error;
 }
 
-int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request, vtkInformationVector* outputVector,
-  const std::string& who, const std::function<int()>& piece)
+int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request,
+  vtkInformationVector* outputVector, const std::string& who, const std::function<int()>& piece)
 {
   // While piece runs, its errors are captured for the other ranks; if nobody else listens, they
   // are displayed afterwards as they would have been.
@@ -158,7 +164,9 @@ int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request
   {
     local = capture->Message.empty() ? who + ": failed" : capture->Message;
   }
-  int port = request && request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : 0;
+  int port = request && request->Has(vtkExecutive::FROM_OUTPUT_PORT())
+    ? request->Get(vtkExecutive::FROM_OUTPUT_PORT())
+    : 0;
   port = port >= 0 && port < outputVector->GetNumberOfInformationObjects() ? port : 0;
   const std::string error = AgreeOnError(outputVector->GetInformationObject(port), who, local);
   if (error.empty() || !local.empty())
@@ -167,7 +175,8 @@ int FiberCollective::RunCollectively(vtkAlgorithm* self, vtkInformation* request
   }
   for (int p = 0; p < outputVector->GetNumberOfInformationObjects(); ++p)
   {
-    if (vtkDataObject* data = outputVector->GetInformationObject(p)->Get(vtkDataObject::DATA_OBJECT()))
+    if (vtkDataObject* data =
+          outputVector->GetInformationObject(p)->Get(vtkDataObject::DATA_OBJECT()))
     {
       data->Initialize();
     }

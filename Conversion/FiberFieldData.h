@@ -25,7 +25,8 @@ namespace fiberpli
 {
 
 /// Adds (or replaces) a double array `name` holding `values` to the data object's field data.
-inline void AddFieldDoubles(vtkDataObject* data, const char* name, const std::vector<double>& values)
+inline void AddFieldDoubles(
+  vtkDataObject* data, const char* name, const std::vector<double>& values)
 {
   vtkNew<vtkDoubleArray> a;
   a->SetName(name);
@@ -59,7 +60,8 @@ inline std::vector<double> FieldValues(vtkDataObject* data, const char* name)
   const vtkIdType n = a ? a->GetNumberOfValues() : 0;
   for (vtkIdType k = 0; k < n; ++k)
   {
-    values.push_back(a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
+    values.push_back(a->GetComponent(
+      k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
   }
   return values;
 }
@@ -82,7 +84,8 @@ inline bool ClaimsCollisionFree(vtkDataObject* fibers)
 /// Adds the field `periodic_cell` (xmin xmax ymin ymax zmin zmax) of a periodic substrate.
 inline void AddPeriodicCell(vtkDataObject* data, const PeriodicCell& cell)
 {
-  AddFieldDoubles(data, fiberfield::kPeriodicCell, { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
+  AddFieldDoubles(data, fiberfield::kPeriodicCell,
+    { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z });
 }
 
 /// The values of the field `periodic_cell` as they are (false when absent).

@@ -1,6 +1,7 @@
 /**
  * @file FiberGuard.h
- * @brief the one exception guard around the work of every FiberPLI source, filter, reader and writer
+ * @brief the one exception guard around the work of every FiberPLI source, filter, reader and
+ * writer
  *
  * The Core never throws across its interface, but the standard library still can (std::bad_alloc
  * when memory runs out beyond what the memory budget foresaw, std::length_error from a size
@@ -48,7 +49,8 @@ bool TryInMemory(Work&& work)
 /// escaping it becomes a VTK error of `self` naming `who`, the data objects of `outputs` (may be
 /// null) are emptied, and 0 is returned.
 template <typename Work>
-int GuardRequest(vtkAlgorithm* self, vtkInformationVector* outputs, const std::string& who, Work&& work)
+int GuardRequest(
+  vtkAlgorithm* self, vtkInformationVector* outputs, const std::string& who, Work&& work)
 {
   std::string problem;
   try
@@ -57,12 +59,14 @@ int GuardRequest(vtkAlgorithm* self, vtkInformationVector* outputs, const std::s
   }
   catch (const std::bad_alloc&)
   {
-    problem = who + ": out of memory (lower the size of the input or the properties that multiply it, "
-                    "or set FIBERPLI_MEMORY_LIMIT so that such requests are refused up front)";
+    problem = who +
+      ": out of memory (lower the size of the input or the properties that multiply it, "
+      "or set FIBERPLI_MEMORY_LIMIT so that such requests are refused up front)";
   }
   catch (const std::exception& e)
   {
-    problem = who + ": internal error: " + e.what() + " (the input or a property is out of what it can handle)";
+    problem = who + ": internal error: " + e.what() +
+      " (the input or a property is out of what it can handle)";
   }
   catch (...)
   {

@@ -24,15 +24,17 @@ std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion, cons
   }
   if (array->GetNumberOfComponents() != 1)
   {
-    return who + ": the point array 'inner_radius' has " + std::to_string(array->GetNumberOfComponents()) +
-      " components, expected 1";
+    return who + ": the point array 'inner_radius' has " +
+      std::to_string(array->GetNumberOfComponents()) + " components, expected 1";
   }
   if (array->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
-    return who + ": the point array 'inner_radius' has " + std::to_string(array->GetNumberOfTuples()) +
-      " values for " + std::to_string(input->GetNumberOfPoints()) + " points";
+    return who + ": the point array 'inner_radius' has " +
+      std::to_string(array->GetNumberOfTuples()) + " values for " +
+      std::to_string(input->GetNumberOfPoints()) + " points";
   }
-  for (std::size_t f = 0; f < conversion.sourcePoints.size() && f < conversion.model.fibers.size(); ++f)
+  for (std::size_t f = 0; f < conversion.sourcePoints.size() && f < conversion.model.fibers.size();
+       ++f)
   {
     std::vector<double>& inner = conversion.model.fibers[f].innerRadii;
     for (long long id : conversion.sourcePoints[f])
@@ -49,8 +51,9 @@ std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion, cons
       f.innerRadii.clear();
     }
     // The Core names the fiber of the model; the line cell is what the user can find.
-    const std::string cell =
-      bad < conversion.sourceCell.size() ? "line cell " + std::to_string(conversion.sourceCell[bad]) + ", " : "";
+    const std::string cell = bad < conversion.sourceCell.size()
+      ? "line cell " + std::to_string(conversion.sourceCell[bad]) + ", "
+      : "";
     return who + ": " + cell + invalid;
   }
   return {};

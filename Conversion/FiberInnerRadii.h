@@ -1,7 +1,7 @@
 /**
  * @file FiberInnerRadii.h
- * @brief the optional point array `inner_radius` (docs/data-contract.md §2) of fiber polydata as the
- *        Core's InnerRadii, fiber by fiber in the order of a FiberConversion
+ * @brief the optional point array `inner_radius` (docs/data-contract.md §2) of fiber polydata as
+ * the Core's InnerRadii, fiber by fiber in the order of a FiberConversion
  */
 #ifndef FiberInnerRadii_h
 #define FiberInnerRadii_h
@@ -22,8 +22,8 @@ namespace fiberpli
 /// fibers keep none. Returns "" or an error prefixed by `who` (the inner radii then cleared): more
 /// than one component, a wrong number of values, or a value that is not finite in (0, radius]
 /// (naming the line cell, fiber and point).
-FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(vtkPolyData* input, FiberConversion& conversion,
-  const std::string& who);
+FIBERPLICONVERSION_EXPORT std::string ReadInnerRadii(
+  vtkPolyData* input, FiberConversion& conversion, const std::string& who);
 
 /// Adds the point array `inner_radius` (double) to `output`, made by FiberPolyData::FromModel from
 /// `model`, when some fiber of the model has inner radii; a fiber without them gets its radius (no

@@ -3,23 +3,23 @@
 #include "FiberFieldData.h"
 #include "FiberInnerRadii.h"
 
+#include <vtkAlgorithm.h>
+#include <vtkAlgorithmOutput.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
-#include <vtkAlgorithm.h>
-#include <vtkAlgorithmOutput.h>
-#include <vtkFieldData.h>
-#include <vtkInformation.h>
 #include <vtkPolyData.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <vtkVariant.h>
 
@@ -36,7 +36,8 @@ namespace
 {
 // The id at cell `c` as an integer in [lo, hi]; false (and `text` the value as read) when it is
 // not one: NaN, a fraction or out of range in a floating-point array, a 64-bit value beyond hi.
-bool readId(vtkDataArray* ids, vtkIdType c, long long lo, long long hi, long long& out, std::string& text)
+bool readId(
+  vtkDataArray* ids, vtkIdType c, long long lo, long long hi, long long& out, std::string& text)
 {
   const int type = ids->GetDataType();
   if (type == VTK_FLOAT || type == VTK_DOUBLE)
@@ -46,8 +47,8 @@ bool readId(vtkDataArray* ids, vtkIdType c, long long lo, long long hi, long lon
     t << v;
     text = t.str();
     // 2^63 is exactly representable; every double below it (and >= -2^63) fits a long long.
-    if (!(v == std::floor(v)) || !(v >= static_cast<double>(lo)) || !(v <= static_cast<double>(hi)) ||
-      v >= 9223372036854775808.0)
+    if (!(v == std::floor(v)) || !(v >= static_cast<double>(lo)) ||
+      !(v <= static_cast<double>(hi)) || v >= 9223372036854775808.0)
     {
       return false;
     }
@@ -120,7 +121,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     return result;
   }
   const vtkIdType numLines = input->GetNumberOfLines();
-  const vtkIdType otherCells = input->GetNumberOfVerts() + input->GetNumberOfPolys() + input->GetNumberOfStrips();
+  const vtkIdType otherCells =
+    input->GetNumberOfVerts() + input->GetNumberOfPolys() + input->GetNumberOfStrips();
   if (numLines == 0)
   {
     result.error = who + ": the input has " + std::to_string(input->GetNumberOfCells()) +
@@ -130,21 +132,23 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
   vtkDataArray* radius = input->GetPointData()->GetArray(fiberfield::kRadius);
   if (radius == nullptr)
   {
-    result.error = who + ": the input has no point array 'radius' (fiber radius in µm at each point)";
+    result.error =
+      who + ": the input has no point array 'radius' (fiber radius in µm at each point)";
     return result;
   }
   if (radius->GetNumberOfComponents() != 1)
   {
-    result.error = who + ": the point array 'radius' has " + std::to_string(radius->GetNumberOfComponents()) +
-      " components, expected 1";
+    result.error = who + ": the point array 'radius' has " +
+      std::to_string(radius->GetNumberOfComponents()) + " components, expected 1";
     return result;
   }
   vtkPoints* points = input->GetPoints();
   const vtkIdType numPoints = input->GetNumberOfPoints();
   if (points == nullptr || radius->GetNumberOfTuples() != numPoints)
   {
-    result.error = who + ": the point array 'radius' has " + std::to_string(radius->GetNumberOfTuples()) +
-      " values for " + std::to_string(numPoints) + " points";
+    result.error = who + ": the point array 'radius' has " +
+      std::to_string(radius->GetNumberOfTuples()) + " values for " + std::to_string(numPoints) +
+      " points";
     return result;
   }
   vtkDataArray* fiberIds = input->GetCellData()->GetArray(fiberfield::kFiberId);
@@ -154,7 +158,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     if (ids && ids->GetNumberOfTuples() != input->GetNumberOfCells())
     {
       result.error = who + ": the cell array '" + std::string(ids->GetName()) + "' has " +
-        std::to_string(ids->GetNumberOfTuples()) + " values for " + std::to_string(input->GetNumberOfCells()) + " cells";
+        std::to_string(ids->GetNumberOfTuples()) + " values for " +
+        std::to_string(input->GetNumberOfCells()) + " cells";
       return result;
     }
   }
@@ -182,7 +187,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     f.bundle = 0;
     long long value = 0;
     std::string text;
-    const auto badId = [&](const char* name, const char* range) {
+    const auto badId = [&](const char* name, const char* range)
+    {
       result.error = who + ": line cell " + std::to_string(cellId) + ": " + name + " is " + text +
         ", must be an integer in " + range;
       result.model.fibers.clear();
@@ -191,7 +197,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     };
     if (fiberIds)
     {
-      if (!readId(fiberIds, cellId, std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max(), value, text))
+      if (!readId(fiberIds, cellId, std::numeric_limits<long long>::min(),
+            std::numeric_limits<long long>::max(), value, text))
       {
         badId(fiberfield::kFiberId, "[-2^63, 2^63)");
         return result;
@@ -200,7 +207,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     }
     if (bundleIds)
     {
-      if (!readId(bundleIds, cellId, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), value, text))
+      if (!readId(bundleIds, cellId, std::numeric_limits<int>::min(),
+            std::numeric_limits<int>::max(), value, text))
       {
         badId(fiberfield::kBundleId, "[-2^31, 2^31)");
         return result;
@@ -213,8 +221,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
     {
       if (ids[i] < 0 || ids[i] >= numPoints)
       {
-        result.error = who + ": line cell " + std::to_string(cellId) + " refers to point " + std::to_string(ids[i]) +
-          ", but the input has " + std::to_string(numPoints) + " points";
+        result.error = who + ": line cell " + std::to_string(cellId) + " refers to point " +
+          std::to_string(ids[i]) + ", but the input has " + std::to_string(numPoints) + " points";
         result.model.fibers.clear();
         result.sourceCell.clear();
         result.sourcePoints.clear();
@@ -256,7 +264,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
   }
   if (otherCells > 0)
   {
-    warn << who << ": " << otherCells << " vertex/polygon/strip cell(s) are not fibers and were ignored.";
+    warn << who << ": " << otherCells
+         << " vertex/polygon/strip cell(s) are not fibers and were ignored.";
   }
   result.warning = warn.str();
   return result;
@@ -265,7 +274,8 @@ FiberConversion FiberPolyData::ToModel(vtkPolyData* input, const std::string& wh
 void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conversion,
   const std::vector<std::vector<double>>& sourceIndex, vtkPolyData* output)
 {
-  const auto isContract = [](const char* name) {
+  const auto isContract = [](const char* name)
+  {
     const std::string n = name ? name : "";
     return n == fiberfield::kRadius || n == fiberfield::kFiberId || n == fiberfield::kBundleId;
   };
@@ -273,7 +283,8 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
   for (int a = 0; a < inCells->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* src = inCells->GetAbstractArray(a);
-    if (src == nullptr || isContract(src->GetName()) || src->GetNumberOfTuples() != input->GetNumberOfCells())
+    if (src == nullptr || isContract(src->GetName()) ||
+      src->GetNumberOfTuples() != input->GetNumberOfCells())
     {
       continue;
     }
@@ -283,7 +294,8 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
     dst->SetNumberOfTuples(static_cast<vtkIdType>(conversion.sourceCell.size()));
     for (std::size_t f = 0; f < conversion.sourceCell.size(); ++f)
     {
-      dst->SetTuple(static_cast<vtkIdType>(f), static_cast<vtkIdType>(conversion.sourceCell[f]), src);
+      dst->SetTuple(
+        static_cast<vtkIdType>(f), static_cast<vtkIdType>(conversion.sourceCell[f]), src);
     }
     output->GetCellData()->AddArray(dst);
   }
@@ -293,12 +305,14 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
   for (int a = 0; a < inPoints->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* src = inPoints->GetAbstractArray(a);
-    if (src == nullptr || isContract(src->GetName()) || src->GetNumberOfTuples() != input->GetNumberOfPoints())
+    if (src == nullptr || isContract(src->GetName()) ||
+      src->GetNumberOfTuples() != input->GetNumberOfPoints())
     {
       continue;
     }
     vtkDataArray* srcData = vtkDataArray::SafeDownCast(src);
-    const bool interpolate = srcData && (src->GetDataType() == VTK_FLOAT || src->GetDataType() == VTK_DOUBLE);
+    const bool interpolate =
+      srcData && (src->GetDataType() == VTK_FLOAT || src->GetDataType() == VTK_DOUBLE);
     vtkSmartPointer<vtkAbstractArray> dst = vtk::TakeSmartPointer(src->NewInstance());
     dst->SetName(src->GetName());
     dst->SetNumberOfComponents(src->GetNumberOfComponents());
@@ -316,7 +330,8 @@ void FiberPolyData::PassArrays(vtkPolyData* input, const FiberConversion& conver
         const double t = s - static_cast<double>(i0);
         if (interpolate && t > 0.0 && i0 + 1 < ids.size())
         {
-          vtkDataArray::SafeDownCast(dst)->InterpolateTuple(out, ids[i0], srcData, ids[i0 + 1], srcData, t);
+          vtkDataArray::SafeDownCast(dst)->InterpolateTuple(
+            out, ids[i0], srcData, ids[i0 + 1], srcData, t);
         }
         else
         {

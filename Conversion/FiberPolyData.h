@@ -1,13 +1,15 @@
 /**
  * @class   FiberPolyData
- * @brief   THE conversion layer between fiber vtkPolyData (docs/data-contract.md §3) and fiberpli::FiberModel
+ * @brief   THE conversion layer between fiber vtkPolyData (docs/data-contract.md §3) and
+ * fiberpli::FiberModel
  *
  * Every FiberPLI filter, reader and writer converts fibers through this class only, so the data
  * contract is validated in one place:
  * - no `radius` point array, or one with other than 1 component → error;
  * - cells but no line cell → error (verts/polys/strips are ignored with a warning otherwise);
  * - a fiber of fewer than 2 points → dropped with a warning;
- * - NaN/Inf coordinates or radius <= 0 → error naming the fiber (cell index and fiber_id) and point;
+ * - NaN/Inf coordinates or radius <= 0 → error naming the fiber (cell index and fiber_id) and
+ * point;
  * - an input without points and cells → an empty model, no error (empty MPI pieces).
  * `fiber_id` (any integer array) and `bundle_id` cell arrays are read when present; otherwise the
  * fiber id is the cell index and the bundle id 0. An id that is no integer of its range (NaN,
@@ -32,10 +34,10 @@ namespace fiberpli
 struct FiberConversion
 {
   FiberModel model;
-  std::vector<long long> sourceCell; ///< input cell index of each fiber of the model
+  std::vector<long long> sourceCell;                ///< input cell index of each fiber of the model
   std::vector<std::vector<long long>> sourcePoints; ///< input point ids of each fiber of the model
-  std::string error;                 ///< empty when the input is usable
-  std::string warning;               ///< one line per kind of recoverable oddity, with counts
+  std::string error;                                ///< empty when the input is usable
+  std::string warning; ///< one line per kind of recoverable oddity, with counts
   bool ok() const { return error.empty(); }
 };
 

@@ -7,7 +7,8 @@
  * false when the user asked to abort. It is the only place with a VTK version check
  * (CheckAbort() exists from VTK 9.2.20220817 on; older VTK has GetAbortExecute()).
  * AbortScope, the first line of every RequestData, makes an abort apply to one execution only and
- * ends it as a finished execution with empty outputs and a warning (no new run by the next request).
+ * ends it as a finished execution with empty outputs and a warning (no new run by the next
+ * request).
  */
 #ifndef FiberProgress_h
 #define FiberProgress_h
@@ -26,7 +27,8 @@ namespace fiberpli
 /// Progress in [0, 1] of the whole algorithm is mapped to [begin, end] of the filter's progress.
 inline ProgressFn MakeProgress(vtkAlgorithm* algorithm, double begin = 0.0, double end = 1.0)
 {
-  return [algorithm, begin, end](double fraction) {
+  return [algorithm, begin, end](double fraction)
+  {
     algorithm->UpdateProgress(begin + (end - begin) * fraction);
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 20220817)
     return !algorithm->CheckAbort();
@@ -74,8 +76,10 @@ public:
       {
         name.erase(0, 3);
       }
-      vtkWarningWithObjectMacro(this->Algorithm, << name << ": aborted by the user; the output stays "
-        "empty until the input or a property changes (then Apply runs it again)");
+      vtkWarningWithObjectMacro(this->Algorithm,
+        << name
+        << ": aborted by the user; the output stays "
+           "empty until the input or a property changes (then Apply runs it again)");
     }
   }
   AbortScope(const AbortScope&) = delete;

@@ -36,16 +36,20 @@ void ExchangeMPI(vtkMPICommunicator& mpi, const std::vector<std::vector<char>>& 
   std::vector<long long> out(static_cast<std::size_t>(n)), in(static_cast<std::size_t>(n));
   for (int q = 0; q < n; ++q)
   {
-    out[static_cast<std::size_t>(q)] = static_cast<long long>(send[static_cast<std::size_t>(q)].size());
+    out[static_cast<std::size_t>(q)] =
+      static_cast<long long>(send[static_cast<std::size_t>(q)].size());
   }
-  MPI_Alltoall(out.data(), 1, MPI_LONG_LONG, in.data(), 1, MPI_LONG_LONG, *mpi.GetMPIComm()->GetHandle());
+  MPI_Alltoall(
+    out.data(), 1, MPI_LONG_LONG, in.data(), 1, MPI_LONG_LONG, *mpi.GetMPIComm()->GetHandle());
   std::size_t count = 0;
   for (int q = 0; q < n; ++q)
   {
     if (q != me)
     {
-      received[static_cast<std::size_t>(q)].resize(static_cast<std::size_t>(in[static_cast<std::size_t>(q)]));
-      count += Chunks(received[static_cast<std::size_t>(q)].size()) + Chunks(send[static_cast<std::size_t>(q)].size());
+      received[static_cast<std::size_t>(q)].resize(
+        static_cast<std::size_t>(in[static_cast<std::size_t>(q)]));
+      count += Chunks(received[static_cast<std::size_t>(q)].size()) +
+        Chunks(send[static_cast<std::size_t>(q)].size());
     }
   }
   std::vector<vtkMPICommunicator::Request> requests(count);
@@ -84,7 +88,8 @@ void ExchangePairwise(vtkMultiProcessController& c, const std::vector<std::vecto
 {
   const int n = c.GetNumberOfProcesses();
   const int me = c.GetLocalProcessId();
-  const auto sendTo = [&](int q) {
+  const auto sendTo = [&](int q)
+  {
     const std::vector<char>& b = send[static_cast<std::size_t>(q)];
     long long size = static_cast<long long>(b.size());
     c.Send(&size, 1, q, kSizeTag);
@@ -93,7 +98,8 @@ void ExchangePairwise(vtkMultiProcessController& c, const std::vector<std::vecto
       c.Send(b.data(), static_cast<vtkIdType>(b.size()), q, kExchangeTag);
     }
   };
-  const auto receiveFrom = [&](int q) {
+  const auto receiveFrom = [&](int q)
+  {
     long long size = 0;
     c.Receive(&size, 1, q, kSizeTag);
     std::vector<char>& b = received[static_cast<std::size_t>(q)];
@@ -122,7 +128,10 @@ void ExchangePairwise(vtkMultiProcessController& c, const std::vector<std::vecto
 }
 } // namespace
 
-FiberSolverComm::FiberSolverComm(vtkMultiProcessController* controller) : Controller(controller) {}
+FiberSolverComm::FiberSolverComm(vtkMultiProcessController* controller)
+  : Controller(controller)
+{
+}
 
 int FiberSolverComm::rank() const
 {
@@ -137,14 +146,16 @@ int FiberSolverComm::size() const
 void FiberSolverComm::sum(std::vector<std::int64_t>& values)
 {
   std::vector<long long> in(values.begin(), values.end()), out(values.size());
-  this->Controller->AllReduce(in.data(), out.data(), static_cast<vtkIdType>(in.size()), vtkCommunicator::SUM_OP);
+  this->Controller->AllReduce(
+    in.data(), out.data(), static_cast<vtkIdType>(in.size()), vtkCommunicator::SUM_OP);
   values.assign(out.begin(), out.end());
 }
 
 void FiberSolverComm::max(std::vector<double>& values)
 {
   std::vector<double> out(values.size());
-  this->Controller->AllReduce(values.data(), out.data(), static_cast<vtkIdType>(values.size()), vtkCommunicator::MAX_OP);
+  this->Controller->AllReduce(
+    values.data(), out.data(), static_cast<vtkIdType>(values.size()), vtkCommunicator::MAX_OP);
   values = out;
 }
 
@@ -172,11 +183,13 @@ std::vector<long long> FiberSolverComm::allToAll(const std::vector<long long>& s
   std::vector<long long> received(send.size());
   if (auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator()))
   {
-    MPI_Alltoall(send.data(), per, MPI_LONG_LONG, received.data(), per, MPI_LONG_LONG, *mpi->GetMPIComm()->GetHandle());
+    MPI_Alltoall(send.data(), per, MPI_LONG_LONG, received.data(), per, MPI_LONG_LONG,
+      *mpi->GetMPIComm()->GetHandle());
     return received;
   }
   // Without MPI: the same through exchange().
-  const std::size_t n = static_cast<std::size_t>(this->size()), bytes = sizeof(long long) * static_cast<std::size_t>(per);
+  const std::size_t n = static_cast<std::size_t>(this->size()),
+                    bytes = sizeof(long long) * static_cast<std::size_t>(per);
   std::vector<std::vector<char>> out(n);
   for (std::size_t q = 0; q < n; ++q)
   {

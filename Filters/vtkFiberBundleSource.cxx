@@ -2,13 +2,13 @@
 
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
-#include "FiberPolyData.h"
 #include "FiberInnerRadii.h"
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
 #include "FiberRealism.h"
 #include "Model/DataNames.h"
-#include "Tissue/Myelin.h"
-#include "FiberProgress.h"
 #include "Tissue/BundleGenerator.h"
+#include "Tissue/Myelin.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -44,8 +44,8 @@ int vtkFiberBundleSource::FillInputPortInformation(int, vtkInformation* info)
 
 //------------------------------------------------------------------------------
 // The trajectory is small and needed whole: ask for all of it whatever piece is requested here.
-int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector*)
+int vtkFiberBundleSource::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   if (inputVector[0]->GetNumberOfInformationObjects() > 0)
   {
@@ -56,23 +56,26 @@ int vtkFiberBundleSource::RequestUpdateExtent(vtkInformation*, vtkInformationVec
 
 //------------------------------------------------------------------------------
 // Every piece makes its own fibers (docs/tissue-models.md §9).
-int vtkFiberBundleSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberBundleSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberBundleSource::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberBundleSource::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
-    [&] { return this->ExecutePiece(inputVector, outputVector); });
+  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is
+  // lower.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector,
+    fiberpli::ProxyName(this), [&] { return this->ExecutePiece(inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberBundleSource::ExecutePiece(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -115,7 +118,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
     if (!input)
     {
       fiberpliErrorMacro(<< "Shape is Trajectory but no polyline is connected to input port 0 "
-                       "(Trajectory); connect one or choose another Shape");
+                            "(Trajectory); connect one or choose another Shape");
       return 0;
     }
     if (fiberpli::FiberPolyData::IsEmpty(input))
@@ -127,18 +130,19 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
       fiberpliErrorMacro(<< "the Trajectory input has no line cell (polyline)");
       return 0;
     }
-    vtkDataArray* scaleArray = input->GetPointData()->GetArray(fiberpli::fiberfield::kTrajectoryScale);
+    vtkDataArray* scaleArray =
+      input->GetPointData()->GetArray(fiberpli::fiberfield::kTrajectoryScale);
     if (scaleArray && scaleArray->GetNumberOfComponents() != 1)
     {
       fiberpliErrorMacro(<< "the Trajectory point array 'scale' has "
-                    << scaleArray->GetNumberOfComponents() << " components, must have 1");
+                         << scaleArray->GetNumberOfComponents() << " components, must have 1");
       return 0;
     }
     if (scaleArray && scaleArray->GetNumberOfTuples() != input->GetNumberOfPoints())
     {
       fiberpliErrorMacro(<< "the Trajectory point array 'scale' has "
-                    << scaleArray->GetNumberOfTuples() << " values for " << input->GetNumberOfPoints()
-                    << " points");
+                         << scaleArray->GetNumberOfTuples() << " values for "
+                         << input->GetNumberOfPoints() << " points");
       return 0;
     }
     auto it = vtk::TakeSmartPointer(input->GetLines()->NewIterator());
@@ -151,7 +155,7 @@ int vtkFiberBundleSource::ExecutePiece(vtkInformationVector** inputVector, vtkIn
       if (ids[i] < 0 || ids[i] >= input->GetNumberOfPoints())
       {
         fiberpliErrorMacro(<< "the Trajectory line refers to point " << ids[i]
-                      << ", but the input has " << input->GetNumberOfPoints() << " points");
+                           << ", but the input has " << input->GetNumberOfPoints() << " points");
         return 0;
       }
       double p[3];

@@ -1,11 +1,12 @@
 /**
  * @class   vtkFiberBundleSource
- * @brief   bundles of fibers along a trajectory: cylinder, input polyline, crossing, Y-shape, chiasm
+ * @brief   bundles of fibers along a trajectory: cylinder, input polyline, crossing, Y-shape,
+ * chiasm
  *
- * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
- * `fiber_id` (0..N-1) and `bundle_id`, field data `segment_length` and `seed`. The cross-section
- * of a bundle of radius BundleRadius is filled with fibers on a triangular grid of spacing
- * FiberSpacing (or NumberOfFibers random seeds) and carried along the trajectory by a
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius`
+ * (µm), cell arrays `fiber_id` (0..N-1) and `bundle_id`, field data `segment_length` and `seed`.
+ * The cross-section of a bundle of radius BundleRadius is filled with fibers on a triangular grid
+ * of spacing FiberSpacing (or NumberOfFibers random seeds) and carried along the trajectory by a
  * rotation-minimising frame; every point is then displaced uniformly within ±Displacement per axis
  * (docs/tissue-models.md §2, §5, §6). Shapes and bundle ids:
  * - Cylinder: along x from (-Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
@@ -20,9 +21,10 @@
  *   Ranvier on by default.
  * Units µm and degrees. Invalid properties or a bad trajectory (fewer than 2 points, repeated
  * consecutive points, NaN) give an error naming the property or the point and an empty output;
- * a bend where inner fibers would fold over gives one warning. Pieces (docs/tissue-models.md §9): piece p of P
- * holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers in output order (global fiber ids,
- * field data on every piece), so under MPI every rank lays only its own fibers. The same properties give the same fibers.
+ * a bend where inner fibers would fold over gives one warning. Pieces (docs/tissue-models.md §9):
+ * piece p of P holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers in output order
+ * (global fiber ids, field data on every piece), so under MPI every rank lays only its own fibers.
+ * The same properties give the same fibers.
  */
 #ifndef vtkFiberBundleSource_h
 #define vtkFiberBundleSource_h

@@ -1,12 +1,12 @@
 #include "vtkFiberCollisionSolver.h"
 
+#include "Checkpoint/SolverCheckpoint.h"
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
-#include "Checkpoint/SolverCheckpoint.h"
 #include "FiberSolverComm.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
@@ -60,38 +60,41 @@ vtkFiberCollisionSolver::vtkFiberCollisionSolver() = default;
 vtkFiberCollisionSolver::~vtkFiberCollisionSolver() = default;
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    if (!this->IterationsAsTime) // the input's own time steps pass through
+  return fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this),
+    [&]() -> int
     {
+      vtkInformation* outInfo = outputVector->GetInformationObject(0);
+      if (!this->IterationsAsTime) // the input's own time steps pass through
+      {
+        return 1;
+      }
+      outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+      outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+      // The time steps are the steps the solve really took, so the solve runs here (once, cached):
+      // the timeline then ends where the solve ended instead of at MaxSteps.
+      vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+      fiberpli::FiberPolyData::UpdateAllFibers(this, inInfo);
+      vtkPolyData* input = inInfo ? vtkPolyData::GetData(inInfo) : nullptr;
+      if (fiberpli::FiberPolyData::IsEmpty(input))
+      {
+        return 1;
+      }
+      if (this->Solve(input) != 1)
+      {
+        return 1; // an error is reported (again by RequestData, which makes no output); or aborted
+      }
+      const std::vector<int>& steps = this->Cache->states.steps;
+      std::vector<double> times(steps.begin(), steps.end());
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+        static_cast<int>(times.size()));
+      const double range[2] = { times.front(), times.back() };
+      outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
       return 1;
-    }
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-    outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
-    // The time steps are the steps the solve really took, so the solve runs here (once, cached):
-    // the timeline then ends where the solve ended instead of at MaxSteps.
-    vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-    fiberpli::FiberPolyData::UpdateAllFibers(this, inInfo);
-    vtkPolyData* input = inInfo ? vtkPolyData::GetData(inInfo) : nullptr;
-    if (fiberpli::FiberPolyData::IsEmpty(input))
-    {
-      return 1;
-    }
-    if (this->Solve(input) != 1)
-    {
-      return 1; // an error is reported (again by RequestData, which makes no output); or aborted
-    }
-    const std::vector<int>& steps = this->Cache->states.steps;
-    std::vector<double> times(steps.begin(), steps.end());
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-    const double range[2] = { times.front(), times.back() };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
-    return 1;
-  });
+    });
 }
 
 //------------------------------------------------------------------------------
@@ -106,8 +109,8 @@ vtkMultiProcessController* vtkFiberCollisionSolver::Distributed(vtkInformation* 
 // asks for all fibers (piece 0 of 1, as the other filters that need them whole; the same request
 // on every rank, so a piece-making source sees no half-collective update), piece 0 solves them,
 // the other pieces are empty (docs/architecture.md §7).
-int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -126,7 +129,8 @@ int vtkFiberCollisionSolver::RequestUpdateExtent(vtkInformation*, vtkInformation
 //------------------------------------------------------------------------------
 int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* comm)
 {
-  bool stale = !this->Cache || this->Cache->inputTime != input->GetMTime() || this->Cache->filterTime != this->GetMTime();
+  bool stale = !this->Cache || this->Cache->inputTime != input->GetMTime() ||
+    this->Cache->filterTime != this->GetMTime();
   if (comm)
   {
     stale = fiberpli::anyRank(*comm, stale); // a distributed solve is redone by all ranks or none
@@ -153,7 +157,8 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* com
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm)
+std::string vtkFiberCollisionSolver::SolveInto(
+  vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm)
 {
   fiberpli::CollisionSolverOptions options;
   std::string error = this->CheckInput(input, cache, options);
@@ -174,9 +179,11 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
       agreed.lo[d] = -c[static_cast<std::size_t>(1 + d)];
       agreed.hi[d] = c[static_cast<std::size_t>(4 + d)];
     }
-    if (error.empty() && c[0] > 0.0 && cache.periodic && !(agreed.lo == cache.cell.lo && agreed.hi == cache.cell.hi))
+    if (error.empty() && c[0] > 0.0 && cache.periodic &&
+      !(agreed.lo == cache.cell.lo && agreed.hi == cache.cell.hi))
     {
-      error = fiberpli::ProxyMessage(this, "the input pieces have different periodic_cell field data");
+      error =
+        fiberpli::ProxyMessage(this, "the input pieces have different periodic_cell field data");
     }
     if (c[0] > 0.0)
     {
@@ -194,8 +201,8 @@ std::string vtkFiberCollisionSolver::SolveInto(vtkPolyData* input, Snapshots& ca
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& cache,
-  fiberpli::CollisionSolverOptions& options)
+std::string vtkFiberCollisionSolver::CheckInput(
+  vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options)
 {
   const std::string threads = fiberpli::validateThreadCount(this->NumberOfThreads);
   if (!threads.empty())
@@ -209,8 +216,9 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   }
   if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
   {
-    return fiberpli::ProxyMessage(this, "TimeStepInterval is " + std::to_string(this->TimeStepInterval) +
-        " and MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
+    return fiberpli::ProxyMessage(this,
+      "TimeStepInterval is " + std::to_string(this->TimeStepInterval) + " and MaximumSnapshots " +
+        std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
   }
   cache.input = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!cache.input.ok())
@@ -243,7 +251,8 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
   {
     // Snapshots of twice the input's points each (splitting) must fit the memory budget.
     const double points = static_cast<double>(cache.input.model.numberOfPoints());
-    const double bytes = 2.0 * static_cast<double>(this->MaximumSnapshots) * points * (sizeof(fiberpli::Vec3) + sizeof(double));
+    const double bytes = 2.0 * static_cast<double>(this->MaximumSnapshots) * points *
+      (sizeof(fiberpli::Vec3) + sizeof(double));
     const std::string problem = fiberpli::checkMemoryBudget(bytes,
       "MaximumSnapshots " + std::to_string(this->MaximumSnapshots) + " of " +
         std::to_string(cache.input.model.numberOfPoints()) + " points");
@@ -256,22 +265,24 @@ std::string vtkFiberCollisionSolver::CheckInput(vtkPolyData* input, Snapshots& c
 }
 
 //------------------------------------------------------------------------------
-std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::CollisionSolverOptions& options,
-  fiberpli::SolverComm* comm)
+std::string vtkFiberCollisionSolver::RunSolve(
+  Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm)
 {
   fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;
   if (this->IterationsAsTime)
   {
-    cache.states.start(model, this->TimeStepInterval, static_cast<std::size_t>(this->MaximumSnapshots));
-    observer = [&cache](int step, const fiberpli::FiberModel& current) { cache.states.observe(step, current); };
+    cache.states.start(
+      model, this->TimeStepInterval, static_cast<std::size_t>(this->MaximumSnapshots));
+    observer = [&cache](int step, const fiberpli::FiberModel& current)
+    { cache.states.observe(step, current); };
   }
   this->SetProgressText("Solving collisions");
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
   const fiberpli::CheckpointOptions checkpoint{ this->CheckpointFile, this->CheckpointInterval,
     this->ResumeFromCheckpoint };
-  cache.result =
-    fiberpli::solveWithCheckpoints(model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
+  cache.result = fiberpli::solveWithCheckpoints(
+    model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
     return fiberpli::ProxyMessage(this, cache.result.error);
@@ -290,100 +301,116 @@ std::string vtkFiberCollisionSolver::RunSolve(Snapshots& cache, const fiberpli::
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberCollisionSolver::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
-    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-    vtkPolyData* output = vtkPolyData::GetData(outputVector);
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    output->Initialize();
-    vtkMultiProcessController* controller = this->Distributed(outInfo);
-    std::unique_ptr<fiberpli::FiberSolverComm> comm;
-    if (controller)
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this),
+    [&]() -> int
     {
-      comm = std::make_unique<fiberpli::FiberSolverComm>(controller);
-      if (!fiberpli::anyRank(*comm, !fiberpli::FiberPolyData::IsEmpty(input)))
+      const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+      vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+      vtkPolyData* output = vtkPolyData::GetData(outputVector);
+      vtkInformation* outInfo = outputVector->GetInformationObject(0);
+      output->Initialize();
+      vtkMultiProcessController* controller = this->Distributed(outInfo);
+      std::unique_ptr<fiberpli::FiberSolverComm> comm;
+      if (controller)
       {
-        return 1; // no rank has fibers
+        comm = std::make_unique<fiberpli::FiberSolverComm>(controller);
+        if (!fiberpli::anyRank(*comm, !fiberpli::FiberPolyData::IsEmpty(input)))
+        {
+          return 1; // no rank has fibers
+        }
       }
-    }
-    else if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
-    {
+      else if (fiberpli::FiberPolyData::IsEmpty(input) || !FirstPiece(outInfo))
+      {
+        return 1;
+      }
+
+      const int solved = this->Solve(input, comm.get());
+      if (solved != 1)
+      {
+        return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
+      }
+
+      // Which state to show: the last one, or the last snapshot at or before the requested time.
+      const fiberpli::SolverSnapshots& states = this->Cache->states;
+      std::size_t shown = states.models.size() - 1;
+      if (this->IterationsAsTime &&
+        outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+      {
+        const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+        shown = states.atTime(t);
+        output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
+      }
+      const int shownStep =
+        this->IterationsAsTime ? states.steps[shown] : this->Cache->result.steps;
+
+      const fiberpli::FiberModel& model = states.models[shown];
+      const fiberpli::CollisionSolverResult& r = this->Cache->result;
+      const bool final = shown + 1 == states.models.size();
+      fiberpli::FiberPolyData::FromModel(model, output);
+      // The final state knows where each point came from. Snapshots do not: their point arrays are
+      // passed (unchanged points) only while no fiber has been split or merged yet.
+      bool sameCounts = true;
+      for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
+      {
+        sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
+      }
+      if (final || sameCounts)
+      {
+        static const std::vector<std::vector<double>> unchanged;
+        fiberpli::FiberPolyData::PassArrays(
+          input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
+      }
+
+      const fiberpli::PeriodicCell& cell = this->Cache->cell;
+      const std::size_t collisions = final
+        ? r.collisions
+        : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
+      fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSteps, shownStep);
+      fiberpli::AddFieldInt(
+        output, fiberpli::fiberfield::kCollisions, static_cast<int>(collisions));
+      fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSolved, collisions == 0 ? 1 : 0);
+      if (final) // only known for the solver's last state
+      {
+        fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMaxOverlap, { r.maxOverlap });
+        fiberpli::AddFieldInt(output, fiberpli::fiberfield::kShapeOk, r.shapeOk ? 1 : 0);
+      }
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kSegmentLength, { r.segmentLength });
+      if (this->Cache->periodic)
+      {
+        fiberpli::AddPeriodicCell(output, cell);
+      }
+      // Of the periodic cell, else of the model's bounding box.
+      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kVolumeFraction,
+        { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
+      if (final)
+      {
+        fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMinGap, { r.minGap });
+        fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRadiusScale, { r.radiusScale });
+      }
+      if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
+      {
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kRankPoints, { static_cast<double>(r.peakRankPoints) });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kHaloLinks, { static_cast<double>(r.peakHaloLinks) });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kHeldLinks, { static_cast<double>(r.peakHeldLinks) });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kHaloBytesPerStep, { r.haloBytesPerStep });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kMigrations, { static_cast<double>(r.migrations) });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kTesterRecuts, { static_cast<double>(r.testerRecuts) });
+        fiberpli::AddFieldDoubles(
+          output, fiberpli::fiberfield::kTesterCutMove, { r.testerCutMove });
+      }
+      this->UpdateProgress(1.0);
       return 1;
-    }
-
-    const int solved = this->Solve(input, comm.get());
-    if (solved != 1)
-    {
-      return solved < 0 ? 1 : 0; // aborted: no output and no error; an error is reported
-    }
-
-    // Which state to show: the last one, or the last snapshot at or before the requested time.
-    const fiberpli::SolverSnapshots& states = this->Cache->states;
-    std::size_t shown = states.models.size() - 1;
-    if (this->IterationsAsTime && outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-    {
-      const double t = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-      shown = states.atTime(t);
-      output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), t);
-    }
-    const int shownStep = this->IterationsAsTime ? states.steps[shown] : this->Cache->result.steps;
-
-    const fiberpli::FiberModel& model = states.models[shown];
-    const fiberpli::CollisionSolverResult& r = this->Cache->result;
-    const bool final = shown + 1 == states.models.size();
-    fiberpli::FiberPolyData::FromModel(model, output);
-    // The final state knows where each point came from. Snapshots do not: their point arrays are
-    // passed (unchanged points) only while no fiber has been split or merged yet.
-    bool sameCounts = true;
-    for (std::size_t f = 0; f < model.fibers.size() && sameCounts; ++f)
-    {
-      sameCounts = model.fibers[f].points.size() == this->Cache->input.sourcePoints[f].size();
-    }
-    if (final || sameCounts)
-    {
-      static const std::vector<std::vector<double>> unchanged;
-      fiberpli::FiberPolyData::PassArrays(input, this->Cache->input, final ? r.sourceIndex : unchanged, output);
-    }
-
-    const fiberpli::PeriodicCell& cell = this->Cache->cell;
-    const std::size_t collisions = final ? r.collisions
-                                         : fiberpli::countCollisions(model, this->MinimumGap, this->NumberOfThreads, cell);
-    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSteps, shownStep);
-    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kCollisions, static_cast<int>(collisions));
-    fiberpli::AddFieldInt(output, fiberpli::fiberfield::kSolved, collisions == 0 ? 1 : 0);
-    if (final) // only known for the solver's last state
-    {
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMaxOverlap, { r.maxOverlap });
-      fiberpli::AddFieldInt(output, fiberpli::fiberfield::kShapeOk, r.shapeOk ? 1 : 0);
-    }
-    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kSegmentLength, { r.segmentLength });
-    if (this->Cache->periodic)
-    {
-      fiberpli::AddPeriodicCell(output, cell);
-    }
-    // Of the periodic cell, else of the model's bounding box.
-    fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kVolumeFraction, { fiberpli::cellVolumeFraction(model, cell, comm.get()) });
-    if (final)
-    {
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMinGap, { r.minGap });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRadiusScale, { r.radiusScale });
-    }
-    if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
-    {
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRankPoints, { static_cast<double>(r.peakRankPoints) });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloLinks, { static_cast<double>(r.peakHaloLinks) });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHeldLinks, { static_cast<double>(r.peakHeldLinks) });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kHaloBytesPerStep, { r.haloBytesPerStep });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMigrations, { static_cast<double>(r.migrations) });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterRecuts, { static_cast<double>(r.testerRecuts) });
-      fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kTesterCutMove, { r.testerCutMove });
-    }
-    this->UpdateProgress(1.0);
-    return 1;
-  });
+    });
 }
 
 //------------------------------------------------------------------------------

@@ -1,13 +1,14 @@
 /**
  * @class   vtkFiberCollisionSolver
- * @brief   moves fibers until no two capsules overlap, keeping segment lengths and curvature in limits
+ * @brief   moves fibers until no two capsules overlap, keeping segment lengths and curvature in
+ * limits
  *
- * Input and output: fiber polydata (docs/data-contract.md §1). Every link (p_i, p_i+1) is a capsule of radius
- * max(r_i, r_i+1); the solver repeats detection (uniform grid), separation of colliding links and
- * shape control (links kept in [2/3, 4/3] · SegmentLength by splitting and merging, points whose
- * circumradius is below MinCurvatureRadius flattened) until no pair overlaps or MaxSteps is
- * reached (docs/solver.md §6). The output has the same fibers in the same order with their
- * fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
+ * Input and output: fiber polydata (docs/data-contract.md §1). Every link (p_i, p_i+1) is a capsule
+ * of radius max(r_i, r_i+1); the solver repeats detection (uniform grid), separation of colliding
+ * links and shape control (links kept in [2/3, 4/3] · SegmentLength by splitting and merging,
+ * points whose circumradius is below MinCurvatureRadius flattened) until no pair overlaps or
+ * MaxSteps is reached (docs/solver.md §6). The output has the same fibers in the same order with
+ * their fiber_id, bundle_id and other cell arrays; other point arrays follow inserted points
  * (floating-point arrays interpolated, integer arrays copied from the point before). Field data:
  * `steps`, `collisions` (pairs still overlapping), `solved` (1/0), `max_overlap` (µm),
  * `shape_ok`, `segment_length`, `min_gap` (smallest surface gap in µm, at most the median radius),
@@ -17,11 +18,11 @@
  * distances by the minimum-image convention, fibers closed through the cell stay closed, and the
  * output carries `periodic_cell`. `volume_fraction` is nominal: the links' cylinder volume
  * Σ π ρ² · link length (overlaps not subtracted) over the periodic cell's volume, or without a cell
- * over the model's bounding box; FiberMetrics measures the covered fraction (docs/metrics.md §3). The result is identical for any NumberOfThreads.
- * With IterationsAsTime on, the steps are exposed as time steps (0, TimeStepInterval, …, and the
- * step the solve ended at, at most MaximumSnapshots of them) so that ParaView's animation shows
- * the fibers separating; the solve runs once, when the pipeline information is updated, and is
- * cached.
+ * over the model's bounding box; FiberMetrics measures the covered fraction (docs/metrics.md §3).
+ * The result is identical for any NumberOfThreads. With IterationsAsTime on, the steps are exposed
+ * as time steps (0, TimeStepInterval, …, and the step the solve ended at, at most MaximumSnapshots
+ * of them) so that ParaView's animation shows the fibers separating; the solve runs once, when the
+ * pipeline information is updated, and is cached.
  */
 #ifndef vtkFiberCollisionSolver_h
 #define vtkFiberCollisionSolver_h
@@ -237,14 +238,16 @@ private:
   int CheckpointInterval = 0;
   bool ResumeFromCheckpoint = false;
 
-
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
   std::string SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm);
-  /// The checks of this rank's input and properties: "" or the error; fills cache.input and options.
-  std::string CheckInput(vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options);
+  /// The checks of this rank's input and properties: "" or the error; fills cache.input and
+  /// options.
+  std::string CheckInput(
+    vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options);
   /// The solve itself (after every rank passed CheckInput): "" or the error.
-  std::string RunSolve(Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm);
+  std::string RunSolve(
+    Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm);
   /// The controller of a distributed solve of this request (every rank one piece, IterationsAsTime
   /// off), else nullptr.
   vtkMultiProcessController* Distributed(vtkInformation* outInfo) const;

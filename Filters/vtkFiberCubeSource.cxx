@@ -3,12 +3,12 @@
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
-#include "FiberProgress.h"
-#include "FiberPolyData.h"
 #include "FiberInnerRadii.h"
+#include "FiberPolyData.h"
+#include "FiberProgress.h"
 #include "FiberRealism.h"
-#include "Tissue/Myelin.h"
 #include "Tissue/CubeGenerator.h"
+#include "Tissue/Myelin.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -23,7 +23,8 @@ namespace
 {
 // What the cell allowed of the requested shape: the axes taken (with a crossing angle) and the
 // dispersion reached (with dispersion), and a warning (once, on piece 0) where it falls short.
-void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fiberpli::CubeOptions& options, int piece)
+void AddRealismFieldData(
+  vtkFiberCubeSource* self, vtkPolyData* output, const fiberpli::CubeOptions& options, int piece)
 {
   const std::vector<fiberpli::PopulationAxis> axes = fiberpli::cubePopulationAxes(options);
   if (options.crossingAngle != 90.0 && axes.size() >= 2)
@@ -37,9 +38,10 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     const double achieved = fiberpli::axesAngle(axes);
     if (std::fabs(achieved - options.crossingAngle) > 1.0 && piece == 0)
     {
-      vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": CrossingAngle " << options.crossingAngle
-                      << ": the nearest lattice direction of the periodic cell is (" << axes[1].lattice.x << ", "
-                      << axes[1].lattice.y << ", 0), " << achieved << " degrees from population 0");
+      vtkWarningWithObjectMacro(
+        self, << fiberpli::ProxyName(self) << ": CrossingAngle " << options.crossingAngle
+              << ": the nearest lattice direction of the periodic cell is (" << axes[1].lattice.x
+              << ", " << axes[1].lattice.y << ", 0), " << achieved << " degrees from population 0");
     }
   }
   if (options.realism.dispersed())
@@ -50,10 +52,11 @@ void AddRealismFieldData(vtkFiberCubeSource* self, vtkPolyData* output, const fi
     {
       if (std::fabs(c2[k] - options.realism.dispersionC2) > 0.02)
       {
-        vtkWarningWithObjectMacro(self, << fiberpli::ProxyName(self) << ": DispersionC2 " << options.realism.dispersionC2 << ": population " << k
-                        << " reaches " << c2[k]
-                        << (options.periodic ? " with the lattice directions of the periodic cell" : "")
-                        << " (field data dispersion_c2)");
+        vtkWarningWithObjectMacro(
+          self, << fiberpli::ProxyName(self) << ": DispersionC2 " << options.realism.dispersionC2
+                << ": population " << k << " reaches " << c2[k]
+                << (options.periodic ? " with the lattice directions of the periodic cell" : "")
+                << " (field data dispersion_c2)");
       }
     }
   }
@@ -71,18 +74,21 @@ vtkFiberCubeSource::vtkFiberCubeSource()
 
 //------------------------------------------------------------------------------
 // Every piece makes its own fibers (docs/tissue-models.md §9), so VTK executes it for any piece.
-int vtkFiberCubeSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberCubeSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCubeSource::RequestData(vtkInformation* request, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberCubeSource::RequestData(
+  vtkInformation* request, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is lower.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
-    [&] { return this->ExecutePiece(outputVector); });
+  // Under MPI all ranks fail together (FiberCollective.h), e.g. when one rank's memory budget is
+  // lower.
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector,
+    fiberpli::ProxyName(this), [&] { return this->ExecutePiece(outputVector); });
 }
 
 //------------------------------------------------------------------------------
@@ -127,10 +133,12 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   bool aborted = false;
   // Progress and abort over the polydisperse Lattice seeding's disk packing and the fibers' points.
   const fiberpli::ProgressFn progress = fiberpli::MakeProgress(this, 0.0, 0.7);
-  fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning, [&](double f) {
-    aborted = !progress(f);
-    return !aborted;
-  });
+  fiberpli::FiberModel model = fiberpli::generateCube(options, piece, pieces, &warning,
+    [&](double f)
+    {
+      aborted = !progress(f);
+      return !aborted;
+    });
   if (aborted)
   {
     return 1; // an aborted source passes nothing on (AbortScope marks the output)
@@ -179,7 +187,7 @@ void vtkFiberCubeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GRatio: " << this->GRatio << "\n";
   os << indent << "GRatioModel: " << this->GRatioModel << "\n";
   os << indent << "CrossingAngle: " << this->CrossingAngle << "\n";
-  os << indent << "PopulationShares: " << this->PopulationShares[0] << " " << this->PopulationShares[1] << " "
-     << this->PopulationShares[2] << "\n";
+  os << indent << "PopulationShares: " << this->PopulationShares[0] << " "
+     << this->PopulationShares[1] << " " << this->PopulationShares[2] << "\n";
   os << indent << "Arrangement: " << this->Arrangement << "\n";
 }

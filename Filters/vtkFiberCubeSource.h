@@ -2,25 +2,25 @@
  * @class   vtkFiberCubeSource
  * @brief   the paper's cube benchmark: straight fibers of 1–3 perpendicular populations in a cube
  *
- * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
- * `fiber_id` and `bundle_id` (= population: 0 along x, 1 along y, 2 along z), field data
- * `segment_length` and `seed`. Fibers are placed uniformly at random in a cube of edge
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius`
+ * (µm), cell arrays `fiber_id` and `bundle_id` (= population: 0 along x, 1 along y, 2 along z),
+ * field data `segment_length` and `seed`. Fibers are placed uniformly at random in a cube of edge
  * EdgeLength centred at the origin; points are SegmentLength apart and each is displaced uniformly
- * within ±Displacement per axis (docs/tissue-models.md §6.1). With Periodic on, the cube is a periodic
- * cell: every fiber spans exactly one period along its axis and is closed through the faces (its
- * last point is its first point shifted by EdgeLength; points unwrapped), and the cell goes to
- * field data `periodic_cell` (xmin xmax ymin ymax zmin zmax) for the solver and the writers.
- * Identical properties give identical output. Invalid properties give an error naming the property and an empty output.
- * Pieces (docs/tissue-models.md §9): piece p of P holds the contiguous range [N·p/P, N·(p+1)/P) of
- * the N fibers (global fiber ids, field data on every piece), so under MPI every rank makes only
- * its own fibers and the pieces in rank order are the serial output for any P.
+ * within ±Displacement per axis (docs/tissue-models.md §6.1). With Periodic on, the cube is a
+ * periodic cell: every fiber spans exactly one period along its axis and is closed through the
+ * faces (its last point is its first point shifted by EdgeLength; points unwrapped), and the cell
+ * goes to field data `periodic_cell` (xmin xmax ymin ymax zmin zmax) for the solver and the
+ * writers. Identical properties give identical output. Invalid properties give an error naming the
+ * property and an empty output. Pieces (docs/tissue-models.md §9): piece p of P holds the
+ * contiguous range [N·p/P, N·(p+1)/P) of the N fibers (global fiber ids, field data on every
+ * piece), so under MPI every rank makes only its own fibers and the pieces in rank order are the
+ * serial output for any P.
  */
 #ifndef vtkFiberCubeSource_h
 #define vtkFiberCubeSource_h
 
 #include "FiberPLIFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-
 
 class FIBERPLIFILTERS_EXPORT vtkFiberCubeSource : public vtkPolyDataAlgorithm
 {

@@ -163,221 +163,235 @@ int vtkFiberMetrics::FillOutputPortInformation(int port, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberMetrics::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkFiberMetrics::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   fiberpli::FiberPolyData::RequestAllFibers(inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberMetrics::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberMetrics::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
-    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this),
+    [&]() -> int
     {
-      return 0;
-    }
-    bool monteCarlo = false;
-    if (!fiberpli::CheckEnum(
-          this, this->VolumeFractionMethod, MONTE_CARLO, "VolumeFractionMethod", "0 (Voxels) or 1 (MonteCarlo)", monteCarlo))
-    {
-      return 0;
-    }
-    if (!fiberpli::CheckSeed(this, this->Seed))
-    {
-      return 0;
-    }
-    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-    vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-    vtkTable* summary = vtkTable::GetData(outputVector, 1);
-    vtkTable* bundles = vtkTable::GetData(outputVector, 2);
-    vtkTable* populations = vtkTable::GetData(outputVector, 3);
-    vtkTable* histograms[4] = { vtkTable::GetData(outputVector, 4), vtkTable::GetData(outputVector, 5),
-      vtkTable::GetData(outputVector, 6), vtkTable::GetData(outputVector, 7) };
-    output->Initialize();
-    summary->Initialize();
-    bundles->Initialize();
-    populations->Initialize();
-    for (vtkTable* h : histograms)
-    {
-      h->Initialize();
-    }
-    vtkInformation* outInfo = outputVector->GetInformationObject(0);
-    const bool firstPiece = fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
-    if (fiberpli::FiberPolyData::IsEmpty(input) || !firstPiece)
-    {
-      return 1;
-    }
-
-    fiberpli::FiberConversion in = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
-    if (!in.ok())
-    {
-      vtkErrorMacro(<< in.error);
-      return 0;
-    }
-    if (!in.warning.empty())
-    {
-      vtkWarningMacro(<< in.warning);
-    }
-    const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
-    if (!innerError.empty())
-    {
-      vtkErrorMacro(<< innerError);
-      return 0;
-    }
-    fiberpli::MetricsOptions options;
-    options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
-    options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
-    options.voxelSize = this->VoxelSize;
-    options.monteCarlo = monteCarlo;
-    options.samples = this->Samples;
-    options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
-    options.volumeFraction = this->ComputeVolumeFraction;
-    options.pairs = this->ComputeCollisions;
-    options.mixing = this->ComputeMixing;
-    options.histogramBins = this->HistogramBins;
-    options.numberOfThreads = this->NumberOfThreads;
-    if (this->UsePeriodicCell)
-    {
-      std::string error;
-      if (!fiberpli::ReadPeriodicCell(input, options.cell, error) && !error.empty())
+      const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+      if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
       {
-        fiberpliErrorMacro(<< error);
         return 0;
       }
-    }
+      bool monteCarlo = false;
+      if (!fiberpli::CheckEnum(this, this->VolumeFractionMethod, MONTE_CARLO,
+            "VolumeFractionMethod", "0 (Voxels) or 1 (MonteCarlo)", monteCarlo))
+      {
+        return 0;
+      }
+      if (!fiberpli::CheckSeed(this, this->Seed))
+      {
+        return 0;
+      }
+      vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+      vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+      vtkTable* summary = vtkTable::GetData(outputVector, 1);
+      vtkTable* bundles = vtkTable::GetData(outputVector, 2);
+      vtkTable* populations = vtkTable::GetData(outputVector, 3);
+      vtkTable* histograms[4] = { vtkTable::GetData(outputVector, 4),
+        vtkTable::GetData(outputVector, 5), vtkTable::GetData(outputVector, 6),
+        vtkTable::GetData(outputVector, 7) };
+      output->Initialize();
+      summary->Initialize();
+      bundles->Initialize();
+      populations->Initialize();
+      for (vtkTable* h : histograms)
+      {
+        h->Initialize();
+      }
+      vtkInformation* outInfo = outputVector->GetInformationObject(0);
+      const bool firstPiece = fiberpli::FiberPolyData::RequestedPiece(outInfo) == 0;
+      if (fiberpli::FiberPolyData::IsEmpty(input) || !firstPiece)
+      {
+        return 1;
+      }
 
-    this->SetProgressText("Measuring fibers");
-    fiberpli::MetricsResult m;
-    if (!fiberpli::TryInMemory([&] { m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this)); }))
-    {
-      fiberpliErrorMacro(<< "out of memory measuring " << in.model.fibers.size()
-                         << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
-      return 0;
-    }
-    if (!m.error.empty())
-    {
-      fiberpliErrorMacro(<< m.error);
-      return 0;
-    }
-    if (m.aborted)
-    {
+      fiberpli::FiberConversion in =
+        fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
+      if (!in.ok())
+      {
+        vtkErrorMacro(<< in.error);
+        return 0;
+      }
+      if (!in.warning.empty())
+      {
+        vtkWarningMacro(<< in.warning);
+      }
+      const std::string innerError = fiberpli::ReadInnerRadii(input, in, fiberpli::ProxyName(this));
+      if (!innerError.empty())
+      {
+        vtkErrorMacro(<< innerError);
+        return 0;
+      }
+      fiberpli::MetricsOptions options;
+      options.boxLo = { this->Box[0], this->Box[2], this->Box[4] };
+      options.boxHi = { this->Box[1], this->Box[3], this->Box[5] };
+      options.voxelSize = this->VoxelSize;
+      options.monteCarlo = monteCarlo;
+      options.samples = this->Samples;
+      options.seed = static_cast<std::uint64_t>(static_cast<std::uint32_t>(this->Seed));
+      options.volumeFraction = this->ComputeVolumeFraction;
+      options.pairs = this->ComputeCollisions;
+      options.mixing = this->ComputeMixing;
+      options.histogramBins = this->HistogramBins;
+      options.numberOfThreads = this->NumberOfThreads;
+      if (this->UsePeriodicCell)
+      {
+        std::string error;
+        if (!fiberpli::ReadPeriodicCell(input, options.cell, error) && !error.empty())
+        {
+          fiberpliErrorMacro(<< error);
+          return 0;
+        }
+      }
+
+      this->SetProgressText("Measuring fibers");
+      fiberpli::MetricsResult m;
+      if (!fiberpli::TryInMemory(
+            [&] {
+              m = fiberpli::computeFiberMetrics(in.model, options, fiberpli::MakeProgress(this));
+            }))
+      {
+        fiberpliErrorMacro(
+          << "out of memory measuring " << in.model.fibers.size()
+          << " fibers (set FIBERPLI_MEMORY_LIMIT or lower Samples / raise VoxelSize)");
+        return 0;
+      }
+      if (!m.error.empty())
+      {
+        fiberpliErrorMacro(<< m.error);
+        return 0;
+      }
+      if (m.aborted)
+      {
+        return 1;
+      }
+
+      output->ShallowCopy(input);
+      vtkNew<vtkDoubleArray> length, tortuosity;
+      length->SetName("fiber_length");
+      tortuosity->SetName("tortuosity");
+      for (vtkDoubleArray* a : { length.Get(), tortuosity.Get() })
+      {
+        a->SetNumberOfTuples(input->GetNumberOfCells());
+        a->Fill(vtkMath::Nan()); // cells that are no fiber (dropped or not a line)
+      }
+      for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
+      {
+        length->SetValue(in.sourceCell[f], m.shape.fiberLength[f]);
+        tortuosity->SetValue(in.sourceCell[f], m.shape.tortuosity[f]);
+      }
+      output->GetCellData()->AddArray(length);
+      output->GetCellData()->AddArray(tortuosity);
+      // Realism per fiber: the along-fiber radius CV, and the g-ratio of myelinated fibers.
+      vtkNew<vtkDoubleArray> radiusCV, gRatio;
+      radiusCV->SetName("radius_cv");
+      gRatio->SetName("g_ratio");
+      for (vtkDoubleArray* a : { radiusCV.Get(), gRatio.Get() })
+      {
+        a->SetNumberOfTuples(input->GetNumberOfCells());
+        a->Fill(vtkMath::Nan());
+      }
+      for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
+      {
+        radiusCV->SetValue(in.sourceCell[f], m.realism.fiberRadiusCV[f]);
+        gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
+      }
+      output->GetCellData()->AddArray(radiusCV);
+      if (fiberpli::hasInnerRadii(in.model))
+      {
+        output->GetCellData()->AddArray(gRatio);
+      }
+
+      const fiberpli::ShapeResult& s = m.shape;
+      AddCount(summary, "fibers", static_cast<long long>(m.fibers));
+      AddCount(summary, "points", static_cast<long long>(m.points));
+      AddCount(summary, "links", static_cast<long long>(m.links));
+      AddCount(summary, "bundles", static_cast<long long>(s.bundles.size()));
+      AddValue(summary, "volume_fraction", { m.volume.fraction });
+      AddValue(summary, "volume_fraction_error", { m.volume.errorBound });
+      vtkNew<vtkStringArray> method;
+      method->SetName("volume_fraction_method");
+      method->InsertNextValue(options.monteCarlo ? "MonteCarlo" : "Voxels");
+      summary->AddColumn(method);
+      AddValue(summary, "voxel_size", { m.volume.voxel.x, m.volume.voxel.y, m.volume.voxel.z });
+      AddValue(summary, "box",
+        { m.regionLo.x, m.regionHi.x, m.regionLo.y, m.regionHi.y, m.regionLo.z, m.regionHi.z });
+      AddCount(summary, "periodic", options.cell.enabled() ? 1 : 0);
+      AddCount(summary, "collisions", m.pairs.collisions);
+      AddValue(summary, "min_gap", { m.pairs.minGap });
+      AddValue(summary, "c2", { s.orientation.c2 });
+      AddValue(summary, "mean_direction",
+        { s.orientation.direction.x, s.orientation.direction.y, s.orientation.direction.z });
+      AddValue(summary, "tortuosity_min", { s.tortuosityRange.min });
+      AddValue(summary, "tortuosity_mean", { s.tortuosityRange.mean });
+      AddValue(summary, "tortuosity_max", { s.tortuosityRange.max });
+      AddValue(summary, "link_length_min", { s.linkLength.min });
+      AddValue(summary, "link_length_mean", { s.linkLength.mean });
+      AddValue(summary, "link_length_max", { s.linkLength.max });
+      AddValue(summary, "radius_min", { s.radius.min });
+      AddValue(summary, "radius_mean", { s.radius.mean });
+      AddValue(summary, "radius_max", { s.radius.max });
+      AddValue(summary, "radius_cv", { m.realism.radiusCV });
+      AddValue(summary, "g_ratio_mean", { m.realism.gRatio });
+      AddValue(summary, "mixing_min_share", { m.mixing.minimum });
+      AddValue(summary, "axon_fraction", { m.axonVolume.fraction });
+      AddValue(summary, "axon_fraction_error", { m.axonVolume.errorBound });
+      AddValue(summary, "myelin_fraction", { m.myelinFraction });
+      AddValue(summary, "extra_axonal_fraction", { m.extraAxonalFraction });
+      for (vtkIdType c = 0; c < summary->GetNumberOfColumns(); ++c)
+      {
+        output->GetFieldData()->AddArray(summary->GetColumn(c)); // replaces same-named input arrays
+      }
+
+      const auto rows = static_cast<vtkIdType>(s.bundles.size());
+      const auto [bundleId, fibers] = AddBundleColumns(bundles, rows);
+      vtkDoubleArray* c2 = AddColumn(bundles, "c2", 1, rows);
+      vtkDoubleArray* direction = AddColumn(bundles, "mean_direction", 3, rows);
+      vtkDoubleArray* tortuosityMean = AddColumn(bundles, "tortuosity_mean", 1, rows);
+      vtkDoubleArray* lengthMean = AddColumn(bundles, "fiber_length_mean", 1, rows);
+      for (vtkIdType b = 0; b < rows; ++b)
+      {
+        const fiberpli::BundleShape& shape = s.bundles[static_cast<std::size_t>(b)];
+        bundleId->SetValue(b, shape.bundle);
+        fibers->SetValue(b, static_cast<vtkIdType>(shape.fibers));
+        c2->SetValue(b, shape.orientation.c2);
+        const double d[3] = { shape.orientation.direction.x, shape.orientation.direction.y,
+          shape.orientation.direction.z };
+        direction->SetTypedTuple(b, d);
+        tortuosityMean->SetValue(b, shape.tortuosity.mean);
+        lengthMean->SetValue(b, shape.fiberLength.mean);
+      }
+
+      FillPopulations(populations, m);
+      FillHistogram(histograms[0], m.realism.radiusHistogram);
+      FillHistogram(histograms[1], m.realism.tortuosityHistogram);
+      FillHistogram(histograms[2], m.realism.gRatioHistogram);
+      FillHistogram(histograms[3], m.realism.segmentAngleHistogram);
       return 1;
-    }
-
-    output->ShallowCopy(input);
-    vtkNew<vtkDoubleArray> length, tortuosity;
-    length->SetName("fiber_length");
-    tortuosity->SetName("tortuosity");
-    for (vtkDoubleArray* a : { length.Get(), tortuosity.Get() })
-    {
-      a->SetNumberOfTuples(input->GetNumberOfCells());
-      a->Fill(vtkMath::Nan()); // cells that are no fiber (dropped or not a line)
-    }
-    for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
-    {
-      length->SetValue(in.sourceCell[f], m.shape.fiberLength[f]);
-      tortuosity->SetValue(in.sourceCell[f], m.shape.tortuosity[f]);
-    }
-    output->GetCellData()->AddArray(length);
-    output->GetCellData()->AddArray(tortuosity);
-    // Realism per fiber: the along-fiber radius CV, and the g-ratio of myelinated fibers.
-    vtkNew<vtkDoubleArray> radiusCV, gRatio;
-    radiusCV->SetName("radius_cv");
-    gRatio->SetName("g_ratio");
-    for (vtkDoubleArray* a : { radiusCV.Get(), gRatio.Get() })
-    {
-      a->SetNumberOfTuples(input->GetNumberOfCells());
-      a->Fill(vtkMath::Nan());
-    }
-    for (std::size_t f = 0; f < in.sourceCell.size(); ++f)
-    {
-      radiusCV->SetValue(in.sourceCell[f], m.realism.fiberRadiusCV[f]);
-      gRatio->SetValue(in.sourceCell[f], m.realism.fiberGRatio[f]);
-    }
-    output->GetCellData()->AddArray(radiusCV);
-    if (fiberpli::hasInnerRadii(in.model))
-    {
-      output->GetCellData()->AddArray(gRatio);
-    }
-
-    const fiberpli::ShapeResult& s = m.shape;
-    AddCount(summary, "fibers", static_cast<long long>(m.fibers));
-    AddCount(summary, "points", static_cast<long long>(m.points));
-    AddCount(summary, "links", static_cast<long long>(m.links));
-    AddCount(summary, "bundles", static_cast<long long>(s.bundles.size()));
-    AddValue(summary, "volume_fraction", { m.volume.fraction });
-    AddValue(summary, "volume_fraction_error", { m.volume.errorBound });
-    vtkNew<vtkStringArray> method;
-    method->SetName("volume_fraction_method");
-    method->InsertNextValue(options.monteCarlo ? "MonteCarlo" : "Voxels");
-    summary->AddColumn(method);
-    AddValue(summary, "voxel_size", { m.volume.voxel.x, m.volume.voxel.y, m.volume.voxel.z });
-    AddValue(summary, "box", { m.regionLo.x, m.regionHi.x, m.regionLo.y, m.regionHi.y, m.regionLo.z, m.regionHi.z });
-    AddCount(summary, "periodic", options.cell.enabled() ? 1 : 0);
-    AddCount(summary, "collisions", m.pairs.collisions);
-    AddValue(summary, "min_gap", { m.pairs.minGap });
-    AddValue(summary, "c2", { s.orientation.c2 });
-    AddValue(summary, "mean_direction", { s.orientation.direction.x, s.orientation.direction.y, s.orientation.direction.z });
-    AddValue(summary, "tortuosity_min", { s.tortuosityRange.min });
-    AddValue(summary, "tortuosity_mean", { s.tortuosityRange.mean });
-    AddValue(summary, "tortuosity_max", { s.tortuosityRange.max });
-    AddValue(summary, "link_length_min", { s.linkLength.min });
-    AddValue(summary, "link_length_mean", { s.linkLength.mean });
-    AddValue(summary, "link_length_max", { s.linkLength.max });
-    AddValue(summary, "radius_min", { s.radius.min });
-    AddValue(summary, "radius_mean", { s.radius.mean });
-    AddValue(summary, "radius_max", { s.radius.max });
-    AddValue(summary, "radius_cv", { m.realism.radiusCV });
-    AddValue(summary, "g_ratio_mean", { m.realism.gRatio });
-    AddValue(summary, "mixing_min_share", { m.mixing.minimum });
-    AddValue(summary, "axon_fraction", { m.axonVolume.fraction });
-    AddValue(summary, "axon_fraction_error", { m.axonVolume.errorBound });
-    AddValue(summary, "myelin_fraction", { m.myelinFraction });
-    AddValue(summary, "extra_axonal_fraction", { m.extraAxonalFraction });
-    for (vtkIdType c = 0; c < summary->GetNumberOfColumns(); ++c)
-    {
-      output->GetFieldData()->AddArray(summary->GetColumn(c)); // replaces same-named input arrays
-    }
-
-    const auto rows = static_cast<vtkIdType>(s.bundles.size());
-    const auto [bundleId, fibers] = AddBundleColumns(bundles, rows);
-    vtkDoubleArray* c2 = AddColumn(bundles, "c2", 1, rows);
-    vtkDoubleArray* direction = AddColumn(bundles, "mean_direction", 3, rows);
-    vtkDoubleArray* tortuosityMean = AddColumn(bundles, "tortuosity_mean", 1, rows);
-    vtkDoubleArray* lengthMean = AddColumn(bundles, "fiber_length_mean", 1, rows);
-    for (vtkIdType b = 0; b < rows; ++b)
-    {
-      const fiberpli::BundleShape& shape = s.bundles[static_cast<std::size_t>(b)];
-      bundleId->SetValue(b, shape.bundle);
-      fibers->SetValue(b, static_cast<vtkIdType>(shape.fibers));
-      c2->SetValue(b, shape.orientation.c2);
-      const double d[3] = { shape.orientation.direction.x, shape.orientation.direction.y, shape.orientation.direction.z };
-      direction->SetTypedTuple(b, d);
-      tortuosityMean->SetValue(b, shape.tortuosity.mean);
-      lengthMean->SetValue(b, shape.fiberLength.mean);
-    }
-
-    FillPopulations(populations, m);
-    FillHistogram(histograms[0], m.realism.radiusHistogram);
-    FillHistogram(histograms[1], m.realism.tortuosityHistogram);
-    FillHistogram(histograms[2], m.realism.gRatioHistogram);
-    FillHistogram(histograms[3], m.realism.segmentAngleHistogram);
-    return 1;
-  });
+    });
 }
 
 //------------------------------------------------------------------------------
 void vtkFiberMetrics::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Box: " << this->Box[0] << " " << this->Box[1] << " " << this->Box[2] << " " << this->Box[3]
-     << " " << this->Box[4] << " " << this->Box[5] << "\n";
+  os << indent << "Box: " << this->Box[0] << " " << this->Box[1] << " " << this->Box[2] << " "
+     << this->Box[3] << " " << this->Box[4] << " " << this->Box[5] << "\n";
   os << indent << "UsePeriodicCell: " << this->UsePeriodicCell << "\n";
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
-  os << indent << "VolumeFractionMethod: " << (this->VolumeFractionMethod == MONTE_CARLO ? "MonteCarlo" : "Voxels") << "\n";
+  os << indent << "VolumeFractionMethod: "
+     << (this->VolumeFractionMethod == MONTE_CARLO ? "MonteCarlo" : "Voxels") << "\n";
   os << indent << "Samples: " << this->Samples << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "ComputeVolumeFraction: " << this->ComputeVolumeFraction << "\n";

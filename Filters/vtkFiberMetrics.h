@@ -3,8 +3,8 @@
  * @brief   measures a fiber model: volume fraction, collisions and smallest gap, orientation order,
  *          tortuosity, link length and radius ranges
  *
- * Input: fiber polydata (docs/data-contract.md §1). The measurements are the Core's (Core/Metrics), independent of
- * the solver's own collision code.
+ * Input: fiber polydata (docs/data-contract.md §1). The measurements are the Core's (Core/Metrics),
+ * independent of the solver's own collision code.
  *
  * Output port 0: the input fibers passed through, with cell arrays `fiber_length` and
  * `tortuosity` (arc length / end-to-end distance) and field data holding every value of the
@@ -13,19 +13,20 @@
  * tortuosity range, c2 of end-to-end directions and of segments about the population's axis,
  * radius CV along fibers, g-ratio, mixing share. Output ports 4–7: histogram tables of point radii,
  * fiber tortuosity, point g-ratios and link angles to their population's axis (columns
- * bin_extents = bin centres and count; field data histogram_range and bin_width; Bar Chart View). Column and field-data
- * names are listed in docs/metrics.md.
+ * bin_extents = bin centres and count; field data histogram_range and bin_width; Bar Chart View).
+ * Column and field-data names are listed in docs/metrics.md.
  *
  * Volume fraction: the covered fraction of `Box` (xmin xmax ymin ymax zmin zmax; any min > max,
  * the default, means the bounds of the fiber points), or — when the input carries the
  * `periodic_cell` field data and UsePeriodicCell is on — of the whole periodic cell, counting every
  * periodic image. It is a voxel-centre count on a grid of `VoxelSize` with a rigorous error bound
- * (volume_fraction_error), or a Monte Carlo estimate with its standard error. Colliding pairs and the smallest surface gap compare every capsule pair
- * except chain neighbours of one fiber (the solver's contract), by minimum image in a periodic cell.
+ * (volume_fraction_error), or a Monte Carlo estimate with its standard error. Colliding pairs and
+ * the smallest surface gap compare every capsule pair except chain neighbours of one fiber (the
+ * solver's contract), by minimum image in a periodic cell.
  *
  * Under MPI only piece 0 measures (all the fibers it receives); the other pieces give empty
- * outputs, so tables are not appended once per rank. Bad input or options are errors naming the value; an empty input
- * gives empty outputs.
+ * outputs, so tables are not appended once per rank. Bad input or options are errors naming the
+ * value; an empty input gives empty outputs.
  */
 #ifndef vtkFiberMetrics_h
 #define vtkFiberMetrics_h

@@ -1,7 +1,7 @@
 #include "vtkFiberOrientationGroundTruth.h"
 
-#include "FiberAdapter.h"
 #include "Analysis/GroundTruth.h"
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberPolyData.h"
@@ -42,20 +42,20 @@ vtkFiberOrientationGroundTruth::vtkFiberOrientationGroundTruth() = default;
 vtkFiberOrientationGroundTruth::~vtkFiberOrientationGroundTruth() = default;
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberOrientationGroundTruth::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int extent[6] = { 0, -1, 0, -1, 0, -1 };
   double origin[3] = { 0, 0, 0 };
   bool noFibers = false; // the sentinel then stays the volume, and planSection names it
-  const std::string error =
-    this->VolumeToPlan(inputVector[0], this->PlannedVolume, noFibers);
+  const std::string error = this->VolumeToPlan(inputVector[0], this->PlannedVolume, noFibers);
   this->PlanSection();
   const fiberpli::SectionPlan& section = this->Plan->section;
   if (error.empty() && this->Plan->error.empty()) // errors are reported by RequestData
   {
-    extent[1] = static_cast<int>(section.pixels[0] - 1), extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
+    extent[1] = static_cast<int>(section.pixels[0] - 1),
+    extent[3] = static_cast<int>(section.pixels[1] - 1), extent[5] = 0;
     std::copy(section.imageOrigin, section.imageOrigin + 3, origin);
   }
   const double spacing[3] = { this->PixelSize, this->PixelSize, this->PixelSize };
@@ -76,22 +76,24 @@ void vtkFiberOrientationGroundTruth::PlanSection()
   }
   auto p = std::make_unique<SectionPlanned>();
   p->stamp = this->StampFor(this->PlannedVolume);
-  p->error = fiberpli::planSection(fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, p->section);
+  p->error = fiberpli::planSection(
+    fiberpli::FiberModel(), this->PlannedVolume, this->VoxelSize, this->PixelSize, p->section);
   this->Plan = std::move(p);
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberOrientationGroundTruth::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h).
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
-    [&] { return this->ExecutePiece(inputVector, outputVector); });
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector,
+    fiberpli::ProxyName(this), [&] { return this->ExecutePiece(inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberOrientationGroundTruth::ExecutePiece(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   std::string localError;
   if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
@@ -111,15 +113,17 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
     this->PlanSection(); // a data pass without an information pass
   }
   const fiberpli::SectionPlan& section = this->Plan->section;
-  auto pieceRange = [&](fiberpli::GridRange& range) {
+  auto pieceRange = [&](fiberpli::GridRange& range)
+  {
     const std::string& e = this->Plan->error;
     range = fiberpli::GridRange{ 0, section.pixels[0], 0, section.pixels[1] };
     if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
     {
       int u[6];
       outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), u);
-      range = fiberpli::GridRange{ std::max<std::int64_t>(0, u[0]), std::min<std::int64_t>(range.i1, u[1] + 1),
-        std::max<std::int64_t>(0, u[2]), std::min<std::int64_t>(range.j1, u[3] + 1) };
+      range = fiberpli::GridRange{ std::max<std::int64_t>(0, u[0]),
+        std::min<std::int64_t>(range.i1, u[1] + 1), std::max<std::int64_t>(0, u[2]),
+        std::min<std::int64_t>(range.j1, u[3] + 1) };
     }
     return e.empty() ? e : fiberpli::ProxyMessage(this, e);
   };
@@ -129,8 +133,10 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   // Model/PeriodicTiling.h), so both see the same tissue pixel by pixel.
   const double* volume = this->Plan->stamp.volume;
   fiberpli::TileReach pieceReach;
-  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(outInfo, input, fiberpli::ProxyName(this),
-    localError, [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach) {
+  fiberpli::TileFibers c = fiberpli::FiberTileExchange::Receive(
+    outInfo, input, fiberpli::ProxyName(this), localError,
+    [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& reach)
+    {
       fiberpli::GridRange range;
       const std::string e = pieceRange(range);
       if (e.empty() && range.nx() > 0 && range.ny() > 0)
@@ -164,7 +170,8 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   std::string cellError = c.cellError;
   if (c.periodic && cellError.empty())
   {
-    cellError = fiberpli::tileSection(c.model, c.cell, volume, c.distributed ? &pieceReach : nullptr);
+    cellError =
+      fiberpli::tileSection(c.model, c.cell, volume, c.distributed ? &pieceReach : nullptr);
   }
   if (!cellError.empty())
   {
@@ -183,12 +190,12 @@ int vtkFiberOrientationGroundTruth::ExecutePiece(vtkInformationVector** inputVec
   {
     return 1; // nothing of the image requested
   }
-  int ext[6] = { static_cast<int>(range.i0), static_cast<int>(range.i1 - 1), static_cast<int>(range.j0),
-    static_cast<int>(range.j1 - 1), 0, 0 };
+  int ext[6] = { static_cast<int>(range.i0), static_cast<int>(range.i1 - 1),
+    static_cast<int>(range.j0), static_cast<int>(range.j1 - 1), 0, 0 };
   fiberpli::GroundTruthMaps maps;
   this->SetProgressText("Fiber orientation ground truth");
-  const fiberpli::Status status =
-    fiberpli::computeGroundTruth(c.model, section, options, range, maps, fiberpli::MakeProgress(this));
+  const fiberpli::Status status = fiberpli::computeGroundTruth(
+    c.model, section, options, range, maps, fiberpli::MakeProgress(this));
   if (status.aborted)
   {
     return 1; // partial results are never passed on

@@ -2,17 +2,18 @@
  * @class   vtkFiberOrientationGroundTruth
  * @brief   orientation ground truth of a fiber model on the pixel grid of PLISimulation
  *
- * Input: fiber polydata (docs/data-contract.md §1). Output: a one-slice vtkImageData with the geometry that
- * PLISimulation gives for the same VolumeOfInterest, VoxelSize and PixelSize (docs/pli-simulation.md
- * §3.1, §5.2): n_a = round((max_a − min_a)/VoxelSize) voxels, round(n·VoxelSize/PixelSize)
- * pixels, origin (xmin + PixelSize/2, ymin + PixelSize/2, zmin + n_z·VoxelSize/2), spacing
- * PixelSize. Every voxel centre inside a fiber (nearest capsule axis, distance <= the linearly
- * tapered radius) gets the axis of the link that owns it; each pixel summarises its voxels (all z)
- * by the orientation tensor (docs/pli-analysis.md §5). Point arrays (double): `direction` (degrees in
- * [0, 180)), `inclination` (degrees in [0, 90]), `inclination_signed` (degrees in [−90, 90]),
- * `fraction` (tissue voxels / voxels of the pixel), `anisotropy` (λ1 − λ2 of the tensor, 0 = no
- * dominant axis). Pixels without tissue have NaN angles. FiberOrientationMap colours the result.
- * Invalid fibers, bad sizes or an empty volume give an error naming the fiber or property.
+ * Input: fiber polydata (docs/data-contract.md §1). Output: a one-slice vtkImageData with the
+ * geometry that PLISimulation gives for the same VolumeOfInterest, VoxelSize and PixelSize
+ * (docs/pli-simulation.md §3.1, §5.2): n_a = round((max_a − min_a)/VoxelSize) voxels,
+ * round(n·VoxelSize/PixelSize) pixels, origin (xmin + PixelSize/2, ymin + PixelSize/2, zmin +
+ * n_z·VoxelSize/2), spacing PixelSize. Every voxel centre inside a fiber (nearest capsule axis,
+ * distance <= the linearly tapered radius) gets the axis of the link that owns it; each pixel
+ * summarises its voxels (all z) by the orientation tensor (docs/pli-analysis.md §5). Point arrays
+ * (double): `direction` (degrees in [0, 180)), `inclination` (degrees in [0, 90]),
+ * `inclination_signed` (degrees in [−90, 90]), `fraction` (tissue voxels / voxels of the pixel),
+ * `anisotropy` (λ1 − λ2 of the tensor, 0 = no dominant axis). Pixels without tissue have NaN
+ * angles. FiberOrientationMap colours the result. Invalid fibers, bad sizes or an empty volume give
+ * an error naming the fiber or property.
  */
 #ifndef vtkFiberOrientationGroundTruth_h
 #define vtkFiberOrientationGroundTruth_h

@@ -1,12 +1,12 @@
 #include "vtkFiberOrientationMap.h"
 
-#include "FiberAdapter.h"
+#include "Analysis/FiberOrientationMap.h"
 #include "ArrayValues.h"
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
-#include "FiberProgress.h"
-#include "Analysis/FiberOrientationMap.h"
 #include "FiberGuard.h"
+#include "FiberProgress.h"
 #include "Model/DataNames.h"
 
 #include <vtkDataArray.h>
@@ -34,30 +34,36 @@ std::string OneComponent(vtkAlgorithm* self, vtkDataArray* a)
 {
   return a->GetNumberOfComponents() == 1
     ? std::string()
-    : fiberpli::ProxyMessage(self, std::string("the point array '") + a->GetName() + "' has " +
-        std::to_string(a->GetNumberOfComponents()) + " components, must have 1");
+    : fiberpli::ProxyMessage(self,
+        std::string("the point array '") + a->GetName() + "' has " +
+          std::to_string(a->GetNumberOfComponents()) + " components, must have 1");
 }
 
 /// The name of input array `idx` as set by SetInputArrayToProcess ("" when it is not set by name).
 std::string SelectedName(vtkAlgorithm* self, int idx)
 {
   vtkInformation* info = self->GetInputArrayInformation(idx);
-  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : "";
+  return info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME())
+                                                        : "";
 }
 
 } // namespace
 
 //------------------------------------------------------------------------------
-// Construct with ColorScheme HSV-black, LegendSize 256, all threads; two output ports (map, legend).
+// Construct with ColorScheme HSV-black, LegendSize 256, all threads; two output ports (map,
+// legend).
 vtkFiberOrientationMap::vtkFiberOrientationMap()
 {
   this->SetNumberOfOutputPorts(2);
-  this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kDirection);
-  this->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kInclination);
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kDirection);
+  this->SetInputArrayToProcess(
+    1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, fiberpli::plifield::kInclination);
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationMap::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberOrientationMap::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* mapInfo = outputVector->GetInformationObject(0);
   vtkDataObject::SetPointDataActiveScalarInfo(mapInfo, VTK_UNSIGNED_CHAR, 3);
@@ -76,7 +82,8 @@ int vtkFiberOrientationMap::RequestInformation(vtkInformation*, vtkInformationVe
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberOrientationMap::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // A request on the legend port must not become the input's extent: ask for what port 0 wants,
   // or the whole input when port 0 has no request.
@@ -95,25 +102,30 @@ int vtkFiberOrientationMap::RequestUpdateExtent(vtkInformation*, vtkInformationV
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationMap::RequestData(vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkFiberOrientationMap::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
-    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    // The mask's reference (the largest value) is taken over all pieces of a parallel update:
-    // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
-    bool reduced = false;
-    const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
-    if (!reduced)
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this),
+    [&]() -> int
     {
-      fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
-    }
-    return rc;
-  });
+      const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+      // The mask's reference (the largest value) is taken over all pieces of a parallel update:
+      // exactly one AllReduce per call on every rank, whatever path its piece takes, so none waits.
+      bool reduced = false;
+      const int rc = this->ExecutePiece(inputVector, outputVector, reduced);
+      if (!reduced)
+      {
+        fiberpli::FiberCollective::GlobalMax(
+          outputVector->GetInformationObject(0), -std::numeric_limits<double>::infinity());
+      }
+      return rc;
+    });
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
+int vtkFiberOrientationMap::ExecutePiece(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
 {
   if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
   {
@@ -121,9 +133,10 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   }
   fiberpli::FomScheme scheme;
   fiberpli::FomMask kind;
-  if (!fiberpli::CheckEnum(this, this->ColorScheme, RGB, "ColorScheme", "0 (HSV-black) or 1 (RGB)", scheme) ||
-    !fiberpli::CheckEnum(this, this->Mask, MASK_TRANSMITTANCE, "Mask", "0 (None), 1 (Retardation) or 2 (Transmittance)",
-      kind))
+  if (!fiberpli::CheckEnum(
+        this, this->ColorScheme, RGB, "ColorScheme", "0 (HSV-black) or 1 (RGB)", scheme) ||
+    !fiberpli::CheckEnum(this, this->Mask, MASK_TRANSMITTANCE, "Mask",
+      "0 (None), 1 (Retardation) or 2 (Transmittance)", kind))
   {
     return 0;
   }
@@ -161,7 +174,7 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   if (!direction || !inclination)
   {
     fiberpliErrorMacro(<< "the input has no point array '" << SelectedName(this, direction ? 1 : 0)
-                  << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
+                       << "' (degrees; PLIAnalysis or FiberOrientationGroundTruth make it)");
     output->Initialize();
     return 0;
   }
@@ -169,9 +182,10 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     direction->GetNumberOfTuples() != input->GetNumberOfPoints())
   {
     fiberpliErrorMacro(<< "the point arrays '" << direction->GetName() << "' ("
-                  << direction->GetNumberOfTuples() << " tuples) and '" << inclination->GetName() << "' ("
-                  << inclination->GetNumberOfTuples() << " tuples) differ in length or from the "
-                  << input->GetNumberOfPoints() << " points");
+                       << direction->GetNumberOfTuples() << " tuples) and '"
+                       << inclination->GetName() << "' (" << inclination->GetNumberOfTuples()
+                       << " tuples) differ in length or from the " << input->GetNumberOfPoints()
+                       << " points");
     output->Initialize();
     return 0;
   }
@@ -201,20 +215,22 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
   }
   if (this->Mask != MASK_NONE)
   {
-    const char* name = this->Mask == MASK_RETARDATION ? fiberpli::plifield::kRetardation : fiberpli::plifield::kTransmittance;
+    const char* name = this->Mask == MASK_RETARDATION ? fiberpli::plifield::kRetardation
+                                                      : fiberpli::plifield::kTransmittance;
     vtkDataArray* values = input->GetPointData()->GetArray(name);
     if (!values)
     {
-      fiberpliErrorMacro(<< "Mask " << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
-                    << " needs the point array '" << name << "' (PLIAnalysis makes it)");
+      fiberpliErrorMacro(<< "Mask "
+                         << (this->Mask == MASK_RETARDATION ? "Retardation" : "Transmittance")
+                         << " needs the point array '" << name << "' (PLIAnalysis makes it)");
       output->Initialize();
       return 0;
     }
     if (values->GetNumberOfTuples() != direction->GetNumberOfTuples())
     {
       fiberpliErrorMacro(<< "the Mask array '" << name << "' has " << values->GetNumberOfTuples()
-                    << " tuples, '" << direction->GetName() << "' has " << direction->GetNumberOfTuples()
-                    << " (they must match)");
+                         << " tuples, '" << direction->GetName() << "' has "
+                         << direction->GetNumberOfTuples() << " (they must match)");
       output->Initialize();
       return 0;
     }
@@ -226,7 +242,8 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     }
     std::vector<double> valueBuffer;
     const double* v = fiberpli::AsDoubles(values, valueBuffer);
-    const double largest = fiberpli::FiberCollective::GlobalMax(outputVector->GetInformationObject(0), fiberpli::fomMaskReference(v, count));
+    const double largest = fiberpli::FiberCollective::GlobalMax(
+      outputVector->GetInformationObject(0), fiberpli::fomMaskReference(v, count));
     reduced = true;
     double threshold = 0.0;
     vtkNew<vtkUnsignedCharArray> mask;
@@ -235,7 +252,8 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
     err = fiberpli::fomMaskThreshold(kind, this->MaskThreshold, largest, threshold);
     if (err.empty())
     {
-      err = fiberpli::fomApplyMask(v, count, kind, threshold, fom->GetPointer(0), mask->GetPointer(0));
+      err =
+        fiberpli::fomApplyMask(v, count, kind, threshold, fom->GetPointer(0), mask->GetPointer(0));
     }
     if (!err.empty())
     {
@@ -256,8 +274,9 @@ int vtkFiberOrientationMap::ExecutePiece(vtkInformationVector** inputVector, vtk
 void vtkFiberOrientationMap::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "ColorScheme: " << fiberpli::fomSchemeName(this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb
-                                                                                       : fiberpli::FomScheme::HsvBlack)
+  os << indent << "ColorScheme: "
+     << fiberpli::fomSchemeName(
+          this->ColorScheme == RGB ? fiberpli::FomScheme::Rgb : fiberpli::FomScheme::HsvBlack)
      << "\n";
   os << indent << "LegendSize: " << this->LegendSize << "\n";
   os << indent << "Mask: " << this->Mask << "\n";

@@ -97,7 +97,8 @@ protected:
 
 private:
   /// RequestData of this rank's piece; sets `reduced` once it made the mask's one collective call.
-  int ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced);
+  int ExecutePiece(
+    vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced);
 
   vtkFiberOrientationMap(const vtkFiberOrientationMap&) = delete;
   void operator=(const vtkFiberOrientationMap&) = delete;

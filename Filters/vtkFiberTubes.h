@@ -2,14 +2,14 @@
  * @class   vtkFiberTubes
  * @brief   closed triangle mesh around every fiber, radius from the "radius" point array
  *
- * Input: fiber polydata (docs/data-contract.md §1). Output: one watertight, consistently (outward) oriented tube of
- * triangles per fiber, following the per-point radius, with point normals; cell arrays `fiber_id`
- * and `bundle_id` copied from the fiber to each of its triangles. Rings are carried along the
- * fiber by parallel transport, so tubes do not twist at sharp bends. With InnerTubes on, fibers
- * carrying the point array `inner_radius` get a second tube at that radius (the axon inside the
- * myelin), also closed and outward, and the cell array `tube_surface` tells 0 (outer) from 1
- * (inner). Other input arrays are not passed. Bad input (no `radius`, NaN/Inf, radius <= 0, no line cell) is an error naming the
- * problem; an empty input gives an empty output.
+ * Input: fiber polydata (docs/data-contract.md §1). Output: one watertight, consistently (outward)
+ * oriented tube of triangles per fiber, following the per-point radius, with point normals; cell
+ * arrays `fiber_id` and `bundle_id` copied from the fiber to each of its triangles. Rings are
+ * carried along the fiber by parallel transport, so tubes do not twist at sharp bends. With
+ * InnerTubes on, fibers carrying the point array `inner_radius` get a second tube at that radius
+ * (the axon inside the myelin), also closed and outward, and the cell array `tube_surface` tells 0
+ * (outer) from 1 (inner). Other input arrays are not passed. Bad input (no `radius`, NaN/Inf,
+ * radius <= 0, no line cell) is an error naming the problem; an empty input gives an empty output.
  */
 #ifndef vtkFiberTubes_h
 #define vtkFiberTubes_h

@@ -1,7 +1,7 @@
 #include "vtkPLIAnalysis.h"
 
-#include "FiberAdapter.h"
 #include "Analysis/PliAnalysis.h"
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberGuard.h"
 #include "FiberProgress.h"
@@ -23,7 +23,8 @@ namespace
 /// The Core options of the properties: "" or the error naming the first bad property.
 std::string MakeOptions(vtkPLIAnalysis* self, fiberpli::PliAnalysisOptions& options)
 {
-  const std::string method = fiberpli::inclinationMethodFromCode(self->GetInclinationMethod(), options.method);
+  const std::string method =
+    fiberpli::inclinationMethodFromCode(self->GetInclinationMethod(), options.method);
   options.referenceRetardation = self->GetReferenceRetardation();
   options.noiseGain = self->GetNoiseGain();
   options.threads = self->GetNumberOfThreads();
@@ -37,7 +38,8 @@ std::string MakeOptions(vtkPLIAnalysis* self, fiberpli::PliAnalysisOptions& opti
 vtkPLIAnalysis::vtkPLIAnalysis() = default;
 
 //------------------------------------------------------------------------------
-int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkPLIAnalysis::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
@@ -46,28 +48,33 @@ int vtkPLIAnalysis::RequestInformation(vtkInformation*, vtkInformationVector**, 
 }
 
 //------------------------------------------------------------------------------
-int vtkPLIAnalysis::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkPLIAnalysis::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   // Exactly one AllReduce per call on every rank, whatever path this rank takes, then one
   // agreement on the error state (FiberCollective.h): all ranks fail together or none does.
   bool reduced = false;
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this), [&] {
-    // Guarded here already (FiberGuard.h), so that an exception still leaves this rank's reduction.
-    const int rc = fiberpli::GuardRequest(
-      this, outputVector, fiberpli::ProxyName(this), [&]() -> int { return this->ExecutePiece(inputVector, outputVector, reduced); });
-    if (!reduced)
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector,
+    fiberpli::ProxyName(this),
+    [&]
     {
-      fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);
-    }
-    return rc;
-  });
+      // Guarded here already (FiberGuard.h), so that an exception still leaves this rank's
+      // reduction.
+      const int rc = fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this),
+        [&]() -> int { return this->ExecutePiece(inputVector, outputVector, reduced); });
+      if (!reduced)
+      {
+        fiberpli::FiberCollective::GlobalMax(outInfo, 0.0);
+      }
+      return rc;
+    });
 }
 
 //------------------------------------------------------------------------------
-int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
+int vtkPLIAnalysis::ExecutePiece(
+  vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
@@ -106,15 +113,18 @@ int vtkPLIAnalysis::ExecutePiece(vtkInformationVector** inputVector, vtkInformat
     ext[2 * a] = std::max(ext[2 * a], inExt[2 * a]);
     ext[2 * a + 1] = std::min(ext[2 * a + 1], inExt[2 * a + 1]);
   }
-  options.globalMaxRetardation = [&reduced, outInfo](double local) {
+  options.globalMaxRetardation = [&reduced, outInfo](double local)
+  {
     reduced = true;
     return fiberpli::FiberCollective::GlobalMax(outInfo, local);
   };
-  const fiberpli::GridRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2], ext[3] - inExt[2] + 1 };
+  const fiberpli::GridRange range{ ext[0] - inExt[0], ext[1] - inExt[0] + 1, ext[2] - inExt[2],
+    ext[3] - inExt[2] + 1 };
 
   this->SetProgressText("Analysing the polarizer stack");
   fiberpli::PliAnalysisMaps maps;
-  const fiberpli::Status status = fiberpli::analysePli(in.stack, options, range, maps, fiberpli::MakeProgress(this));
+  const fiberpli::Status status =
+    fiberpli::analysePli(in.stack, options, range, maps, fiberpli::MakeProgress(this));
   if (status.aborted)
   {
     return 1; // partial results are never passed on

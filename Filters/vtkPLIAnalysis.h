@@ -2,19 +2,19 @@
  * @class   vtkPLIAnalysis
  * @brief   3D-PLI analysis: polarizer stack → transmittance, direction, retardation, inclination
  *
- * Input: a one-slice vtkImageData as written by PLISimulation (docs/pli-simulation.md §7): point array
- * `intensity` (N >= 3 components, one per polarizer angle), optionally tilted views
+ * Input: a one-slice vtkImageData as written by PLISimulation (docs/pli-simulation.md §7): point
+ * array `intensity` (N >= 3 components, one per polarizer angle), optionally tilted views
  * `intensity_tilt_0..M−1` (same N); field data `polarizer_angles` (degrees; when missing, N
  * equidistant angles k·180°/N), `tilt_angles` and `tilt_directions` (degrees, in-tissue tilt and
  * azimuth of every tilted view; older data: one `tilt_angle` and azimuths 0°, 90°, 180°, 270° for
  * four views), `tilt_convention` (0 Physical, 1 FastPLI) and `noise_gain`. Any polarimeter set-up
- * of PLISimulation is analysed without further settings. Output: the input geometry with the point arrays
- * (double) `transmittance` (2·a0, intensity units), `direction` (degrees in [0, 180), in-plane
- * fiber axis counter-clockwise from +x), `retardation` (|sin δ| in [0, 1]), `inclination`
+ * of PLISimulation is analysed without further settings. Output: the input geometry with the point
+ * arrays (double) `transmittance` (2·a0, intensity units), `direction` (degrees in [0, 180),
+ * in-plane fiber axis counter-clockwise from +x), `retardation` (|sin δ| in [0, 1]), `inclination`
  * (degrees in [0, 90]); with the tilt fit also `inclination_signed` (degrees in [−90, 90]),
  * `relative_thickness` and `fit_chi2` (docs/pli-analysis.md §1–§3). Input arrays are not passed.
- * Pixels with a0 <= 0 or non-finite data are NaN in every output. Field data `reference_retardation`
- * and `inclination_method` (1 Retardation, 2 Tilt) report what was used.
+ * Pixels with a0 <= 0 or non-finite data are NaN in every output. Field data
+ * `reference_retardation` and `inclination_method` (1 Retardation, 2 Tilt) report what was used.
  *
  * The retardation-based inclination is unsigned and valid only while the in-plane relative
  * thickness t_rel = 4·d·|Δn|/λ <= 1 (sin δ must be monotonic). Sub-extents are supported; the
@@ -65,7 +65,8 @@ public:
   ///@{
   /**
    * Camera gain g of the tilt-fit weights; −1 = field data `noise_gain` if present, else 3;
-   * 0 = noise-free data (weights of g = 1). −1 or 0 to 1e6, other values are an error. Default is −1.
+   * 0 = noise-free data (weights of g = 1). −1 or 0 to 1e6, other values are an error. Default is
+   * −1.
    */
   vtkSetMacro(NoiseGain, double);
   vtkGetMacro(NoiseGain, double);
@@ -86,7 +87,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// This rank's analysis (errors reported with vtkErrorMacro, 0 returned); `reduced` is set when
   /// it took part in the reduction of the reference retardation.
-  int ExecutePiece(vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced);
+  int ExecutePiece(
+    vtkInformationVector** inputVector, vtkInformationVector* outputVector, bool& reduced);
 
 private:
   vtkPLIAnalysis(const vtkPLIAnalysis&) = delete;

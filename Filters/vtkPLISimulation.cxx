@@ -83,7 +83,6 @@ std::string MakeOptions(vtkPLISimulation* self, fiberpli::pli::PLIOptions& o)
   return error;
 }
 
-
 /// Resizes a list property; returns true when the size changed. A count outside [0, max] is an
 /// error (it used to allocate n doubles, 16 GB for 2^31 - 1): the list gets max + 1 entries, which
 /// planPLI refuses by name, so the filter fails instead of running with a stale list.
@@ -92,8 +91,8 @@ bool ResizeList(vtkPLISimulation* self, std::vector<double>& list, int n, int ma
   std::size_t size = static_cast<std::size_t>(std::max(0, n));
   if (n < 0 || n > max)
   {
-    vtkErrorWithObjectMacro(self, << fiberpli::ProxyName(self) << ": " << name << " has " << n << " values, at most " << max
-                                  << " are allowed");
+    vtkErrorWithObjectMacro(self, << fiberpli::ProxyName(self) << ": " << name << " has " << n
+                                  << " values, at most " << max << " are allowed");
     size = static_cast<std::size_t>(max) + 1;
   }
   if (list.size() == size)
@@ -118,7 +117,8 @@ bool SetListValue(std::vector<double>& list, int i, double v)
 
 double ListValue(const std::vector<double>& list, int i)
 {
-  return i >= 0 && static_cast<std::size_t>(i) < list.size() ? list[static_cast<std::size_t>(i)] : 0.0;
+  return i >= 0 && static_cast<std::size_t>(i) < list.size() ? list[static_cast<std::size_t>(i)]
+                                                             : 0.0;
 }
 
 /// The update extent of an output port inside its whole extent (false when nothing is left): a
@@ -139,14 +139,16 @@ bool RequestedExtent(vtkInformation* outInfo, int ext[6])
 
 /// What this rank's piece reads (FiberTileExchange.h): the image tile and/or the tissue piece
 /// requested, tiled modulo a periodic cell into the volume of interest as ExecutePiece tiles it.
-std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole, const fiberpli::pli::PLIOptions& options,
-  const fiberpli::pli::PLIPlan& plan, vtkInformationVector* outputVector, bool image, bool tissue,
-  const std::string& tissueError, fiberpli::TileReach& reach)
+std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole,
+  const fiberpli::pli::PLIOptions& options, const fiberpli::pli::PLIPlan& plan,
+  vtkInformationVector* outputVector, bool image, bool tissue, const std::string& tissueError,
+  fiberpli::TileReach& reach)
 {
   int ext[6];
   if (image && RequestedExtent(outputVector->GetInformationObject(0), ext))
   {
-    reach = fiberpli::pli::imageReach(plan, options, fiberpli::GridRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
+    reach = fiberpli::pli::imageReach(
+      plan, options, fiberpli::GridRange{ ext[0], ext[1] + 1, ext[2], ext[3] + 1 });
   }
   fiberpli::pli::VoxelBox box;
   if (tissue && self->GetExportTissue() && tissueError.empty() &&
@@ -156,7 +158,8 @@ std::string PieceReach(vtkPLISimulation* self, const fiberpli::TileFibers& whole
     for (int a = 0; a < 3; ++a)
     {
       box.lo[a] = std::max<std::int64_t>(box.lo[a], ext[2 * a]);
-      box.hi[a] = std::max(box.lo[a], std::min<std::int64_t>(box.hi[a], static_cast<std::int64_t>(ext[2 * a + 1]) + 1));
+      box.hi[a] = std::max(box.lo[a],
+        std::min<std::int64_t>(box.hi[a], static_cast<std::int64_t>(ext[2 * a + 1]) + 1));
     }
     reach = fiberpli::unite(reach, fiberpli::pli::tissueReach(plan, box));
   }
@@ -196,20 +199,23 @@ vtkPLISimulation::~vtkPLISimulation()
 
 //------------------------------------------------------------------------------
 // The list properties: ParaView sets the count first, then every value by index.
-#define FIBERPLI_LIST_ACCESSORS(SetCount, SetValue, GetValue, list, max)                            \
-  void vtkPLISimulation::SetCount(int n)                                                          \
+#define FIBERPLI_LIST_ACCESSORS(SetCount, SetValue, GetValue, list, max)                           \
+  void vtkPLISimulation::SetCount(int n)                                                           \
   {                                                                                                \
     if (ResizeList(this, this->list, n, max, #list))                                               \
       this->Modified();                                                                            \
   }                                                                                                \
-  void vtkPLISimulation::SetValue(int i, double v)                                                \
+  void vtkPLISimulation::SetValue(int i, double v)                                                 \
   {                                                                                                \
     if (SetListValue(this->list, i, v))                                                            \
       this->Modified();                                                                            \
   }                                                                                                \
-  double vtkPLISimulation::GetValue(int i) const { return ListValue(this->list, i); }
-FIBERPLI_LIST_ACCESSORS(SetNumberOfRotationAngles, SetRotationAngle, GetRotationAngle, RotationAngles,
-  fiberpli::pli::kMaxRotationAngles)
+  double vtkPLISimulation::GetValue(int i) const                                                   \
+  {                                                                                                \
+    return ListValue(this->list, i);                                                               \
+  }
+FIBERPLI_LIST_ACCESSORS(SetNumberOfRotationAngles, SetRotationAngle, GetRotationAngle,
+  RotationAngles, fiberpli::pli::kMaxRotationAngles)
 FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAngles, SetTiltAngleValue, GetTiltAngleValue, TiltAngles,
   fiberpli::pli::kMaxTiltAngles)
 FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth, TiltAzimuths,
@@ -217,8 +223,8 @@ FIBERPLI_LIST_ACCESSORS(SetNumberOfTiltAzimuths, SetTiltAzimuth, GetTiltAzimuth,
 #undef FIBERPLI_LIST_ACCESSORS
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkPLISimulation::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkInformation* tissueInfo = outputVector->GetInformationObject(1);
@@ -237,12 +243,14 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
   }
   const fiberpli::pli::PLIOptions& options = this->Plan->options;
   const fiberpli::pli::PLIPlan& plan = this->Plan->plan;
-  const int whole[6] = { 0, static_cast<int>(plan.pixels[0] - 1), 0, static_cast<int>(plan.pixels[1] - 1), 0, 0 };
+  const int whole[6] = { 0, static_cast<int>(plan.pixels[0] - 1), 0,
+    static_cast<int>(plan.pixels[1] - 1), 0, 0 };
   const double spacing[3] = { options.pixelSize, options.pixelSize, plan.thickness };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), plan.imageOrigin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_DOUBLE, static_cast<int>(plan.rho.size()));
+  vtkDataObject::SetPointDataActiveScalarInfo(
+    outInfo, VTK_DOUBLE, static_cast<int>(plan.rho.size()));
 
   // The tissue port: voxel centres of TissueVolume on the simulation lattice (global indices). A
   // bad or oversized box shows as an empty extent here and as an error when the port is updated.
@@ -262,8 +270,8 @@ int vtkPLISimulation::RequestInformation(vtkInformation*, vtkInformationVector**
       static_cast<int>(box.hi[2] - 1) };
     const double voxel = plan.lattice.voxel;
     const double tissueSpacing[3] = { voxel, voxel, voxel };
-    const double tissueOrigin[3] = { plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
-      plan.lattice.origin[2] + 0.5 * voxel };
+    const double tissueOrigin[3] = { plan.lattice.origin[0] + 0.5 * voxel,
+      plan.lattice.origin[1] + 0.5 * voxel, plan.lattice.origin[2] + 0.5 * voxel };
     tissueInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), tissueWhole, 6);
     tissueInfo->Set(vtkDataObject::SPACING(), tissueSpacing, 3);
     tissueInfo->Set(vtkDataObject::ORIGIN(), tissueOrigin, 3);
@@ -282,8 +290,8 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   {
     error = this->VolumeToPlan(inputVector, options.volumeOfInterest, noFibers);
   }
-  if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() && !this->Plan->noFibers &&
-    this->PlanHolds(this->Plan->stamp, options.volumeOfInterest))
+  if (error.empty() && !noFibers && this->Plan && this->Plan->error.empty() &&
+    !this->Plan->noFibers && this->PlanHolds(this->Plan->stamp, options.volumeOfInterest))
   {
     return; // planned for these properties and this volume already
   }
@@ -295,15 +303,16 @@ void vtkPLISimulation::PlanImage(vtkInformationVector* inputVector)
   if (error.empty() && !noFibers)
   {
     // RequestData uses this volume, so its pixels match WHOLE_EXTENT even if the fibers move later.
-    const fiberpli::Status st = fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
+    const fiberpli::Status st =
+      fiberpli::pli::planPLIImage(fiberpli::FiberModel(), options, p->plan);
     p->error = st.ok() ? "" : fiberpli::ProxyMessage(this, st.error);
   }
   this->Plan = std::move(p);
 }
 
 //------------------------------------------------------------------------------
-vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+vtkTypeBool vtkPLISimulation::ProcessRequest(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // A request on one port leaves the other port's data as it is (and not up to date), so showing
   // the tissue never re-runs the simulation and vice versa.
@@ -315,7 +324,8 @@ vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInforma
     {
       if (port >= 0 && p != port)
       {
-        outputVector->GetInformationObject(p)->Set(vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
+        outputVector->GetInformationObject(p)->Set(
+          vtkDemandDrivenPipeline::DATA_NOT_GENERATED(), 1);
       }
     }
     return 1;
@@ -324,25 +334,28 @@ vtkTypeBool vtkPLISimulation::ProcessRequest(vtkInformation* request, vtkInforma
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkPLISimulation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
   // Under MPI all ranks fail together (FiberCollective.h): a rank-local failure would leave the
   // other ranks waiting downstream, e.g. in PLIAnalysis's reduction.
-  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector, fiberpli::ProxyName(this),
+  return fiberpli::FiberCollective::RunCollectively(this, request, outputVector,
+    fiberpli::ProxyName(this),
     [&] { return this->ExecutePiece(request, inputVector, outputVector); });
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkPLISimulation::ExecutePiece(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   if (!this->Plan)
   {
     this->PlanImage(inputVector[0]); // a data pass without an information pass
   }
-  const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT()) ? request->Get(vtkExecutive::FROM_OUTPUT_PORT()) : -1;
+  const int port = request->Has(vtkExecutive::FROM_OUTPUT_PORT())
+    ? request->Get(vtkExecutive::FROM_OUTPUT_PORT())
+    : -1;
   if (port == 1 && !this->ExportTissue)
   {
     // The tissue port without ExportTissue computes nothing: an error of the properties is the
@@ -383,8 +396,10 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // fibers its piece reads, in model order (FiberTileExchange.h).
   fiberpli::TileReach reach;
   fiberpli::TileFibers in = fiberpli::FiberTileExchange::Receive(
-    outputVector->GetInformationObject(std::max(port, 0)), input, fiberpli::ProxyName(this), localError,
-    [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r) {
+    outputVector->GetInformationObject(std::max(port, 0)), input, fiberpli::ProxyName(this),
+    localError,
+    [&](const fiberpli::TileFibers& whole, fiberpli::TileReach& r)
+    {
       if (!work)
       {
         return std::string(); // this request computes nothing: no fiber is needed
@@ -397,8 +412,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
       {
         return fiberpli::ProxyMessage(this, tissueStatus.error);
       }
-      const std::string e =
-        PieceReach(this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
+      const std::string e = PieceReach(
+        this, whole, options, plan, outputVector, wantImage, wantTissue, this->TissueError, r);
       reach = r;
       return e;
     },
@@ -428,7 +443,8 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   std::string cellError = in.cellError;
   if (in.periodic && cellError.empty())
   {
-    cellError = fiberpli::tileSection(in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
+    cellError = fiberpli::tileSection(
+      in.model, in.cell, options.volumeOfInterest, in.distributed ? &reach : nullptr);
   }
   if (!cellError.empty())
   {
@@ -459,20 +475,22 @@ int vtkPLISimulation::ExecutePiece(vtkInformation* request, vtkInformationVector
   // holds the solver's piece decides for itself, no collective is needed.
   if (wantImage)
   {
-    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings, outputVector->GetInformationObject(0), image,
-      fiberpli::ClaimsCollisionFree(input));
+    ok = this->SimulateImage(in.model, options, plan, tissueStatus.warnings,
+      outputVector->GetInformationObject(0), image, fiberpli::ClaimsCollisionFree(input));
   }
   if (wantTissue && this->ExportTissue && ok)
   {
-    ok = this->VoxeliseTissue(in.model, options, plan, outputVector->GetInformationObject(1), tissue);
+    ok =
+      this->VoxeliseTissue(in.model, options, plan, outputVector->GetInformationObject(1), tissue);
   }
   return ok;
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-  const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
-  vtkImageData* output, bool claimsSolved)
+int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model,
+  const fiberpli::pli::PLIOptions& options, const fiberpli::pli::PLIPlan& plan,
+  const std::vector<std::string>& planWarnings, vtkInformation* outInfo, vtkImageData* output,
+  bool claimsSolved)
 {
   int ext[6];
   if (!RequestedExtent(outInfo, ext))
@@ -485,7 +503,8 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   bool inOptics = false;
   this->SetProgressText("Voxelising and propagating light");
   fiberpli::Status st = fiberpli::pli::runPLI(model, options, plan, range, image,
-    [&](double f) {
+    [&](double f)
+    {
       if (f >= 0.95 && !inOptics)
       {
         inOptics = true;
@@ -506,8 +525,9 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   // collision-free: then something else (layers wider than the fibers, a later edit) overlaps.
   if (image.fibersOverlap && claimsSolved)
   {
-    st.warnings.push_back("fibers overlap although the input is collision-free (its field data collisions is 0): "
-                          "the nearest fiber owns the shared voxels (Layers scaled beyond the fiber radius?)");
+    st.warnings.push_back(
+      "fibers overlap although the input is collision-free (its field data collisions is 0): "
+      "the nearest fiber owns the shared voxels (Layers scaled beyond the fiber radius?)");
   }
   if (!st.warnings.empty())
   {
@@ -528,14 +548,16 @@ int vtkPLISimulation::SimulateImage(const fiberpli::FiberModel& model, const fib
   output->SetExtent(ext);
   output->SetSpacing(spacing);
   output->SetOrigin(plan.imageOrigin);
-  fiberpli::WritePliStack(image, plan, options, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
+  fiberpli::WritePliStack(
+    image, plan, options, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
 
 //------------------------------------------------------------------------------
-int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-  const fiberpli::pli::PLIPlan& plan, vtkInformation* outInfo, vtkImageData* output)
+int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model,
+  const fiberpli::pli::PLIOptions& options, const fiberpli::pli::PLIPlan& plan,
+  vtkInformation* outInfo, vtkImageData* output)
 {
   if (!this->TissueError.empty())
   {
@@ -575,12 +597,14 @@ int vtkPLISimulation::VoxeliseTissue(const fiberpli::FiberModel& model, const fi
     return 1; // aborted: the port stays empty
   }
   const double voxel = plan.lattice.voxel;
-  output->SetExtent(static_cast<int>(piece.lo[0]), static_cast<int>(piece.hi[0] - 1), static_cast<int>(piece.lo[1]),
-    static_cast<int>(piece.hi[1] - 1), static_cast<int>(piece.lo[2]), static_cast<int>(piece.hi[2] - 1));
+  output->SetExtent(static_cast<int>(piece.lo[0]), static_cast<int>(piece.hi[0] - 1),
+    static_cast<int>(piece.lo[1]), static_cast<int>(piece.hi[1] - 1), static_cast<int>(piece.lo[2]),
+    static_cast<int>(piece.hi[2] - 1));
   output->SetSpacing(voxel, voxel, voxel);
   output->SetOrigin(plan.lattice.origin[0] + 0.5 * voxel, plan.lattice.origin[1] + 0.5 * voxel,
     plan.lattice.origin[2] + 0.5 * voxel);
-  fiberpli::WritePliTissue(tv, plan, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
+  fiberpli::WritePliTissue(
+    tv, plan, { this->NumberOfTileFibers, this->NumberOfModelFibers }, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -592,7 +616,8 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Wavelength: " << this->Wavelength << "\n";
   os << indent << "LightIntensity: " << this->LightIntensity << "\n";
   os << indent << "NumberOfRotations: " << this->NumberOfRotations << "\n";
-  auto list = [&os, indent](const char* name, const std::vector<double>& values) {
+  auto list = [&os, indent](const char* name, const std::vector<double>& values)
+  {
     os << indent << name << ":";
     for (double v : values)
     {
@@ -607,8 +632,8 @@ void vtkPLISimulation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TiltConvention: " << this->TiltConvention << "\n";
   os << indent << "ExportTissue: " << this->ExportTissue << "\n";
   const double* t = this->TissueVolume;
-  os << indent << "TissueVolume: " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << " " << t[4] << " " << t[5]
-     << "\n";
+  os << indent << "TissueVolume: " << t[0] << " " << t[1] << " " << t[2] << " " << t[3] << " "
+     << t[4] << " " << t[5] << "\n";
   os << indent << "Birefringence: " << this->Birefringence << "\n";
   os << indent << "Absorption: " << this->Absorption << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

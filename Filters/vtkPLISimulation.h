@@ -1,12 +1,13 @@
 /**
  * @class   vtkPLISimulation
- * @brief   3D-PLI simulation: the polarimeter's image stack of a tissue section voxelised from fibers
+ * @brief   3D-PLI simulation: the polarimeter's image stack of a tissue section voxelised from
+ * fibers
  *
- * Input: fiber polydata (docs/data-contract.md §2: polylines with the point array `radius`, optional cell array
- * `bundle_id`). The fibers are voxelised into a section (layered capsules, docs/pli-simulation.md §3),
- * light is propagated through it with Müller matrices for every polarizer angle and view (§4), then
- * blurred, binned to camera pixels and given camera noise (§5). All work is done by the Core
- * (fiberpli::pli::runPLI).
+ * Input: fiber polydata (docs/data-contract.md §2: polylines with the point array `radius`,
+ * optional cell array `bundle_id`). The fibers are voxelised into a section (layered capsules,
+ * docs/pli-simulation.md §3), light is propagated through it with Müller matrices for every
+ * polarizer angle and view (§4), then blurred, binned to camera pixels and given camera noise (§5).
+ * All work is done by the Core (fiberpli::pli::runPLI).
  *
  * Output: vtkImageData with one slice (z extent 0..0), x and y in µm, spacing PixelSize. Point
  * arrays (double, one component per polarizer angle: RotationAngles, or k·180°/NumberOfRotations):
@@ -31,8 +32,8 @@
  * image size depends on them.
  *
  * Bad input (missing `radius`, NaN, radius <= 0) and bad properties (VoxelSize <= 0, a
- * VolumeOfInterest with min > max on some axes only, sizes needing more than 16 GiB, bad Layers) are
- * errors naming the array, fiber or property; nothing is allocated and the output is empty. An
+ * VolumeOfInterest with min > max on some axes only, sizes needing more than 16 GiB, bad Layers)
+ * are errors naming the array, fiber or property; nothing is allocated and the output is empty. An
  * empty input gives an empty output. A section without fibers gives the background image and a
  * warning.
  */
@@ -153,8 +154,8 @@ public:
 
   ///@{
   /**
-   * Tilt convention, PHYSICAL (default) or FASTPLI (other values are an error); written to the field data tilt_convention,
-   * which PLIAnalysis follows.
+   * Tilt convention, PHYSICAL (default) or FASTPLI (other values are an error); written to the
+   * field data tilt_convention, which PLIAnalysis follows.
    */
   vtkSetMacro(TiltConvention, int);
   vtkGetMacro(TiltConvention, int);
@@ -186,7 +187,8 @@ public:
   /**
    * Birefringence Δn of the fibers (one parallel layer) when Layers is empty. Fibers with the
    * point array inner_radius get the axon (no birefringence) inside it and the myelin sheath
-   * (radial axis, Δn = -Birefringence) up to radius (docs/pli-simulation.md §3.2). Default is -0.001.
+   * (radial axis, Δn = -Birefringence) up to radius (docs/pli-simulation.md §3.2). Default is
+   * -0.001.
    */
   vtkSetMacro(Birefringence, double);
   vtkGetMacro(Birefringence, double);
@@ -295,7 +297,8 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// This rank's part of RequestData (which makes its outcome collective under MPI).
   int ExecutePiece(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
-  vtkTypeBool ProcessRequest(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  vtkTypeBool ProcessRequest(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
   vtkPLISimulation(const vtkPLISimulation&) = delete;
@@ -335,12 +338,13 @@ private:
   /// Port 0: the image stack of the update extent; port 1: the tissue of the update extent.
   /// claimsSolved: the input says it is collision-free, so overlapping tissue is worth a warning.
   int SimulateImage(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
-    const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings, vtkInformation* outInfo,
-    vtkImageData* output, bool claimsSolved);
+    const fiberpli::pli::PLIPlan& plan, const std::vector<std::string>& planWarnings,
+    vtkInformation* outInfo, vtkImageData* output, bool claimsSolved);
   int VoxeliseTissue(const fiberpli::FiberModel& model, const fiberpli::pli::PLIOptions& options,
     const fiberpli::pli::PLIPlan& plan, vtkInformation* outInfo, vtkImageData* output);
 
-  std::string TissueError; ///< bad or oversized TissueVolume found by RequestInformation, reported by RequestData
+  std::string TissueError; ///< bad or oversized TissueVolume found by RequestInformation, reported
+                           ///< by RequestData
   /// Fibers this piece was computed from (periodic translates included) and fibers of the whole
   /// input: field data tile_fibers and model_fibers (docs/pli-simulation.md §6.3).
   double NumberOfTileFibers = 0.0;

@@ -59,7 +59,8 @@ void FiberPLIAbortButton::startup()
   // Direct connections: the slots run inside the progress report, i.e. inside the filter.
   QObject::connect(progress, &pqProgressManager::progress, this, &FiberPLIAbortButton::onProgress);
   QObject::connect(progress, &pqProgressManager::abort, this, &FiberPLIAbortButton::onAbort);
-  QObject::connect(progress, &pqProgressManager::progressEndEvent, this, &FiberPLIAbortButton::onProgressEnd);
+  QObject::connect(
+    progress, &pqProgressManager::progressEndEvent, this, &FiberPLIAbortButton::onProgressEnd);
 }
 
 void FiberPLIAbortButton::shutdown()

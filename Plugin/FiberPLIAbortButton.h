@@ -17,7 +17,8 @@
 ///   wheel, context menus, drops and window closes meanwhile, so nothing can change, render or
 ///   delete the executing pipeline (ParaView 5.12 processes events in
 ///   pqProgressManager::onProgress the same way, without that second filter);
-/// - the abort() signal asks the running FiberPLI executions to stop (Conversion/FiberExecutions.h);
+/// - the abort() signal asks the running FiberPLI executions to stop
+/// (Conversion/FiberExecutions.h);
 ///   each stops at its next progress check, and the abort applies to that execution only;
 /// - when the progress ends, the button is disabled again.
 /// With a remote server the filters run in the server process, none is listed here, and nothing

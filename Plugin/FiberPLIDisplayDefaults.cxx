@@ -18,9 +18,9 @@
 #include "vtkWeakPointer.h"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -155,7 +155,8 @@ void showBundlesAsCategories(vtkSMProxy* repr, vtkPVArrayInformation* bundles)
     const std::string value = std::to_string(first + k);
     annotations.Set(2 * k, value.c_str());
     annotations.Set(2 * k + 1, ("bundle " + value).c_str());
-    const int slot = ((first + k) % kNumberOfBundleColors + kNumberOfBundleColors) % kNumberOfBundleColors;
+    const int slot =
+      ((first + k) % kNumberOfBundleColors + kNumberOfBundleColors) % kNumberOfBundleColors;
     for (int c = 0; c < 3; ++c)
     {
       colors.Set(3 * k + c, kBundleColors[slot][c]);
@@ -215,7 +216,8 @@ public:
       return;
     }
     vtkSMPropertyHelper input(this->Representation, "Input", true);
-    vtkPVDataInformation* info = producer ? producer->GetDataInformation(input.GetOutputPort()) : nullptr;
+    vtkPVDataInformation* info =
+      producer ? producer->GetDataInformation(input.GetOutputPort()) : nullptr;
     if (!info || info->GetNumberOfPoints() == 0)
     {
       return; // still empty
@@ -250,7 +252,8 @@ void applyDefaults(vtkSMProxy* repr)
     return;
   }
   if (info->GetNumberOfPoints() == 0 && producer->GetXMLGroup() &&
-    (std::string(producer->GetXMLGroup()) == "sources" || std::string(producer->GetXMLGroup()) == "filters"))
+    (std::string(producer->GetXMLGroup()) == "sources" ||
+      std::string(producer->GetXMLGroup()) == "filters"))
   {
     vtkNew<FirstDataObserver> later;
     later->Representation = repr;

@@ -9,7 +9,8 @@
 /// - fibers and tubes (cell arrays `fiber_id` and `bundle_id`): `bundle_id` as categories, one
 ///   fixed colour per value in the one `bundle_id` table that only gains categories (a one-bundle
 ///   model shown later leaves the others' colours alone);
-/// - `direction` (0 deg = 180 deg) of PLIAnalysis and the ground truth: a cyclic table over [0, 180];
+/// - `direction` (0 deg = 180 deg) of PLIAnalysis and the ground truth: a cyclic table over [0,
+/// 180];
 /// - a display made while its output is empty (an aborted first run) gets this colouring at the
 ///   first update that brings data, instead of staying in ParaView's plain colour.
 /// Only the starting state is set; the user changes it as any other display property.

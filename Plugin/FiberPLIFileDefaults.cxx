@@ -17,11 +17,12 @@ namespace
 const char* const kReaderDetails = ".settings.RepresentedArrayListSettings.ReaderDetails";
 
 // ParaView's serial and parallel XML writers of every dataset type (group "writers").
-const char* const kXMLWriters[] = { "XMLPolyDataWriter", "XMLImageDataWriter", "XMLUnstructuredGridWriter",
-  "XMLStructuredGridWriter", "XMLRectilinearGridWriter", "XMLPPolyDataWriter", "XMLPImageDataWriter",
-  "XMLPUnstructuredGridWriter", "XMLPStructuredGridWriter", "XMLPRectilinearGridWriter",
-  "XMLMultiBlockDataWriter", "XMLPartitionedDataSetWriter", "XMLPartitionedDataSetCollectionWriter",
-  "XMLHyperTreeGridWriter", "XMLTableWriter" };
+const char* const kXMLWriters[] = { "XMLPolyDataWriter", "XMLImageDataWriter",
+  "XMLUnstructuredGridWriter", "XMLStructuredGridWriter", "XMLRectilinearGridWriter",
+  "XMLPPolyDataWriter", "XMLPImageDataWriter", "XMLPUnstructuredGridWriter",
+  "XMLPStructuredGridWriter", "XMLPRectilinearGridWriter", "XMLMultiBlockDataWriter",
+  "XMLPartitionedDataSetWriter", "XMLPartitionedDataSetCollectionWriter", "XMLHyperTreeGridWriter",
+  "XMLTableWriter" };
 
 bool patternsCoverDat(const std::string& patterns)
 {

@@ -1,4 +1,5 @@
-// The GUI's file defaults for FiberPLI users: .dat opens with FiberReader, XML writers write binary.
+// The GUI's file defaults for FiberPLI users: .dat opens with FiberReader, XML writers write
+// binary.
 #ifndef FiberPLIFileDefaults_h
 #define FiberPLIFileDefaults_h
 

@@ -22,7 +22,8 @@ QString unitOf(vtkSMProperty* property)
 {
   vtkPVXMLElement* hints = property ? property->GetHints() : nullptr;
   vtkPVXMLElement* unit = hints ? hints->FindNestedElementByName("FiberPLIUnit") : nullptr;
-  return unit && unit->GetAttribute("text") ? QString::fromUtf8(unit->GetAttribute("text")) : QString();
+  return unit && unit->GetAttribute("text") ? QString::fromUtf8(unit->GetAttribute("text"))
+                                            : QString();
 }
 
 // The property of `proxy` whose panel label is `text`, if it has a unit.
@@ -66,8 +67,8 @@ void labelInsideList(QLabel* label, vtkSMProperty* property)
   }
   const QString range = QTextDocumentFragment::fromHtml(label->text()).toPlainText().trimmed();
   label->setText(QString("<html><b>%1 (%2)</b> %3</html>")
-                   .arg(QString::fromUtf8(property->GetXMLLabel()).toHtmlEscaped(), unit.toHtmlEscaped(),
-                     range.toHtmlEscaped()));
+                   .arg(QString::fromUtf8(property->GetXMLLabel()).toHtmlEscaped(),
+                     unit.toHtmlEscaped(), range.toHtmlEscaped()));
 }
 } // namespace
 
@@ -104,7 +105,8 @@ bool FiberPLIUnitLabels::eventFilter(QObject* watched, QEvent* event)
       {
         // The list's own widget may be nested in the property's widget: the nearest one that
         // knows its property.
-        for (QWidget* up = label->parentWidget(); up && !qobject_cast<pqProxyWidget*>(up); up = up->parentWidget())
+        for (QWidget* up = label->parentWidget(); up && !qobject_cast<pqProxyWidget*>(up);
+             up = up->parentWidget())
         {
           auto* widget = qobject_cast<pqPropertyWidget*>(up);
           if (widget && widget->property())

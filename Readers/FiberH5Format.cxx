@@ -2,9 +2,9 @@
 
 #include "IO/AtomicFile.h"
 #include "IO/RegularFile.h"
-#include "Util/PrintableText.h"
 #include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
+#include "Util/PrintableText.h"
 
 #include "vtk_hdf5.h"
 
@@ -39,7 +39,11 @@ constexpr double kBytesPerFiberRead = 160.0;
 class QuietHdf5
 {
 public:
-  QuietHdf5() { H5Eget_auto2(H5E_DEFAULT, &func_, &data_); H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+  QuietHdf5()
+  {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
   ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
   QuietHdf5(const QuietHdf5&) = delete;
   QuietHdf5& operator=(const QuietHdf5&) = delete;
@@ -53,8 +57,18 @@ private:
 class Handle
 {
 public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() { if (id_ >= 0) { close_(id_); } }
+  Handle(hid_t id, herr_t (*close)(hid_t))
+    : id_(id)
+    , close_(close)
+  {
+  }
+  ~Handle()
+  {
+    if (id_ >= 0)
+    {
+      close_(id_);
+    }
+  }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
   hid_t get() const { return id_; }
@@ -71,7 +85,9 @@ bool writeCellAttribute(hid_t group, const PeriodicCell& cell)
   const double b[6] = { cell.lo.x, cell.hi.x, cell.lo.y, cell.hi.y, cell.lo.z, cell.hi.z };
   const hsize_t n = 6;
   Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-  Handle attr(H5Acreate2(group, "periodic_cell", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  Handle attr(
+    H5Acreate2(group, "periodic_cell", H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+    H5Aclose);
   return attr.ok() && H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, b) >= 0;
 }
 
@@ -89,7 +105,8 @@ std::string readCellAttribute(hid_t group, PeriodicCell& cell)
   const hssize_t n = space.ok() ? H5Sget_simple_extent_npoints(space.get()) : -1;
   if (n != 6)
   {
-    return "attribute periodic_cell has " + std::to_string(n) + " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
+    return "attribute periodic_cell has " + std::to_string(n) +
+      " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
   }
   double b[6];
   if (H5Aread(attr.get(), H5T_NATIVE_DOUBLE, b) < 0)
@@ -100,9 +117,9 @@ std::string readCellAttribute(hid_t group, PeriodicCell& cell)
   return bad.empty() ? bad : "attribute " + bad;
 }
 
-/// Values per inner_radius attribute: HDF5's original object header (the file format fastPLI's files
-/// have) holds no attribute message above 64 KiB, so a long fiber's inner radii are split into
-/// "inner_radius", "inner_radius_1", "inner_radius_2", … of at most this many float64 values.
+/// Values per inner_radius attribute: HDF5's original object header (the file format fastPLI's
+/// files have) holds no attribute message above 64 KiB, so a long fiber's inner radii are split
+/// into "inner_radius", "inner_radius_1", "inner_radius_2", … of at most this many float64 values.
 constexpr std::size_t kInnerRadiiPerAttribute = 4096;
 
 std::string innerRadiusAttributeName(std::size_t part)
@@ -114,12 +131,13 @@ std::string innerRadiusAttributeName(std::size_t part)
 /// datasets and ignores attributes, so its files stay readable.
 bool writeInnerRadiusAttribute(hid_t data, const std::vector<double>& inner)
 {
-  for (std::size_t first = 0, part = 0; first < inner.size() || part == 0; first += kInnerRadiiPerAttribute, ++part)
+  for (std::size_t first = 0, part = 0; first < inner.size() || part == 0;
+       first += kInnerRadiiPerAttribute, ++part)
   {
     const hsize_t n = std::min(kInnerRadiiPerAttribute, inner.size() - first);
     Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
-    Handle attr(H5Acreate2(data, innerRadiusAttributeName(part).c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                  H5P_DEFAULT),
+    Handle attr(H5Acreate2(data, innerRadiusAttributeName(part).c_str(), H5T_IEEE_F64LE,
+                  space.get(), H5P_DEFAULT, H5P_DEFAULT),
       H5Aclose);
     if (!attr.ok() || H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, inner.data() + first) < 0)
     {
@@ -147,9 +165,11 @@ std::string readInnerRadiusAttribute(hid_t data, Fiber& f)
     const hssize_t n = space.ok() ? H5Sget_simple_extent_npoints(space.get()) : -1;
     if (n < 0 || f.innerRadii.size() + static_cast<std::size_t>(n) > f.size())
     {
-      const std::size_t total = f.innerRadii.size() + static_cast<std::size_t>(std::max<hssize_t>(n, 0));
+      const std::size_t total =
+        f.innerRadii.size() + static_cast<std::size_t>(std::max<hssize_t>(n, 0));
       f.innerRadii.clear();
-      return "attribute inner_radius has " + std::to_string(total) + " values for " + std::to_string(f.size()) + " points";
+      return "attribute inner_radius has " + std::to_string(total) + " values for " +
+        std::to_string(f.size()) + " points";
     }
     const std::size_t first = f.innerRadii.size();
     f.innerRadii.resize(first + static_cast<std::size_t>(n));
@@ -161,8 +181,8 @@ std::string readInnerRadiusAttribute(hid_t data, Fiber& f)
   }
   if (f.innerRadii.size() != f.size())
   {
-    const std::string message = "attribute inner_radius has " + std::to_string(f.innerRadii.size()) + " values for " +
-      std::to_string(f.size()) + " points";
+    const std::string message = "attribute inner_radius has " +
+      std::to_string(f.innerRadii.size()) + " values for " + std::to_string(f.size()) + " points";
     f.innerRadii.clear();
     return message;
   }
@@ -171,8 +191,8 @@ std::string readInnerRadiusAttribute(hid_t data, Fiber& f)
     if (!std::isfinite(f.innerRadii[i]) || f.innerRadii[i] <= 0.0 || f.innerRadii[i] > f.radii[i])
     {
       std::ostringstream msg;
-      msg << "attribute inner_radius of point " << i << " is " << f.innerRadii[i] << " (must be finite, > 0 and <= radius "
-          << f.radii[i] << ")";
+      msg << "attribute inner_radius of point " << i << " is " << f.innerRadii[i]
+          << " (must be finite, > 0 and <= radius " << f.radii[i] << ")";
       f.innerRadii.clear();
       return msg.str();
     }
@@ -185,10 +205,14 @@ const char* linkKind(H5L_type_t type)
 {
   switch (type)
   {
-    case H5L_TYPE_HARD: return "a hard link";
-    case H5L_TYPE_SOFT: return "a soft link";
-    case H5L_TYPE_EXTERNAL: return "an external link";
-    default: return "a user-defined link";
+    case H5L_TYPE_HARD:
+      return "a hard link";
+    case H5L_TYPE_SOFT:
+      return "a soft link";
+    case H5L_TYPE_EXTERNAL:
+      return "an external link";
+    default:
+      return "a user-defined link";
   }
 }
 
@@ -196,8 +220,8 @@ const char* linkKind(H5L_type_t type)
 /// bundle index becomes bundle_id, an int), in numeric order.
 /// Returns "" or the problem with member `bad`: a name that is no such index, or a link that is not
 /// a hard link (soft and external links could leave the file, loop or dangle; fastPLI writes none).
-std::string numericMembers(hid_t group, const char* kind, std::vector<std::pair<long, std::string>>& members,
-  std::string& bad)
+std::string numericMembers(hid_t group, const char* kind,
+  std::vector<std::pair<long, std::string>>& members, std::string& bad)
 {
   H5G_info_t info;
   if (H5Gget_info(group, &info) < 0)
@@ -208,8 +232,8 @@ std::string numericMembers(hid_t group, const char* kind, std::vector<std::pair<
   for (hsize_t i = 0; i < info.nlinks; ++i)
   {
     char name[256] = { 0 };
-    const ssize_t length =
-      H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT);
+    const ssize_t length = H5Lget_name_by_idx(
+      group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT);
     if (length < 0 || length >= static_cast<ssize_t>(sizeof(name)))
     {
       bad = length < 0 ? "(unreadable name)" : std::string(name) + "...";
@@ -226,13 +250,15 @@ std::string numericMembers(hid_t group, const char* kind, std::vector<std::pair<
     if (value > INT_MAX)
     {
       bad = name;
-      return std::string("is larger than the largest ") + kind + " index, " + std::to_string(INT_MAX);
+      return std::string("is larger than the largest ") + kind + " index, " +
+        std::to_string(INT_MAX);
     }
     H5L_info_t link{};
     if (H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
     {
       bad = name;
-      return std::string("is ") + (link.type != H5L_TYPE_HARD ? linkKind(link.type) : "an unreadable link") +
+      return std::string("is ") +
+        (link.type != H5L_TYPE_HARD ? linkKind(link.type) : "an unreadable link") +
         "; only groups and datasets stored in this file are read";
     }
     members.emplace_back(value, name);
@@ -251,8 +277,8 @@ bool hardLinkExists(hid_t loc, const std::string& name)
     const std::size_t slash = std::min(name.find('/', start), name.size());
     prefix = name.substr(0, slash);
     H5L_info_t link{};
-    if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0 || H5Lget_info(loc, prefix.c_str(), &link, H5P_DEFAULT) < 0 ||
-      link.type != H5L_TYPE_HARD)
+    if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0 ||
+      H5Lget_info(loc, prefix.c_str(), &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD)
     {
       return false;
     }
@@ -313,7 +339,8 @@ void findBundleGroups(hid_t group, const std::string& path, int depth, GroupSear
   {
     char name[256] = { 0 };
     H5L_info_t link{};
-    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
+    if (H5Lget_name_by_idx(
+          group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name, sizeof(name), H5P_DEFAULT) < 0 ||
       H5Lget_info(group, name, &link, H5P_DEFAULT) < 0 || link.type != H5L_TYPE_HARD ||
       search.visited.count(link.u.address))
     {
@@ -345,7 +372,8 @@ struct FiberDataset
 /// The group of the open `file` to read: `requested` when it names a group of the file; with
 /// `requested` empty, the one group holding bundles (root included), or the root when none does.
 /// Several such groups are an error listing them.
-std::string bundleGroup(const Handle& file, const std::string& path, const std::string& requested, std::string& group)
+std::string bundleGroup(
+  const Handle& file, const std::string& path, const std::string& requested, std::string& group)
 {
   if (!requested.empty())
   {
@@ -355,7 +383,8 @@ std::string bundleGroup(const Handle& file, const std::string& path, const std::
       : requested.substr(requested.find_first_not_of('/'));
     if (!relative.empty() && !hardLinkExists(file.get(), relative))
     {
-      return path + ": Group '" + requested + "' is not a group stored in the file (only hard links are followed)";
+      return path + ": Group '" + requested +
+        "' is not a group stored in the file (only hard links are followed)";
     }
     Handle g(H5Gopen2(file.get(), requested.c_str(), H5P_DEFAULT), H5Gclose);
     if (!g.ok())
@@ -392,12 +421,13 @@ bool FiberH5Format::LooksLikeFiberH5(const std::string& path)
   return file.ok() && !bundleGroupsOf(file.get()).empty();
 }
 
-std::string FiberH5Format::Read(const std::string& path, const std::string& requestedGroup, FiberModel& model,
-  PeriodicCell* cell)
+std::string FiberH5Format::Read(
+  const std::string& path, const std::string& requestedGroup, FiberModel& model, PeriodicCell* cell)
 {
   QuietHdf5 quiet;
   model.fibers.clear();
-  const std::string special = fiberpli::checkRegularFile(path); // a FIFO would block the read forever
+  const std::string special =
+    fiberpli::checkRegularFile(path); // a FIFO would block the read forever
   if (!special.empty())
   {
     return "cannot read " + special;
@@ -421,13 +451,16 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   }
   Handle root(H5Gopen2(file.get(), groupPath.c_str(), H5P_DEFAULT), H5Gclose);
   // Messages name datasets by their full path: "/fiber_bundles/0/3".
-  const std::string prefix = groupPath == "/" ? "" : (groupPath.front() == '/' ? groupPath : "/" + groupPath);
+  const std::string prefix =
+    groupPath == "/" ? "" : (groupPath.front() == '/' ? groupPath : "/" + groupPath);
   std::vector<std::pair<long, std::string>> bundles;
   std::string bad = "(unreadable group)";
-  std::string problem = root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
+  std::string problem =
+    root.ok() ? numericMembers(root.get(), "bundle", bundles, bad) : "cannot be opened";
   if (!problem.empty())
   {
-    return path + ": member '" + printableText(prefix + "/" + bad, 80) + "' " + problem + " (expected bundle groups \"0\", \"1\", ... " +
+    return path + ": member '" + printableText(prefix + "/" + bad, 80) + "' " + problem +
+      " (expected bundle groups \"0\", \"1\", ... " +
       (prefix.empty() ? "at the root, or set Group" : "in Group " + prefix) + ")";
   }
   if (cell)
@@ -435,7 +468,8 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     const std::string cellError = readCellAttribute(root.get(), *cell);
     if (!cellError.empty())
     {
-      return path + ": group '" + printableText(prefix.empty() ? "/" : prefix, 80) + "' " + cellError;
+      return path + ": group '" + printableText(prefix.empty() ? "/" : prefix, 80) + "' " +
+        cellError;
     }
   }
 
@@ -454,12 +488,14 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
     problem = numericMembers(group.get(), "fiber", fibers, bad);
     if (!problem.empty())
     {
-      return path + ": member '" + printableText(prefix + "/" + bundleName + "/" + bad, 80) + "' " + problem;
+      return path + ": member '" + printableText(prefix + "/" + bundleName + "/" + bad, 80) + "' " +
+        problem;
     }
     for (const auto& fiber : fibers)
     {
       const std::string& fiberName = fiber.second;
-      const std::string where = path + ": dataset '" + printableText(prefix + "/" + bundleName + "/" + fiberName, 80) + "'";
+      const std::string where =
+        path + ": dataset '" + printableText(prefix + "/" + bundleName + "/" + fiberName, 80) + "'";
       Handle data(H5Dopen2(group.get(), fiberName.c_str(), H5P_DEFAULT), H5Dclose);
       if (!data.ok())
       {
@@ -474,7 +510,8 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
       }
       // A chunked dataset may declare far more than the file stores.
       if (dims[0] > kMaxPointsPerFiber ||
-        static_cast<double>(dims[0]) * 4 * sizeof(double) > kMaxExpansion * static_cast<double>(fileSize + 1))
+        static_cast<double>(dims[0]) * 4 * sizeof(double) >
+          kMaxExpansion * static_cast<double>(fileSize + 1))
       {
         std::ostringstream msg;
         msg << where << " declares " << dims[0] << " points, more than the file of " << fileSize
@@ -496,7 +533,8 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::ostringstream what;
   what << path << ": reading " << totalPoints << " points in " << datasets.size() << " fibers";
   problem = checkMemoryBudget(
-    totalPoints * kBytesPerPointRead + static_cast<double>(datasets.size()) * kBytesPerFiberRead, what.str());
+    totalPoints * kBytesPerPointRead + static_cast<double>(datasets.size()) * kBytesPerFiberRead,
+    what.str());
   if (!problem.empty())
   {
     return problem;
@@ -507,12 +545,14 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   std::int64_t nextId = 0;
   for (const FiberDataset& d : datasets)
   {
-    const std::string where = path + ": dataset '" + printableText(prefix + "/" + d.bundleName + "/" + d.fiberName, 80) + "'";
+    const std::string where = path + ": dataset '" +
+      printableText(prefix + "/" + d.bundleName + "/" + d.fiberName, 80) + "'";
     const std::string name = d.bundleName + "/" + d.fiberName;
     Handle data(H5Dopen2(root.get(), name.c_str(), H5P_DEFAULT), H5Dclose);
     values.resize(static_cast<std::size_t>(d.points * 4));
     if (!data.ok() ||
-      (!values.empty() && H5Dread(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))
+      (!values.empty() &&
+        H5Dread(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))
     {
       model.fibers.clear();
       return where + " cannot be read as floating-point numbers";
@@ -538,7 +578,8 @@ std::string FiberH5Format::Read(const std::string& path, const std::string& requ
   return {};
 }
 
-std::string FiberH5Format::Write(const std::string& path, const FiberModel& model, const PeriodicCell& cell)
+std::string FiberH5Format::Write(
+  const std::string& path, const FiberModel& model, const PeriodicCell& cell)
 {
   std::map<int, std::vector<const Fiber*>> bundles;
   double points = 0.0;
@@ -547,7 +588,8 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
     if (f.bundle < 0)
     {
       // Group names are bundle indices "0", "1", …: a negative id could not be read back.
-      return path + ": bundle_id " + std::to_string(f.bundle) + " is negative; .h5 bundles are numbered from 0";
+      return path + ": bundle_id " + std::to_string(f.bundle) +
+        " is negative; .h5 bundles are numbered from 0";
     }
     bundles[f.bundle].push_back(&f);
     points += static_cast<double>(f.points.size());
@@ -555,7 +597,8 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
   // The file image (32 B per point plus HDF5's headers) is built in memory, next to one fiber's
   // buffer, then written by writeFileAtomically like .dat and .tck.
   const std::string tooBig = checkMemoryBudget(
-    2.0 * (32.0 * points + 1024.0 * static_cast<double>(model.fibers.size())) + (1 << 20), path + ": the .h5 file image");
+    2.0 * (32.0 * points + 1024.0 * static_cast<double>(model.fibers.size())) + (1 << 20),
+    path + ": the .h5 file image");
   if (!tooBig.empty())
   {
     return tooBig;
@@ -589,7 +632,8 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
     for (auto it = bundles.begin(); it != bundles.end() && error.empty(); ++it)
     {
       const std::string groupName = std::to_string(it->first);
-      Handle group(H5Gcreate2(fileId, groupName.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+      Handle group(
+        H5Gcreate2(fileId, groupName.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
       if (!group.ok())
       {
         error = path + ": cannot create group '/" + groupName + "'";
@@ -610,15 +654,20 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
         const hsize_t dims[2] = { f.points.size(), 4 };
         Handle space(H5Screate_simple(2, dims, nullptr), H5Sclose);
         const std::string name = std::to_string(j);
-        Handle data(H5Dcreate2(group.get(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-        if (!data.ok() || H5Dwrite(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
+        Handle data(H5Dcreate2(group.get(), name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                      H5P_DEFAULT, H5P_DEFAULT),
+          H5Dclose);
+        if (!data.ok() ||
+          H5Dwrite(data.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
         {
           error = path + ": cannot write dataset '/" + groupName + "/" + name + "'";
           break;
         }
-        if (f.innerRadii.size() == f.points.size() && !writeInnerRadiusAttribute(data.get(), f.innerRadii))
+        if (f.innerRadii.size() == f.points.size() &&
+          !writeInnerRadiusAttribute(data.get(), f.innerRadii))
         {
-          error = path + ": cannot write the attribute inner_radius of dataset '/" + groupName + "/" + name + "'";
+          error = path + ": cannot write the attribute inner_radius of dataset '/" + groupName +
+            "/" + name + "'";
           break;
         }
       }
@@ -649,10 +698,12 @@ std::string FiberH5Format::Write(const std::string& path, const FiberModel& mode
       return error;
     }
   }
-  return writeFileAtomically(path, [&image](std::ostream& out) {
-    out.write(image.data(), static_cast<std::streamsize>(image.size()));
-    return std::string();
-  });
+  return writeFileAtomically(path,
+    [&image](std::ostream& out)
+    {
+      out.write(image.data(), static_cast<std::streamsize>(image.size()));
+      return std::string();
+    });
 }
 
 } // namespace fiberpli

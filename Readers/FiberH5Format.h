@@ -37,7 +37,8 @@ public:
   /// cell (optional) receives the attribute `periodic_cell` (6 float64: xmin xmax ymin ymax zmin
   /// zmax) of the group when present (else it is left disabled); a malformed one is an error. A
   /// fiber dataset's float64 attributes `inner_radius`, `inner_radius_1`, … (together one value per
-  /// point, finite in (0, r]) become Fiber::innerRadii; malformed ones are an error naming the dataset.
+  /// point, finite in (0, r]) become Fiber::innerRadii; malformed ones are an error naming the
+  /// dataset.
   static std::string Read(const std::string& path, const std::string& group, FiberModel& model,
     PeriodicCell* cell = nullptr);
 
@@ -46,9 +47,11 @@ public:
   /// when complete; the target's permission bits are kept. Fibers are grouped by bundle_id in
   /// increasing order. An enabled cell is stored as the root attribute `periodic_cell`, a fiber's
   /// inner radii as attributes of its dataset (`inner_radius`, then `inner_radius_1`, … for every
-  /// further 4096 points: the original HDF5 object header holds no attribute above 64 KiB) (fastPLI ignores attributes it does
-  /// not know; the (n, 4) datasets are unchanged). Returns an empty string or an error naming the file.
-  static std::string Write(const std::string& path, const FiberModel& model, const PeriodicCell& cell = PeriodicCell{});
+  /// further 4096 points: the original HDF5 object header holds no attribute above 64 KiB) (fastPLI
+  /// ignores attributes it does not know; the (n, 4) datasets are unchanged). Returns an empty
+  /// string or an error naming the file.
+  static std::string Write(
+    const std::string& path, const FiberModel& model, const PeriodicCell& cell = PeriodicCell{});
 };
 
 } // namespace fiberpli

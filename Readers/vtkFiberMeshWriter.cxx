@@ -41,10 +41,12 @@ int vtkFiberMeshWriter::FillInputPortInformation(int, vtkInformation* info)
 void vtkFiberMeshWriter::WriteData()
 {
   // Any exception escaping the write becomes a VTK error (FiberGuard.h), never an abort.
-  const int ok = fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this), [&]() -> int {
-    this->WriteMesh();
-    return 1;
-  });
+  const int ok = fiberpli::GuardRequest(this, nullptr, fiberpli::ProxyName(this),
+    [&]() -> int
+    {
+      this->WriteMesh();
+      return 1;
+    });
   if (!ok && this->GetErrorCode() == vtkErrorCode::NoError)
   {
     this->SetErrorCode(vtkErrorCode::UnknownError);
@@ -66,7 +68,8 @@ void vtkFiberMeshWriter::WriteMesh()
   if (!(this->Tolerance >= 0.0) || !std::isfinite(this->Tolerance))
   {
     std::ostringstream m;
-    m << "FiberMeshWriter: Tolerance is " << this->Tolerance << " µm, must be finite and >= 0 (0: use NumberOfSides)";
+    m << "FiberMeshWriter: Tolerance is " << this->Tolerance
+      << " µm, must be finite and >= 0 (0: use NumberOfSides)";
     this->Fail(vtkErrorCode::UserError, m.str());
     return;
   }
@@ -86,7 +89,8 @@ void vtkFiberMeshWriter::WriteMesh()
   fiberpli::ReadPeriodicCell(input, cell, cellError);
   if (!cellError.empty())
   {
-    this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "input field data " + cellError));
+    this->Fail(
+      vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "input field data " + cellError));
     return;
   }
   // The axon surfaces: inner_radius checked and read by the one rule of FiberInnerRadii.h.
@@ -110,7 +114,8 @@ void vtkFiberMeshWriter::WriteMesh()
   options.ringSpacing = this->RingSpacing;
   if (this->Tolerance > 0.0)
   {
-    options.sides = fiberpli::substrateSidesForTolerance(fiberpli::largestRadius(in.model), this->Tolerance);
+    options.sides =
+      fiberpli::substrateSidesForTolerance(fiberpli::largestRadius(in.model), this->Tolerance);
   }
   const std::string bad = fiberpli::checkSubstrateMeshOptions(options);
   if (!bad.empty())
@@ -122,18 +127,21 @@ void vtkFiberMeshWriter::WriteMesh()
   fiberpli::SubstrateMeshCounts counts;
   fiberpli::Status status;
   std::streamoff bytes = 0;
-  const std::string ioError = fiberpli::writeFileAtomically(path, [&](std::ostream& out) -> std::string {
-    status = fiberpli::writeSubstratePly(out, in.model, &inner, cell, options, counts, fiberpli::MakeProgress(this));
-    if (status.aborted)
+  const std::string ioError = fiberpli::writeFileAtomically(path,
+    [&](std::ostream& out) -> std::string
     {
-      return "aborted";
-    }
-    if (!status.error.empty())
-    {
-      return path + ": " + status.error;
-    }
-    return {};
-  });
+      status = fiberpli::writeSubstratePly(
+        out, in.model, &inner, cell, options, counts, fiberpli::MakeProgress(this));
+      if (status.aborted)
+      {
+        return "aborted";
+      }
+      if (!status.error.empty())
+      {
+        return path + ": " + status.error;
+      }
+      return {};
+    });
   if (status.aborted)
   {
     return; // the abort is no error; the old file, if any, is kept
@@ -151,9 +159,12 @@ void vtkFiberMeshWriter::WriteMesh()
   this->VerticesWritten = static_cast<double>(counts.vertices);
   this->TrianglesWritten = static_cast<double>(counts.triangles);
   this->BytesWritten = static_cast<double>(bytes);
-  vtkLogF(INFO, "FiberMeshWriter: %s: %llu surfaces, %llu vertices, %llu triangles, %lld bytes (%d sides)",
-    path.c_str(), static_cast<unsigned long long>(counts.surfaces), static_cast<unsigned long long>(counts.vertices),
-    static_cast<unsigned long long>(counts.triangles), static_cast<long long>(bytes), options.sides);
+  vtkLogF(INFO,
+    "FiberMeshWriter: %s: %llu surfaces, %llu vertices, %llu triangles, %lld bytes (%d sides)",
+    path.c_str(), static_cast<unsigned long long>(counts.surfaces),
+    static_cast<unsigned long long>(counts.vertices),
+    static_cast<unsigned long long>(counts.triangles), static_cast<long long>(bytes),
+    options.sides);
 
   if (this->WriteMCDCConfig)
   {
@@ -165,16 +176,22 @@ void vtkFiberMeshWriter::WriteMesh()
     }
     const std::size_t dot = path.find_last_of('.');
     const std::size_t slash = path.find_last_of('/');
-    const std::string stem = dot != std::string::npos && (slash == std::string::npos || dot > slash) ? path.substr(0, dot) : path;
+    const std::string stem = dot != std::string::npos && (slash == std::string::npos || dot > slash)
+      ? path.substr(0, dot)
+      : path;
     const std::string confPath = stem + ".mcdc.conf";
     const std::string plyName = slash == std::string::npos ? path : path.substr(slash + 1);
-    const std::string confError = fiberpli::writeFileAtomically(confPath, [&](std::ostream& out) -> std::string {
-      out << fiberpli::mcdcConfigSnippet(plyName, lo, hi);
-      return out ? std::string() : confPath + ": write failed";
-    });
+    const std::string confError = fiberpli::writeFileAtomically(confPath,
+      [&](std::ostream& out) -> std::string
+      {
+        out << fiberpli::mcdcConfigSnippet(plyName, lo, hi);
+        return out ? std::string() : confPath + ": write failed";
+      });
     if (!confError.empty())
     {
-      this->Fail(vtkErrorCode::CannotOpenFileError, fiberpli::ProxyMessage(this, path + " was written, its MC/DC configuration was not: " + confError));
+      this->Fail(vtkErrorCode::CannotOpenFileError,
+        fiberpli::ProxyMessage(
+          this, path + " was written, its MC/DC configuration was not: " + confError));
     }
   }
 }

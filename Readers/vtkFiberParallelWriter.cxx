@@ -14,8 +14,8 @@
 vtkStandardNewMacro(vtkFiberParallelWriter);
 
 //------------------------------------------------------------------------------
-int vtkFiberParallelWriter::RequestData(vtkInformation* request, vtkInformationVector** inputVector,
-  vtkInformationVector* outputVector)
+int vtkFiberParallelWriter::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   auto* writer = vtkFiberWriter::SafeDownCast(this->GetWriter());
   if (writer)
@@ -25,8 +25,8 @@ int vtkFiberParallelWriter::RequestData(vtkInformation* request, vtkInformationV
   // The pieces are gathered to one rank and written with one cell: a cell that is malformed on
   // a rank, or differs between ranks, fails every rank before the gather (FiberCollective.h).
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  const std::string cellError =
-    fiberpli::FiberCollective::AgreeOnPeriodicCell(inInfo, "FiberWriter", vtkDataObject::GetData(inInfo));
+  const std::string cellError = fiberpli::FiberCollective::AgreeOnPeriodicCell(
+    inInfo, "FiberWriter", vtkDataObject::GetData(inInfo));
   if (!cellError.empty())
   {
     vtkErrorMacro(<< cellError);
@@ -39,11 +39,12 @@ int vtkFiberParallelWriter::RequestData(vtkInformation* request, vtkInformationV
   std::string local = reported ? writer->GetLastWriteError() : "";
   if (rc == 0 && local.empty())
   {
-    local = "FiberWriter: writing " + std::string(this->GetFileName() ? this->GetFileName() : "") + " failed";
+    local = "FiberWriter: writing " + std::string(this->GetFileName() ? this->GetFileName() : "") +
+      " failed";
   }
   // The input's request is the piece of this rank in ParaView's parallel update.
-  const std::string error =
-    fiberpli::FiberCollective::AgreeOnError(inputVector[0]->GetInformationObject(0), "FiberWriter", local);
+  const std::string error = fiberpli::FiberCollective::AgreeOnError(
+    inputVector[0]->GetInformationObject(0), "FiberWriter", local);
   if (error.empty())
   {
     return 1;

@@ -24,7 +24,8 @@ public:
 protected:
   vtkFiberParallelWriter() = default;
   ~vtkFiberParallelWriter() override = default;
-  int RequestData(vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
 
 private:
   vtkFiberParallelWriter(const vtkFiberParallelWriter&) = delete;

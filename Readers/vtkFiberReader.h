@@ -2,14 +2,15 @@
  * @class   vtkFiberReader
  * @brief   reads fiber files: fastPLI .dat and .h5, MRtrix .tck, TrackVis .trk
  *
- * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm), cell arrays
- * `fiber_id` (position of the fiber in the file) and `bundle_id` (bundle of .dat/.h5 files, 0 for
- * .tck/.trk). The format is chosen by the extension; CanReadFile looks at the content, so other
- * files with these extensions (Tecplot .dat, CONVERGE .h5, …) are left to their readers. A .tck
- * file takes its radii from the MRtrix track-scalar file `<name>.radius.tsf` beside it when there
- * is one (it must match the tracks); otherwise, and for .trk, every point gets DefaultRadius. A file that is not what it claims gives an error
- * naming the file and the line or byte offset, and an empty output. Fibers of fewer than 2 points
- * are dropped with one warning. In a distributed run the fibers are read on piece 0 only.
+ * Output: fiber polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius`
+ * (µm), cell arrays `fiber_id` (position of the fiber in the file) and `bundle_id` (bundle of
+ * .dat/.h5 files, 0 for .tck/.trk). The format is chosen by the extension; CanReadFile looks at the
+ * content, so other files with these extensions (Tecplot .dat, CONVERGE .h5, …) are left to their
+ * readers. A .tck file takes its radii from the MRtrix track-scalar file `<name>.radius.tsf` beside
+ * it when there is one (it must match the tracks); otherwise, and for .trk, every point gets
+ * DefaultRadius. A file that is not what it claims gives an error naming the file and the line or
+ * byte offset, and an empty output. Fibers of fewer than 2 points are dropped with one warning. In
+ * a distributed run the fibers are read on piece 0 only.
  */
 #ifndef vtkFiberReader_h
 #define vtkFiberReader_h
@@ -34,8 +35,8 @@ public:
 
   ///@{
   /**
-   * Radius in µm given to every point of files that store none (.trk, .tck without .radius.tsf), > 0.
-   * Default is 1.
+   * Radius in µm given to every point of files that store none (.trk, .tck without .radius.tsf), >
+   * 0. Default is 1.
    */
   vtkSetMacro(DefaultRadius, double);
   vtkGetMacro(DefaultRadius, double);

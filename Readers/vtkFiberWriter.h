@@ -2,11 +2,11 @@
  * @class   vtkFiberWriter
  * @brief   writes fiber polydata as fastPLI .dat or .h5, or MRtrix .tck, never destroying a file
  *
- * Input: fiber polydata (docs/data-contract.md §1), validated like every filter's input. The format is chosen by
- * the extension of FileName. The file is written to a temporary file beside the target and
- * renamed over it, so a failed write leaves an existing file intact. .dat and .h5 keep points,
- * radii and the grouping into bundles (by bundle_id); .tck keeps the points (float32) and writes the
- * radii into the MRtrix track-scalar file `<name>.radius.tsf` beside it. Errors name the file.
+ * Input: fiber polydata (docs/data-contract.md §1), validated like every filter's input. The format
+ * is chosen by the extension of FileName. The file is written to a temporary file beside the target
+ * and renamed over it, so a failed write leaves an existing file intact. .dat and .h5 keep points,
+ * radii and the grouping into bundles (by bundle_id); .tck keeps the points (float32) and writes
+ * the radii into the MRtrix track-scalar file `<name>.radius.tsf` beside it. Errors name the file.
  */
 #ifndef vtkFiberWriter_h
 #define vtkFiberWriter_h

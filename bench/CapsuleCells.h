@@ -35,11 +35,15 @@ class CapsuleCells
 public:
   /// nc³ cells of edge `cell` starting at -half (nc · cell may exceed 2 · half).
   CapsuleCells(double half, int nc, double cell)
-    : half_(half), nc_(nc), cell_(cell), cells_(static_cast<std::size_t>(nc) * nc * nc)
+    : half_(half)
+    , nc_(nc)
+    , cell_(cell)
+    , cells_(static_cast<std::size_t>(nc) * nc * nc)
   {
   }
 
-  /// Lists the capsule in every cell its bounding box touches; capsules outside the cube are dropped.
+  /// Lists the capsule in every cell its bounding box touches; capsules outside the cube are
+  /// dropped.
   void add(const BenchCapsule& s)
   {
     int lo[3], hi[3];
@@ -67,7 +71,8 @@ public:
     long hits = 0;
     for (long i = 0; i < samples; ++i)
     {
-      const Vec3 p{ rng.uniform(-half_, half_), rng.uniform(-half_, half_), rng.uniform(-half_, half_) };
+      const Vec3 p{ rng.uniform(-half_, half_), rng.uniform(-half_, half_),
+        rng.uniform(-half_, half_) };
       const int x = std::min(nc_ - 1, static_cast<int>((p.x + half_) / cell_));
       const int y = std::min(nc_ - 1, static_cast<int>((p.y + half_) / cell_));
       const int z = std::min(nc_ - 1, static_cast<int>((p.z + half_) / cell_));

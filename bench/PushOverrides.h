@@ -1,6 +1,6 @@
 // The solver benchmarks' push-schedule flags (--overlap-push, --separation-speed,
-// --max-displacement, --drag, --push-boost): a value given on the command line replaces the solver's default,
-// an absent one (the sentinel) keeps it.
+// --max-displacement, --drag, --push-boost): a value given on the command line replaces the
+// solver's default, an absent one (the sentinel) keeps it.
 #pragma once
 
 #include "Solver/CollisionSolver.h"

@@ -52,13 +52,15 @@ FiberModel makeModel(std::size_t points)
     RandomStream rng(1, k);
     Fiber& f = m.fibers[k];
     f.id = static_cast<std::int64_t>(k);
-    f.bundle = static_cast<int>(3 * k / fibers); // contiguous bundles: the .dat writer keeps fiber order
+    f.bundle =
+      static_cast<int>(3 * k / fibers); // contiguous bundles: the .dat writer keeps fiber order
     const std::size_t n = std::min(perFiber, points - k * perFiber);
     Vec3 p{ rng.uniform(-500, 500), rng.uniform(-500, 500), rng.uniform(-500, 500) };
     const Vec3 d = normalized(Vec3{ rng.normal(), rng.normal(), rng.normal() });
     for (std::size_t i = 0; i < n; ++i)
     {
-      f.points.push_back(p + Vec3{ rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5) });
+      f.points.push_back(
+        p + Vec3{ rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5) });
       f.radii.push_back(rng.uniform(0.8, 1.2));
       p += 2.0 * d;
     }
@@ -125,18 +127,20 @@ int main(int argc, char** argv)
       return 1;
     }
     const Vec3 q = r.model.fibers.back().points.back();
-    const bool exact = firstCheck == "dat" ? (q == lastPoint && r.model.fibers.back().radii.back() == lastRadius)
-                                           : (q.x == static_cast<double>(static_cast<float>(lastPoint.x)));
+    const bool exact = firstCheck == "dat"
+      ? (q == lastPoint && r.model.fibers.back().radii.back() == lastRadius)
+      : (q.x == static_cast<double>(static_cast<float>(lastPoint.x)));
     if (!exact)
     {
       std::fprintf(stderr, ".%s round trip changed the last point\n", ext);
       status = 1;
     }
-    std::printf(".%s  file %.1f MB | write %.3f s (%.3f s per 1M points), peak RSS %.1f MB | "
-                "read %.3f s (%.3f s per 1M points), peak RSS %.1f MB (process before read %.1f MB, "
-                "model %.1f MB)\n",
-      ext, static_cast<double>(st.st_size) / 1e6, writeSeconds, writeSeconds / mega, writePeak / 1024.0,
-      readSeconds, readSeconds / mega, readPeak / 1024.0, baseline / 1024.0,
+    std::printf(
+      ".%s  file %.1f MB | write %.3f s (%.3f s per 1M points), peak RSS %.1f MB | "
+      "read %.3f s (%.3f s per 1M points), peak RSS %.1f MB (process before read %.1f MB, "
+      "model %.1f MB)\n",
+      ext, static_cast<double>(st.st_size) / 1e6, writeSeconds, writeSeconds / mega,
+      writePeak / 1024.0, readSeconds, readSeconds / mega, readPeak / 1024.0, baseline / 1024.0,
       static_cast<double>(modelPoints) * (sizeof(Vec3) + sizeof(double)) / 1e6);
   }
   return status;

@@ -4,12 +4,13 @@
 // Usage: fiberpli_periodic_bench [--edge 30] [--pops 1,2,3] [--phi 0.85,0.72,0.58] [--threads 1,2]
 //        [--max-steps 20000] [--init-scale X] [--spread S] [--gamma] [--samples 1e6] [--seed 42]
 //        [--curvature 4] [--cap SECONDS] [--overlap-push X] [--separation-speed X]
-//        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X] [--push-boost X]
+//        [--max-displacement X] [--displacement D (0.5, of the generated fibers)] [--drag X]
+//        [--push-boost X]
 //        [--lattice (Seeding Lattice instead of Random)] [--uniform (Uniform radii, mean 1 um)]
 //        [--radius R (FiberRadius: 0.8 um, with --gamma / --uniform the mean 1 um)]
 #include "BenchUtil.h"
-#include "PushOverrides.h"
 #include "CapsuleCells.h"
+#include "PushOverrides.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -142,9 +143,11 @@ int main(int argc, char** argv)
     }
   }
   std::printf("seeding: %s, displacement %.2f um\n", lattice ? "Lattice" : "Random", displacement);
-  std::printf("| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | CPU [s] | "
-              "load after | peak RSS [MB] | solved | collisions | radius scale | phi solver | phi MC "
-              "(27 images) | min gap [um] | generate [s] |\n");
+  std::printf(
+    "| cell [um] | pops | target phi | radii | threads | fibers | links | steps | solve [s] | CPU "
+    "[s] | "
+    "load after | peak RSS [MB] | solved | collisions | radius scale | phi solver | phi MC "
+    "(27 images) | min gap [um] | generate [s] |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (std::size_t k = 0; k < pops.size(); ++k)
   {
@@ -203,12 +206,17 @@ int main(int argc, char** argv)
         continue;
       }
       const double mc = periodicFraction(m, edge, samples);
-      const char* radii = spread > 0.0 ? (gamma ? "gamma" : uniform ? "uniform" : "lognormal") : "0.8";
-      std::printf("| %.0f | %d | %.3f | %s | %d | %zu | %zu | %d | %.1f | %.1f | %.1f | %.0f | %d%s | %zu | %.3f | "
+      const char* radii = spread > 0.0 ? (gamma        ? "gamma"
+                                             : uniform ? "uniform"
+                                                       : "lognormal")
+                                       : "0.8";
+      std::printf("| %.0f | %d | %.3f | %s | %d | %zu | %zu | %d | %.1f | %.1f | %.1f | %.0f | "
+                  "%d%s | %zu | %.3f | "
                   "%.1f %% | %.1f %% | %.4f | %.2f |\n",
-        edge, c.populations, phi, radii, static_cast<int>(t), m.fibers.size(), m.numberOfLinks(), r.steps,
-        seconds, cpu, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
-        r.radiusScale, 100.0 * r.volumeFraction, 100.0 * mc, r.minGap, generate);
+        edge, c.populations, phi, radii, static_cast<int>(t), m.fibers.size(), m.numberOfLinks(),
+        r.steps, seconds, cpu, load, bench::peakRssMB(), r.solved ? 1 : 0,
+        r.aborted ? " (cap)" : "", r.collisions, r.radiusScale, 100.0 * r.volumeFraction,
+        100.0 * mc, r.minGap, generate);
       for (const std::string& w : r.warnings)
         std::printf("  warning: %s\n", w.c_str());
       std::fflush(stdout);

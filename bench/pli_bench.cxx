@@ -24,9 +24,9 @@ using namespace fiberpli;
 
 namespace
 {
-// The reference model (bench/README.md): generateCube (2 populations, 1000 fibers, seed 42) solved by the Core
-// collision solver with default options and MinCurvatureRadius 4 (bit-identical for any thread
-// count), cached as fastPLI .dat so the ~2.5 min solve runs once.
+// The reference model (bench/README.md): generateCube (2 populations, 1000 fibers, seed 42) solved
+// by the Core collision solver with default options and MinCurvatureRadius 4 (bit-identical for any
+// thread count), cached as fastPLI .dat so the ~2.5 min solve runs once.
 bool solvedCube(const std::string& cache, FiberModel& model, std::string& source)
 {
   FiberReadResult r = readFiberFile(cache, 1.0);
@@ -52,13 +52,14 @@ bool solvedCube(const std::string& cache, FiberModel& model, std::string& source
     std::fprintf(stderr, "solver error: %s\n", res.error.c_str());
     return false;
   }
-  std::printf("solved the cube: %d steps, %zu collisions left, %.1f s (all threads); cached in %s\n", res.steps,
-    res.collisions, t, cache.c_str());
+  std::printf(
+    "solved the cube: %d steps, %zu collisions left, %.1f s (all threads); cached in %s\n",
+    res.steps, res.collisions, t, cache.c_str());
   const std::string err = writeFiberFile(cache, model);
   if (!err.empty())
     std::fprintf(stderr, "warning: cannot cache the model: %s\n", err.c_str());
-  source = std::string("generateCube 2 populations, 1000 fibers, seed 42, solved (") + (res.solved ? "0" :
-    std::to_string(res.collisions)) + " collisions left), cached in " + cache;
+  source = std::string("generateCube 2 populations, 1000 fibers, seed 42, solved (") +
+    (res.solved ? "0" : std::to_string(res.collisions)) + " collisions left), cached in " + cache;
   return true;
 }
 } // namespace
@@ -81,7 +82,8 @@ int main(int argc, char** argv)
     c.numberOfFibers = 1000;
     c.seed = 42;
     model = generateCube(c);
-    source = "generateCube 2 populations, 1000 fibers, seed 42, UNSOLVED (no collision solver in this build)";
+    source = "generateCube 2 populations, 1000 fibers, seed 42, UNSOLVED (no collision solver in "
+             "this build)";
   }
 
   pli::PLIOptions o;
@@ -132,24 +134,26 @@ int main(int argc, char** argv)
   std::printf("grid %lldx%lldx%lld voxels of %.3f um, %d rotations, %.0f views, threads %d\n",
     static_cast<long long>(n[0]), static_cast<long long>(n[1]), static_cast<long long>(n[2]), voxel,
     o.numberOfRotations, views, threads);
-  std::printf("voxelise   %.3f s (CPU %.3f s over threads, incl. tile halos)\n", tVox, img.voxeliseCpuSeconds);
+  std::printf("voxelise   %.3f s (CPU %.3f s over threads, incl. tile halos)\n", tVox,
+    img.voxeliseCpuSeconds);
   std::printf("propagate  %.3f s (CPU %.3f s), %lld ray steps\n", tProp, img.propagateCpuSeconds,
     static_cast<long long>(img.raySteps));
   std::printf("optics     %.3f s\n", img.opticsSeconds);
   std::printf("total wall %.3f s\n", wall);
   std::printf("voxel-views per second (propagation, wall) %.3g\n", voxels * views / tProp);
-  std::printf("peak RSS %.1f MB (tile buffers %zu B/voxel, estimate %.1f MB)\n", rssMB, img.plan.bytesPerVoxel,
-    static_cast<double>(img.peakTissueBytes) / 1048576.0);
+  std::printf("peak RSS %.1f MB (tile buffers %zu B/voxel, estimate %.1f MB)\n", rssMB,
+    img.plan.bytesPerVoxel, static_cast<double>(img.peakTissueBytes) / 1048576.0);
   if (!img.views.empty())
   {
     double mean = 0;
     for (double v : img.views[0].data)
       mean += v / static_cast<double>(img.views[0].data.size());
-    std::printf("mean untilted intensity %.2f, empty section %d, warnings %zu\n", mean, img.emptySection ? 1 : 0,
-      st.warnings.size());
+    std::printf("mean untilted intensity %.2f, empty section %d, warnings %zu\n", mean,
+      img.emptySection ? 1 : 0, st.warnings.size());
   }
   if (refSim > 0)
-    std::printf("ratio to fastPLI reference: voxelise %.2f, propagate %.2f, total %.2f, RSS %.2f (goal <= 0.5 time, <= 0.25 RSS)\n",
+    std::printf("ratio to fastPLI reference: voxelise %.2f, propagate %.2f, total %.2f, RSS %.2f "
+                "(goal <= 0.5 time, <= 0.25 RSS)\n",
       tVox / refTissue, tProp / refSim, (tVox + tProp) / (refTissue + refSim), rssMB / refRss);
   return 0;
 }

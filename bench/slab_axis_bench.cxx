@@ -6,9 +6,9 @@
 // links (own + halo), peak halo links and the bytes sent per step, against the share of links.
 // Usage: fiberpli_slab_axis_bench [steps 20] [cells along x 16] [thickness 10 (um)]
 #include "PeriodicReference.h"
-#include "ThreadComm.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
+#include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <cstdio>
@@ -30,7 +30,8 @@ FiberModel strip(const FiberModel& cell, int cells, double thickness)
     for (const Fiber& f : cell.fibers)
     {
       Fiber run;
-      const auto flush = [&]() {
+      const auto flush = [&]()
+      {
         if (run.points.size() >= 2)
         {
           run.id = static_cast<std::int64_t>(out.fibers.size());
@@ -41,7 +42,8 @@ FiberModel strip(const FiberModel& cell, int cells, double thickness)
       for (std::size_t i = 0; i < f.points.size(); ++i)
       {
         const Vec3& p = f.points[i];
-        if (p.x < -half || p.x >= half || p.y < -half || p.y >= half || 2.0 * p.z < -thickness || 2.0 * p.z >= thickness)
+        if (p.x < -half || p.x >= half || p.y < -half || p.y >= half || 2.0 * p.z < -thickness ||
+          2.0 * p.z >= thickness)
         {
           flush();
           continue;
@@ -61,11 +63,13 @@ int main(int argc, char** argv)
   const int steps = argc > 1 ? std::atoi(argv[1]) : 20;
   const int cells = argc > 2 ? std::atoi(argv[2]) : 16;
   const double thickness = argc > 3 ? std::atof(argv[3]) : 10.0;
-  const FiberModel model = strip(generateCube(fiberpli_test::periodicCube(2, 30.0, 0.3, 42)), cells, thickness);
+  const FiberModel model =
+    strip(generateCube(fiberpli_test::periodicCube(2, 30.0, 0.3, 42)), cells, thickness);
   std::size_t links = 0;
   for (const Fiber& f : model.fibers)
     links += f.points.size() - 1;
-  std::printf("strip %d x 30 x %g um: %zu fibers, %zu links\n", 30 * cells, thickness, model.fibers.size(), links);
+  std::printf("strip %d x 30 x %g um: %zu fibers, %zu links\n", 30 * cells, thickness,
+    model.fibers.size(), links);
   CollisionSolverOptions o;
   o.maxSteps = steps;
   o.numberOfThreads = 1;
@@ -76,23 +80,27 @@ int main(int argc, char** argv)
     int axis = -1;
     for (std::size_t r = 0; r < pieces.size(); ++r)
     {
-      for (std::size_t f = model.fibers.size() * r / pieces.size(); f < model.fibers.size() * (r + 1) / pieces.size(); ++f)
+      for (std::size_t f = model.fibers.size() * r / pieces.size();
+           f < model.fibers.size() * (r + 1) / pieces.size(); ++f)
         pieces[r].fibers.push_back(model.fibers[f]);
     }
-    fiberpli_test::runRanks(ranks, [&](SolverComm& comm) {
-      const std::size_t r = static_cast<std::size_t>(comm.rank());
-      const int a = SlabLayout::make(pieces[r], PeriodicCell{}, comm).axis(); // the solver's own choice
-      if (r == 0)
-        axis = a;
-      result[r] = solveCollisions(pieces[r], o, {}, {}, &comm);
-    });
-    std::printf("%d ranks, slab axis %c, %d steps, share %.0f links:", ranks, "xyz"[axis], result[0].steps,
-      static_cast<double>(links) / ranks);
+    fiberpli_test::runRanks(ranks,
+      [&](SolverComm& comm)
+      {
+        const std::size_t r = static_cast<std::size_t>(comm.rank());
+        const int a =
+          SlabLayout::make(pieces[r], PeriodicCell{}, comm).axis(); // the solver's own choice
+        if (r == 0)
+          axis = a;
+        result[r] = solveCollisions(pieces[r], o, {}, {}, &comm);
+      });
+    std::printf("%d ranks, slab axis %c, %d steps, share %.0f links:", ranks, "xyz"[axis],
+      result[0].steps, static_cast<double>(links) / ranks);
     for (std::size_t r = 0; r < result.size(); ++r)
     {
       const CollisionSolverResult& s = result[r];
-      std::printf(" [%zu fibers, held %zu, halo %zu, %.0f B/step]", s.rankFibers, s.peakHeldLinks, s.peakHaloLinks,
-        s.haloBytesPerStep);
+      std::printf(" [%zu fibers, held %zu, halo %zu, %.0f B/step]", s.rankFibers, s.peakHeldLinks,
+        s.peakHaloLinks, s.haloBytesPerStep);
     }
     std::printf("\n");
   }

@@ -1,13 +1,15 @@
 // Collision solver benchmark (bench/README.md): the workloads of bench/README.md on cubes
 // from generateCube (seed 42), timed against the fastPLI reference figures (bench/README.md).
-// Usage: fiberpli_solver_bench [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|dense-b|chiasm-fat|quick|cube|dense|all]...
+// Usage: fiberpli_solver_bench
+// [quick-a|quick-b|quick-c|cube-a|cube-b|cube-c|dense-b|chiasm-fat|quick|cube|dense|all]...
 //        [--threads 1,2] [--cap SECONDS] [--max-steps N] [--samples N] (MC samples for phi)
-//        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread X]
+//        [--overlap-push X] [--separation-speed X] [--max-displacement X] [--drag X] [--push-spread
+//        X]
 //        [--push-boost X] [--end-points perpendicular|free|fixed] (solver knobs)
 //        [--seed N] (of the generated cube, 42) [--trace N] (collisions every N steps, to stderr)
 #include "BenchUtil.h"
-#include "PushOverrides.h"
 #include "CapsuleCells.h"
+#include "PushOverrides.h"
 #include "Solver/CollisionSolver.h"
 #include "Tissue/BundleGenerator.h"
 #include "Tissue/CubeGenerator.h"
@@ -30,9 +32,11 @@ struct Workload
   const char* name;
   int populations;
   int fibers;
-  double referenceSeconds; // fastPLI, 1 thread (bench/README.md); cube-b hit the 540 s cap; 0 = unknown
-  double edge = 0.0;       // cube edge (µm); 0 = √3·30·√(fibers/1000), the paper's fiber density
-  double chiasmRadius = 0.0; // > 0: not a cube but FiberBundleSource's Chiasm with this fiber radius
+  double
+    referenceSeconds; // fastPLI, 1 thread (bench/README.md); cube-b hit the 540 s cap; 0 = unknown
+  double edge = 0.0;  // cube edge (µm); 0 = √3·30·√(fibers/1000), the paper's fiber density
+  double chiasmRadius =
+    0.0; // > 0: not a cube but FiberBundleSource's Chiasm with this fiber radius
 };
 
 const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200, 10.6 },
@@ -42,11 +46,13 @@ const Workload kWorkloads[] = { { "quick-a", 1, 200, 3.1 }, { "quick-b", 2, 200,
   { "dense-b", 2, 400, 0.0, 23.24 },
   // The examples' chiasm (Examples/bundle_chiasm.py: R 10 µm, fiber spacing 2 µm) with its fibers
   // fattened from r 0.8 to 1.2 µm, so that every fiber overlaps its six neighbours by 0.4 µm and
-  // the nerves overlap where they cross (fastPLI's 399 steps were measured on its own chiasm model).
+  // the nerves overlap where they cross (fastPLI's 399 steps were measured on its own chiasm
+  // model).
   { "chiasm-fat", 0, 0, 0.0, 0.0, 1.2 } };
 
 // The model of a workload, its central cube's edge (for φ) and its shape control.
-FiberModel workloadModel(const Workload& w, unsigned seed, double& centralEdge, double& minCurvatureRadius)
+FiberModel workloadModel(
+  const Workload& w, unsigned seed, double& centralEdge, double& minCurvatureRadius)
 {
   if (w.chiasmRadius > 0.0)
   {
@@ -94,7 +100,8 @@ double volumeFraction(const FiberModel& m, double e, long samples)
   {
     for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
     {
-      cells.add(bench::BenchCapsule{ f.points[k], f.points[k + 1], std::max(f.radii[k], f.radii[k + 1]) });
+      cells.add(
+        bench::BenchCapsule{ f.points[k], f.points[k + 1], std::max(f.radii[k], f.radii[k + 1]) });
     }
   }
   return cells.hitFraction(samples);
@@ -175,8 +182,10 @@ int main(int argc, char** argv)
       selected.push_back(&kWorkloads[k]);
   }
 
-  std::printf("| workload | fibers | threads | steps | solve [s] | CPU [s] | ref 1-thread [s] | ratio | load after | peak RSS "
-              "[MB] | solved | collisions left | links | phi (MC) | central cube [um] | input pairs per link |\n");
+  std::printf("| workload | fibers | threads | steps | solve [s] | CPU [s] | ref 1-thread [s] | "
+              "ratio | load after | peak RSS "
+              "[MB] | solved | collisions left | links | phi (MC) | central cube [um] | input "
+              "pairs per link |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Workload* w : selected)
   {
@@ -186,7 +195,8 @@ int main(int argc, char** argv)
       CollisionSolverOptions o;
       FiberModel m = workloadModel(*w, seed, edge, o.minCurvatureRadius);
       // Colliding pairs per link of the input: what PushBoost's gate sees (docs/solver.md §4.1).
-      const double q = static_cast<double>(countCollisions(m, 0.0, t)) / static_cast<double>(std::max<std::size_t>(1, m.numberOfLinks()));
+      const double q = static_cast<double>(countCollisions(m, 0.0, t)) /
+        static_cast<double>(std::max<std::size_t>(1, m.numberOfLinks()));
       o.segmentLength = 2.0;
       o.maxSteps = maxSteps;
       o.numberOfThreads = t;
@@ -197,13 +207,15 @@ int main(int argc, char** argv)
         o.endPoints = static_cast<EndPointRule>(endPoints);
       const double cpu0 = bench::cpuSeconds();
       const auto t0 = std::chrono::steady_clock::now();
-      auto elapsed = [&]() {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      };
-      const CollisionSolverResult r =
-        solveCollisions(m, o, [&](double) { return elapsed() < cap; }, [&](int step, const FiberModel& now) {
+      auto elapsed = [&]()
+      { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+      const CollisionSolverResult r = solveCollisions(
+        m, o, [&](double) { return elapsed() < cap; },
+        [&](int step, const FiberModel& now)
+        {
           if (trace > 0 && step % trace == 0)
-            std::fprintf(stderr, "%s step %d: %zu collisions\n", w->name, step, countCollisions(now, 0.0, t));
+            std::fprintf(
+              stderr, "%s step %d: %zu collisions\n", w->name, step, countCollisions(now, 0.0, t));
         });
       const double seconds = elapsed();
       const double cpu = bench::cpuSeconds() - cpu0;
@@ -214,10 +226,12 @@ int main(int argc, char** argv)
         continue;
       }
       const double phi = volumeFraction(m, edge, samples);
-      std::printf("| %s | %zu | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | %zu | %.1f %% | %.2f | %.2f |\n",
+      std::printf("| %s | %zu | %d | %d | %.2f | %.2f | %.1f | %.3f | %.1f | %.0f | %d%s | %zu | "
+                  "%zu | %.1f %% | %.2f | %.2f |\n",
         w->name, m.fibers.size(), t, r.steps, seconds, cpu, w->referenceSeconds,
-        w->referenceSeconds > 0.0 ? seconds / w->referenceSeconds : 0.0, load, bench::peakRssMB(), r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions,
-        m.numberOfLinks(), 100.0 * phi, edge, q);
+        w->referenceSeconds > 0.0 ? seconds / w->referenceSeconds : 0.0, load, bench::peakRssMB(),
+        r.solved ? 1 : 0, r.aborted ? " (cap)" : "", r.collisions, m.numberOfLinks(), 100.0 * phi,
+        edge, q);
       std::fflush(stdout);
     }
   }

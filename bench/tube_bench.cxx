@@ -25,8 +25,9 @@ int main(int argc, char* argv[])
     const double t0 = bench::seconds();
     const TubeMesh mesh = meshTubes(model, options);
     const double dt = bench::seconds() - t0;
-    std::printf("threads %d: %.4f s, %zu triangles, %.1f M triangles/s, peak RSS %.0f MB\n", threads, dt,
-      mesh.numberOfTriangles(), mesh.numberOfTriangles() / dt / 1e6, bench::peakRssMB());
+    std::printf("threads %d: %.4f s, %zu triangles, %.1f M triangles/s, peak RSS %.0f MB\n",
+      threads, dt, mesh.numberOfTriangles(), mesh.numberOfTriangles() / dt / 1e6,
+      bench::peakRssMB());
   }
   return 0;
 }

@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 # for descheduled ones and a 0.5 s solve can take 20 s. Passive waiting keeps them robust.
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-PASSIVE}"
 bash scripts/install-deps.sh
+# Every C/C++ file as .clang-format (VTK's style) says, before anything is built.
+bash scripts/check_format.sh >/dev/null || { bash scripts/check_format.sh | grep -v 'file(s) checked' >&2; exit 1; }
 bash scripts/build.sh
 
 # One HDF5 for our code: our libraries must link ParaView's libhdf5_openmpi only (docs/architecture.md §5).

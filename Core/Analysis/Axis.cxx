@@ -18,7 +18,8 @@ Vec3 canonicalAxis(const Vec3& v)
   if (u.y < 0.0 || (u.y == 0.0 && u.x < 0.0) || (u.x == 0.0 && u.y == 0.0 && u.z < 0.0))
   {
     u = -u;
-    u += Vec3{ 0.0, 0.0, 0.0 }; // −0.0 + 0.0 = +0.0: atan2(−0, −0) would give −π for a vertical axis
+    u +=
+      Vec3{ 0.0, 0.0, 0.0 }; // −0.0 + 0.0 = +0.0: atan2(−0, −0) would give −π for a vertical axis
   }
   return u;
 }
@@ -55,7 +56,8 @@ double axisAngle(double directionA, double inclinationA, double directionB, doub
   return std::atan2(norm(cross(a, b)), std::abs(dot(a, b)));
 }
 
-double unsignedAxisAngle(double directionA, double inclinationA, double directionB, double inclinationB)
+double unsignedAxisAngle(
+  double directionA, double inclinationA, double directionB, double inclinationB)
 {
   // Flipping both signs is a mirror image of flipping none, so one flip covers every case.
   const double same = axisAngle(directionA, inclinationA, directionB, inclinationB);

@@ -1,6 +1,6 @@
-/// Axis: fiber axes as undirected unit vectors (docs/pli-analysis.md §3.2 step 4, §5). One canonical
-/// representative per axis, its (direction, inclination) angles, and the comparison metrics of §5.
-/// Angles in radians.
+/// Axis: fiber axes as undirected unit vectors (docs/pli-analysis.md §3.2 step 4, §5). One
+/// canonical representative per axis, its (direction, inclination) angles, and the comparison
+/// metrics of §5. Angles in radians.
 #pragma once
 
 #include "Geometry/Vec3.h"
@@ -28,6 +28,7 @@ double axisAngle(double directionA, double inclinationA, double directionB, doub
 
 /// §5: the axis angle minimised over the sign of the inclinations (for retardation-based
 /// inclinations, whose sign is unknown).
-double unsignedAxisAngle(double directionA, double inclinationA, double directionB, double inclinationB);
+double unsignedAxisAngle(
+  double directionA, double inclinationA, double directionB, double inclinationB);
 
 } // namespace fiberpli

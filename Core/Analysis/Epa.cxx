@@ -129,7 +129,8 @@ std::string EpaFit::init(const std::vector<double>& rho)
     w1_.clear();
     wb_.clear();
     std::ostringstream msg;
-    msg << plifield::kPolarizerAngles << " do not determine the first harmonic (fewer than 3 distinct values of "
+    msg << plifield::kPolarizerAngles
+        << " do not determine the first harmonic (fewer than 3 distinct values of "
            "2*rho mod 360 deg; reciprocal condition number "
         << rcond << " < 1e-10)";
     return msg.str();
@@ -212,12 +213,14 @@ Status computeEpa(const double* stack, std::int64_t nx, std::int64_t ny,
   maps.direction.resize(npx, kNaN);
   maps.retardation.resize(npx, kNaN);
   const std::size_t nrho = rho.size();
-  const bool done = forEachPixel(nx, range, threads, progress, [&](std::int64_t p) {
-    const EpaPixel e = fit.pixel(stack + static_cast<std::size_t>(p) * nrho);
-    maps.transmittance[p] = e.transmittance;
-    maps.direction[p] = e.direction;
-    maps.retardation[p] = e.retardation;
-  });
+  const bool done = forEachPixel(nx, range, threads, progress,
+    [&](std::int64_t p)
+    {
+      const EpaPixel e = fit.pixel(stack + static_cast<std::size_t>(p) * nrho);
+      maps.transmittance[p] = e.transmittance;
+      maps.direction[p] = e.direction;
+      maps.retardation[p] = e.retardation;
+    });
   return done ? Status() : Status::stopped();
 }
 

@@ -27,8 +27,8 @@ struct Harmonic
 struct EpaPixel
 {
   double transmittance = 0.0; ///< 2·a0, same unit as the intensities
-  double direction = 0.0;     ///< radians in [0, π): ½·atan2(−b1, a1); 0 when the amplitude vanishes
-  double retardation = 0.0;   ///< √(a1² + b1²)/a0 clamped to [0, 1]
+  double direction = 0.0; ///< radians in [0, π): ½·atan2(−b1, a1); 0 when the amplitude vanishes
+  double retardation = 0.0; ///< √(a1² + b1²)/a0 clamped to [0, 1]
 };
 
 /// The per-image part of the fit: a0, a1, b1 are dot products of the N intensities with these

@@ -34,12 +34,36 @@ Rgb8 hsvBlack(double d, double i)
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h6f) % 6)
   {
-    case 0: r = v; g = t; b = 0; break;
-    case 1: r = qq; g = v; b = 0; break;
-    case 2: r = 0; g = v; b = t; break;
-    case 3: r = 0; g = qq; b = v; break;
-    case 4: r = t; g = 0; b = v; break;
-    default: r = v; g = 0; b = qq; break;
+    case 0:
+      r = v;
+      g = t;
+      b = 0;
+      break;
+    case 1:
+      r = qq;
+      g = v;
+      b = 0;
+      break;
+    case 2:
+      r = 0;
+      g = v;
+      b = t;
+      break;
+    case 3:
+      r = 0;
+      g = qq;
+      b = v;
+      break;
+    case 4:
+      r = t;
+      g = 0;
+      b = v;
+      break;
+    default:
+      r = v;
+      g = 0;
+      b = qq;
+      break;
   }
   return { q(r), q(g), q(b) };
 }
@@ -84,8 +108,8 @@ Rgb8 fomColor(double directionDeg, double inclinationDeg, FomScheme scheme)
   return scheme == FomScheme::Rgb ? rgbScheme(directionDeg, i) : hsvBlack(directionDeg, i);
 }
 
-std::string fomMap(const double* directionDeg, const double* inclinationDeg, std::size_t n, FomScheme scheme,
-  int threads, std::uint8_t* rgb)
+std::string fomMap(const double* directionDeg, const double* inclinationDeg, std::size_t n,
+  FomScheme scheme, int threads, std::uint8_t* rgb)
 {
   if (n > 0 && (!directionDeg || !inclinationDeg || !rgb))
   {
@@ -104,8 +128,8 @@ std::string fomMap(const double* directionDeg, const double* inclinationDeg, std
   return {};
 }
 
-std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold, std::uint8_t* rgb,
-  std::uint8_t* tissue)
+std::string fomApplyMask(const double* values, std::size_t n, FomMask mask, double threshold,
+  std::uint8_t* rgb, std::uint8_t* tissue)
 {
   if (mask != FomMask::None && n > 0 && (!values || !rgb))
   {

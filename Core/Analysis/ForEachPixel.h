@@ -1,7 +1,7 @@
 /// ForEachPixel: the pixel loop of the analysis maps over the sub-rectangle of an nx × ny image
 /// (x fastest, Section/PixelGrid.h GridRange) that one Core analysis call computes
-/// (docs/pli-analysis.md §1; docs/pli-simulation.md §6: an MPI piece or an UPDATE_EXTENT). Every map
-/// function reads and writes full-size arrays but touches only the pixels in the range.
+/// (docs/pli-analysis.md §1; docs/pli-simulation.md §6: an MPI piece or an UPDATE_EXTENT). Every
+/// map function reads and writes full-size arrays but touches only the pixels in the range.
 #pragma once
 
 #include "Section/PixelGrid.h"
@@ -18,7 +18,8 @@ namespace fiberpli
 /// between parallel regions (Util/Progress.h). f must only write per-pixel outputs, so the result
 /// does not depend on the thread count. Returns false when progress asked to stop.
 template <class F>
-bool forEachPixel(std::int64_t nx, const GridRange& r, int threads, const ProgressFn& progress, F&& f)
+bool forEachPixel(
+  std::int64_t nx, const GridRange& r, int threads, const ProgressFn& progress, F&& f)
 {
   const int nThreads = resolveThreadCount(threads);
   const std::int64_t rows = r.ny();

@@ -44,7 +44,8 @@ struct OwnerColumn
 } // namespace
 
 Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
-  const GroundTruthOptions& options, const GridRange& range, GroundTruthMaps& maps, const ProgressFn& progress)
+  const GroundTruthOptions& options, const GridRange& range, GroundTruthMaps& maps,
+  const ProgressFn& progress)
 {
   std::int64_t nx = 0, ny = 0;
   std::string err = checkPixelGrid(grid, nx, ny);
@@ -83,16 +84,19 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
     cols = voxelColumnsOf(grid, range);
   }
   // One pixel row's voxels are held at once per thread.
-  const double rowVoxels = static_cast<double>(cols.nx()) * std::ceil(1.0 / scale + 1.0) * static_cast<double>(nz);
+  const double rowVoxels =
+    static_cast<double>(cols.nx()) * std::ceil(1.0 / scale + 1.0) * static_cast<double>(nz);
   if (rowVoxels > 2147483647.0)
   {
     std::ostringstream msg;
-    msg << "one pixel row holds " << rowVoxels << " voxels; use a larger VoxelSize or a smaller range";
+    msg << "one pixel row holds " << rowVoxels
+        << " voxels; use a larger VoxelSize or a smaller range";
     return msg.str();
   }
 
-  const std::size_t nHist =
-    options.histogram ? static_cast<std::size_t>(options.nPhi) * static_cast<std::size_t>(options.nAlpha) : 0;
+  const std::size_t nHist = options.histogram
+    ? static_cast<std::size_t>(options.nPhi) * static_cast<std::size_t>(options.nAlpha)
+    : 0;
   const int nThreads = resolveThreadCount(options.threads);
   std::size_t linkCount = 0;
   for (const Fiber& f : model.fibers)
@@ -102,13 +106,14 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   // Five maps (and the histograms) of the whole grid, a copy of the range's maps in the caller's
   // output, per thread one pixel row of voxel owners (distance + link id), and the links (with
   // their axes and at least one bin entry each).
-  const double pixelBytes = static_cast<double>(nx) * static_cast<double>(ny) * (5.0 + static_cast<double>(nHist)) * 8.0;
+  const double pixelBytes =
+    static_cast<double>(nx) * static_cast<double>(ny) * (5.0 + static_cast<double>(nHist)) * 8.0;
   const double bytes = pixelBytes + 5.0 * 8.0 * static_cast<double>(range.count()) +
     static_cast<double>(nThreads) * rowVoxels * 12.0 +
     static_cast<double>(linkCount) * (sizeof(SectionLink) + sizeof(Vec3) + sizeof(std::uint32_t));
   std::ostringstream what;
-  what << "the ground truth of " << nx << " x " << ny << " pixels (PixelSize " << grid.pixelSize << ", VoxelSize "
-       << lat.voxel << ", " << nz << " voxels deep)";
+  what << "the ground truth of " << nx << " x " << ny << " pixels (PixelSize " << grid.pixelSize
+       << ", VoxelSize " << lat.voxel << ", " << nz << " voxels deep)";
   err = checkMemoryBudget(bytes, what.str());
   if (!err.empty())
   {
@@ -117,7 +122,8 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   const std::size_t npx = static_cast<std::size_t>(nx * ny);
   maps.nx = nx;
   maps.ny = ny;
-  for (auto* v : { &maps.fraction, &maps.direction, &maps.inclination, &maps.inclinationSigned, &maps.anisotropy })
+  for (auto* v : { &maps.fraction, &maps.direction, &maps.inclination, &maps.inclinationSigned,
+         &maps.anisotropy })
   {
     v->resize(npx, kNaN);
   }
@@ -165,10 +171,12 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
       candidateLinks(table, row, cand);
       for (const std::uint32_t g : cand)
       {
-        forEachCoveredVoxel(table, g, row, nz, [&](std::int64_t i, std::int64_t jj) {
-          const std::size_t v = static_cast<std::size_t>((jj - vy0) * wx + (i - vx0));
-          return OwnerColumn{ bestD2.data() + v, owner.data() + v, wx * wy, g };
-        });
+        forEachCoveredVoxel(table, g, row, nz,
+          [&](std::int64_t i, std::int64_t jj)
+          {
+            const std::size_t v = static_cast<std::size_t>((jj - vy0) * wx + (i - vx0));
+            return OwnerColumn{ bestD2.data() + v, owner.data() + v, wx * wy, g };
+          });
       }
       TruthAccumulator acc(options.nPhi, options.nAlpha);
       for (std::int64_t i = range.i0; i < range.i1; ++i)
@@ -182,7 +190,8 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
           {
             for (std::int64_t iv = ia; iv < ib; ++iv)
             {
-              const std::uint32_t o = owner[static_cast<std::size_t>(((k * wy) + (jj - vy0)) * wx + (iv - vx0))];
+              const std::uint32_t o =
+                owner[static_cast<std::size_t>(((k * wy) + (jj - vy0)) * wx + (iv - vx0))];
               if (o != kNoOwner)
               {
                 acc.addTissue(axis[o]);
@@ -211,7 +220,8 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
   return {};
 }
 
-TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range)
+TileReach groundTruthReach(
+  const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range)
 {
   // The columns computeGroundTruth builds its link table for.
   if (range.nx() < 1 || range.ny() < 1)
@@ -221,8 +231,8 @@ TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& opti
   return columnsReach(grid.lattice, voxelColumnsOf(grid, range), options.radiusScale);
 }
 
-std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi, int nTheta, bool normalise,
-  bool perSolidAngle)
+std::vector<double> modelOrientationHistogram(
+  const FiberModel& model, int nPhi, int nTheta, bool normalise, bool perSolidAngle)
 {
   if (nPhi < 1 || nTheta < 1)
   {
@@ -243,7 +253,7 @@ std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi,
       }
       if (d.z < 0.0)
       {
-        d = -d; // θ > 90°: count the antipode on the upper half sphere
+        d = -d;                     // θ > 90°: count the antipode on the upper half sphere
         d += Vec3{ 0.0, 0.0, 0.0 }; // no signed zeros: atan2(−0, −0) is −π, not 0
       }
       double phi = std::atan2(d.y, d.x) * 180.0 / M_PI;

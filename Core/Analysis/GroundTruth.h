@@ -38,7 +38,8 @@ struct GroundTruthMaps
 {
   std::int64_t nx = 0, ny = 0; ///< round(n_vox·VoxelSize/PixelSize)
   std::vector<double> fraction, direction, inclination, inclinationSigned, anisotropy;
-  std::vector<double> histogram; ///< nPhi·nAlpha values per pixel, pixel-major; empty unless requested
+  std::vector<double>
+    histogram; ///< nPhi·nAlpha values per pixel, pixel-major; empty unless requested
 };
 
 /// Ground truth of the pixels in `range` (pixel indices of checkPixelGrid, Section/PixelGrid.h; the
@@ -54,14 +55,15 @@ Status computeGroundTruth(const FiberModel& model, const PixelGrid& grid,
 
 /// The fibers the pixels `range` read (docs/pli-simulation.md §6.3): the voxel columns that bin
 /// into them over every depth (Section/SectionReach.h), with the options' radius scale.
-TileReach groundTruthReach(const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range);
+TileReach groundTruthReach(
+  const PixelGrid& grid, const GroundTruthOptions& options, const GridRange& range);
 
 /// Whole-model orientation histogram (fastPLI orientation.py): every link (φ = atan2(dy, dx),
 /// θ = arccos(dz/|d|), antipode when θ > 90°) counted in nPhi bins over φ ∈ [0°, 360°) × nTheta
 /// bins over θ ∈ [0°, 90°]; component iθ·nPhi + iφ. normalise: divide by the sum (so it sums to
 /// 1); perSolidAngle additionally divides each bin by (cos θ_lo − cos θ_hi)·Δφ (Δφ in radians).
 /// Zero-length links are skipped. Empty vector when nPhi or nTheta < 1.
-std::vector<double> modelOrientationHistogram(const FiberModel& model, int nPhi, int nTheta, bool normalise,
-  bool perSolidAngle);
+std::vector<double> modelOrientationHistogram(
+  const FiberModel& model, int nPhi, int nTheta, bool normalise, bool perSolidAngle);
 
 } // namespace fiberpli

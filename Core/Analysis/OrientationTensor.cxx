@@ -36,7 +36,8 @@ void symmetricEigen3(const double m[3][3], double values[3], Vec3 vectors[3])
         }
         // Rotation that zeroes a[p][q] (Golub & Van Loan, symmetric Schur 2×2).
         const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+        const double t =
+          (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
         const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
         for (int k = 0; k < 3; ++k)
         {

@@ -37,7 +37,6 @@ public:
   /// A tissue voxel with fiber axis e (any sign, any non-zero length).
   void addTissue(const Vec3& axis);
 
-
   /// The pixel's truth. histogram (nPhi·nAlpha values, component iα·nPhi + iφ, fractions of the
   /// tissue voxels; all 0 when n_t = 0) is written when not null.
   PixelTruth result(double* histogram) const;

@@ -14,7 +14,8 @@ namespace fiberpli
 
 std::string inclinationMethodFromCode(int code, InclinationMethod& method)
 {
-  return enumFromCode(code, 2, "InclinationMethod", "0 (Auto), 1 (Retardation) or 2 (Tilt)", method);
+  return enumFromCode(
+    code, 2, "InclinationMethod", "0 (Auto), 1 (Retardation) or 2 (Tilt)", method);
 }
 
 std::string checkPliAnalysisOptions(const PliAnalysisOptions& options)
@@ -51,12 +52,14 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
     msg << "InclinationMethod is Tilt but the input has ";
     if (stack.tilts.size() != stack.tiltViews.size())
     {
-      msg << stack.tilts.size() << " tilted stacks (" << plifield::kIntensityTiltPrefix << "*) for " << stack.tiltViews.size()
-          << " tilted views (" << plifield::kTiltAngles << " / " << plifield::kTiltDirections << ")";
+      msg << stack.tilts.size() << " tilted stacks (" << plifield::kIntensityTiltPrefix << "*) for "
+          << stack.tiltViews.size() << " tilted views (" << plifield::kTiltAngles << " / "
+          << plifield::kTiltDirections << ")";
     }
     else if (stack.tilts.size() < 2)
     {
-      msg << stack.tilts.size() << " tilted views (" << plifield::kIntensityTiltPrefix << "*), the tilt fit needs at least 2";
+      msg << stack.tilts.size() << " tilted views (" << plifield::kIntensityTiltPrefix
+          << "*), the tilt fit needs at least 2";
     }
     else
     {
@@ -69,7 +72,8 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
         }
         if (!(stack.tiltViews[t].theta > 0.0))
         {
-          msg << plifield::kTiltAngles << "[" << t << "] = " << stack.tiltViews[t].theta * 180.0 / M_PI << " deg (needs > 0)";
+          msg << plifield::kTiltAngles << "[" << t
+              << "] = " << stack.tiltViews[t].theta * 180.0 / M_PI << " deg (needs > 0)";
           break;
         }
       }
@@ -84,8 +88,8 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
   epa.transmittance.swap(maps.transmittance);
   epa.direction.swap(maps.direction);
   epa.retardation.swap(maps.retardation);
-  Status status = computeEpa(stack.intensity, stack.nx, stack.ny, stack.rho, range, options.threads, epa,
-    [&](double f) { return reportProgress(progress, epaShare * f); });
+  Status status = computeEpa(stack.intensity, stack.nx, stack.ny, stack.rho, range, options.threads,
+    epa, [&](double f) { return reportProgress(progress, epaShare * f); });
   maps.transmittance.swap(epa.transmittance);
   maps.direction.swap(epa.direction);
   maps.retardation.swap(epa.retardation);
@@ -111,8 +115,8 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
       rRef = rRef > 0.0 ? rRef : 1.0;
     }
     maps.referenceRetardation = rRef;
-    const std::string err = inclinationMapFromRetardation(maps.retardation.data(), stack.nx, stack.ny, range, rRef,
-      options.threads, maps.inclination);
+    const std::string err = inclinationMapFromRetardation(
+      maps.retardation.data(), stack.nx, stack.ny, range, rRef, options.threads, maps.inclination);
     if (!err.empty())
     {
       return err;
@@ -123,9 +127,11 @@ Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, cons
   TiltFitOptions to;
   to.views = stack.tiltViews;
   to.convention = stack.convention;
-  to.gain = options.noiseGain >= 0.0 ? options.noiseGain : (stack.noiseGain >= 0.0 ? stack.noiseGain : 3.0);
+  to.gain =
+    options.noiseGain >= 0.0 ? options.noiseGain : (stack.noiseGain >= 0.0 ? stack.noiseGain : 3.0);
   TiltMaps tm;
-  status = computeTiltFit(stack.intensity, stack.tilts, stack.nx, stack.ny, stack.rho, to, range, options.threads, tm,
+  status = computeTiltFit(stack.intensity, stack.tilts, stack.nx, stack.ny, stack.rho, to, range,
+    options.threads, tm,
     [&](double f) { return reportProgress(progress, epaShare + (1.0 - epaShare) * f); });
   if (!status.ok())
   {

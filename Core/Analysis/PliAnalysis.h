@@ -4,8 +4,8 @@
 #pragma once
 
 #include "Analysis/Epa.h"
-#include "Section/PixelGrid.h"
 #include "Analysis/TiltFit.h"
+#include "Section/PixelGrid.h"
 #include "Util/Progress.h"
 #include "Util/Status.h"
 
@@ -28,21 +28,22 @@ enum class InclinationMethod
 /// The simulation output (docs/pli-simulation.md §7) as plain arrays.
 struct PliStack
 {
-  const double* intensity = nullptr;            ///< nx·ny pixels × rho.size(), pixel-major, x fastest
-  std::vector<const double*> tilts;              ///< intensity_tilt_0..M−1 (null = missing)
-  std::vector<TiltView> tiltViews;               ///< set-up of the tilted stacks, same order
+  const double* intensity = nullptr; ///< nx·ny pixels × rho.size(), pixel-major, x fastest
+  std::vector<const double*> tilts;  ///< intensity_tilt_0..M−1 (null = missing)
+  std::vector<TiltView> tiltViews;   ///< set-up of the tilted stacks, same order
   std::int64_t nx = 0, ny = 0;
-  std::vector<double> rho;                       ///< polarizer angles, radians
+  std::vector<double> rho; ///< polarizer angles, radians
   TiltConvention convention = TiltConvention::Physical;
-  double noiseGain = -1.0;                       ///< field data noise_gain; < 0 = absent
+  double noiseGain = -1.0; ///< field data noise_gain; < 0 = absent
 };
 
 struct PliAnalysisOptions
 {
   InclinationMethod method = InclinationMethod::Auto;
-  double referenceRetardation = 0.0; ///< docs/pli-analysis.md §3.1 r_ref in [0, 1]; 0 = largest retardation (automatic)
-  double noiseGain = -1.0;           ///< −1 = stack.noiseGain if present, else 3; g <= 0 → 1 in the fit
-  int threads = 0;                   ///< OpenMP threads, 0 = all
+  double referenceRetardation =
+    0.0; ///< docs/pli-analysis.md §3.1 r_ref in [0, 1]; 0 = largest retardation (automatic)
+  double noiseGain = -1.0; ///< −1 = stack.noiseGain if present, else 3; g <= 0 → 1 in the fit
+  int threads = 0;         ///< OpenMP threads, 0 = all
   /// Automatic r_ref across MPI pieces: receives the local maximum, returns the global one (the
   /// VTK side passes an AllReduce(MAX)); called exactly once, from the calling thread, whenever the
   /// Retardation method runs with referenceRetardation = 0, even for an empty range.
@@ -66,14 +67,15 @@ struct PliAnalysisMaps
 {
   InclinationMethod method = InclinationMethod::Retardation; ///< the method actually used
   double referenceRetardation = 0.0;                         ///< r_ref used (Retardation method)
-  std::vector<double> transmittance, direction, retardation, inclination; ///< outputs of docs/api.md §3
-  std::vector<double> inclinationSigned, relativeThickness, chi2;         ///< Tilt method only, else empty
+  std::vector<double> transmittance, direction, retardation,
+    inclination;                                                  ///< outputs of docs/api.md §3
+  std::vector<double> inclinationSigned, relativeThickness, chi2; ///< Tilt method only, else empty
 };
 
-/// Runs docs/pli-analysis.md §2 + §3 on the pixels of range. In the Tilt method `direction` is the fitted axis
-/// direction (consistent with inclinationSigned) and a pixel whose fit has invalid data is NaN
-/// in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few or
-/// degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range; aborted when
+/// Runs docs/pli-analysis.md §2 + §3 on the pixels of range. In the Tilt method `direction` is the
+/// fitted axis direction (consistent with inclinationSigned) and a pixel whose fit has invalid data
+/// is NaN in every output. Errors name the fix: missing tilt stacks or tilt views for Tilt, too few
+/// or degenerate polarizer_angles, ReferenceRetardation outside [0, 1], a bad range; aborted when
 /// progress asked to stop.
 Status analysePli(const PliStack& stack, const PliAnalysisOptions& options, const GridRange& range,
   PliAnalysisMaps& maps, const ProgressFn& progress = {});

@@ -44,15 +44,18 @@ double maxRetardation(const double* retardation, std::int64_t nx, const GridRang
   return best;
 }
 
-std::string inclinationMapFromRetardation(const double* retardation, std::int64_t nx, std::int64_t ny,
-  const GridRange& range, double referenceRetardation, int threads, std::vector<double>& inclination)
+std::string inclinationMapFromRetardation(const double* retardation, std::int64_t nx,
+  std::int64_t ny, const GridRange& range, double referenceRetardation, int threads,
+  std::vector<double>& inclination)
 {
   std::string err = validatePixelRange(nx, ny, range);
   if (!err.empty())
   {
     return err;
   }
-  err = ValueChecks().within("ReferenceRetardation", referenceRetardation, 0.0, 1.0, " (0 = automatic)").error();
+  err = ValueChecks()
+          .within("ReferenceRetardation", referenceRetardation, 0.0, 1.0, " (0 = automatic)")
+          .error();
   if (!err.empty())
   {
     return err;
@@ -67,10 +70,12 @@ std::string inclinationMapFromRetardation(const double* retardation, std::int64_
   {
     rRef = maxRetardation(retardation, nx, range);
   }
-  forEachPixel(nx, range, threads, {}, [&](std::int64_t p) {
-    // rRef = 0 only when every r is 0 (or NaN): the r <= 0 rule gives 90° before dividing.
-    inclination[p] = inclinationFromRetardation(retardation[p], rRef > 0.0 ? rRef : 1.0);
-  });
+  forEachPixel(nx, range, threads, {},
+    [&](std::int64_t p)
+    {
+      // rRef = 0 only when every r is 0 (or NaN): the r <= 0 rule gives 90° before dividing.
+      inclination[p] = inclinationFromRetardation(retardation[p], rRef > 0.0 ? rRef : 1.0);
+    });
   return {};
 }
 

@@ -93,7 +93,8 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
   if (rho.size() < 4)
   {
     std::ostringstream msg;
-    msg << "the tilt fit needs at least 4 polarizer angles, " << plifield::kPolarizerAngles << " has " << rho.size();
+    msg << "the tilt fit needs at least 4 polarizer angles, " << plifield::kPolarizerAngles
+        << " has " << rho.size();
     return msg.str();
   }
   std::string err = epa_.init(rho);
@@ -112,15 +113,17 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
     const TiltView& t = options.views[v];
     std::ostringstream msg;
     if (!std::isfinite(t.theta) || t.theta <= 0.0 || t.theta >= M_PI / 2)
-      msg << plifield::kTiltAngles << "[" << v << "] is " << t.theta * 180.0 / M_PI << " deg, the tilt fit needs a value in (0, 90)";
+      msg << plifield::kTiltAngles << "[" << v << "] is " << t.theta * 180.0 / M_PI
+          << " deg, the tilt fit needs a value in (0, 90)";
     else if (!std::isfinite(t.azimuth))
-      msg << "tilt_directions[" << v << "] is " << t.azimuth * 180.0 / M_PI << " deg, must be finite";
+      msg << "tilt_directions[" << v << "] is " << t.azimuth * 180.0 / M_PI
+          << " deg, must be finite";
     for (std::size_t u = 0; u < v && msg.str().empty(); ++u)
     {
       const double dphi = std::remainder(t.azimuth - options.views[u].azimuth, 2.0 * M_PI);
       if (t.theta == options.views[u].theta && std::fabs(dphi) < 1e-12)
-        msg << "tilted views " << u << " and " << v << " are the same (tilt " << t.theta * 180.0 / M_PI
-            << " deg, azimuth " << t.azimuth * 180.0 / M_PI << " deg)";
+        msg << "tilted views " << u << " and " << v << " are the same (tilt "
+            << t.theta * 180.0 / M_PI << " deg, azimuth " << t.azimuth * 180.0 / M_PI << " deg)";
     }
     if (!msg.str().empty())
       return msg.str();
@@ -139,7 +142,8 @@ std::string TiltFit::init(const std::vector<double>& rho, const TiltFitOptions& 
     c_[k] = std::cos(2.0 * rho[k]);
   }
   // View 0 is the identity; the tilted views use R(τ, ψ) of docs/pli-simulation.md §4.3.
-  frames_.assign(1 + options.views.size(), Frame{ { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, M_PI / 2.0 });
+  frames_.assign(
+    1 + options.views.size(), Frame{ { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, M_PI / 2.0 });
   for (std::size_t j = 1; j < frames_.size(); ++j)
   {
     const TiltView& t = options.views[j - 1];
@@ -183,8 +187,8 @@ double TiltFit::residuals(const Data& d, const double p[3], double* r, double (*
     const double a = frames_[j].kappa * at;
     double sc, dsc;
     sinc(a * q, sc, dsc);
-    const double f = a * sc;        // sin(aq)/q
-    const double fq = a * a * dsc;  // d f / d q
+    const double f = a * sc;                                    // sin(aq)/q
+    const double fq = a * a * dsc;                              // d f / d q
     const double ft = frames_[j].kappa * std::cos(a * q) * sgn; // d(sin(aq)/q)/dt · q / q
     double dxf = 0, dyf = 0, dxa = 0, dya = 0;
     if (J)
@@ -259,7 +263,8 @@ TiltFitResult TiltFit::pixel(const std::vector<const double*>& views) const
   std::vector<double> Jstore(3 * nv * n);
   auto* J = reinterpret_cast<double(*)[3]>(Jstore.data());
 
-  // Start grid of fastPLI's ROFL: interior of linspace(−90°, 90°, 8) × interior of linspace(0, 0.9, 8).
+  // Start grid of fastPLI's ROFL: interior of linspace(−90°, 90°, 8) × interior of linspace(0, 0.9,
+  // 8).
   double p[3] = { phi0, 0.0, 0.0 };
   double best = std::numeric_limits<double>::infinity();
   for (int ia = 1; ia <= 6; ++ia)
@@ -354,8 +359,8 @@ std::vector<TiltView> fourTiltViews(double theta)
   return { { theta, 0.0 }, { theta, M_PI / 2 }, { theta, M_PI }, { theta, 3 * M_PI / 2 } };
 }
 
-Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts,
-  std::int64_t nx, std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
+Status computeTiltFit(const double* flat, const std::vector<const double*>& tilts, std::int64_t nx,
+  std::int64_t ny, const std::vector<double>& rho, const TiltFitOptions& options,
   const GridRange& range, int threads, TiltMaps& maps, const ProgressFn& progress)
 {
   TiltFit fit;
@@ -392,23 +397,26 @@ Status computeTiltFit(const double* flat, const std::vector<const double*>& tilt
     }
   }
   const std::size_t npx = static_cast<std::size_t>(nx * ny);
-  for (auto* v : { &maps.direction, &maps.inclination, &maps.inclinationSigned, &maps.relativeThickness, &maps.chi2 })
+  for (auto* v : { &maps.direction, &maps.inclination, &maps.inclinationSigned,
+         &maps.relativeThickness, &maps.chi2 })
   {
     v->resize(npx, kNaN);
   }
   const std::size_t n = rho.size();
-  const bool done = forEachPixel(nx, range, threads, progress, [&](std::int64_t p) {
-    const std::size_t off = static_cast<std::size_t>(p) * n;
-    std::vector<const double*> views{ flat + off };
-    for (const double* t : tilts)
-      views.push_back(t + off);
-    const TiltFitResult f = fit.pixel(views);
-    maps.direction[p] = f.direction;
-    maps.inclination[p] = f.inclination;
-    maps.inclinationSigned[p] = f.inclinationSigned;
-    maps.relativeThickness[p] = f.relativeThickness;
-    maps.chi2[p] = f.chi2;
-  });
+  const bool done = forEachPixel(nx, range, threads, progress,
+    [&](std::int64_t p)
+    {
+      const std::size_t off = static_cast<std::size_t>(p) * n;
+      std::vector<const double*> views{ flat + off };
+      for (const double* t : tilts)
+        views.push_back(t + off);
+      const TiltFitResult f = fit.pixel(views);
+      maps.direction[p] = f.direction;
+      maps.inclination[p] = f.inclination;
+      maps.inclinationSigned[p] = f.inclinationSigned;
+      maps.relativeThickness[p] = f.relativeThickness;
+      maps.chi2[p] = f.chi2;
+    });
   return done ? Status() : Status::stopped();
 }
 

@@ -44,14 +44,15 @@ bool degenerate(const Fiber& f)
   return false;
 }
 
-std::string checkFibers(const FiberModel& model, const CollisionSolverState& st, const CollisionSolverOptions& o,
-  int ranks)
+std::string checkFibers(const FiberModel& model, const CollisionSolverState& st,
+  const CollisionSolverOptions& o, int ranks)
 {
   const std::size_t nf = model.fibers.size();
-  if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf || st.closure.size() != nf)
+  if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf ||
+    st.closure.size() != nf)
   {
-    return "the saved solver state is for " + formatNumber(st.points.size()) + " fibers, the model has " +
-      formatNumber(nf);
+    return "the saved solver state is for " + formatNumber(st.points.size()) +
+      " fibers, the model has " + formatNumber(nf);
   }
   const bool distributed = st.global.size() == nf && st.home.size() == nf;
   const PeriodicCell& cell = o.periodicCell;
@@ -59,11 +60,12 @@ std::string checkFibers(const FiberModel& model, const CollisionSolverState& st,
   {
     const Fiber& fib = model.fibers[f];
     const FiberPointState& ps = st.points[f];
-    const std::string which = "fiber " + formatNumber(f) + " (fiber_id " + formatNumber(fib.id) + ")";
+    const std::string which =
+      "fiber " + formatNumber(f) + " (fiber_id " + formatNumber(fib.id) + ")";
     if (ps.velocity.size() != fib.points.size() || ps.source.size() != fib.points.size())
     {
-      return "the saved solver state of " + which + " has " + formatNumber(ps.velocity.size()) + " points, the model " +
-        formatNumber(fib.points.size());
+      return "the saved solver state of " + which + " has " + formatNumber(ps.velocity.size()) +
+        " points, the model " + formatNumber(fib.points.size());
     }
     if (st.active[f] > 1 || st.active[f] < 0 || st.closed[f] > 1 || st.closed[f] < 0)
     {
@@ -75,41 +77,46 @@ std::string checkFibers(const FiberModel& model, const CollisionSolverState& st,
     }
     if (!st.active[f] && !degenerate(fib))
     {
-      return "the saved state flags " + which + " inactive, but it has " + formatNumber(fib.points.size()) +
-        " distinct points (the solver solves every such fiber)";
+      return "the saved state flags " + which + " inactive, but it has " +
+        formatNumber(fib.points.size()) + " distinct points (the solver solves every such fiber)";
     }
     for (std::size_t i = 0; i < fib.points.size(); ++i)
     {
       if (!finite(ps.velocity[i]))
       {
-        return "the saved velocity of " + which + " point " + formatNumber(i) + " is " + vecText(ps.velocity[i]) +
-          ", must be finite";
+        return "the saved velocity of " + which + " point " + formatNumber(i) + " is " +
+          vecText(ps.velocity[i]) + ", must be finite";
       }
       if (!std::isfinite(ps.source[i]) || ps.source[i] < 0.0)
       {
-        return field("source index of " + which + " point " + formatNumber(i), ps.source[i], "finite and >= 0");
+        return field("source index of " + which + " point " + formatNumber(i), ps.source[i],
+          "finite and >= 0");
       }
       if (!ps.inputRadii.empty() && ps.source[i] > static_cast<double>(ps.inputRadii.size() - 1))
       {
         return field("source index of " + which + " point " + formatNumber(i), ps.source[i],
-          "at most " + formatNumber(ps.inputRadii.size() - 1) + " (its input radius profile's last point)");
+          "at most " + formatNumber(ps.inputRadii.size() - 1) +
+            " (its input radius profile's last point)");
       }
     }
     for (std::size_t i = 0; i < ps.inputRadii.size(); ++i)
     {
       if (!std::isfinite(ps.inputRadii[i]) || !(ps.inputRadii[i] > 0.0))
       {
-        return field("input radius " + formatNumber(i) + " of " + which, ps.inputRadii[i], "finite and > 0");
+        return field(
+          "input radius " + formatNumber(i) + " of " + which, ps.inputRadii[i], "finite and > 0");
       }
     }
     if (!finite(st.closure[f]))
     {
-      return "the saved closure vector of " + which + " is " + vecText(st.closure[f]) + ", must be finite";
+      return "the saved closure vector of " + which + " is " + vecText(st.closure[f]) +
+        ", must be finite";
     }
     if (st.closed[f])
     {
       Vec3 lattice;
-      if (!cell.enabled() || !st.active[f] || !isClosedFiber(fib, cell, lattice) || !(lattice == st.closure[f]))
+      if (!cell.enabled() || !st.active[f] || !isClosedFiber(fib, cell, lattice) ||
+        !(lattice == st.closure[f]))
       {
         return "the saved closure vector of " + which + " is " + vecText(st.closure[f]) +
           ", must be the lattice vector from its first point to its last (" +
@@ -124,8 +131,8 @@ std::string checkFibers(const FiberModel& model, const CollisionSolverState& st,
   return {};
 }
 
-std::string checkScalars(const FiberModel& model, const CollisionSolverState& st, const CollisionSolverOptions& o,
-  int ranks)
+std::string checkScalars(const FiberModel& model, const CollisionSolverState& st,
+  const CollisionSolverOptions& o, int ranks)
 {
   double rMin = HUGE_VAL, rMax = 0.0;
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
@@ -145,8 +152,10 @@ std::string checkScalars(const FiberModel& model, const CollisionSolverState& st
   {
     return field("step count", st.steps, "in [0, MaxSteps " + formatNumber(o.maxSteps) + "]");
   }
-  for (const auto& [name, value] : { std::pair<const char*, int>{ "step of the best collision count", st.bestStep },
-         { "steps since the last growth", st.sinceGrowth }, { "steps since the last improvement", st.sinceImprovement } })
+  for (const auto& [name, value] :
+    { std::pair<const char*, int>{ "step of the best collision count", st.bestStep },
+      { "steps since the last growth", st.sinceGrowth },
+      { "steps since the last improvement", st.sinceImprovement } })
   {
     if (value < 0 || value > st.steps)
     {
@@ -157,15 +166,18 @@ std::string checkScalars(const FiberModel& model, const CollisionSolverState& st
   if (!(st.scale >= initial && st.scale <= 1.0))
   {
     return field("radius scale", st.scale,
-      "in [" + formatNumber(initial) + ", 1] (InitialRadiusScale " + formatNumber(o.initialRadiusScale) + ")");
+      "in [" + formatNumber(initial) + ", 1] (InitialRadiusScale " +
+        formatNumber(o.initialRadiusScale) + ")");
   }
   if (o.segmentLength > 0.0 && !(st.segmentLength == o.segmentLength))
   {
-    return field("segment length", st.segmentLength, "SegmentLength " + formatNumber(o.segmentLength));
+    return field(
+      "segment length", st.segmentLength, "SegmentLength " + formatNumber(o.segmentLength));
   }
   if (o.segmentLength < 0.0 && !(st.segmentLength < 0.0))
   {
-    return field("segment length", st.segmentLength, "< 0 (SegmentLength " + formatNumber(o.segmentLength) + " = off)");
+    return field("segment length", st.segmentLength,
+      "< 0 (SegmentLength " + formatNumber(o.segmentLength) + " = off)");
   }
   if (o.segmentLength == 0.0 && anyActive)
   {
@@ -175,8 +187,8 @@ std::string checkScalars(const FiberModel& model, const CollisionSolverState& st
     if (!(st.segmentLength >= 2.0 * rMin / slack && st.segmentLength <= 2.0 * rMax * slack))
     {
       return field("segment length", st.segmentLength,
-        "2 x the median radius (SegmentLength 0 = automatic), within 2 x the radii [" + formatNumber(rMin) + ", " +
-          formatNumber(rMax) + "]");
+        "2 x the median radius (SegmentLength 0 = automatic), within 2 x the radii [" +
+          formatNumber(rMin) + ", " + formatNumber(rMax) + "]");
     }
   }
   // The move cap is MaxDisplacement × the smallest radius of the whole model: at most that of
@@ -185,7 +197,8 @@ std::string checkScalars(const FiberModel& model, const CollisionSolverState& st
     (anyActive && st.vMax > o.maxDisplacement * rMin * (1.0 + 1e-12)))
   {
     return field("move cap", st.vMax,
-      anyActive ? "in (0, MaxDisplacement x the smallest radius = " + formatNumber(o.maxDisplacement * rMin) + "]"
+      anyActive ? "in (0, MaxDisplacement x the smallest radius = " +
+          formatNumber(o.maxDisplacement * rMin) + "]"
                 : std::string("finite and >= 0"));
   }
   if (!std::isfinite(st.growthTolerance) || st.growthTolerance < 0.0)
@@ -198,7 +211,8 @@ std::string checkScalars(const FiberModel& model, const CollisionSolverState& st
   }
   if (!(st.done >= 0.0 && st.done <= 1.0) || !(st.reported >= 0.0 && st.reported <= 1.0))
   {
-    return field("progress", std::isfinite(st.done) && st.done >= 0.0 && st.done <= 1.0 ? st.reported : st.done,
+    return field("progress",
+      std::isfinite(st.done) && st.done >= 0.0 && st.done <= 1.0 ? st.reported : st.done,
       "in [0, 1]");
   }
   // Coordinates: the solver must resolve its links (SegmentLength, or without split/merge the

@@ -5,8 +5,8 @@
 #include "IO/AtomicFile.h"
 #include "IO/BinaryIO.h"
 #include "IO/RegularFile.h"
-#include "Util/NumberFormat.h"
 #include "Util/Fnv1a.h"
+#include "Util/NumberFormat.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -30,8 +30,10 @@ namespace
 // File layout (all little-endian): magic, version, the options as (name, value) pairs, the
 // input's fingerprint and size, the model, the per-fiber state, the scalars of the state, the
 // warnings, then the FNV-1a checksum of everything before it.
-const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r', '\n' };
-constexpr std::uint32_t kVersion = 5; // 2: PushBoost and the push scale; 3: its pair cap (another push rule); 4: Tortuosity; 5: input radius profiles
+const char kMagic[16] = { 'F', 'i', 'b', 'e', 'r', 'P', 'L', 'I', ' ', 's', 'o', 'l', 'v', 'e', 'r',
+  '\n' };
+constexpr std::uint32_t kVersion = 5; // 2: PushBoost and the push scale; 3: its pair cap (another
+                                      // push rule); 4: Tortuosity; 5: input radius profiles
 // The checksum's start value: one digit short of FNV's offset basis (kFnv1aOffset) since the
 // first version; kept, so that the checksum rule stays the one every version has used.
 constexpr std::uint64_t kChecksumStart = 1469598103934665603ULL;
@@ -56,11 +58,13 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
 {
   const PeriodicCell& c = o.periodicCell;
   return { { "SegmentLength", o.segmentLength }, { "MinCurvatureRadius", o.minCurvatureRadius },
-    { "MaxSteps", o.maxSteps }, { "SeparationSpeed", o.separationSpeed }, { "overlapPush", o.overlapPush },
-    { "pushSpread", o.pushSpread }, { "maxDisplacement", o.maxDisplacement }, { "pushBoost", o.pushBoost }, { "drag", o.drag },
+    { "MaxSteps", o.maxSteps }, { "SeparationSpeed", o.separationSpeed },
+    { "overlapPush", o.overlapPush }, { "pushSpread", o.pushSpread },
+    { "maxDisplacement", o.maxDisplacement }, { "pushBoost", o.pushBoost }, { "drag", o.drag },
     { "MinimumGap", o.minimumGap }, { "endPoints", static_cast<double>(o.endPoints) },
-    { "stallSteps", o.stallSteps }, { "periodic_cell xmin", c.lo.x }, { "periodic_cell xmax", c.hi.x },
-    { "periodic_cell ymin", c.lo.y }, { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
+    { "stallSteps", o.stallSteps }, { "periodic_cell xmin", c.lo.x },
+    { "periodic_cell xmax", c.hi.x }, { "periodic_cell ymin", c.lo.y },
+    { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
     { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale },
     { "Tortuosity", o.tortuosity } };
 }
@@ -68,7 +72,10 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
 class Writer
 {
 public:
-  explicit Writer(std::ostream& out) : out_(out) {}
+  explicit Writer(std::ostream& out)
+    : out_(out)
+  {
+  }
   void bytes(const void* p, std::size_t n)
   {
     fnv1aAdd(hash_, p, n);
@@ -92,7 +99,10 @@ public:
     u64(s.size());
     bytes(s.data(), s.size());
   }
-  void checksum() { u64(hash_); } // the checksum itself is not hashed: the reader compares before it
+  void checksum()
+  {
+    u64(hash_);
+  } // the checksum itself is not hashed: the reader compares before it
   std::uint64_t hash() const { return hash_; }
 
 private:
@@ -105,7 +115,11 @@ private:
 class Reader
 {
 public:
-  Reader(std::istream& in, std::uint64_t size) : in_(in), left_(size) {}
+  Reader(std::istream& in, std::uint64_t size)
+    : in_(in)
+    , left_(size)
+  {
+  }
   bool ok() const { return ok_; }
   std::uint64_t left() const { return left_; }
   void bytes(void* p, std::size_t n)
@@ -183,75 +197,84 @@ std::uint64_t modelFingerprint(const FiberModel& model)
 }
 
 std::string writeSolverCheckpoint(const std::string& path, const FiberModel& model,
-  const CollisionSolverState& st, const CollisionSolverOptions& options, std::uint64_t inputFingerprint)
+  const CollisionSolverState& st, const CollisionSolverOptions& options,
+  std::uint64_t inputFingerprint)
 {
   const std::size_t nf = model.fibers.size();
-  if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf || st.closure.size() != nf)
+  if (st.points.size() != nf || st.active.size() != nf || st.closed.size() != nf ||
+    st.closure.size() != nf)
   {
-    return named(path, "the solver state has " + formatNumber(st.points.size()) + " fibers, the model " +
+    return named(path,
+      "the solver state has " + formatNumber(st.points.size()) + " fibers, the model " +
         formatNumber(nf));
   }
-  const std::string error = writeFileAtomically(path, [&](std::ostream& out) -> std::string {
-    Writer w(out);
-    w.bytes(kMagic, sizeof kMagic);
-    w.u64(kVersion);
-    const auto list = optionList(options);
-    w.u64(list.size());
-    for (const auto& [name, value] : list)
+  const std::string error = writeFileAtomically(path,
+    [&](std::ostream& out) -> std::string
     {
-      w.text(name);
-      w.f64(value);
-    }
-    w.u64(inputFingerprint);
-    w.u64(nf);
-    for (std::size_t f = 0; f < nf; ++f)
-    {
-      const Fiber& fib = model.fibers[f];
-      const FiberPointState& ps = st.points[f];
-      if (fib.radii.size() != fib.points.size() || ps.velocity.size() != fib.points.size() ||
-        ps.source.size() != fib.points.size())
+      Writer w(out);
+      w.bytes(kMagic, sizeof kMagic);
+      w.u64(kVersion);
+      const auto list = optionList(options);
+      w.u64(list.size());
+      for (const auto& [name, value] : list)
       {
-        return "fiber " + formatNumber(f) + " has points, radii and state of different sizes";
+        w.text(name);
+        w.f64(value);
       }
-      w.u64(static_cast<std::uint64_t>(fib.id));
-      w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(fib.bundle)));
-      w.u64(fib.points.size());
-      for (std::size_t i = 0; i < fib.points.size(); ++i)
+      w.u64(inputFingerprint);
+      w.u64(nf);
+      for (std::size_t f = 0; f < nf; ++f)
       {
-        w.vec(fib.points[i]);
-        w.f64(fib.radii[i]);
-        w.vec(ps.velocity[i]);
-        w.f64(ps.source[i]);
+        const Fiber& fib = model.fibers[f];
+        const FiberPointState& ps = st.points[f];
+        if (fib.radii.size() != fib.points.size() || ps.velocity.size() != fib.points.size() ||
+          ps.source.size() != fib.points.size())
+        {
+          return "fiber " + formatNumber(f) + " has points, radii and state of different sizes";
+        }
+        w.u64(static_cast<std::uint64_t>(fib.id));
+        w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(fib.bundle)));
+        w.u64(fib.points.size());
+        for (std::size_t i = 0; i < fib.points.size(); ++i)
+        {
+          w.vec(fib.points[i]);
+          w.f64(fib.radii[i]);
+          w.vec(ps.velocity[i]);
+          w.f64(ps.source[i]);
+        }
+        w.u64(ps.inputRadii.size());
+        for (double r : ps.inputRadii)
+          w.f64(r);
+        w.u64(static_cast<std::uint64_t>(st.active[f] ? 1 : 0) |
+          (static_cast<std::uint64_t>(st.closed[f] ? 1 : 0) << 1));
+        w.vec(st.closure[f]);
+        // Global index and home rank (distributed runs; a serial state may leave them empty).
+        w.u64(static_cast<std::uint64_t>(
+          f < st.global.size() ? st.global[f] : static_cast<std::int64_t>(f)));
+        w.u64(static_cast<std::uint64_t>(
+          static_cast<std::int64_t>(f < st.home.size() ? st.home[f] : 0)));
       }
-      w.u64(ps.inputRadii.size());
-      for (double r : ps.inputRadii)
-        w.f64(r);
-      w.u64(static_cast<std::uint64_t>(st.active[f] ? 1 : 0) | (static_cast<std::uint64_t>(st.closed[f] ? 1 : 0) << 1));
-      w.vec(st.closure[f]);
-      // Global index and home rank (distributed runs; a serial state may leave them empty).
-      w.u64(static_cast<std::uint64_t>(f < st.global.size() ? st.global[f] : static_cast<std::int64_t>(f)));
-      w.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(f < st.home.size() ? st.home[f] : 0)));
-    }
-    for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.pushScale, st.scale, st.done, st.reported })
-    {
-      w.f64(v);
-    }
-    for (long long v : { static_cast<long long>(st.steps), static_cast<long long>(st.sinceGrowth),
-           static_cast<long long>(st.sinceImprovement), static_cast<long long>(st.first),
-           static_cast<long long>(st.warnedStall), static_cast<long long>(st.firstCount),
-           static_cast<long long>(st.bestCollisions), static_cast<long long>(st.bestStep),
-           static_cast<long long>(st.changed) })
-    {
-      w.u64(static_cast<std::uint64_t>(v));
-    }
-    w.u64(st.warnings.size());
-    for (const std::string& text : st.warnings)
-    {
-      w.text(text);
-    }
-    w.checksum();
-    return out ? std::string() : std::string("the write failed");
-  });
+      for (double v : { st.segmentLength, st.vMax, st.growthTolerance, st.pushScale, st.scale,
+             st.done, st.reported })
+      {
+        w.f64(v);
+      }
+      for (long long v : { static_cast<long long>(st.steps), static_cast<long long>(st.sinceGrowth),
+             static_cast<long long>(st.sinceImprovement), static_cast<long long>(st.first),
+             static_cast<long long>(st.warnedStall), static_cast<long long>(st.firstCount),
+             static_cast<long long>(st.bestCollisions), static_cast<long long>(st.bestStep),
+             static_cast<long long>(st.changed) })
+      {
+        w.u64(static_cast<std::uint64_t>(v));
+      }
+      w.u64(st.warnings.size());
+      for (const std::string& text : st.warnings)
+      {
+        w.text(text);
+      }
+      w.checksum();
+      return out ? std::string() : std::string("the write failed");
+    });
   // writeFileAtomically's message names the file and the system error.
   return error.empty() ? error : "cannot write the solver checkpoint: " + error;
 }
@@ -286,7 +309,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   const std::uint64_t version = r.u64();
   if (version != kVersion)
   {
-    return named(path, "has version " + formatNumber(version) + ", this FiberPLI reads version " +
+    return named(path,
+      "has version " + formatNumber(version) + ", this FiberPLI reads version " +
         formatNumber(kVersion));
   }
   const auto given = optionList(options);
@@ -336,7 +360,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
     st.global[f] = static_cast<std::int64_t>(r.u64());
     st.home[f] = static_cast<int>(static_cast<std::int64_t>(r.u64()));
   }
-  for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.pushScale, &st.scale, &st.done, &st.reported })
+  for (double* v : { &st.segmentLength, &st.vMax, &st.growthTolerance, &st.pushScale, &st.scale,
+         &st.done, &st.reported })
   {
     *v = r.f64();
   }
@@ -363,7 +388,8 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   // The file is sound: now whether it belongs to this run.
   for (const auto& [name, value] : given)
   {
-    const auto it = std::find_if(saved.begin(), saved.end(), [&](const auto& s) { return s.first == name; });
+    const auto it =
+      std::find_if(saved.begin(), saved.end(), [&](const auto& s) { return s.first == name; });
     if (it == saved.end() || bitsOf(it->second) != bitsOf(value))
     {
       std::ostringstream msg;
@@ -378,8 +404,10 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   }
   if (fingerprint != inputFingerprint)
   {
-    return named(path, "was written for another input (fingerprint " + formatNumber(fingerprint) +
-        ", this input has " + formatNumber(inputFingerprint) + "); resume with the input it was written for");
+    return named(path,
+      "was written for another input (fingerprint " + formatNumber(fingerprint) +
+        ", this input has " + formatNumber(inputFingerprint) +
+        "); resume with the input it was written for");
   }
   model = std::move(m);
   state = std::move(st);
@@ -410,7 +438,8 @@ std::string agree(SolverComm* comm, const std::string& local)
   {
     return local;
   }
-  std::vector<std::vector<char>> send(static_cast<std::size_t>(comm->size()), std::vector<char>(local.begin(), local.end()));
+  std::vector<std::vector<char>> send(
+    static_cast<std::size_t>(comm->size()), std::vector<char>(local.begin(), local.end()));
   const std::vector<std::vector<char>> got = comm->exchange(send);
   if (!local.empty())
   {
@@ -429,8 +458,8 @@ std::string agree(SolverComm* comm, const std::string& local)
 // Keeps the generation before: the current file becomes previousCheckpointPath, then the new
 // one is written. Killed in between, the previous generation is still there to resume from.
 // Only a regular file is moved (anything else in the way fails the write, naming the file).
-std::string writeGeneration(const std::string& path, const FiberModel& model, const CollisionSolverState& st,
-  const CollisionSolverOptions& options, std::uint64_t fingerprint)
+std::string writeGeneration(const std::string& path, const FiberModel& model,
+  const CollisionSolverState& st, const CollisionSolverOptions& options, std::uint64_t fingerprint)
 {
   struct stat info;
   if (::lstat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode))
@@ -439,7 +468,8 @@ std::string writeGeneration(const std::string& path, const FiberModel& model, co
     // ENOENT: another process writing the same file (ranks solving the same whole model) moved it.
     if (std::rename(path.c_str(), prev.c_str()) != 0 && errno != ENOENT)
     {
-      return named(path, "cannot be kept as '" + prev + "' (" + std::string(std::strerror(errno)) + ")");
+      return named(
+        path, "cannot be kept as '" + prev + "' (" + std::string(std::strerror(errno)) + ")");
     }
   }
   return writeSolverCheckpoint(path, model, st, options, fingerprint);
@@ -454,8 +484,9 @@ struct Generation
 
 // The generations of `path` that read (the file and its previous one), newest step first; with
 // none, error is the file's own read error.
-std::vector<Generation> readGenerations(const std::string& path, const CollisionSolverOptions& options,
-  std::uint64_t fingerprint, std::string& error, std::string& newestProblem)
+std::vector<Generation> readGenerations(const std::string& path,
+  const CollisionSolverOptions& options, std::uint64_t fingerprint, std::string& error,
+  std::string& newestProblem)
 {
   std::vector<Generation> found;
   for (const std::string& file : { path, previousCheckpointPath(path) })
@@ -488,7 +519,8 @@ std::vector<Generation> readGenerations(const std::string& path, const Collision
 std::string otherRankCountFiles(const std::string& base, int ranks)
 {
   const std::size_t slash = base.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : base.substr(0, slash));
+  const std::string dir =
+    slash == std::string::npos ? "." : (slash == 0 ? "/" : base.substr(0, slash));
   const std::string name = slash == std::string::npos ? base : base.substr(slash + 1);
   std::map<int, std::vector<std::string>> byRanks; // rank count -> files
   if (ranks > 1 && checkRegularFile(base).empty() && ::access(base.c_str(), F_OK) == 0)
@@ -503,7 +535,8 @@ std::string otherRankCountFiles(const std::string& base, int ranks)
       int rank = -1, count = -1, used = 0;
       if (entry.size() > name.size() + 1 && entry.compare(0, name.size() + 1, name + ".") == 0 &&
         std::sscanf(entry.c_str() + name.size() + 1, "%d-of-%d%n", &rank, &count, &used) == 2 &&
-        static_cast<std::size_t>(used) == entry.size() - name.size() - 1 && count != ranks && count > 1)
+        static_cast<std::size_t>(used) == entry.size() - name.size() - 1 && count != ranks &&
+        count > 1)
       {
         byRanks[count].push_back(entry);
       }
@@ -519,7 +552,8 @@ std::string otherRankCountFiles(const std::string& base, int ranks)
     {
       list += (list.empty() ? "'" : ", '") + f + "'";
     }
-    text += (text.empty() ? "" : "; ") + std::string(count == 1 ? "a file of a serial run exists (" : "files for ") +
+    text += (text.empty() ? "" : "; ") +
+      std::string(count == 1 ? "a file of a serial run exists (" : "files for ") +
       (count == 1 ? list + ")" : formatNumber(count) + " ranks exist (" + list + ")");
   }
   return text.empty() ? text : text + ": resume on the number of ranks that wrote them";
@@ -537,7 +571,8 @@ std::string describe(const std::vector<Generation>& gens)
 
 // Collective: the index in gens of the newest step every rank holds, or -1 and (the same on
 // every rank) a message naming each rank's files and their steps.
-int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens, std::string& error)
+int newestCommonGeneration(
+  SolverComm* comm, const std::vector<Generation>& gens, std::string& error)
 {
   if (!comm || comm->size() < 2)
   {
@@ -550,8 +585,8 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
     mine += formatNumber(g.state.steps) + " ";
   }
   mine += "|" + describe(gens);
-  const std::vector<std::vector<char>> got =
-    comm->exchange(std::vector<std::vector<char>>(static_cast<std::size_t>(comm->size()), std::vector<char>(mine.begin(), mine.end())));
+  const std::vector<std::vector<char>> got = comm->exchange(std::vector<std::vector<char>>(
+    static_cast<std::size_t>(comm->size()), std::vector<char>(mine.begin(), mine.end())));
   std::vector<int> common;
   for (const Generation& g : gens)
   {
@@ -575,8 +610,8 @@ int newestCommonGeneration(SolverComm* comm, const std::vector<Generation>& gens
   }
   if (common.empty())
   {
-    error = "the ranks' checkpoints are of different steps and no step is held by every rank (" + all +
-      "): resume needs the same step on every rank";
+    error = "the ranks' checkpoints are of different steps and no step is held by every rank (" +
+      all + "): resume needs the same step on every rank";
     return -1;
   }
   for (std::size_t i = 0; i < gens.size(); ++i)
@@ -634,21 +669,23 @@ std::string checkFiberSet(SolverComm* comm, const Generation& g)
   {
     return {};
   }
-  return named(g.file, "the checkpoints of step " + formatNumber(g.state.steps) +
-      " do not hold each of the model's " + formatNumber(n) +
-      " fibers exactly once (global indices are not 0.." + formatNumber(n - 1) +
+  return named(g.file,
+    "the checkpoints of step " + formatNumber(g.state.steps) + " do not hold each of the model's " +
+      formatNumber(n) + " fibers exactly once (global indices are not 0.." + formatNumber(n - 1) +
       "): files of different runs or rank counts?");
 }
 } // namespace
 
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
-  const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+  const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer,
+  SolverComm* comm)
 {
   // Every rank decides these alike (same properties everywhere), so none waits in agree() alone.
   CollisionSolverResult failed;
   if (checkpoint.interval < 0)
   {
-    failed.error = "CheckpointInterval is " + formatNumber(checkpoint.interval) + ", must be >= 0 (0 = off)";
+    failed.error =
+      "CheckpointInterval is " + formatNumber(checkpoint.interval) + ", must be >= 0 (0 = off)";
     return failed;
   }
   if (checkpoint.interval == 0 && !checkpoint.resume)
@@ -657,7 +694,8 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   }
   if (checkpoint.path.empty())
   {
-    failed.error = "CheckpointFile is empty, but checkpoints are asked for (CheckpointInterval or resume)";
+    failed.error =
+      "CheckpointFile is empty, but checkpoints are asked for (CheckpointInterval or resume)";
     return failed;
   }
   const std::string path = checkpointPath(checkpoint.path, comm);
@@ -674,7 +712,8 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   if (checkpoint.resume)
   {
     std::string problem;
-    std::vector<Generation> gens = readGenerations(path, options, fingerprint, problem, newestProblem);
+    std::vector<Generation> gens =
+      readGenerations(path, options, fingerprint, problem, newestProblem);
     if (gens.empty() && ::access(path.c_str(), F_OK) != 0)
     {
       const std::string others = otherRankCountFiles(checkpoint.path, comm ? comm->size() : 1);
@@ -698,7 +737,8 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     }
     // The checksum says the file is as written, not that what was written is sound: the state
     // passes the checks of fresh input and of every scalar (Checkpoint/CheckpointState.h).
-    const std::string unsound = checkResumedState(g.model, g.state, options, comm ? comm->size() : 1);
+    const std::string unsound =
+      checkResumedState(g.model, g.state, options, comm ? comm->size() : 1);
     failed.error = agree(comm, unsound.empty() ? unsound : named(g.file, unsound));
     if (!failed.error.empty())
     {
@@ -718,9 +758,10 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   {
     // The state is checked on each rank and agreed on with the failing rank's file named, so that
     // every rank reports that file.
-    failed.error = run.resume(saved, [&](const std::string& misfit) {
-      return agree(comm, misfit.empty() ? misfit : named(resumedFile, "does not fit: " + misfit));
-    });
+    failed.error = run.resume(saved,
+      [&](const std::string& misfit) {
+        return agree(comm, misfit.empty() ? misfit : named(resumedFile, "does not fit: " + misfit));
+      });
     if (!failed.error.empty())
     {
       return failed;
@@ -737,7 +778,8 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
     const CollisionSolverState& st = run.state();
     if (checkpoint.interval > 0 && st.steps % checkpoint.interval == 0)
     {
-      const std::string problem = agree(comm, writeGeneration(path, work, st, options, fingerprint));
+      const std::string problem =
+        agree(comm, writeGeneration(path, work, st, options, fingerprint));
       if (!problem.empty())
       {
         result = run.finish();
@@ -757,8 +799,8 @@ CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSol
   }
   if (checkpoint.resume && resumedFile != path) // never silently: the newest file was not used
   {
-    result.warnings.push_back(newestProblem + "; resumed from the previous generation '" + resumedFile +
-      "' at step " + formatNumber(saved.steps));
+    result.warnings.push_back(newestProblem + "; resumed from the previous generation '" +
+      resumedFile + "' at step " + formatNumber(saved.steps));
   }
   return result;
 }

@@ -21,7 +21,8 @@ std::uint64_t modelFingerprint(const FiberModel& model);
 /// path atomically (IO/AtomicFile.h): a failed or killed write leaves the previous file. Returns
 /// "" or a message naming the file.
 std::string writeSolverCheckpoint(const std::string& path, const FiberModel& model,
-  const CollisionSolverState& state, const CollisionSolverOptions& options, std::uint64_t inputFingerprint);
+  const CollisionSolverState& state, const CollisionSolverOptions& options,
+  std::uint64_t inputFingerprint);
 
 /// Reads a checkpoint written for `options` (all but numberOfThreads, which does not change the
 /// result) and the input of fingerprint `inputFingerprint`. Returns "" and fills model and
@@ -56,7 +57,7 @@ std::string previousCheckpointPath(const std::string& file);
 /// holds and checks that the pieces hold each fiber of the model exactly once; else every rank
 /// fails, naming the files and their steps.
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
-  const CheckpointOptions& checkpoint, const ProgressFn& progress = {}, const StepObserver& observer = {},
-  SolverComm* comm = nullptr);
+  const CheckpointOptions& checkpoint, const ProgressFn& progress = {},
+  const StepObserver& observer = {}, SolverComm* comm = nullptr);
 
 } // namespace fiberpli

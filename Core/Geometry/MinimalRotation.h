@@ -1,6 +1,7 @@
 /// MinimalRotation: the rotation that takes one unit direction to another along the shortest arc.
 /// Both discrete parallel transports of the project use it: the bundle cross-section frames
-/// (Tissue/Trajectory, docs/tissue-models.md §2) and the ring frames of the tube mesh (Mesh/TubeMesher).
+/// (Tissue/Trajectory, docs/tissue-models.md §2) and the ring frames of the tube mesh
+/// (Mesh/TubeMesher).
 #pragma once
 
 #include "Geometry/Vec3.h"

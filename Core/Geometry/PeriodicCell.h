@@ -93,7 +93,8 @@ inline std::string periodicReachProblem(const PeriodicCell& cell, double reach)
   }
   std::ostringstream msg;
   msg << "periodic cell edge " << eMin << " must exceed twice the largest link reach " << reach
-      << " um (segment extent + 2 x radius + MinimumGap): use a larger cell, a shorter SegmentLength or a "
+      << " um (segment extent + 2 x radius + MinimumGap): use a larger cell, a shorter "
+         "SegmentLength or a "
          "smaller MinimumGap";
   return msg.str();
 }
@@ -101,7 +102,8 @@ inline std::string periodicReachProblem(const PeriodicCell& cell, double reach)
 /// True when a fiber from `first` to `last` is closed through the cell: last − first is a non-zero
 /// lattice vector within 1e-5 × the cell's largest edge per axis (docs/data-contract.md); closure
 /// receives it exactly. The one closure rule of the solver and the metrics.
-inline bool closesThroughCell(const Vec3& first, const Vec3& last, const PeriodicCell& cell, Vec3& closure)
+inline bool closesThroughCell(
+  const Vec3& first, const Vec3& last, const PeriodicCell& cell, Vec3& closure)
 {
   if (!cell.enabled())
   {

@@ -9,7 +9,10 @@ namespace fiberpli
 
 namespace
 {
-double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+double clamp01(double x)
+{
+  return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x);
+}
 
 // §2.2: the minimum is attained on an interval; its midpoint makes pushes symmetric and
 // independent of which end point comes first.

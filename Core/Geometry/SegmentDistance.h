@@ -13,10 +13,10 @@ struct SegmentClosest
 {
   double s = 0.0;
   double t = 0.0;
-  Vec3 p;                 ///< A(s)
-  Vec3 q;                 ///< B(t)
-  double distance = 0.0;  ///< |p − q|
-  bool parallel = false;  ///< the parallel branch (§2.2) or a zero-length segment was used
+  Vec3 p;                ///< A(s)
+  Vec3 q;                ///< B(t)
+  double distance = 0.0; ///< |p − q|
+  bool parallel = false; ///< the parallel branch (§2.2) or a zero-length segment was used
 };
 
 /// Closest points of segments [a0, a1] and [b0, b1] (docs/solver.md §2.1, §2.2): clamped

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <random>
 #include <exception>
+#include <random>
 #include <streambuf>
 #include <vector>
 
@@ -135,8 +135,8 @@ struct Staged
 
 /// Writes the content of one file into a new temporary file beside its target, flushed, synced
 /// and closed. "" on success (staged.tmp exists), else the error (no temporary file is left).
-std::string stage(const std::string& path, const std::function<std::string(std::ostream& out)>& writeContent,
-  Staged& staged)
+std::string stage(const std::string& path,
+  const std::function<std::string(std::ostream& out)>& writeContent, Staged& staged)
 {
   staged.path = path;
   if (path.empty())
@@ -237,8 +237,8 @@ void syncDirectories(const std::vector<std::string>& paths)
 
 } // namespace
 
-std::string writeFileAtomically(const std::string& path,
-  const std::function<std::string(std::ostream& out)>& writeContent)
+std::string writeFileAtomically(
+  const std::string& path, const std::function<std::string(std::ostream& out)>& writeContent)
 {
   return writeFilesAtomically({ AtomicPart{ path, writeContent } });
 }
@@ -253,7 +253,8 @@ std::string writeFilesAtomically(const std::vector<AtomicPart>& parts)
   {
     error = stage(parts[i].path, parts[i].writeContent, staged[i]);
   }
-  const auto removeTemporaries = [&staged]() {
+  const auto removeTemporaries = [&staged]()
+  {
     for (const Staged& s : staged)
     {
       if (!s.tmp.empty())
@@ -271,7 +272,8 @@ std::string writeFilesAtomically(const std::vector<AtomicPart>& parts)
   //    rename failing half-way can put back the ones already replaced (renames of complete,
   //    synced files into the same directory practically never fail, but then the set is whole).
   std::vector<std::string> backups(parts.size());
-  const auto removeBackups = [&backups]() {
+  const auto removeBackups = [&backups]()
+  {
     for (const std::string& b : backups)
     {
       if (!b.empty())

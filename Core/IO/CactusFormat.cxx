@@ -42,19 +42,23 @@ struct CountingReader
 
 } // namespace
 
-CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName, std::uintmax_t fileBytes)
+CactusReadResult readCactusStrands(
+  std::istream& in, const std::string& fileName, std::uintmax_t fileBytes)
 {
   CactusReadResult result;
   CountingReader lines{ LineReader(in, maxLineLength) };
-  auto fail = [&](std::size_t line, const std::string& what) {
+  auto fail = [&](std::size_t line, const std::string& what)
+  {
     CactusReadResult failed;
     failed.error = lineError(fileName, line, what);
     return failed;
   };
-  auto remaining = [&]() { return fileBytes > lines.consumed ? fileBytes - lines.consumed : std::uintmax_t(0); };
+  auto remaining = [&]()
+  { return fileBytes > lines.consumed ? fileBytes - lines.consumed : std::uintmax_t(0); };
   std::string_view line;
   // One line of exactly one token; what names the line's meaning for messages.
-  auto single = [&](const char* what, std::string_view& token, std::string& why) {
+  auto single = [&](const char* what, std::string_view& token, std::string& why)
+  {
     const LineReader::Status s = lines.next(line);
     if (s == LineReader::Status::TooLong)
     {
@@ -70,7 +74,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
     const std::size_t n = splitTokens(line, t, 2);
     if (n != 1)
     {
-      why = std::string("expected ") + what + " alone on the line, found " + std::to_string(n) + " fields";
+      why = std::string("expected ") + what + " alone on the line, found " + std::to_string(n) +
+        " fields";
       return false;
     }
     token = t[0];
@@ -101,8 +106,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
   if (strands > remaining() / kMinStrandBytes)
   {
     std::ostringstream msg;
-    msg << "strand count " << strands << " needs at least " << kMinStrandBytes << " bytes per strand but only "
-        << remaining() << " bytes follow";
+    msg << "strand count " << strands << " needs at least " << kMinStrandBytes
+        << " bytes per strand but only " << remaining() << " bytes follow";
     return fail(lines.reader.lineNumber(), msg.str());
   }
   result.model.fibers.reserve(static_cast<std::size_t>(strands));
@@ -112,8 +117,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
     if (!single("a point count", token, why))
     {
       std::ostringstream msg;
-      msg << "strand " << s << " of " << strands << ": " << why << " (the strand count on line 2 says " << strands
-          << ")";
+      msg << "strand " << s << " of " << strands << ": " << why
+          << " (the strand count on line 2 says " << strands << ")";
       return fail(lines.reader.lineNumber() + (why.rfind("file ends", 0) == 0 ? 1 : 0), msg.str());
     }
     why = parseCount(token, points);
@@ -137,7 +142,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
       const LineReader::Status st = lines.next(line);
       if (st == LineReader::Status::TooLong)
       {
-        return fail(lines.reader.lineNumber(), "line is longer than " + std::to_string(maxLineLength) + " characters");
+        return fail(lines.reader.lineNumber(),
+          "line is longer than " + std::to_string(maxLineLength) + " characters");
       }
       if (st != LineReader::Status::Line)
       {
@@ -150,8 +156,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
       if (n != 4)
       {
         std::ostringstream msg;
-        msg << "expected 4 numbers 'x y z r' (point " << p << " of " << points << " of strand " << s << "), found "
-            << n << " fields";
+        msg << "expected 4 numbers 'x y z r' (point " << p << " of " << points << " of strand " << s
+            << "), found " << n << " fields";
         return fail(lines.reader.lineNumber(), msg.str());
       }
       double v[4];
@@ -191,7 +197,8 @@ CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName
     if (st != LineReader::Status::Line || !isBlank(line))
     {
       std::ostringstream msg;
-      msg << "content after the last of the " << strands << " strands the count on line 2 announces";
+      msg << "content after the last of the " << strands
+          << " strands the count on line 2 announces";
       return fail(lines.reader.lineNumber(), msg.str());
     }
   }

@@ -54,7 +54,8 @@ double caterpillarSphereSpacing(double radius, double tolerance);
 /// success, else the reason (invalid model, bad tolerance or inner radii, more than 10^9 spheres,
 /// stream failure); use AtomicFile to protect the target file.
 std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
-  const std::vector<std::vector<double>>* innerRadii, double tolerance = kCaterpillarDefaultTolerance);
+  const std::vector<std::vector<double>>* innerRadii,
+  double tolerance = kCaterpillarDefaultTolerance);
 
 /// Content check for CanReadFile: true when the first non-blank line is the CATERPillar header
 /// (so ordinary CSV files stay with ParaView's own CSV reader). Restores the stream position.

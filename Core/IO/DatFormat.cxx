@@ -48,10 +48,12 @@ enum class PointParse
 };
 
 /// Parses "x y z r" into v[4]; count and bad token are returned for the message.
-PointParse parsePointLine(std::string_view line, double v[4], int& count, std::string_view& badToken)
+PointParse parsePointLine(
+  std::string_view line, double v[4], int& count, std::string_view& badToken)
 {
   std::string_view tokens[4];
-  const std::size_t total = textfields::splitTokens(line, tokens, 4); // all tokens counted, for the message
+  const std::size_t total =
+    textfields::splitTokens(line, tokens, 4); // all tokens counted, for the message
   count = 0;
   while (static_cast<std::size_t>(count) < std::min<std::size_t>(total, 4))
   {
@@ -100,7 +102,8 @@ std::string lineError(const std::string& fileName, std::size_t line, const std::
   return msg.str();
 }
 
-std::string describePointError(PointParse p, int count, std::string_view badToken, const double v[4])
+std::string describePointError(
+  PointParse p, int count, std::string_view badToken, const double v[4])
 {
   std::ostringstream msg;
   switch (p)
@@ -137,7 +140,8 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName)
   int blankRun = 0;
 
   // One blank line closes the fiber; fiber ids count every fiber of the file, kept or dropped.
-  auto finishFiber = [&]() {
+  auto finishFiber = [&]()
+  {
     if (fiber.points.size() >= 2)
     {
       // Drop push_back's growth slack (up to 2x) so the model holds the data once, not ~1.3 times.
@@ -155,7 +159,8 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName)
     ++fiberOrdinal;
     bundleHasFibers = true;
   };
-  auto fail = [&](std::size_t line, const std::string& what) {
+  auto fail = [&](std::size_t line, const std::string& what)
+  {
     result.model = FiberModel{};
     result.droppedFibers = 0;
     result.error = lineError(fileName, line, what);
@@ -172,7 +177,8 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName)
     }
     if (status == LineReader::Status::TooLong)
     {
-      return fail(reader.lineNumber(), "line is longer than " + std::to_string(maxLineLength) +
+      return fail(reader.lineNumber(),
+        "line is longer than " + std::to_string(maxLineLength) +
           " characters (not a fastPLI .dat point line)");
     }
     if (status == LineReader::Status::Failed)
@@ -236,13 +242,16 @@ std::string writeFastPliDat(std::ostream& out, const FiberModel& model)
   // Format into a block and write it in one call: per-number ostream << is several times slower.
   std::vector<char> block(1 << 16);
   std::size_t used = 0;
-  auto flush = [&]() {
+  auto flush = [&]()
+  {
     out.write(block.data(), static_cast<std::streamsize>(used));
     used = 0;
   };
   auto put = [&](char c) { block[used++] = c; };
-  auto number = [&](double x) {
-    const std::to_chars_result r = std::to_chars(block.data() + used, block.data() + block.size(), x);
+  auto number = [&](double x)
+  {
+    const std::to_chars_result r =
+      std::to_chars(block.data() + used, block.data() + block.size(), x);
     used = static_cast<std::size_t>(r.ptr - block.data());
   };
 
@@ -284,8 +293,8 @@ namespace
 /// Tecplot ASCII files open with records such as TITLE = "...", VARIABLES = ..., ZONE ...
 bool startsWithTecplotKeyword(std::string_view line)
 {
-  static const char* const keywords[] = { "TITLE", "VARIABLES", "ZONE", "TEXT", "GEOMETRY", "FILETYPE",
-    "DATASETAUXDATA", "VARAUXDATA" };
+  static const char* const keywords[] = { "TITLE", "VARIABLES", "ZONE", "TEXT", "GEOMETRY",
+    "FILETYPE", "DATASETAUXDATA", "VARAUXDATA" };
   std::size_t end = 0;
   while (end < line.size() && std::isalpha(static_cast<unsigned char>(line[end])))
   {
@@ -294,8 +303,9 @@ bool startsWithTecplotKeyword(std::string_view line)
   for (const char* keyword : keywords)
   {
     const std::string_view k(keyword);
-    if (end == k.size() && std::equal(k.begin(), k.end(), line.begin(),
-          [](char a, char b) { return a == std::toupper(static_cast<unsigned char>(b)); }))
+    if (end == k.size() &&
+      std::equal(k.begin(), k.end(), line.begin(),
+        [](char a, char b) { return a == std::toupper(static_cast<unsigned char>(b)); }))
     {
       return true;
     }

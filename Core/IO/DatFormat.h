@@ -33,11 +33,11 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName);
 std::string writeFastPliDat(std::ostream& out, const FiberModel& model);
 
 /// Content sniffing for CanReadFile (other ParaView readers also claim `.dat`, e.g. Tecplot's
-/// "TITLE = ..." files): looks at the first 20 non-blank, non-comment lines within the first 64 KiB;
-/// true when more than three quarters of them hold exactly 4 finite numbers with a positive radius
-/// and none starts with a Tecplot keyword (TITLE, VARIABLES, ZONE, …) or holds a NUL byte — so a
-/// fastPLI file with one bad line still reaches our reader and its line-numbered error. The stream
-/// position is restored (the stream must be seekable).
+/// "TITLE = ..." files): looks at the first 20 non-blank, non-comment lines within the first 64
+/// KiB; true when more than three quarters of them hold exactly 4 finite numbers with a positive
+/// radius and none starts with a Tecplot keyword (TITLE, VARIABLES, ZONE, …) or holds a NUL byte —
+/// so a fastPLI file with one bad line still reaches our reader and its line-numbered error. The
+/// stream position is restored (the stream must be seekable).
 bool looksLikeFastPliDat(std::istream& in);
 
 } // namespace fiberpli

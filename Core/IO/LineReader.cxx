@@ -7,7 +7,8 @@ namespace fiberpli
 
 namespace
 {
-constexpr std::size_t blockSize = std::size_t(1) << 16; // 64 KiB: big enough that read() calls are rare
+constexpr std::size_t blockSize = std::size_t(1)
+  << 16; // 64 KiB: big enough that read() calls are rare
 }
 
 LineReader::LineReader(std::istream& in, std::size_t maxLineLength)
@@ -51,10 +52,12 @@ LineReader::Status LineReader::next(std::string_view& line)
   std::size_t searched = begin_;
   for (;;)
   {
-    const void* nl = searched < end_ ? std::memchr(buffer_.data() + searched, '\n', end_ - searched) : nullptr;
+    const void* nl =
+      searched < end_ ? std::memchr(buffer_.data() + searched, '\n', end_ - searched) : nullptr;
     if (nl)
     {
-      const std::size_t pos = static_cast<std::size_t>(static_cast<const char*>(nl) - buffer_.data());
+      const std::size_t pos =
+        static_cast<std::size_t>(static_cast<const char*>(nl) - buffer_.data());
       std::size_t len = pos - begin_;
       ++lineNumber_;
       if (len > maxLineLength_)

@@ -25,9 +25,11 @@ double mcdcAxisDeviation(const Fiber& fiber, McdcCylinderList kind)
   return worst;
 }
 
-std::string writeMcdcCylinders(std::ostream& out, const FiberModel& model, McdcCylinderList kind, double tolerance)
+std::string writeMcdcCylinders(
+  std::ostream& out, const FiberModel& model, McdcCylinderList kind, double tolerance)
 {
-  const char* const name = kind == McdcCylinderList::ZAligned ? "cylinders_list" : "oriented_cylinders_list";
+  const char* const name =
+    kind == McdcCylinderList::ZAligned ? "cylinders_list" : "oriented_cylinders_list";
   const std::string invalid = validateModel(model);
   if (!invalid.empty())
   {
@@ -36,7 +38,8 @@ std::string writeMcdcCylinders(std::ostream& out, const FiberModel& model, McdcC
   if (!std::isfinite(tolerance) || tolerance < 0.0)
   {
     std::ostringstream msg;
-    msg << "cannot write MC/DC " << name << ": straightness tolerance " << tolerance << " µm must be finite and >= 0";
+    msg << "cannot write MC/DC " << name << ": straightness tolerance " << tolerance
+        << " µm must be finite and >= 0";
     return msg.str();
   }
   std::size_t worstFiber = 0;
@@ -53,11 +56,12 @@ std::string writeMcdcCylinders(std::ostream& out, const FiberModel& model, McdcC
   if (worst > tolerance)
   {
     std::ostringstream msg;
-    msg << "cannot write MC/DC " << name << ": fiber " << worstFiber << " (id " << model.fibers[worstFiber].id
-        << ") deviates " << worst << " µm from "
+    msg << "cannot write MC/DC " << name << ": fiber " << worstFiber << " (id "
+        << model.fibers[worstFiber].id << ") deviates " << worst << " µm from "
         << (kind == McdcCylinderList::ZAligned ? "the z-parallel line through its first point"
                                                : "the line through its first and last point")
-        << ", more than the straightness tolerance " << tolerance << " µm (only straight fibers are cylinders)";
+        << ", more than the straightness tolerance " << tolerance
+        << " µm (only straight fibers are cylinders)";
     return msg.str();
   }
   std::string text = "0.001\n";

@@ -26,8 +26,9 @@ namespace fiberpli
 /// the byte offset: a group mixing finite and NaN/Inf values, no Inf end marker (truncated), or a
 /// header `count` that differs from the number of streamlines. streamlines receives that number.
 template <class OnPoint, class OnStreamlineEnd>
-std::string walkMrtrixData(std::istream& in, const std::string& fileName, const MrtrixHeader& header,
-  std::size_t width, std::uint64_t& streamlines, OnPoint onPoint, OnStreamlineEnd onStreamlineEnd)
+std::string walkMrtrixData(std::istream& in, const std::string& fileName,
+  const MrtrixHeader& header, std::size_t width, std::uint64_t& streamlines, OnPoint onPoint,
+  OnStreamlineEnd onStreamlineEnd)
 {
   const char* group = width == 3 ? "triplet" : "value";
   const std::uint64_t groupSize = width * header.valueSize;
@@ -47,12 +48,14 @@ std::string walkMrtrixData(std::istream& in, const std::string& fileName, const 
   double v[3];
   while (!sawEnd && remaining >= groupSize)
   {
-    const std::size_t groups = static_cast<std::size_t>(std::min<std::uint64_t>(remaining / groupSize, groupsPerBlock));
+    const std::size_t groups =
+      static_cast<std::size_t>(std::min<std::uint64_t>(remaining / groupSize, groupsPerBlock));
     const std::size_t bytes = groups * static_cast<std::size_t>(groupSize);
     in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(bytes));
     if (static_cast<std::size_t>(in.gcount()) != bytes)
     {
-      return mrtrixErrorAt(fileName, "byte", position + static_cast<std::uint64_t>(in.gcount()), "read error");
+      return mrtrixErrorAt(
+        fileName, "byte", position + static_cast<std::uint64_t>(in.gcount()), "read error");
     }
     for (std::size_t g = 0; g < groups; ++g, position += groupSize)
     {
@@ -61,8 +64,9 @@ std::string walkMrtrixData(std::istream& in, const std::string& fileName, const 
       std::size_t infs = 0;
       for (std::size_t a = 0; a < width; ++a)
       {
-        v[a] = header.valueSize == 4 ? static_cast<double>(binary::loadFloat32(p + a * 4, header.littleEndian))
-                                     : binary::loadFloat64(p + a * 8, header.littleEndian);
+        v[a] = header.valueSize == 4
+          ? static_cast<double>(binary::loadFloat32(p + a * 4, header.littleEndian))
+          : binary::loadFloat64(p + a * 8, header.littleEndian);
         nans += std::isnan(v[a]) ? 1 : 0;
         infs += std::isinf(v[a]) ? 1 : 0;
       }
@@ -89,7 +93,8 @@ std::string walkMrtrixData(std::istream& in, const std::string& fileName, const 
         sawEnd = true;
         break;
       }
-      return mrtrixErrorAt(fileName, "byte", position, std::string(group) + " mixes finite and NaN/Inf values");
+      return mrtrixErrorAt(
+        fileName, "byte", position, std::string(group) + " mixes finite and NaN/Inf values");
     }
     remaining -= bytes;
   }
@@ -101,7 +106,8 @@ std::string walkMrtrixData(std::istream& in, const std::string& fileName, const 
   if (header.haveCount && streamlines != header.count)
   {
     std::ostringstream msg;
-    msg << "header count " << header.count << " but the data holds " << streamlines << " streamlines";
+    msg << "header count " << header.count << " but the data holds " << streamlines
+        << " streamlines";
     return mrtrixErrorAt(fileName, "line", header.countLine, msg.str());
   }
   return {};
@@ -111,7 +117,11 @@ std::string walkMrtrixData(std::istream& in, const std::string& fileName, const 
 class MrtrixFloat32Writer
 {
 public:
-  explicit MrtrixFloat32Writer(std::ostream& out) : out_(out), block_(4 * 12 * 1024) {}
+  explicit MrtrixFloat32Writer(std::ostream& out)
+    : out_(out)
+    , block_(4 * 12 * 1024)
+  {
+  }
 
   void put(float value)
   {

@@ -32,7 +32,8 @@ std::string_view trim(std::string_view s)
 std::string lower(std::string_view s)
 {
   std::string r(s);
-  std::transform(r.begin(), r.end(), r.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(r.begin(), r.end(), r.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return r;
 }
 
@@ -44,18 +45,20 @@ bool parseUnsigned(std::string_view s, std::uint64_t& value)
 
 } // namespace
 
-std::string mrtrixErrorAt(const std::string& fileName, const char* unit, std::uint64_t where, const std::string& what)
+std::string mrtrixErrorAt(
+  const std::string& fileName, const char* unit, std::uint64_t where, const std::string& what)
 {
   std::ostringstream msg;
   msg << fileName << " " << unit << " " << where << ": " << what;
   return msg.str();
 }
 
-MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, const std::string& magic,
-  const std::string& kind, std::size_t valuesPerPoint)
+MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName,
+  const std::string& magic, const std::string& kind, std::size_t valuesPerPoint)
 {
   MrtrixHeader h;
-  auto fail = [&](const std::string& message) {
+  auto fail = [&](const std::string& message)
+  {
     MrtrixHeader failed;
     failed.error = message;
     return failed;
@@ -66,11 +69,13 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   }
 
   // Text up to the END line, bounded so a binary file cannot make us read it all.
-  std::string head(static_cast<std::size_t>(std::min<std::uint64_t>(h.fileSize, maxHeaderBytes)), '\0');
+  std::string head(
+    static_cast<std::size_t>(std::min<std::uint64_t>(h.fileSize, maxHeaderBytes)), '\0');
   in.read(&head[0], static_cast<std::streamsize>(head.size()));
   if (static_cast<std::size_t>(in.gcount()) != head.size())
   {
-    return fail(mrtrixErrorAt(fileName, "byte", static_cast<std::uint64_t>(in.gcount()), "read error in the header"));
+    return fail(mrtrixErrorAt(
+      fileName, "byte", static_cast<std::uint64_t>(in.gcount()), "read error in the header"));
   }
   std::size_t pos = 0;
   std::size_t lineNo = 0;
@@ -97,8 +102,8 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
     {
       if (line != magic)
       {
-        return fail(mrtrixErrorAt(fileName, "line", 1,
-          "not an " + kind + " file (first line must be '" + magic + "')"));
+        return fail(mrtrixErrorAt(
+          fileName, "line", 1, "not an " + kind + " file (first line must be '" + magic + "')"));
       }
       continue;
     }
@@ -114,7 +119,8 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
     }
     const std::string key = lower(trim(line.substr(0, colon)));
     const std::string_view value = trim(line.substr(colon + 1));
-    auto setOnce = [&](std::string& slot, std::size_t& slotLine) {
+    auto setOnce = [&](std::string& slot, std::size_t& slotLine)
+    {
       if (!slot.empty() && slot != value)
       {
         return false;
@@ -142,7 +148,8 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
     }
     if (!ok)
     {
-      return fail(mrtrixErrorAt(fileName, "line", lineNo, "'" + printableText(key) + "' given twice with different values"));
+      return fail(mrtrixErrorAt(fileName, "line", lineNo,
+        "'" + printableText(key) + "' given twice with different values"));
     }
   }
 
@@ -162,7 +169,8 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   else
   {
     return fail(mrtrixErrorAt(fileName, "line", datatypeLine,
-      "datatype '" + printableText(datatype) + "' is not supported (Float32LE, Float32BE, Float64LE, Float64BE)"));
+      "datatype '" + printableText(datatype) +
+        "' is not supported (Float32LE, Float32BE, Float64LE, Float64BE)"));
   }
   h.littleEndian = dt.compare(dt.size() - 2, 2, "le") == 0;
 
@@ -174,17 +182,19 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   if (fv.size() < 2 || fv[0] != '.' || (fv[1] != ' ' && fv[1] != '\t'))
   {
     return fail(mrtrixErrorAt(fileName, "line", fileLine,
-      "'file: " + printableText(fileValue) + "': only data in the same file ('file: . <offset>') is supported"));
+      "'file: " + printableText(fileValue) +
+        "': only data in the same file ('file: . <offset>') is supported"));
   }
   if (!parseUnsigned(trim(fv.substr(1)), h.dataOffset))
   {
-    return fail(mrtrixErrorAt(fileName, "line", fileLine, "'file: " + printableText(fileValue) + "': offset is not a number"));
+    return fail(mrtrixErrorAt(fileName, "line", fileLine,
+      "'file: " + printableText(fileValue) + "': offset is not a number"));
   }
   if (h.dataOffset < headerEnd || h.dataOffset > h.fileSize)
   {
     std::ostringstream msg;
-    msg << "data offset " << h.dataOffset << " must lie between the end of the header (byte " << headerEnd
-        << ") and the end of the file (byte " << h.fileSize << ")";
+    msg << "data offset " << h.dataOffset << " must lie between the end of the header (byte "
+        << headerEnd << ") and the end of the file (byte " << h.fileSize << ")";
     return fail(mrtrixErrorAt(fileName, "line", fileLine, msg.str()));
   }
 
@@ -193,7 +203,8 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
   {
     if (!parseUnsigned(countValue, h.count))
     {
-      return fail(mrtrixErrorAt(fileName, "line", h.countLine, "count '" + printableText(countValue) + "' is not a number"));
+      return fail(mrtrixErrorAt(fileName, "line", h.countLine,
+        "count '" + printableText(countValue) + "' is not a number"));
     }
     // Every streamline needs at least its NaN separator, plus the final Inf: this bounds any
     // allocation sized by count to the real file length.
@@ -202,8 +213,9 @@ MrtrixHeader readMrtrixHeader(std::istream& in, const std::string& fileName, con
     if (h.count > dataBytes / groupSize || h.count * groupSize + groupSize > dataBytes)
     {
       std::ostringstream msg;
-      msg << "count " << h.count << " needs at least " << (h.count + 1) << (valuesPerPoint == 3 ? " triplets" : " values")
-          << " but only " << dataBytes << " bytes of data follow the header";
+      msg << "count " << h.count << " needs at least " << (h.count + 1)
+          << (valuesPerPoint == 3 ? " triplets" : " values") << " but only " << dataBytes
+          << " bytes of data follow the header";
       return fail(mrtrixErrorAt(fileName, "line", h.countLine, msg.str()));
     }
   }

@@ -41,7 +41,8 @@ void forEachTckValue(const FiberModel& model, Emit emit)
 
 } // namespace
 
-FiberReadResult readTck(std::istream& in, const std::string& fileName, double defaultRadius, std::string* timestamp)
+FiberReadResult readTck(
+  std::istream& in, const std::string& fileName, double defaultRadius, std::string* timestamp)
 {
   FiberReadResult result;
   const auto fail = readFailure;
@@ -60,12 +61,17 @@ FiberReadResult readTck(std::istream& in, const std::string& fileName, double de
   }
   std::uint64_t streamlines = 0;
   Fiber fiber;
-  const std::string error = walkMrtrixData(in, fileName, header, 3, streamlines,
-    [&](const double* v, std::uint64_t) { fiber.points.push_back({ v[0], v[1], v[2] }); },
-    [&]() {
+  const std::string error = walkMrtrixData(
+    in, fileName, header, 3, streamlines,
+    [&](const double* v, std::uint64_t) {
+      fiber.points.push_back({ v[0], v[1], v[2] });
+    },
+    [&]()
+    {
       if (fiber.points.size() >= 2)
       {
-        fiber.points.shrink_to_fit(); // drop push_back's growth slack: the model holds the data once
+        fiber.points
+          .shrink_to_fit(); // drop push_back's growth slack: the model holds the data once
         fiber.id = static_cast<std::int64_t>(streamlines); // walkMrtrixData counts after this call
         fiber.bundle = 0;
         fiber.radii.assign(fiber.points.size(), defaultRadius);
@@ -92,10 +98,12 @@ std::string tckTimestamp(const FiberModel& model)
 {
   std::uint64_t hash = kFnv1aOffset;
   unsigned char bytes[4];
-  forEachTckValue(model, [&](float value) {
-    binary::storeFloat32LE(bytes, value);
-    fnv1aAdd(hash, bytes, sizeof bytes);
-  });
+  forEachTckValue(model,
+    [&](float value)
+    {
+      binary::storeFloat32LE(bytes, value);
+      fnv1aAdd(hash, bytes, sizeof bytes);
+    });
   // Below 2^53, so MRtrix (which reads timestamps as doubles) sees the exact value.
   return std::to_string(hash % 1000000000000000ull);
 }
@@ -127,7 +135,8 @@ std::string writeTck(std::ostream& out, const FiberModel& model)
   }
 
   const std::string header = composeMrtrixHeader("mrtrix tracks",
-    "datatype: Float32LE\ntimestamp: " + tckTimestamp(model) + "\ncount: " + std::to_string(model.fibers.size()) + "\n");
+    "datatype: Float32LE\ntimestamp: " + tckTimestamp(model) +
+      "\ncount: " + std::to_string(model.fibers.size()) + "\n");
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   MrtrixFloat32Writer data(out);
   forEachTckValue(model, [&](float value) { data.put(value); });

@@ -26,8 +26,8 @@ namespace fiberpli
 /// name the byte offset (data) or line (header): missing "mrtrix tracks" magic, unknown datatype,
 /// missing or bad `file:` offset, `count` that disagrees with the data or that the file is too
 /// short to hold (checked before allocating), a triplet mixing finite and NaN/Inf values, data
-/// without the Inf end marker (truncated), defaultRadius not finite and > 0. When timestamp is given
-/// it receives the header's `timestamp` value ("" when absent), to match a .tsf against.
+/// without the Inf end marker (truncated), defaultRadius not finite and > 0. When timestamp is
+/// given it receives the header's `timestamp` value ("" when absent), to match a .tsf against.
 FiberReadResult readTck(std::istream& in, const std::string& fileName, double defaultRadius,
   std::string* timestamp = nullptr);
 
@@ -39,8 +39,8 @@ std::string tckTimestamp(const FiberModel& model);
 
 /// Writes the model as Float32LE .tck exactly like this (tested byte by byte):
 ///   "mrtrix tracks\ndatatype: Float32LE\ntimestamp: <tckTimestamp(model)>\ncount: <N>\n
-///   file: . <offset>\nEND\n", where <offset> is the length of this header, followed by each fiber's points (3 × float32 LE), a NaN triplet
-///   after each fiber and a final Inf triplet.
+///   file: . <offset>\nEND\n", where <offset> is the length of this header, followed by each
+///   fiber's points (3 × float32 LE), a NaN triplet after each fiber and a final Inf triplet.
 /// Radii, fiber ids and bundle ids are NOT stored (the format has no place for them; writeFiberFile
 /// writes the radii to the companion .tsf). Coordinates
 /// are rounded to float32; a coordinate beyond the float32 range is an error. Returns "" on

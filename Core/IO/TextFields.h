@@ -15,11 +15,15 @@ namespace fiberpli
 namespace textfields
 {
 
-inline bool isBlankChar(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool isBlankChar(char c)
+{
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 /// Splits line into at most maxTokens tokens; returns the number of tokens the line holds (which
 /// may exceed maxTokens: the extra ones are counted, not stored).
-inline std::size_t splitTokens(std::string_view line, std::string_view* tokens, std::size_t maxTokens)
+inline std::size_t splitTokens(
+  std::string_view line, std::string_view* tokens, std::size_t maxTokens)
 {
   std::size_t count = 0;
   std::size_t i = 0;
@@ -78,7 +82,8 @@ inline std::string parseFinite(std::string_view token, double& value)
 /// A non-negative integer from the whole token; "" when fine, else why not.
 inline std::string parseCount(std::string_view token, unsigned long long& value)
 {
-  const std::from_chars_result r = std::from_chars(token.data(), token.data() + token.size(), value);
+  const std::from_chars_result r =
+    std::from_chars(token.data(), token.data() + token.size(), value);
   if (r.ec == std::errc::result_out_of_range)
   {
     return "count '" + std::string(token.substr(0, 40)) + "' is too large";

@@ -29,13 +29,32 @@ bool axisCode(char c, int& axis, int& sign)
 {
   switch (c)
   {
-    case 'R': axis = 0; sign = 1; return true;
-    case 'L': axis = 0; sign = -1; return true;
-    case 'A': axis = 1; sign = 1; return true;
-    case 'P': axis = 1; sign = -1; return true;
-    case 'S': axis = 2; sign = 1; return true;
-    case 'I': axis = 2; sign = -1; return true;
-    default: return false;
+    case 'R':
+      axis = 0;
+      sign = 1;
+      return true;
+    case 'L':
+      axis = 0;
+      sign = -1;
+      return true;
+    case 'A':
+      axis = 1;
+      sign = 1;
+      return true;
+    case 'P':
+      axis = 1;
+      sign = -1;
+      return true;
+    case 'S':
+      axis = 2;
+      sign = 1;
+      return true;
+    case 'I':
+      axis = 2;
+      sign = -1;
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -56,7 +75,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   }
   if (fileSize < headerSize)
   {
-    return fail(at(fileName, fileSize, "file ends inside the 1000-byte TrackVis header (truncated file?)"));
+    return fail(
+      at(fileName, fileSize, "file ends inside the 1000-byte TrackVis header (truncated file?)"));
   }
   unsigned char h[headerSize];
   in.read(reinterpret_cast<char*>(h), headerSize);
@@ -86,7 +106,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   const std::int32_t version = binary::loadInt32(h + 992, little);
   if (version != 1 && version != 2)
   {
-    return fail(at(fileName, 992, "version " + std::to_string(version) + " is not supported (1 or 2)"));
+    return fail(
+      at(fileName, 992, "version " + std::to_string(version) + " is not supported (1 or 2)"));
   }
   int dim[3];
   double voxelSize[3];
@@ -119,7 +140,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
       A[r][c] = binary::loadFloat32(h + 440 + 4 * (4 * r + c), little);
       if (!std::isfinite(A[r][c]))
       {
-        return fail(at(fileName, 440 + 4 * static_cast<std::uint64_t>(4 * r + c), "vox_to_ras holds a non-finite value"));
+        return fail(at(fileName, 440 + 4 * static_cast<std::uint64_t>(4 * r + c),
+          "vox_to_ras holds a non-finite value"));
       }
     }
   }
@@ -149,11 +171,16 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
     bool valid = true;
     for (int j = 0; j < 3; ++j)
     {
-      valid = valid && axisCode(static_cast<char>(std::toupper(static_cast<unsigned char>(order[j]))), headerAxis[j], headerSign[j]);
+      valid = valid &&
+        axisCode(static_cast<char>(std::toupper(static_cast<unsigned char>(order[j]))),
+          headerAxis[j], headerSign[j]);
     }
-    if (!valid || headerAxis[0] == headerAxis[1] || headerAxis[1] == headerAxis[2] || headerAxis[0] == headerAxis[2])
+    if (!valid || headerAxis[0] == headerAxis[1] || headerAxis[1] == headerAxis[2] ||
+      headerAxis[0] == headerAxis[2])
     {
-      return fail(at(fileName, 948, "voxel_order '" + printableText(std::string_view(order, 3)) + "' is not three distinct letters of R/L, A/P, S/I"));
+      return fail(at(fileName, 948,
+        "voxel_order '" + printableText(std::string_view(order, 3)) +
+          "' is not three distinct letters of R/L, A/P, S/I"));
     }
     // World axis and direction of each affine voxel axis: the dominant entry of its column.
     int affineAxis[3];
@@ -170,14 +197,17 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
       }
       if (A[best][k] == 0.0)
       {
-        return fail(at(fileName, 440, "vox_to_ras has an all-zero voxel axis (column " + std::to_string(k) + ")"));
+        return fail(at(fileName, 440,
+          "vox_to_ras has an all-zero voxel axis (column " + std::to_string(k) + ")"));
       }
       affineAxis[k] = best;
       affineSign[k] = A[best][k] > 0.0 ? 1 : -1;
     }
-    if (affineAxis[0] == affineAxis[1] || affineAxis[1] == affineAxis[2] || affineAxis[0] == affineAxis[2])
+    if (affineAxis[0] == affineAxis[1] || affineAxis[1] == affineAxis[2] ||
+      affineAxis[0] == affineAxis[2])
     {
-      return fail(at(fileName, 440, "vox_to_ras does not map the voxel axes to distinct world axes"));
+      return fail(
+        at(fileName, 440, "vox_to_ras does not map the voxel axes to distinct world axes"));
     }
     for (int k = 0; k < 3; ++k)
     {
@@ -192,7 +222,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
       if (flip[k] && dim[sourceAxis[k]] <= 0)
       {
         return fail(at(fileName, 6 + 2 * static_cast<std::uint64_t>(sourceAxis[k]),
-          "dim must be > 0 to flip voxel axis " + std::to_string(sourceAxis[k]) + " (voxel_order differs from vox_to_ras)"));
+          "dim must be > 0 to flip voxel axis " + std::to_string(sourceAxis[k]) +
+            " (voxel_order differs from vox_to_ras)"));
       }
     }
   }
@@ -206,7 +237,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   if (static_cast<std::uint64_t>(nCount) > bodyBytes / 4) // a track needs at least its point count
   {
     std::ostringstream msg;
-    msg << "n_count " << nCount << " tracks cannot fit in the " << bodyBytes << " bytes after the header";
+    msg << "n_count " << nCount << " tracks cannot fit in the " << bodyBytes
+        << " bytes after the header";
     return fail(at(fileName, 988, msg.str()));
   }
   result.model.fibers.reserve(static_cast<std::size_t>(nCount));
@@ -219,7 +251,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   {
     if (fileSize - position < 4)
     {
-      return fail(at(fileName, position, "file ends inside the point count of track " + std::to_string(track)));
+      return fail(at(
+        fileName, position, "file ends inside the point count of track " + std::to_string(track)));
     }
     unsigned char nb[4];
     in.read(reinterpret_cast<char*>(nb), 4);
@@ -230,15 +263,17 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
     const std::int32_t n = binary::loadInt32(nb, little);
     if (n < 0)
     {
-      return fail(at(fileName, position, "track " + std::to_string(track) + " has a negative point count " + std::to_string(n)));
+      return fail(at(fileName, position,
+        "track " + std::to_string(track) + " has a negative point count " + std::to_string(n)));
     }
     position += 4;
-    const std::uint64_t trackBytes = 4 * (static_cast<std::uint64_t>(n) * valuesPerPoint + static_cast<std::uint64_t>(nProperties));
+    const std::uint64_t trackBytes = 4 *
+      (static_cast<std::uint64_t>(n) * valuesPerPoint + static_cast<std::uint64_t>(nProperties));
     if (trackBytes > fileSize - position)
     {
       std::ostringstream msg;
-      msg << "track " << track << " declares " << n << " points (" << trackBytes << " bytes) but only "
-          << (fileSize - position) << " bytes remain";
+      msg << "track " << track << " declares " << n << " points (" << trackBytes
+          << " bytes) but only " << (fileSize - position) << " bytes remain";
       return fail(at(fileName, position - 4, msg.str()));
     }
     buffer.resize(static_cast<std::size_t>(trackBytes));
@@ -259,7 +294,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
         if (!std::isfinite(p))
         {
           return fail(at(fileName, position + pointOffset + 4 * a,
-            "track " + std::to_string(track) + " point " + std::to_string(i) + " has a non-finite coordinate"));
+            "track " + std::to_string(track) + " point " + std::to_string(i) +
+              " has a non-finite coordinate"));
         }
         v[a] = p / voxelSize[a] - 0.5;
       }
@@ -298,7 +334,8 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   if (position < fileSize)
   {
     std::ostringstream msg;
-    msg << "header n_count " << nCount << " but " << (fileSize - position) << " more bytes follow track " << (track - 1);
+    msg << "header n_count " << nCount << " but " << (fileSize - position)
+        << " more bytes follow track " << (track - 1);
     return fail(at(fileName, position, msg.str()));
   }
   return result;

@@ -13,12 +13,14 @@ namespace fiberpli
 TsfReadResult readTsf(std::istream& in, const std::string& fileName)
 {
   TsfReadResult result;
-  auto fail = [&](const std::string& message) {
+  auto fail = [&](const std::string& message)
+  {
     TsfReadResult failed;
     failed.error = message;
     return failed;
   };
-  const MrtrixHeader header = readMrtrixHeader(in, fileName, "mrtrix track scalars", "MRtrix track scalars", 1);
+  const MrtrixHeader header =
+    readMrtrixHeader(in, fileName, "mrtrix track scalars", "MRtrix track scalars", 1);
   if (!header.error.empty())
   {
     return fail(header.error);
@@ -34,8 +36,10 @@ TsfReadResult readTsf(std::istream& in, const std::string& fileName)
   std::vector<double> current;
   bool started = false;
   std::uint64_t groupStart = header.dataOffset; // where the current streamline begins
-  const std::string error = walkMrtrixData(in, fileName, header, 1, streamlines,
-    [&](const double* v, std::uint64_t at) {
+  const std::string error = walkMrtrixData(
+    in, fileName, header, 1, streamlines,
+    [&](const double* v, std::uint64_t at)
+    {
       if (!started)
       {
         groupStart = at;
@@ -43,7 +47,8 @@ TsfReadResult readTsf(std::istream& in, const std::string& fileName)
       }
       current.push_back(v[0]);
     },
-    [&]() {
+    [&]()
+    {
       current.shrink_to_fit();
       result.values.push_back(std::move(current));
       result.firstValueOffsets.push_back(groupStart);
@@ -59,7 +64,8 @@ TsfReadResult readTsf(std::istream& in, const std::string& fileName)
   return result;
 }
 
-std::string writeTsf(std::ostream& out, const std::vector<std::vector<double>>& values, const std::string& timestamp)
+std::string writeTsf(
+  std::ostream& out, const std::vector<std::vector<double>>& values, const std::string& timestamp)
 {
   if (timestamp.find_first_of("\r\n") != std::string::npos)
   {
@@ -73,8 +79,8 @@ std::string writeTsf(std::ostream& out, const std::vector<std::vector<double>>& 
       if (!std::isfinite(values[s][i]) || std::fabs(values[s][i]) > floatMax)
       {
         std::ostringstream msg;
-        msg << "cannot write .tsf: streamline " << s << " point " << i << " has value " << values[s][i]
-            << " (must be finite and within the float32 range)";
+        msg << "cannot write .tsf: streamline " << s << " point " << i << " has value "
+            << values[s][i] << " (must be finite and within the float32 range)";
         return msg.str();
       }
     }

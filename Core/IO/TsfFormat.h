@@ -53,6 +53,7 @@ TsfReadResult readTsf(std::istream& in, const std::string& fileName);
 /// Values are rounded to float32. Returns "" on success, else the reason: a value that is not
 /// finite or beyond the float32 range (it would corrupt the NaN/Inf structure; names streamline
 /// and point), a timestamp with a line break, stream failure.
-std::string writeTsf(std::ostream& out, const std::vector<std::vector<double>>& values, const std::string& timestamp);
+std::string writeTsf(
+  std::ostream& out, const std::vector<std::vector<double>>& values, const std::string& timestamp);
 
 } // namespace fiberpli

@@ -56,8 +56,8 @@ inline bool boxesOverlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, cons
 
 // Narrow phase on an AABB-overlapping candidate: links la, lb with ids a < b, always evaluated
 // in that order so the result does not depend on which cell found the pair.
-inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::uint32_t a, std::uint32_t b,
-  double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::uint32_t a,
+  std::uint32_t b, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
 {
   if (la.fiber == lb.fiber && skipSameFiberPair(la, lb))
   {
@@ -87,8 +87,9 @@ inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::u
 }
 
 // The same for links i, j of `links` in either order; tested, rule: see findPairs.
-inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, std::uint32_t i,
-  std::uint32_t j, double gap, std::vector<CapsulePair>& out, std::uint64_t& exactTests)
+inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
+  std::uint32_t i, std::uint32_t j, double gap, std::vector<CapsulePair>& out,
+  std::uint64_t& exactTests)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
@@ -119,7 +120,8 @@ double CollisionGrid::bytesPerLink()
   // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one, and the
   // end of its pairs (mergePairs).
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char) + sizeof(std::size_t));
+    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char) +
+    sizeof(std::size_t));
 }
 
 double CollisionGrid::bytesPerPair()
@@ -127,8 +129,9 @@ double CollisionGrid::bytesPerPair()
   return static_cast<double>(2 * sizeof(CapsulePair)); // per-thread lists, then the merged one
 }
 
-bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap,
-  int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* tested, TestedPairs rule)
+bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
+  std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* tested,
+  TestedPairs rule)
 {
   pairs.clear();
   work_ = 0;
@@ -152,7 +155,8 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
 }
 
 // Phase 1: every link's box, grown by rho + gap/2, its largest edge, and the bounds of all boxes.
-CollisionGrid::Layout CollisionGrid::boundLinks(const std::vector<CapsuleLink>& links, double halfGap, int nThreads)
+CollisionGrid::Layout CollisionGrid::boundLinks(
+  const std::vector<CapsuleLink>& links, double halfGap, int nThreads)
 {
   const std::size_t n = links.size();
   boxes_.resize(n);
@@ -161,8 +165,10 @@ CollisionGrid::Layout CollisionGrid::boundLinks(const std::vector<CapsuleLink>& 
   double tx = -HUGE_VAL, ty = -HUGE_VAL, tz = -HUGE_VAL;
   const std::int64_t nn = static_cast<std::int64_t>(n);
   // min/max are exact, so the reduction gives the same bits for any thread count.
-#pragma omp parallel for num_threads(nThreads) schedule(static) \
-  reduction(min : ox, oy, oz) reduction(max : tx, ty, tz)
+#pragma omp parallel for num_threads(nThreads) schedule(static) reduction(min                      \
+                                                                          : ox, oy, oz)            \
+  reduction(max                                                                                    \
+            : tx, ty, tz)
   for (std::int64_t ii = 0; ii < nn; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
@@ -203,7 +209,8 @@ CollisionGrid::Layout CollisionGrid::chooseCells(std::size_t n, const Layout& bo
   {
     sample.push_back(edges_[i]);
   }
-  std::nth_element(sample.begin(), sample.begin() + static_cast<long>(sample.size() / 2), sample.end());
+  std::nth_element(
+    sample.begin(), sample.begin() + static_cast<long>(sample.size() / 2), sample.end());
   grid.limit = 2.0 * sample[sample.size() / 2];
   double h = 0.0;
   double hAll = 0.0;
@@ -281,7 +288,8 @@ std::uint32_t CollisionGrid::cellOf(const Box& bx, const Layout& grid)
 // into cellKeys_ and their starts into cellStart_. Both ways give exactly this order.
 void CollisionGrid::sortByCell(const Layout& grid, int nThreads)
 {
-  const double cells = static_cast<double>(grid.nx) * static_cast<double>(grid.ny) * static_cast<double>(grid.nz);
+  const double cells =
+    static_cast<double>(grid.nx) * static_cast<double>(grid.ny) * static_cast<double>(grid.nz);
   if (cells <= 2.0 * static_cast<double>(edges_.size()))
   {
     countByCell(grid, static_cast<std::size_t>(cells), nThreads);
@@ -305,11 +313,13 @@ void CollisionGrid::countByCell(const Layout& grid, std::size_t nCells, int nThr
   for (std::int64_t ii = 0; ii < nn; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
-    cellOf_[i] = grid.nOversize > 0 && edges_[i] > grid.limit ? kOversizeCell : cellOf(boxes_[i], grid);
+    cellOf_[i] =
+      grid.nOversize > 0 && edges_[i] > grid.limit ? kOversizeCell : cellOf(boxes_[i], grid);
   }
   // The counters take at most one 32-bit word per link (chunks × cells <= links, or one chunk).
-  const std::size_t chunks =
-    std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(nThreads), n / std::max<std::size_t>(1, nCells)));
+  const std::size_t chunks = std::max<std::size_t>(1,
+    std::min<std::size_t>(
+      static_cast<std::size_t>(nThreads), n / std::max<std::size_t>(1, nCells)));
   count_.assign(chunks * nCells, 0);
   const auto chunkBegin = [n, chunks](std::size_t c) { return n * c / chunks; };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks);
@@ -474,7 +484,8 @@ void CollisionGrid::flaggedFirst(const char* tested)
 }
 
 // Phase 6: the boxes as float SoA, the links and their tested flags in order_'s order.
-void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads)
+void CollisionGrid::buildCellArrays(
+  const std::vector<CapsuleLink>& links, const char* tested, int nThreads)
 {
   const std::size_t nRegular = order_.size();
   for (int d = 0; d < 3; ++d)
@@ -505,8 +516,8 @@ void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
 // (lists emptied) as soon as more than maxPairs pairs exist.
-bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
-  double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs)
+bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* tested,
+  TestedPairs rule, double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs)
 {
   const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
@@ -527,8 +538,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
 
   // 13 forward neighbours: every unordered pair of neighbouring cells is visited once.
   static const int kForward[13][3] = { { 1, 0, 0 }, { -1, 1, 0 }, { 0, 1, 0 }, { 1, 1, 0 },
-    { -1, -1, 1 }, { 0, -1, 1 }, { 1, -1, 1 }, { -1, 0, 1 }, { 0, 0, 1 }, { 1, 0, 1 },
-    { -1, 1, 1 }, { 0, 1, 1 }, { 1, 1, 1 } };
+    { -1, -1, 1 }, { 0, -1, 1 }, { 1, -1, 1 }, { -1, 0, 1 }, { 0, 0, 1 }, { 1, 0, 1 }, { -1, 1, 1 },
+    { 0, 1, 1 }, { 1, 1, 1 } };
 
 #pragma omp parallel num_threads(nThreads)
   {
@@ -542,10 +553,12 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     std::size_t published = out.size();
     std::uint64_t boxTests = 0, exactTests = 0;
     // Adds this thread's new pairs to the shared count; true when the limit is exceeded.
-    auto publish = [&](bool force) {
+    auto publish = [&](bool force)
+    {
       if (force || out.size() - published >= kPublishChunk)
       {
-        const std::size_t total = found.fetch_add(out.size() - published) + (out.size() - published);
+        const std::size_t total =
+          found.fetch_add(out.size() - published) + (out.size() - published);
         published = out.size();
         if (total > maxPairs)
         {
@@ -562,7 +575,9 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     const float* hz = hi_[2].data();
     // Box r against boxes [qb, qe): branch-free compaction of the overlapping ones first (the
     // loop the broad phase spends its time in), then the exact test on the few candidates.
-    auto scan = [&](std::uint32_t r, std::uint32_t qb, std::uint32_t qe, std::vector<std::uint32_t>& c) {
+    auto scan =
+      [&](std::uint32_t r, std::uint32_t qb, std::uint32_t qe, std::vector<std::uint32_t>& c)
+    {
       if (qe <= qb)
       {
         return;

@@ -1,7 +1,7 @@
 /// CollisionGrid: broad + narrow phase collision detection of capsule links on a uniform grid
 /// (docs/solver.md §3). Memory is linear in the number of links plus the pairs found, and the
-/// caller bounds the pairs (maxPairs); the pair list is sorted by (a, b) and therefore identical for
-/// any thread count or schedule.
+/// caller bounds the pairs (maxPairs); the pair list is sorted by (a, b) and therefore identical
+/// for any thread count or schedule.
 #pragma once
 
 #include "Geometry/Vec3.h"
@@ -23,7 +23,8 @@ struct CapsuleLink
   std::uint32_t fiber = 0; ///< fiber index (same-fiber skip rule)
   std::uint32_t k = 0;     ///< link index inside the fiber
   double arc0 = 0.0;       ///< arc length from the fiber's first point to p0 (S[k])
-  double arc1 = 0.0;       ///< arc length to p1 (S[k+1]); arc1 − arc0 = |p1 − p0|, the detector relies on it
+  double arc1 =
+    0.0; ///< arc length to p1 (S[k+1]); arc1 − arc0 = |p1 − p0|, the detector relies on it
   /// > 0: the fiber is closed through a periodic cell and this is its total arc length (its first
   /// and last links are neighbours, arc lengths wrap); 0 = open fiber.
   double closedLength = 0.0;
@@ -49,15 +50,15 @@ bool skipSameFiberPair(const CapsuleLink& a, const CapsuleLink& b);
 /// The packing bound of the colliding pairs among a set of links in any state the solver can
 /// separate is Σ_a n_a / 2 over its links a, with n_a = passes_a × linksPerPass_a. A partner fiber
 /// that passes link a (radius ρ_a, length ℓ_a) has its axis within R_a = ρ_a + ρ_max + g of a's
-/// axis; when fibers keep a gap g, balls of radius b = ρ_min + g/2 around one closest point per pass
-/// are disjoint and lie in the capsule of radius R_a + b around a, so passes_a <= V(that capsule) /
-/// V(ball b). A pass meets at most (ℓ_a + 2(R_a + b)) / ℓ_short + 2 links, ℓ_short = 2/3 of the mean
-/// link length (what split/merge keeps links above). The starting states the solver gets are
-/// denser than any packing, and the bound leaves room for that: random straight fibers at 4× the
-/// paper's density use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000 copies of a
-/// 10-point fiber 9×. (A gap much wider than the radii is no packing argument's business: the
-/// solver refuses it.) The sum itself is Solver/PairBound.h's packingPairBound (exact, over
-/// any split of the links); these are its parts.
+/// axis; when fibers keep a gap g, balls of radius b = ρ_min + g/2 around one closest point per
+/// pass are disjoint and lie in the capsule of radius R_a + b around a, so passes_a <= V(that
+/// capsule) / V(ball b). A pass meets at most (ℓ_a + 2(R_a + b)) / ℓ_short + 2 links, ℓ_short = 2/3
+/// of the mean link length (what split/merge keeps links above). The starting states the solver
+/// gets are denser than any packing, and the bound leaves room for that: random straight fibers at
+/// 4× the paper's density use 13 % of it. Stacks of (nearly) identical fibers exceed it: 1000
+/// copies of a 10-point fiber 9×. (A gap much wider than the radii is no packing argument's
+/// business: the solver refuses it.) The sum itself is Solver/PairBound.h's packingPairBound
+/// (exact, over any split of the links); these are its parts.
 struct PackingScale
 {
   double rhoMin = 0.0;    ///< smallest capsule radius of all links
@@ -111,9 +112,9 @@ private:
   /// Where the grid lies and how it is cut (phases 1 and 2).
   struct Layout
   {
-    Vec3 origin;               ///< lower corner of all boxes
-    Vec3 top;                  ///< upper corner of all boxes
-    double h = 0.0;            ///< cell edge
+    Vec3 origin;    ///< lower corner of all boxes
+    Vec3 top;       ///< upper corner of all boxes
+    double h = 0.0; ///< cell edge
     std::int64_t nx = 0, ny = 0, nz = 0;
     double limit = 0.0;        ///< a box edge above this makes a link oversize
     std::size_t nOversize = 0; ///< 0: no link is oversize (limit is then not used)
@@ -128,13 +129,13 @@ private:
   static std::uint32_t cellOf(const Box& bx, const Layout& grid);
   void flaggedFirst(const char* tested);
   void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads);
-  bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule, double minimumGap,
-    const Layout& grid, int nThreads, std::size_t maxPairs);
+  bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
+    double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs);
 
-  std::vector<Box> boxes_;              // per link, grown by rho + gap/2
-  std::vector<std::uint32_t> order_;    // regular link ids sorted by (cell, flagged first, id)
-  std::vector<std::uint32_t> scratch_;  // flaggedFirst's reordering
+  std::vector<Box> boxes_;             // per link, grown by rho + gap/2
+  std::vector<std::uint32_t> order_;   // regular link ids sorted by (cell, flagged first, id)
+  std::vector<std::uint32_t> scratch_; // flaggedFirst's reordering
   // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
   std::vector<std::uint32_t> cellOf_;
   std::vector<std::uint32_t> count_;
@@ -142,19 +143,21 @@ private:
   // order (a nearly sorted start for this call).
   std::vector<std::uint64_t> sortKeys_;
   std::vector<std::uint32_t> prevOrder_;
-  std::vector<double> edges_;           // per link largest box edge
+  std::vector<double> edges_; // per link largest box edge
   // Boxes in 'order_' order as float SoA, rounded outwards: contiguous per cell so the broad
   // phase runs branch-free over plain arrays; rounding only adds candidates, never loses one.
   std::vector<float> lo_[3];
   std::vector<float> hi_[3];
-  std::vector<CapsuleLink> sorted_; // the regular links in 'order_' order (the exact tests read them)
-  std::vector<char> sortedTested_;  // the tested flags in 'order_' order
-  std::vector<std::uint64_t> cellKeys_; // occupied cells, ascending
+  std::vector<CapsuleLink>
+    sorted_; // the regular links in 'order_' order (the exact tests read them)
+  std::vector<char> sortedTested_;       // the tested flags in 'order_' order
+  std::vector<std::uint64_t> cellKeys_;  // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
-  std::vector<std::uint32_t> cellUnflagged_; // per occupied cell, the offset of its first unflagged link
+  std::vector<std::uint32_t>
+    cellUnflagged_;                     // per occupied cell, the offset of its first unflagged link
   std::vector<std::uint32_t> oversize_; // links queried against all links
   std::vector<std::vector<CapsulePair>> perThread_;
-  std::vector<std::size_t> pairEnd_;    // per link, the end of the merged pairs with a <= it
+  std::vector<std::size_t> pairEnd_; // per link, the end of the merged pairs with a <= it
   std::uint64_t work_ = 0;
 };
 

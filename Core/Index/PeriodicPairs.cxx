@@ -47,9 +47,9 @@ std::string PeriodicPairs::cellTooSmall(
   return links.empty() ? std::string() : cellTooSmall(reach(links, minimumGap), cell);
 }
 
-std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
-  double minimumGap, int threads, std::vector<CapsulePair>& pairs, std::size_t maxPairs, bool* overflow,
-  const std::vector<char>* tested)
+std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links,
+  const PeriodicCell& cell, double minimumGap, int threads, std::vector<CapsulePair>& pairs,
+  std::size_t maxPairs, bool* overflow, const std::vector<char>* tested)
 {
   pairs.clear();
   work_ = 0;
@@ -77,7 +77,9 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
   ghostStart_.resize(n + 1);
   const std::int64_t nn = static_cast<std::int64_t>(n);
   const int nThreads = resolveThreadCount(threads);
-  const auto faceShifts = [&cell, &e, w](const CapsuleLink& wrapped, double (&options)[3][2], int (&count)[3]) {
+  const auto faceShifts = [&cell, &e, w](
+                            const CapsuleLink& wrapped, double(&options)[3][2], int(&count)[3])
+  {
     const Vec3 c = 0.5 * (wrapped.p0 + wrapped.p1);
     int ghosts = 1;
     for (int d = 0; d < 3; ++d)
@@ -145,7 +147,8 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
   // pair then has at most two raw copies (real a with the ghost of b, real b with the ghost of
   // a), so more than twice the limit of raw pairs means more than the limit of physical ones, and
   // the physical count is checked after the deduplication below.
-  const std::size_t rawLimit = maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
+  const std::size_t rawLimit =
+    maxPairs > static_cast<std::size_t>(-1) / 2 ? maxPairs : 2 * maxPairs;
   if (tested)
   {
     imageTested_.assign(tested->begin(), tested->end());
@@ -195,9 +198,8 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links, cons
     }
     return {};
   }
-  std::sort(pairs.begin(), pairs.end(), [](const CapsulePair& x, const CapsulePair& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
+  std::sort(pairs.begin(), pairs.end(),
+    [](const CapsulePair& x, const CapsulePair& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
   return {};
 }
 

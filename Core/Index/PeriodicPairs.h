@@ -1,6 +1,6 @@
-/// PeriodicPairs: collision detection in a periodic cell by the minimum-image convention. Every link
-/// is wrapped into the cell (by the lattice vector that brings its centre inside), links near a
-/// face get ghost copies shifted by one period, and the ordinary CollisionGrid runs on the union;
+/// PeriodicPairs: collision detection in a periodic cell by the minimum-image convention. Every
+/// link is wrapped into the cell (by the lattice vector that brings its centre inside), links near
+/// a face get ghost copies shifted by one period, and the ordinary CollisionGrid runs on the union;
 /// each physical pair is then kept exactly once, as (smaller real id, larger real id). The pair's
 /// closest points and push direction are those of the nearest images, so the solver needs no other
 /// change. The cell must exceed twice the largest link reach (box edge) on every axis, so that at
@@ -44,10 +44,10 @@ private:
 
   CollisionGrid grid_;
   std::uint64_t work_ = 0;
-  std::vector<CapsuleLink> images_;  // wrapped real links (ids 0..n-1), then the ghosts
+  std::vector<CapsuleLink> images_;     // wrapped real links (ids 0..n-1), then the ghosts
   std::vector<std::size_t> ghostStart_; // per real link, where its ghosts start in images_
-  std::vector<std::uint32_t> source_; // real id of every ghost
-  std::vector<char> imageTested_;  // the grid's tested: the real links' (1 serially), 0 for ghosts
+  std::vector<std::uint32_t> source_;   // real id of every ghost
+  std::vector<char> imageTested_; // the grid's tested: the real links' (1 serially), 0 for ghosts
   std::vector<CapsulePair> raw_;
 };
 

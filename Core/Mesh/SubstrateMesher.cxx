@@ -31,7 +31,8 @@ struct LocalVertex
 struct TubeBuild
 {
   std::vector<Vec3> base;
-  std::vector<Offset> onPlane; ///< per base vertex and axis: index of the lattice plane (base frame) it lies on
+  std::vector<Offset>
+    onPlane; ///< per base vertex and axis: index of the lattice plane (base frame) it lies on
   std::vector<LocalVertex> verts;
   std::vector<std::array<std::size_t, 3>> tris;
 
@@ -90,8 +91,8 @@ Vec3 bisector(const Vec3& in, const Vec3& out)
 
 /// Builds the tube around pts (radii per point). loop: the tube continues from the last point to
 /// pts[0] + closure (closureK: closure in edge multiples) and has no caps; else it is capped.
-void buildTube(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool loop, const Vec3& closure,
-  const Offset& closureK, int sides, TubeBuild& b)
+void buildTube(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool loop,
+  const Vec3& closure, const Offset& closureK, int sides, TubeBuild& b)
 {
   const std::size_t m = pts.size();
   std::vector<Vec3> raw;
@@ -104,7 +105,8 @@ void buildTube(const std::vector<Vec3>& pts, const std::vector<double>& radii, b
     raw.push_back(pts[0] + closure - pts[m - 1]);
   }
   const std::vector<Vec3> dir = unitDirections(raw);
-  auto axisAt = [&](std::size_t i) {
+  auto axisAt = [&](std::size_t i)
+  {
     if (loop)
     {
       return bisector(dir[(i + dir.size() - 1) % dir.size()], dir[i]);
@@ -136,11 +138,13 @@ void buildTube(const std::vector<Vec3>& pts, const std::vector<double>& radii, b
     for (std::size_t s = 0; s < n; ++s)
     {
       const double phi = 2.0 * M_PI * static_cast<double>(s) / static_cast<double>(n);
-      b.addVertex(b.addBase(pts[i] + (u * std::cos(phi) + v * std::sin(phi)) * radii[i]), Offset{ 0, 0, 0 });
+      b.addVertex(
+        b.addBase(pts[i] + (u * std::cos(phi) + v * std::sin(phi)) * radii[i]), Offset{ 0, 0, 0 });
     }
   }
   auto ring = [&](std::size_t i, std::size_t s) { return i * n + s % n; };
-  auto quad = [&](std::size_t a0, std::size_t a1, std::size_t b0, std::size_t b1) {
+  auto quad = [&](std::size_t a0, std::size_t a1, std::size_t b0, std::size_t b1)
+  {
     // (u, v, axis) right-handed: around the ring × along the axis points outward.
     b.tris.push_back({ a0, a1, b1 });
     b.tris.push_back({ a0, b1, b0 });
@@ -211,7 +215,8 @@ void clipAtPlane(TubeBuild& b, const PeriodicCell& cell, int a, long long k)
     d[v] = dv;
   }
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> cuts;
-  auto cut = [&](std::size_t p, std::size_t q) {
+  auto cut = [&](std::size_t p, std::size_t q)
+  {
     const auto key = std::make_pair(std::min(p, q), std::max(p, q));
     const auto found = cuts.find(key);
     if (found != cuts.end())
@@ -352,7 +357,8 @@ void wrapIntoCell(TubeBuild& b, const PeriodicCell& cell, SubstrateSurface& surf
         const long long j = b.onPlane[lv.base][a];
         if (j == kNoPlane)
         {
-          slab[a] = static_cast<long long>(std::floor((b.base[lv.base][a] - lo) / e)) + lv.offset[a];
+          slab[a] =
+            static_cast<long long>(std::floor((b.base[lv.base][a] - lo) / e)) + lv.offset[a];
           found = true;
           break;
         }
@@ -387,11 +393,13 @@ void wrapIntoCell(TubeBuild& b, const PeriodicCell& cell, SubstrateSurface& surf
         if (j != kNoPlane)
         {
           const long long face = j + rel[a];
-          p[a] = face == 0 ? cell.lo[a] : (face == 1 ? cell.hi[a] : cell.lo[a] + static_cast<double>(face) * e);
+          p[a] = face == 0 ? cell.lo[a]
+                           : (face == 1 ? cell.hi[a] : cell.lo[a] + static_cast<double>(face) * e);
         }
         else
         {
-          p[a] = rel[a] == 0 ? b.base[lv.base][a] : b.base[lv.base][a] + static_cast<double>(rel[a]) * e;
+          p[a] =
+            rel[a] == 0 ? b.base[lv.base][a] : b.base[lv.base][a] + static_cast<double>(rel[a]) * e;
         }
       }
       surface.vertices.push_back(p);
@@ -404,8 +412,8 @@ void wrapIntoCell(TubeBuild& b, const PeriodicCell& cell, SubstrateSurface& surf
 
 /// The fiber's points and radii with extra points so that no link is longer than spacing; for a
 /// loop the closing link (to the first point + closure) is filled too (without repeating it).
-void refine(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool loop, const Vec3& closure,
-  double spacing, std::vector<Vec3>& outPts, std::vector<double>& outRadii)
+void refine(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool loop,
+  const Vec3& closure, double spacing, std::vector<Vec3>& outPts, std::vector<double>& outRadii)
 {
   outPts.clear();
   outRadii.clear();
@@ -418,8 +426,9 @@ void refine(const std::vector<Vec3>& pts, const std::vector<double>& radii, bool
     const double ra = radii[k];
     const double rb = radii[(k + 1) % m];
     const double length = norm(bpt - a);
-    const std::size_t n =
-      spacing > 0.0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(length / spacing))) : 1;
+    const std::size_t n = spacing > 0.0
+      ? std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(length / spacing)))
+      : 1;
     for (std::size_t j = 0; j < n; ++j)
     {
       const double t = static_cast<double>(j) / static_cast<double>(n);
@@ -493,8 +502,8 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
     if (rings * options.sides > 4e9)
     {
       std::ostringstream m;
-      m << "RingSpacing " << options.ringSpacing << " µm gives " << rings << " rings of " << options.sides
-        << " vertices (more than 4e9 vertices); raise it";
+      m << "RingSpacing " << options.ringSpacing << " µm gives " << rings << " rings of "
+        << options.sides << " vertices (more than 4e9 vertices); raise it";
       return m.str();
     }
   }
@@ -510,7 +519,8 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
       pts.pop_back(); // the last point is the first one shifted by the closure
       for (int a = 0; a < 3; ++a)
       {
-        closureK[a] = static_cast<long long>(std::nearbyint(closure[a] / (cell.hi[a] - cell.lo[a])));
+        closureK[a] =
+          static_cast<long long>(std::nearbyint(closure[a] / (cell.hi[a] - cell.lo[a])));
       }
     }
     for (int pass = 0; pass < (hasInner ? 2 : 1); ++pass)
@@ -518,16 +528,17 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
       std::vector<double> radii = pass == 0 ? fiber.radii : (*innerRadii)[f];
       if (radii.size() != fiber.size())
       {
-        return "inner_radius of fiber " + std::to_string(f) + " (id " + std::to_string(fiber.id) + ") has " +
-          std::to_string(radii.size()) + " values for " + std::to_string(fiber.size()) + " points";
+        return "inner_radius of fiber " + std::to_string(f) + " (id " + std::to_string(fiber.id) +
+          ") has " + std::to_string(radii.size()) + " values for " + std::to_string(fiber.size()) +
+          " points";
       }
       for (std::size_t i = 0; i < radii.size(); ++i)
       {
         if (!std::isfinite(radii[i]) || !(radii[i] > 0.0) || radii[i] > fiber.radii[i])
         {
           std::ostringstream m;
-          m << "inner_radius " << radii[i] << " of fiber " << f << " (id " << fiber.id << ") point " << i
-            << " must be > 0 and <= its radius " << fiber.radii[i];
+          m << "inner_radius " << radii[i] << " of fiber " << f << " (id " << fiber.id << ") point "
+            << i << " must be > 0 and <= its radius " << fiber.radii[i];
           return m.str();
         }
       }
@@ -553,7 +564,8 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
         for (const auto& t : build.tris)
         {
           surface.triangles.push_back({ static_cast<std::int64_t>(build.verts[t[0]].base),
-            static_cast<std::int64_t>(build.verts[t[1]].base), static_cast<std::int64_t>(build.verts[t[2]].base) });
+            static_cast<std::int64_t>(build.verts[t[1]].base),
+            static_cast<std::int64_t>(build.verts[t[2]].base) });
         }
       }
       if (!sink(surface))
@@ -561,7 +573,8 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
         return Status::stopped();
       }
     }
-    if (!reportProgress(progress, static_cast<double>(f + 1) / static_cast<double>(model.fibers.size())))
+    if (!reportProgress(
+          progress, static_cast<double>(f + 1) / static_cast<double>(model.fibers.size())))
     {
       return Status::stopped();
     }
@@ -569,17 +582,18 @@ Status meshSubstrate(const FiberModel& model, const std::vector<std::vector<doub
   return {};
 }
 
-Status writeSubstratePly(std::ostream& out, const FiberModel& model, const std::vector<std::vector<double>>* innerRadii,
-  const PeriodicCell& cell, const SubstrateMeshOptions& options, SubstrateMeshCounts& counts,
-  const ProgressFn& progress)
+Status writeSubstratePly(std::ostream& out, const FiberModel& model,
+  const std::vector<std::vector<double>>* innerRadii, const PeriodicCell& cell,
+  const SubstrateMeshOptions& options, SubstrateMeshCounts& counts, const ProgressFn& progress)
 {
   counts = SubstrateMeshCounts{};
   // Progress: the three passes take a third each.
-  auto part = [&](int p) {
-    return ProgressFn([&, p](double x) { return reportProgress(progress, (p + x) / 3.0); });
-  };
-  Status status = meshSubstrate(model, innerRadii, cell, options,
-    [&](const SubstrateSurface& s) {
+  auto part = [&](int p)
+  { return ProgressFn([&, p](double x) { return reportProgress(progress, (p + x) / 3.0); }); };
+  Status status = meshSubstrate(
+    model, innerRadii, cell, options,
+    [&](const SubstrateSurface& s)
+    {
       counts.vertices += s.vertices.size();
       counts.triangles += s.triangles.size();
       ++counts.surfaces;
@@ -591,22 +605,28 @@ Status writeSubstratePly(std::ostream& out, const FiberModel& model, const std::
     return status;
   }
   out << "ply\nformat ascii 1.0\ncomment FiberPLI substrate, micrometres\n"
-      << "element vertex " << counts.vertices << "\nproperty float x\nproperty float y\nproperty float z\n"
-      << "element face " << counts.triangles << "\nproperty list uchar int vertex_indices\nend_header\n";
+      << "element vertex " << counts.vertices
+      << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "element face " << counts.triangles
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
   std::string text;
-  auto flushText = [&]() {
+  auto flushText = [&]()
+  {
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     text.clear();
     return static_cast<bool>(out);
   };
-  auto number = [&](double x) {
+  auto number = [&](double x)
+  {
     char buffer[32];
     const std::to_chars_result r = std::to_chars(buffer, buffer + sizeof(buffer), x);
     text.append(buffer, static_cast<std::size_t>(r.ptr - buffer));
   };
   std::uint64_t written = 0;
-  status = meshSubstrate(model, innerRadii, cell, options,
-    [&](const SubstrateSurface& s) {
+  status = meshSubstrate(
+    model, innerRadii, cell, options,
+    [&](const SubstrateSurface& s)
+    {
       for (const Vec3& p : s.vertices)
       {
         number(p.x);
@@ -626,11 +646,14 @@ Status writeSubstratePly(std::ostream& out, const FiberModel& model, const std::
   }
   if (written != counts.vertices)
   {
-    return "the mesh changed between its passes (vertex count)"; // cannot happen: the passes are deterministic
+    return "the mesh changed between its passes (vertex count)"; // cannot happen: the passes are
+                                                                 // deterministic
   }
   std::uint64_t first = 0;
-  status = meshSubstrate(model, innerRadii, cell, options,
-    [&](const SubstrateSurface& s) {
+  status = meshSubstrate(
+    model, innerRadii, cell, options,
+    [&](const SubstrateSurface& s)
+    {
       for (const auto& t : s.triangles)
       {
         text += "3 ";

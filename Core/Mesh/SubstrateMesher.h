@@ -40,15 +40,16 @@ constexpr int kMaxSubstrateSides = 256;
 
 struct SubstrateMeshOptions
 {
-  int sides = 16;          ///< vertices per ring, 3 to kMaxSubstrateSides
-  double ringSpacing = 0;  ///< µm; > 0: extra rings so that no link is longer; 0: rings at the points
+  int sides = 16; ///< vertices per ring, 3 to kMaxSubstrateSides
+  double ringSpacing =
+    0; ///< µm; > 0: extra rings so that no link is longer; 0: rings at the points
 };
 
 /// One closed (modulo the cell) surface: a fiber's outer or inner tube.
 struct SubstrateSurface
 {
-  std::size_t fiber = 0;  ///< index in the model
-  bool inner = false;     ///< the axon surface inside the outer one
+  std::size_t fiber = 0; ///< index in the model
+  bool inner = false;    ///< the axon surface inside the outer one
   std::vector<Vec3> vertices;
   std::vector<std::array<std::int64_t, 3>> triangles; ///< indices into vertices, CCW from outside
 };
@@ -85,8 +86,9 @@ struct SubstrateMeshCounts
 /// mesh is built three times (count, vertices, faces), never held whole in memory. counts
 /// receives the numbers (also on failure after the count pass). Returns a Status (error names
 /// the option or fiber; aborted when progress said stop).
-Status writeSubstratePly(std::ostream& out, const FiberModel& model, const std::vector<std::vector<double>>* innerRadii,
-  const PeriodicCell& cell, const SubstrateMeshOptions& options, SubstrateMeshCounts& counts,
+Status writeSubstratePly(std::ostream& out, const FiberModel& model,
+  const std::vector<std::vector<double>>* innerRadii, const PeriodicCell& cell,
+  const SubstrateMeshOptions& options, SubstrateMeshCounts& counts,
   const ProgressFn& progress = {});
 
 /// The MC/DC configuration that simulates in this substrate: `<obstacle>` with `ply <plyPath>` and

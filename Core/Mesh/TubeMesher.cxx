@@ -74,7 +74,8 @@ struct FiberSlot
   std::size_t firstTriangle = 0;
 };
 
-void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, const FiberSlot& slot, TubeMesh& mesh)
+void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, const FiberSlot& slot,
+  TubeMesh& mesh)
 {
   const std::size_t n = f.points.size();
   const int sides = o.sides;
@@ -87,7 +88,8 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
   for (std::size_t i = 0; i < n; ++i)
   {
     const Vec3 next = ringAxis(dir, i);
-    u = normalized(rotateMinimal(axis, next, u)); // parallel transport, same rule as the bundle frames
+    u = normalized(
+      rotateMinimal(axis, next, u)); // parallel transport, same rule as the bundle frames
     // Re-orthogonalise against round-off drift so the ring stays planar.
     u = normalized(u - next * dot(u, next));
     if (norm2(u) == 0.0)
@@ -101,7 +103,8 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
       const double phi = 2.0 * M_PI * s / sides;
       const Vec3 radial = u * std::cos(phi) + v * std::sin(phi);
       const Vec3 p = f.points[i] + radial * f.radii[i];
-      const std::size_t idx = 3 * (i * static_cast<std::size_t>(sides) + static_cast<std::size_t>(s));
+      const std::size_t idx =
+        3 * (i * static_cast<std::size_t>(sides) + static_cast<std::size_t>(s));
       pts[idx] = p.x;
       pts[idx + 1] = p.y;
       pts[idx + 2] = p.z;
@@ -114,16 +117,18 @@ void meshFiber(const Fiber& f, std::int64_t fiberIndex, const TubeOptions& o, co
   std::int64_t* tri = mesh.triangles.data() + 3 * slot.firstTriangle;
   std::int64_t* triFiber = mesh.triangleFiber.data() + slot.firstTriangle;
   std::size_t t = 0;
-  const auto emit = [&](std::int64_t a, std::int64_t b, std::int64_t c) {
+  const auto emit = [&](std::int64_t a, std::int64_t b, std::int64_t c)
+  {
     tri[3 * t] = a;
     tri[3 * t + 1] = b;
     tri[3 * t + 2] = c;
     triFiber[t] = fiberIndex;
     ++t;
   };
-  const auto ringVertex = [&](std::size_t i, int s) {
-    return static_cast<std::int64_t>(slot.firstPoint + i * static_cast<std::size_t>(sides) +
-      static_cast<std::size_t>(s % sides));
+  const auto ringVertex = [&](std::size_t i, int s)
+  {
+    return static_cast<std::int64_t>(
+      slot.firstPoint + i * static_cast<std::size_t>(sides) + static_cast<std::size_t>(s % sides));
   };
   // (u, v, axis) is right-handed: (around the ring) × (along the axis) points outward.
   for (std::size_t i = 0; i + 1 < n; ++i)
@@ -173,7 +178,8 @@ TubeMesh meshTubesAtRadii(const FiberModel& model, const TubeOptions& o, const P
   {
     const std::size_t n = model.fibers[f].points.size();
     slots[f + 1].firstPoint = slots[f].firstPoint + n * sides + (o.capping ? 2 : 0);
-    slots[f + 1].firstTriangle = slots[f].firstTriangle + 2 * sides * (n - 1) + (o.capping ? 2 * sides : 0);
+    slots[f + 1].firstTriangle =
+      slots[f].firstTriangle + 2 * sides * (n - 1) + (o.capping ? 2 * sides : 0);
   }
   mesh.points.resize(3 * slots[nf].firstPoint);
   mesh.normals.resize(3 * slots[nf].firstPoint);
@@ -189,7 +195,8 @@ TubeMesh meshTubesAtRadii(const FiberModel& model, const TubeOptions& o, const P
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t f = static_cast<std::int64_t>(begin); f < end; ++f)
     {
-      meshFiber(model.fibers[static_cast<std::size_t>(f)], f, o, slots[static_cast<std::size_t>(f)], mesh);
+      meshFiber(
+        model.fibers[static_cast<std::size_t>(f)], f, o, slots[static_cast<std::size_t>(f)], mesh);
     }
     if (!reportProgress(progress, static_cast<double>(end) / static_cast<double>(nf)))
     {
@@ -200,7 +207,6 @@ TubeMesh meshTubesAtRadii(const FiberModel& model, const TubeOptions& o, const P
   }
   return mesh;
 }
-
 
 } // namespace
 
@@ -231,7 +237,8 @@ TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const Progress
   }
   const double outerShare = static_cast<double>(model.fibers.size()) /
     static_cast<double>(std::max<std::size_t>(1, model.fibers.size() + axons.fibers.size()));
-  TubeMesh mesh = meshTubesAtRadii(model, o, [&](double f) { return reportProgress(progress, outerShare * f); });
+  TubeMesh mesh =
+    meshTubesAtRadii(model, o, [&](double f) { return reportProgress(progress, outerShare * f); });
   if (mesh.aborted)
   {
     return mesh;
@@ -257,6 +264,5 @@ TubeMesh meshTubes(const FiberModel& model, const TubeOptions& o, const Progress
   mesh.triangleSurface.resize(mesh.numberOfTriangles(), 1);
   return mesh;
 }
-
 
 } // namespace fiberpli

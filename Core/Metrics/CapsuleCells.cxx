@@ -10,12 +10,18 @@ namespace fiberpli
 namespace
 {
 
-std::int64_t wrap(std::int64_t k, std::int64_t n) { return ((k % n) + n) % n; }
+std::int64_t wrap(std::int64_t k, std::int64_t n)
+{
+  return ((k % n) + n) % n;
+}
 
 } // namespace
 
-CapsuleCells::CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi, const PeriodicCell& cell)
-  : set_(set), lo_(lo), periodic_(cell.enabled())
+CapsuleCells::CapsuleCells(
+  const CapsuleSet& set, const Vec3& lo, const Vec3& hi, const PeriodicCell& cell)
+  : set_(set)
+  , lo_(lo)
+  , periodic_(cell.enabled())
 {
   const Vec3 size = hi - lo;
   // Cells about one capsule wide (the 99th percentile, so that a few long links do not make
@@ -44,11 +50,14 @@ CapsuleCells::CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi
   }
   // The cells each capsule's box covers; entries counted before any is stored (a long
   // unwrapped fiber in a periodic cell covers very many).
-  const auto cover = [&](const Capsule& cap, std::int64_t range[3][2]) {
+  const auto cover = [&](const Capsule& cap, std::int64_t range[3][2])
+  {
     for (int i = 0; i < 3; ++i)
     {
-      range[i][0] = static_cast<std::int64_t>(std::floor((std::min(cap.a[i], cap.b[i]) - cap.r - lo[i]) / edge_[i]));
-      range[i][1] = static_cast<std::int64_t>(std::floor((std::max(cap.a[i], cap.b[i]) + cap.r - lo[i]) / edge_[i]));
+      range[i][0] = static_cast<std::int64_t>(
+        std::floor((std::min(cap.a[i], cap.b[i]) - cap.r - lo[i]) / edge_[i]));
+      range[i][1] = static_cast<std::int64_t>(
+        std::floor((std::max(cap.a[i], cap.b[i]) + cap.r - lo[i]) / edge_[i]));
       if (!periodic_)
       {
         range[i][0] = std::max<std::int64_t>(range[i][0], 0);
@@ -68,13 +77,15 @@ CapsuleCells::CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi
     std::int64_t range[3][2];
     if (cover(cap, range))
     {
-      entries += static_cast<double>(range[0][1] - range[0][0] + 1) * static_cast<double>(range[1][1] - range[1][0] + 1) *
+      entries += static_cast<double>(range[0][1] - range[0][0] + 1) *
+        static_cast<double>(range[1][1] - range[1][0] + 1) *
         static_cast<double>(range[2][1] - range[2][0] + 1);
     }
   }
   // Entries are held twice (per-cell lists, then the flat copy).
   error_ = checkMemoryBudget(2.0 * entries * sizeof(LayerEntry) +
-      cells * (sizeof(std::vector<LayerEntry>) + sizeof(std::size_t)), "FiberMetrics MonteCarlo volume fraction");
+      cells * (sizeof(std::vector<LayerEntry>) + sizeof(std::size_t)),
+    "FiberMetrics MonteCarlo volume fraction");
   if (!error_.empty())
   {
     return;
@@ -103,7 +114,8 @@ CapsuleCells::CapsuleCells(const CapsuleSet& set, const Vec3& lo, const Vec3& hi
             // The capsule image that covers stored cell w: shifted by −(whole periods).
             shift[a] = -static_cast<double>((idx[a] - w[a]) / n_[a]) * size[a];
           }
-          lists[static_cast<std::size_t>((w[2] * n_[1] + w[1]) * n_[0] + w[0])].push_back({ c, shift });
+          lists[static_cast<std::size_t>((w[2] * n_[1] + w[1]) * n_[0] + w[0])].push_back(
+            { c, shift });
         }
       }
     }
@@ -125,7 +137,8 @@ std::size_t CapsuleCells::find(const Vec3& p) const
   std::int64_t idx[3];
   for (int i = 0; i < 3; ++i)
   {
-    idx[i] = std::clamp<std::int64_t>(static_cast<std::int64_t>((p[i] - lo_[i]) / edge_[i]), 0, n_[i] - 1);
+    idx[i] =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>((p[i] - lo_[i]) / edge_[i]), 0, n_[i] - 1);
   }
   const auto cellIndex = static_cast<std::size_t>((idx[2] * n_[1] + idx[1]) * n_[0] + idx[0]);
   for (std::size_t e = start_[cellIndex]; e < start_[cellIndex + 1]; ++e)

@@ -14,7 +14,8 @@
 namespace fiberpli
 {
 
-/// One capsule's entry in a voxel layer: the capsule shifted by a lattice vector (zero without a cell).
+/// One capsule's entry in a voxel layer: the capsule shifted by a lattice vector (zero without a
+/// cell).
 struct LayerEntry
 {
   std::size_t capsule;
@@ -33,7 +34,8 @@ public:
   /// Empty, or why the cells were not built (over the memory budget).
   const std::string& error() const { return error_; }
 
-  /// Index into set.capsules of the first listed capsule image containing p (distance <= r), or npos.
+  /// Index into set.capsules of the first listed capsule image containing p (distance <= r), or
+  /// npos.
   std::size_t find(const Vec3& p) const;
 
   bool inside(const Vec3& p) const { return find(p) != npos; }

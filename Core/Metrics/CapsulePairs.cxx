@@ -62,7 +62,8 @@ public:
     }
     for (int i = 0; i < 3; ++i)
     {
-      edge_[i] = n_[i] > 1 ? extent_[i] / static_cast<double>(n_[i]) : std::numeric_limits<double>::infinity();
+      edge_[i] = n_[i] > 1 ? extent_[i] / static_cast<double>(n_[i])
+                           : std::numeric_limits<double>::infinity();
     }
     start_.assign(static_cast<std::size_t>(n_[0] * n_[1] * n_[2] + 1), 0);
     std::vector<std::int64_t> cellOf(mid.size());
@@ -91,7 +92,8 @@ public:
     std::array<std::int64_t, 3> c{};
     for (int i = 0; i < 3; ++i)
     {
-      std::int64_t k = n_[i] > 1 ? static_cast<std::int64_t>(std::floor((p[i] - lo_[i]) / edge_[i])) : 0;
+      std::int64_t k =
+        n_[i] > 1 ? static_cast<std::int64_t>(std::floor((p[i] - lo_[i]) / edge_[i])) : 0;
       if (cell_.enabled())
       {
         k = ((k % n_[i]) + n_[i]) % n_[i];
@@ -101,11 +103,15 @@ public:
     return c;
   }
 
-  std::int64_t index(const std::array<std::int64_t, 3>& c) const { return (c[2] * n_[1] + c[1]) * n_[0] + c[0]; }
+  std::int64_t index(const std::array<std::int64_t, 3>& c) const
+  {
+    return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
+  }
 
   /// The distinct cells around c (itself included), wrapped in a periodic cell, written into
   /// `cells` in ascending order (no allocation: this runs once per capsule); returns their count.
-  std::size_t neighbours(const std::array<std::int64_t, 3>& c, std::array<std::int64_t, 27>& cells) const
+  std::size_t neighbours(
+    const std::array<std::int64_t, 3>& c, std::array<std::int64_t, 27>& cells) const
   {
     std::size_t count = 0;
     for (std::int64_t dz = -1; dz <= 1; ++dz)
@@ -133,7 +139,8 @@ public:
     }
     std::sort(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(count));
     return static_cast<std::size_t>(
-      std::unique(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(count)) - cells.begin());
+      std::unique(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(count)) -
+      cells.begin());
   }
 
   template <class F>
@@ -167,7 +174,8 @@ struct Pass
 /// robustReach: a few long links) stay out of the hash and are compared with every capsule, as
 /// the solver's collision grid keeps its oversize list, so one long link cannot coarsen the grid.
 Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vector<double>& reach,
-  double robustReach, double margin, const PeriodicCell& cell, int threads, const ProgressFn& progress)
+  double robustReach, double margin, const PeriodicCell& cell, int threads,
+  const ProgressFn& progress)
 {
   const std::vector<Capsule>& caps = set.capsules;
   const MidpointHash hash(mid, 2.0 * robustReach + margin, cell);
@@ -182,7 +190,8 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
   const auto isOversize = [&](std::size_t c) { return reach[c] > robustReach; };
   Pass pass;
   pass.complete = hash.single();
-  const auto compare = [&](std::size_t i, std::size_t j, std::int64_t& collisions, double& minGap) {
+  const auto compare = [&](std::size_t i, std::size_t j, std::int64_t& collisions, double& minGap)
+  {
     const Capsule &p = caps[i], &q = caps[j];
     // The lattice vector that brings q's midpoint nearest to p's (zero without a cell).
     const Vec3 shift = cell.enabled() ? cell.imageShift(mid[j] - mid[i]) : Vec3{};
@@ -216,12 +225,14 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
       const std::size_t count = hash.neighbours(hash.coords(mid[pi]), cells);
       for (std::size_t k = 0; k < count; ++k)
       {
-        hash.forEachIn(cells[k], [&](std::size_t j) {
-          if (j > pi && !isOversize(j))
+        hash.forEachIn(cells[k],
+          [&](std::size_t j)
           {
-            compare(pi, j, collisions, minGap);
-          }
-        });
+            if (j > pi && !isOversize(j))
+            {
+              compare(pi, j, collisions, minGap);
+            }
+          });
       }
     }
     pass.collisions += collisions;
@@ -244,15 +255,16 @@ Pass sweep(const CapsuleSet& set, const std::vector<Vec3>& mid, const std::vecto
     }
     pass.collisions += collisions;
     pass.minGap = std::min(pass.minGap, minGap);
-    pass.aborted = !reportProgress(progress, static_cast<double>(n + static_cast<std::int64_t>(o) + 1) / static_cast<double>(work));
+    pass.aborted = !reportProgress(progress,
+      static_cast<double>(n + static_cast<std::int64_t>(o) + 1) / static_cast<double>(work));
   }
   return pass;
 }
 
 } // namespace
 
-PairResult compareCapsulePairs(const CapsuleSet& set, const PeriodicCell& cell, int numberOfThreads,
-  const ProgressFn& progress)
+PairResult compareCapsulePairs(
+  const CapsuleSet& set, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress)
 {
   PairResult result;
   result.minGap = std::numeric_limits<double>::quiet_NaN();

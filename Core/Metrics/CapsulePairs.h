@@ -14,14 +14,14 @@ namespace fiberpli
 struct PairResult : Status
 {
   std::int64_t collisions = 0; ///< pairs with surface gap < 0 (touching is no collision)
-  double minGap = 0.0;         ///< smallest |a − b| − r_a − r_b over compared pairs; NaN when none
+  double minGap = 0.0; ///< smallest |a − b| − r_a − r_b over compared pairs; NaN when none
 };
 
 /// Compares every pair of capsules except chain neighbours (chainNeighbours). Collisions are exact;
 /// the smallest gap is exact too: the hash is rebuilt with a wider search margin until the
 /// smallest gap found lies within the margin (then no unseen pair can be closer) or every pair has
 /// been compared. Same result for any thread count.
-PairResult compareCapsulePairs(const CapsuleSet& set, const PeriodicCell& cell, int numberOfThreads,
-  const ProgressFn& progress);
+PairResult compareCapsulePairs(
+  const CapsuleSet& set, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);
 
 } // namespace fiberpli

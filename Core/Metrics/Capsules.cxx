@@ -45,8 +45,9 @@ double pointSegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
 
 double segmentDistance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1)
 {
-  double best = std::min(std::min(pointSegmentDistance(a0, b0, b1), pointSegmentDistance(a1, b0, b1)),
-    std::min(pointSegmentDistance(b0, a0, a1), pointSegmentDistance(b1, a0, a1)));
+  double best =
+    std::min(std::min(pointSegmentDistance(a0, b0, b1), pointSegmentDistance(a1, b0, b1)),
+      std::min(pointSegmentDistance(b0, a0, a1), pointSegmentDistance(b1, a0, a1)));
   const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
   const double uu = dot(u, u), uv = dot(u, v), vv = dot(v, v), uw = dot(u, w), vw = dot(v, w);
   const double det = uu * vv - uv * uv;

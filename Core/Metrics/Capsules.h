@@ -1,7 +1,7 @@
 /// Capsules: a fiber model flattened into its links (capsules) for the metrics, with the periodic
-/// cell (Geometry/PeriodicCell.h) and this module's own segment distance. Deliberately independent of Core/Geometry's
-/// closestPoints and of the solver's collision grid, so that the metrics check the solver instead
-/// of repeating it.
+/// cell (Geometry/PeriodicCell.h) and this module's own segment distance. Deliberately independent
+/// of Core/Geometry's closestPoints and of the solver's collision grid, so that the metrics check
+/// the solver instead of repeating it.
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
@@ -28,9 +28,9 @@ struct Capsule
 struct CapsuleSet
 {
   std::vector<Capsule> capsules;
-  std::vector<double> fiberLength;  ///< arc length of each fiber
-  std::vector<std::size_t> links;   ///< number of links of each fiber
-  std::vector<char> closed;         ///< 1: last point = first point + a non-zero lattice vector
+  std::vector<double> fiberLength; ///< arc length of each fiber
+  std::vector<std::size_t> links;  ///< number of links of each fiber
+  std::vector<char> closed;        ///< 1: last point = first point + a non-zero lattice vector
 };
 
 /// Flattens the model; in a periodic cell a fiber whose end is its start shifted by a lattice

@@ -74,19 +74,21 @@ double voxelEdge(const MetricsOptions& options, const MetricsResult& result)
     return options.voxelSize;
   }
   const Vec3 e = result.regionHi - result.regionLo;
-  return std::max(result.shape.radius.min / 8.0, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
+  return std::max(
+    result.shape.radius.min / 8.0, std::cbrt(e.x * e.y * e.z / options.automaticVoxelLimit));
 }
 
 /// One measurement of the volume fraction kind (outer capsules or axons) with the chosen method.
-VolumeFractionResult measureVolume(const CapsuleSet& set, const MetricsOptions& options, const MetricsResult& result,
-  double h, const ProgressFn& progress)
+VolumeFractionResult measureVolume(const CapsuleSet& set, const MetricsOptions& options,
+  const MetricsResult& result, double h, const ProgressFn& progress)
 {
   if (options.monteCarlo)
   {
-    return monteCarloVolumeFraction(set, result.regionLo, result.regionHi, options.samples, options.seed,
-      options.cell, options.numberOfThreads, progress);
+    return monteCarloVolumeFraction(set, result.regionLo, result.regionHi, options.samples,
+      options.seed, options.cell, options.numberOfThreads, progress);
   }
-  return volumeFraction(set, result.regionLo, result.regionHi, h, options.cell, options.numberOfThreads, progress);
+  return volumeFraction(
+    set, result.regionLo, result.regionHi, h, options.cell, options.numberOfThreads, progress);
 }
 
 /// Copies an error or abort of a part into the result; true when the run must stop.
@@ -128,10 +130,13 @@ std::string checkLinksFitCell(const FiberModel& model, const PeriodicCell& cell)
         if (std::fabs(d[a]) > e[a])
         {
           std::ostringstream s;
-          s << "fiber " << f << " (fiber_id " << fiber.id << ") link " << k << " spans " << std::fabs(d[a])
-            << " um along " << kAxis[a] << ", more than the periodic cell's edge " << e[a]
-            << " um: links longer than the cell wrap over it and have no single nearest image (turn "
-               "UsePeriodicCell off, or give the fibers shorter links, e.g. FiberCollisionSolver's SegmentLength)";
+          s << "fiber " << f << " (fiber_id " << fiber.id << ") link " << k << " spans "
+            << std::fabs(d[a]) << " um along " << kAxis[a]
+            << ", more than the periodic cell's edge " << e[a]
+            << " um: links longer than the cell wrap over it and have no single nearest image "
+               "(turn "
+               "UsePeriodicCell off, or give the fibers shorter links, e.g. FiberCollisionSolver's "
+               "SegmentLength)";
           return s.str();
         }
       }
@@ -141,8 +146,8 @@ std::string checkLinksFitCell(const FiberModel& model, const PeriodicCell& cell)
 }
 } // namespace
 
-MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions& options,
-  const ProgressFn& progress)
+MetricsResult computeFiberMetrics(
+  const FiberModel& model, const MetricsOptions& options, const ProgressFn& progress)
 {
   MetricsResult result;
   result.volume.fraction = NaN;
@@ -172,7 +177,8 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   }
   if (options.histogramBins < 1 || options.histogramBins > 1000000)
   {
-    result.error = "HistogramBins " + std::to_string(options.histogramBins) + " must be in [1, 1000000]";
+    result.error =
+      "HistogramBins " + std::to_string(options.histogramBins) + " must be in [1, 1000000]";
     return result;
   }
   result.error = validateInnerRadii(model);
@@ -185,7 +191,8 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   result.links = model.numberOfLinks();
   const CapsuleSet set = makeCapsules(model, options.cell);
   result.shape = fiberShape(model, set);
-  result.realism = measureRealism(model, result.shape, static_cast<std::size_t>(options.histogramBins));
+  result.realism =
+    measureRealism(model, result.shape, static_cast<std::size_t>(options.histogramBins));
   if (model.empty())
   {
     return result;
@@ -201,10 +208,12 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   const double pairsCost = options.pairs ? 0.3 : 0.0;
   const double total = std::max(1e-300, volumeCost + axonCost + mixingCost + pairsCost);
   double done = 0.0;
-  const auto part = [&](double cost) {
+  const auto part = [&](double cost)
+  {
     const double offset = done / total, share = cost / total;
     done += cost;
-    return ProgressFn([&progress, offset, share](double f) { return reportProgress(progress, offset + share * f); });
+    return ProgressFn([&progress, offset, share](double f)
+      { return reportProgress(progress, offset + share * f); });
   };
 
   bool haveRegion = false;
@@ -229,8 +238,9 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
       if (voxels > options.voxelLimit)
       {
         std::ostringstream s;
-        s << "VoxelSize " << h << " gives " << voxels << " voxels in " << boxText(result.regionLo, result.regionHi)
-          << ", more than " << options.voxelLimit << "; use a larger VoxelSize or a smaller Box";
+        s << "VoxelSize " << h << " gives " << voxels << " voxels in "
+          << boxText(result.regionLo, result.regionHi) << ", more than " << options.voxelLimit
+          << "; use a larger VoxelSize or a smaller Box";
         result.error = s.str();
         return result;
       }
@@ -258,8 +268,8 @@ MetricsResult computeFiberMetrics(const FiberModel& model, const MetricsOptions&
   {
     if (sampledMixing && haveRegion)
     {
-      result.mixing = measureMixing(model, set, result.regionLo, result.regionHi, options.samples, options.seed,
-        options.cell, options.numberOfThreads, part(mixingCost));
+      result.mixing = measureMixing(model, set, result.regionLo, result.regionHi, options.samples,
+        options.seed, options.cell, options.numberOfThreads, part(mixingCost));
       if (stops(result.mixing, result))
       {
         return result;

@@ -38,7 +38,8 @@ public:
   }
 
 private:
-  double min_ = std::numeric_limits<double>::infinity(), max_ = -std::numeric_limits<double>::infinity();
+  double min_ = std::numeric_limits<double>::infinity(),
+         max_ = -std::numeric_limits<double>::infinity();
   double sum_ = 0.0;
   std::size_t count_ = 0;
 };
@@ -125,7 +126,8 @@ ShapeResult fiberShape(const FiberModel& model, const CapsuleSet& set)
   {
     const Fiber& fiber = model.fibers[f];
     const double length = set.fiberLength[f];
-    const double ends = fiber.size() > 1 ? distance(fiber.points.front(), fiber.points.back()) : 0.0;
+    const double ends =
+      fiber.size() > 1 ? distance(fiber.points.front(), fiber.points.back()) : 0.0;
     // A closed loop (or a fiber back at its start) has no meaningful tortuosity.
     const double tau = ends > 1e-12 * length ? length / ends : NaN;
     result.fiberLength.push_back(length);

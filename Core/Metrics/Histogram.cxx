@@ -29,7 +29,8 @@ void addToHistogram(Histogram& h, double value, double weight)
     return;
   }
   const auto bins = static_cast<double>(h.count.size());
-  const auto k = static_cast<std::size_t>(std::min(bins - 1.0, std::floor((value - h.lo) / (h.hi - h.lo) * bins)));
+  const auto k = static_cast<std::size_t>(
+    std::min(bins - 1.0, std::floor((value - h.lo) / (h.hi - h.lo) * bins)));
   ++h.count[k];
   h.weight[k] += weight;
 }

@@ -15,7 +15,10 @@ struct Histogram
   std::vector<std::size_t> count;
   std::vector<double> weight;
 
-  double width() const { return count.empty() ? 0.0 : (hi - lo) / static_cast<double>(count.size()); }
+  double width() const
+  {
+    return count.empty() ? 0.0 : (hi - lo) / static_cast<double>(count.size());
+  }
   double centre(std::size_t k) const { return lo + (static_cast<double>(k) + 0.5) * width(); }
 };
 

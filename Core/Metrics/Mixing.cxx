@@ -13,8 +13,9 @@
 namespace fiberpli
 {
 
-MixingResult measureMixing(const FiberModel& model, const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
-  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress)
+MixingResult measureMixing(const FiberModel& model, const CapsuleSet& set, const Vec3& lo,
+  const Vec3& hi, std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell,
+  int numberOfThreads, const ProgressFn& progress)
 {
   const double NaN = std::numeric_limits<double>::quiet_NaN();
   MixingResult result;
@@ -112,9 +113,11 @@ MixingResult measureMixing(const FiberModel& model, const CapsuleSet& set, const
     }
     for (std::size_t p = 0; p < populations; ++p)
     {
-      const double share = static_cast<double>(counts[s * populations + p]) / static_cast<double>(total);
+      const double share =
+        static_cast<double>(counts[s * populations + p]) / static_cast<double>(total);
       result.share[s * populations + p] = share;
-      result.minShare[p] = std::isnan(result.minShare[p]) ? share : std::min(result.minShare[p], share);
+      result.minShare[p] =
+        std::isnan(result.minShare[p]) ? share : std::min(result.minShare[p], share);
     }
     result.fiberSamples += total;
   }
@@ -123,11 +126,13 @@ MixingResult measureMixing(const FiberModel& model, const CapsuleSet& set, const
   {
     if (result.fiberSamples > 0)
     {
-      result.volumeShare[p] = static_cast<double>(perPopulation[p]) / static_cast<double>(result.fiberSamples);
+      result.volumeShare[p] =
+        static_cast<double>(perPopulation[p]) / static_cast<double>(result.fiberSamples);
     }
     if (!std::isnan(result.minShare[p]))
     {
-      result.minimum = std::isnan(result.minimum) ? result.minShare[p] : std::min(result.minimum, result.minShare[p]);
+      result.minimum = std::isnan(result.minimum) ? result.minShare[p]
+                                                  : std::min(result.minimum, result.minShare[p]);
     }
   }
   return result;

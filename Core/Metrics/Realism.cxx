@@ -208,9 +208,11 @@ RealismResult measureRealism(const FiberModel& model, const ShapeResult& shape, 
   result.gRatio = anyMyelin ? allG.value() : NaN;
 
   // Histograms over the range of their values (angles always over [0, 90] degrees).
-  const auto histogramOf = [bins](const std::vector<double>& values) {
+  const auto histogramOf = [bins](const std::vector<double>& values)
+  {
     double lo = 0.0, hi = 0.0;
-    Histogram h = finiteRange(values, lo, hi) ? makeHistogram(lo, hi, bins) : makeHistogram(0.0, 1.0, bins);
+    Histogram h =
+      finiteRange(values, lo, hi) ? makeHistogram(lo, hi, bins) : makeHistogram(0.0, 1.0, bins);
     for (double v : values)
     {
       addToHistogram(h, v);

@@ -20,24 +20,27 @@ struct PopulationRealism
 {
   int bundle = 0;
   std::size_t fibers = 0;
-  Range tortuosity;    ///< of the fibers with distinct ends (closed fibers: over their lattice vector)
+  Range tortuosity; ///< of the fibers with distinct ends (closed fibers: over their lattice vector)
   /// The population's axis: the principal eigenvector of the mean of e·eᵀ over the fibers' unit
   /// end-to-end directions e (sign: largest component positive).
   Vec3 axis;
-  double c2EndToEnd;   ///< ⟨(e·axis)²⟩ over the fibers (the largest eigenvalue of that mean)
-  double c2Segments;   ///< length-weighted ⟨(u·axis)²⟩ over the links, u the unit link direction
-  double radiusCV;     ///< length-weighted mean over the fibers of their along-fiber radius CV
-  double gRatio;       ///< length-weighted mean of inner/outer radius over its fibers with inner radii (else NaN)
+  double c2EndToEnd; ///< ⟨(e·axis)²⟩ over the fibers (the largest eigenvalue of that mean)
+  double c2Segments; ///< length-weighted ⟨(u·axis)²⟩ over the links, u the unit link direction
+  double radiusCV;   ///< length-weighted mean over the fibers of their along-fiber radius CV
+  double gRatio; ///< length-weighted mean of inner/outer radius over its fibers with inner radii
+                 ///< (else NaN)
 };
 
 struct RealismResult
 {
   std::vector<PopulationRealism> populations; ///< in increasing bundle id
   /// Per fiber: std/mean of the radius along the fiber, the radius taken linear along each link and
-  /// both moments integrated over arc length (0 for a constant radius, NaN for a zero-length fiber).
+  /// both moments integrated over arc length (0 for a constant radius, NaN for a zero-length
+  /// fiber).
   std::vector<double> fiberRadiusCV;
-  std::vector<double> fiberGRatio; ///< arc-length mean of inner/outer radius; NaN for a fiber without inner radii
-  double radiusCV, gRatio;         ///< over all fibers, length-weighted as per population
+  std::vector<double>
+    fiberGRatio; ///< arc-length mean of inner/outer radius; NaN for a fiber without inner radii
+  double radiusCV, gRatio; ///< over all fibers, length-weighted as per population
   /// Bar-chart data: point radii (count), fiber tortuosities (count), point g-ratios (count; empty
   /// bins without inner radii), link angles to their population's axis in degrees, [0, 90]
   /// (count and summed link length).

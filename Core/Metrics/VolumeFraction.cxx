@@ -19,12 +19,16 @@ namespace fiberpli
 namespace
 {
 
-std::int64_t wrap(std::int64_t k, std::int64_t n) { return ((k % n) + n) % n; }
+std::int64_t wrap(std::int64_t k, std::int64_t n)
+{
+  return ((k % n) + n) % n;
+}
 
 } // namespace
 
 VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
-  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress)
+  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads,
+  const ProgressFn& progress)
 {
   VolumeFractionResult result;
   if (samples < 1)
@@ -86,7 +90,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
   std::int64_t n[3];
   for (int i = 0; i < 3; ++i)
   {
-    n[i] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((hi[i] - lo[i]) / voxelSize - 1e-9)));
+    n[i] = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil((hi[i] - lo[i]) / voxelSize - 1e-9)));
     result.voxel[i] = (hi[i] - lo[i]) / static_cast<double>(n[i]);
   }
   const double margin = 0.5 * norm(result.voxel); // half a voxel diagonal
@@ -96,7 +101,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
   // cell a capsule reaching past the cell's faces enters the wrapped layers with a lattice shift.
   // Entries are counted before any is stored: a long unwrapped fiber in a small cell reaches
   // very many layers.
-  const auto reach = [&](const Capsule& cap, std::int64_t& k0, std::int64_t& k1) {
+  const auto reach = [&](const Capsule& cap, std::int64_t& k0, std::int64_t& k1)
+  {
     const double grow = cap.r + margin;
     Vec3 bmin, bmax;
     for (int i = 0; i < 3; ++i)
@@ -126,7 +132,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
   const int threads = resolveThreadCount(numberOfThreads);
   const double planeBytes = static_cast<double>(n[0] * n[1]) * sizeof(double) * threads;
   const std::string budget = checkMemoryBudget(planeBytes + entries * sizeof(LayerEntry) +
-      static_cast<double>(n[2]) * sizeof(std::vector<LayerEntry>), "FiberMetrics volume fraction");
+      static_cast<double>(n[2]) * sizeof(std::vector<LayerEntry>),
+    "FiberMetrics volume fraction");
   if (!budget.empty())
   {
     result.error = budget;
@@ -170,8 +177,10 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
           std::int64_t range[2][2];
           for (int i = 0; i < 2; ++i)
           {
-            range[i][0] = static_cast<std::int64_t>(std::floor((std::min(a[i], b[i]) - grow - lo[i]) / result.voxel[i]));
-            range[i][1] = static_cast<std::int64_t>(std::floor((std::max(a[i], b[i]) + grow - lo[i]) / result.voxel[i]));
+            range[i][0] = static_cast<std::int64_t>(
+              std::floor((std::min(a[i], b[i]) - grow - lo[i]) / result.voxel[i]));
+            range[i][1] = static_cast<std::int64_t>(
+              std::floor((std::max(a[i], b[i]) + grow - lo[i]) / result.voxel[i]));
             if (!cell.enabled())
             {
               range[i][0] = std::max<std::int64_t>(range[i][0], 0);
@@ -185,7 +194,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
             for (std::int64_t i = range[0][0]; i <= range[0][1]; ++i)
             {
               const Vec3 centre{ lo.x + (static_cast<double>(i) + 0.5) * result.voxel.x, y, z };
-              double& s = plane[static_cast<std::size_t>(row + (cell.enabled() ? wrap(i, n[0]) : i))];
+              double& s =
+                plane[static_cast<std::size_t>(row + (cell.enabled() ? wrap(i, n[0]) : i))];
               s = std::min(s, pointSegmentDistance(centre, a, b) - cap.r);
             }
           }
@@ -204,7 +214,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
       return result;
     }
   }
-  const double total = static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]);
+  const double total =
+    static_cast<double>(n[0]) * static_cast<double>(n[1]) * static_cast<double>(n[2]);
   result.fraction = static_cast<double>(inside) / total;
   result.errorBound = static_cast<double>(std::max(inside - certain, possible - inside)) / total;
   return result;

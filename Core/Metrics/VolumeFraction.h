@@ -1,5 +1,6 @@
 /// VolumeFraction: the fraction of a box (or of the periodic cell, counting every periodic image)
-/// covered by the union of the capsules, by a deterministic voxel count with a rigorous error bound.
+/// covered by the union of the capsules, by a deterministic voxel count with a rigorous error
+/// bound.
 #pragma once
 
 #include "Metrics/Capsules.h"
@@ -15,9 +16,9 @@ namespace fiberpli
 /// error non-empty: nothing computed (the message names the value).
 struct VolumeFractionResult : Status
 {
-  double fraction = 0.0;  ///< voxels whose centre lies inside a capsule / all voxels
-  double errorBound = 0.0;///< |fraction − true fraction| <= errorBound (see volumeFraction)
-  Vec3 voxel;             ///< voxel edges used (the box divided into whole voxels)
+  double fraction = 0.0;   ///< voxels whose centre lies inside a capsule / all voxels
+  double errorBound = 0.0; ///< |fraction − true fraction| <= errorBound (see volumeFraction)
+  Vec3 voxel;              ///< voxel edges used (the box divided into whole voxels)
 };
 
 /// The box [lo, hi] is divided into whole voxels of edge about `voxelSize` (each axis rounded so
@@ -34,7 +35,8 @@ VolumeFractionResult volumeFraction(const CapsuleSet& set, const Vec3& lo, const
 /// inside a capsule (every periodic image with cell.enabled()), errorBound = its standard error
 /// √(φ(1 − φ)/samples); voxel stays zero.
 VolumeFractionResult monteCarloVolumeFraction(const CapsuleSet& set, const Vec3& lo, const Vec3& hi,
-  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads, const ProgressFn& progress);
+  std::int64_t samples, std::uint64_t seed, const PeriodicCell& cell, int numberOfThreads,
+  const ProgressFn& progress);
 
 /// Voxels of edge h in the box [lo, hi] (each axis rounded up to whole voxels), as a double.
 double voxelCount(const Vec3& lo, const Vec3& hi, double h);

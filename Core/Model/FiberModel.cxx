@@ -71,7 +71,8 @@ double largestRadius(const FiberModel& model)
 
 bool isClosedFiber(const Fiber& fiber, const PeriodicCell& cell, Vec3& closure)
 {
-  return fiber.size() >= 3 && closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
+  return fiber.size() >= 3 &&
+    closesThroughCell(fiber.points.front(), fiber.points.back(), cell, closure);
 }
 
 std::string validateModel(const FiberModel& model, std::size_t* badFiber, ShortFibers shortFibers)

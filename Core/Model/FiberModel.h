@@ -1,6 +1,6 @@
-/// FiberModel: the data contract (docs/data-contract.md §1) in Core form. A fiber is an ordered polyline of points
-/// with one radius per point (µm); a link (p_i, p_i+1) is a capsule of radius max(r_i, r_i+1).
-/// Every fiber carries its fiber id and the bundle (population) it belongs to.
+/// FiberModel: the data contract (docs/data-contract.md §1) in Core form. A fiber is an ordered
+/// polyline of points with one radius per point (µm); a link (p_i, p_i+1) is a capsule of radius
+/// max(r_i, r_i+1). Every fiber carries its fiber id and the bundle (population) it belongs to.
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
@@ -27,7 +27,10 @@ struct Fiber
 
   std::size_t size() const { return points.size(); }
   /// Capsule radius of link k (paper eq. 1).
-  double linkRadius(std::size_t k) const { return radii[k] > radii[k + 1] ? radii[k] : radii[k + 1]; }
+  double linkRadius(std::size_t k) const
+  {
+    return radii[k] > radii[k + 1] ? radii[k] : radii[k + 1];
+  }
 };
 
 struct FiberModel

@@ -30,7 +30,8 @@ inline FiberRange pieceRange(std::size_t total, int piece, int pieces)
     return FiberRange{ total, total };
   }
   // total·p/P without overflow for any realistic total (< 2^64 / 2^31).
-  const auto cut = [&](int p) {
+  const auto cut = [&](int p)
+  {
     return static_cast<std::size_t>(
       (static_cast<unsigned long long>(total) * static_cast<unsigned long long>(p)) /
       static_cast<unsigned long long>(pieces));

@@ -39,7 +39,8 @@ std::string validateInnerRadii(const FiberModel& model, std::size_t* badFiber)
       const double v = fiber.innerRadii[i];
       if (!std::isfinite(v) || v <= 0.0 || v > fiber.radii[i])
       {
-        s << " point " << i << " is " << v << " (must be finite, > 0 and <= radius " << fiber.radii[i] << ")";
+        s << " point " << i << " is " << v << " (must be finite, > 0 and <= radius "
+          << fiber.radii[i] << ")";
         bad = true;
       }
     }

@@ -15,8 +15,8 @@ std::string validatePeriodicCell(const PeriodicCell& cell)
   {
     const double lo = cell.lo[a];
     const double hi = cell.hi[a];
-    const std::string where = std::string("periodic_cell axis ") + kAxis[a] + " is [" + formatNumber(lo) + ", " +
-      formatNumber(hi) + "]";
+    const std::string where = std::string("periodic_cell axis ") + kAxis[a] + " is [" +
+      formatNumber(lo) + ", " + formatNumber(hi) + "]";
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
     {
       return where + ", must be finite with max > min";
@@ -24,14 +24,16 @@ std::string validatePeriodicCell(const PeriodicCell& cell)
     const double edge = hi - lo; // inf when the bounds are finite but far apart
     if (!(edge <= kMaxPeriodicEdge))
     {
-      return where + ": its edge " + formatNumber(edge) + " um must be at most " + formatNumber(kMaxPeriodicEdge) +
-        " um (a metre)";
+      return where + ": its edge " + formatNumber(edge) + " um must be at most " +
+        formatNumber(kMaxPeriodicEdge) + " um (a metre)";
     }
     const double magnitude = std::max(std::fabs(lo), std::fabs(hi));
     if (edge < kMinPeriodicEdgeRatio * magnitude)
     {
-      return where + ": its edge " + formatNumber(edge) + " um is below " + formatNumber(kMinPeriodicEdgeRatio) +
-        " x its bounds' magnitude, too fine for double precision (move the cell towards the origin)";
+      return where + ": its edge " + formatNumber(edge) + " um is below " +
+        formatNumber(kMinPeriodicEdgeRatio) +
+        " x its bounds' magnitude, too fine for double precision (move the cell towards the "
+        "origin)";
     }
   }
   return {};
@@ -41,7 +43,8 @@ std::string periodicCellFromBounds(const double* b, std::size_t count, PeriodicC
 {
   if (count != 6)
   {
-    return "periodic_cell has " + formatNumber(count) + " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
+    return "periodic_cell has " + formatNumber(count) +
+      " values, must have 6 (xmin xmax ymin ymax zmin zmax)";
   }
   PeriodicCell c;
   for (int a = 0; a < 3; ++a)
@@ -72,7 +75,8 @@ std::string compareRankCells(const std::vector<RankCell>& ranks)
     const std::string error = periodicCellFromBounds(c.values.data(), c.count, cell);
     if (!error.empty())
     {
-      return (ranks.size() > 1 ? "rank " + std::to_string(r) + "'s " : std::string()) + "input field data " + error;
+      return (ranks.size() > 1 ? "rank " + std::to_string(r) + "'s " : std::string()) +
+        "input field data " + error;
     }
     if (!first)
     {
@@ -81,7 +85,8 @@ std::string compareRankCells(const std::vector<RankCell>& ranks)
     }
     else if (c.values != first->values)
     {
-      const auto text = [](const std::vector<double>& v) {
+      const auto text = [](const std::vector<double>& v)
+      {
         std::string t;
         for (double x : v)
         {
@@ -89,8 +94,9 @@ std::string compareRankCells(const std::vector<RankCell>& ranks)
         }
         return t;
       };
-      return "the input pieces have different periodic_cell field data: rank " + std::to_string(firstRank) + " has " +
-        text(first->values) + ", rank " + std::to_string(r) + " has " + text(c.values);
+      return "the input pieces have different periodic_cell field data: rank " +
+        std::to_string(firstRank) + " has " + text(first->values) + ", rank " + std::to_string(r) +
+        " has " + text(c.values);
     }
   }
   return {};

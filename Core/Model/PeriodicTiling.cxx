@@ -16,7 +16,8 @@ using ShiftRanges = std::array<std::array<long, 2>, 3>;
 // Lattice indices [first, last] along one axis for which [lo, hi] + k·e overlaps [bmin, bmax].
 std::array<long, 2> shifts(double lo, double hi, double bmin, double bmax, double e)
 {
-  return { static_cast<long>(std::ceil((bmin - hi) / e)), static_cast<long>(std::floor((bmax - lo) / e)) };
+  return { static_cast<long>(std::ceil((bmin - hi) / e)),
+    static_cast<long>(std::floor((bmax - lo) / e)) };
 }
 
 // The translates of `fib` whose bounds, grown by the radii, overlap box (tileModel's rule).
@@ -57,7 +58,8 @@ ShiftRanges linkShiftRanges(const Fiber& fib, std::size_t k, const Vec3& e, cons
 
 // The tiling's ranges, narrowed (when reach is given) to the hull of the links' shift ranges;
 // linkReaches then decides per translate.
-ShiftRanges candidateRanges(const Fiber& fib, const Vec3& e, const double box[6], const TileReach* reach)
+ShiftRanges candidateRanges(
+  const Fiber& fib, const Vec3& e, const double box[6], const TileReach* reach)
 {
   ShiftRanges r = tilingRanges(fib, e, box);
   if (reach)
@@ -68,7 +70,9 @@ ShiftRanges candidateRanges(const Fiber& fib, const Vec3& e, const double box[6]
       const ShiftRanges s = linkShiftRanges(fib, k, e, *reach);
       for (int d = 0; d < 3; ++d)
       {
-        hull[d] = k == 0 ? s[d] : std::array<long, 2>{ std::min(hull[d][0], s[d][0]), std::max(hull[d][1], s[d][1]) };
+        hull[d] = k == 0
+          ? s[d]
+          : std::array<long, 2>{ std::min(hull[d][0], s[d][0]), std::max(hull[d][1], s[d][1]) };
       }
     }
     for (int d = 0; d < 3; ++d)
@@ -81,11 +85,13 @@ ShiftRanges candidateRanges(const Fiber& fib, const Vec3& e, const double box[6]
 
 Vec3 translation(long i, long j, long k, const Vec3& e)
 {
-  return { static_cast<double>(i) * e.x, static_cast<double>(j) * e.y, static_cast<double>(k) * e.z };
+  return { static_cast<double>(i) * e.x, static_cast<double>(j) * e.y,
+    static_cast<double>(k) * e.z };
 }
 } // namespace
 
-std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double box[6], const TileReach* reach)
+std::string tileModel(
+  FiberModel& model, const PeriodicCell& cell, const double box[6], const TileReach* reach)
 {
   const Vec3 e = cell.edge();
   std::int64_t maxId = 0;
@@ -93,9 +99,8 @@ std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double 
   {
     maxId = std::max(maxId, f.id);
   }
-  auto kept = [&](const Fiber& fib, long i, long j, long k) {
-    return !reach || linkReaches(fib, *reach, translation(i, j, k, e));
-  };
+  auto kept = [&](const Fiber& fib, long i, long j, long k)
+  { return !reach || linkReaches(fib, *reach, translation(i, j, k, e)); };
   // Pass 1: the ranges per fiber and the point count, checked before anything is copied.
   std::vector<ShiftRanges> ranges(model.fibers.size());
   double points = 0.0;
@@ -118,7 +123,8 @@ std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double 
     }
     points += copies * static_cast<double>(fib.size());
   }
-  const std::string tooBig = checkMemoryBudget(points * 64.0, "the periodic tiling of the volume of interest");
+  const std::string tooBig =
+    checkMemoryBudget(points * 64.0, "the periodic tiling of the volume of interest");
   if (!tooBig.empty())
   {
     return tooBig;
@@ -143,7 +149,8 @@ std::string tileModel(FiberModel& model, const PeriodicCell& cell, const double 
             p += t;
           }
           // A distinct id per translate; the cell's own copy keeps its id.
-          const std::int64_t serial = (i == 0 && j == 0 && k == 0) ? 0 : 1 + static_cast<std::int64_t>(tiled.fibers.size());
+          const std::int64_t serial =
+            (i == 0 && j == 0 && k == 0) ? 0 : 1 + static_cast<std::int64_t>(tiled.fibers.size());
           copy.id = fib.id + serial * (maxId + 1);
           tiled.fibers.push_back(std::move(copy));
         }
@@ -176,7 +183,8 @@ bool periodicTranslateReaches(const Fiber& fib, const TileReach& reach)
   return false;
 }
 
-std::string tileSection(FiberModel& model, const PeriodicCell& cell, const double volume[6], const TileReach* reach)
+std::string tileSection(
+  FiberModel& model, const PeriodicCell& cell, const double volume[6], const TileReach* reach)
 {
   return tileModel(model, cell, volume, reach);
 }

@@ -37,7 +37,8 @@ bool linkReaches(const Fiber& fiber, const TileReach& reach, const Vec3& shift)
     {
       // The same sum as the translate tileModel makes (p + t), so both agree on every bit.
       const double a = fiber.points[k][d] + shift[d], b = fiber.points[k + 1][d] + shift[d];
-      overlaps = std::min(a, b) - grow <= reach.box[2 * d + 1] && std::max(a, b) + grow >= reach.box[2 * d];
+      overlaps =
+        std::min(a, b) - grow <= reach.box[2 * d + 1] && std::max(a, b) + grow >= reach.box[2 * d];
     }
     if (overlaps)
     {

@@ -40,8 +40,8 @@ std::string resolveVolumeOfInterest(const double voi[6], const FiberModel& model
     const double count = std::round((hi - lo) / voxelSize);
     if (!(count >= 1.0 && count <= 1e9))
     {
-      m << "VolumeOfInterest " << axisName[a] << " extent " << hi - lo << " at VoxelSize " << voxelSize << " gives "
-        << count << " voxels, needs 1 .. 1e9";
+      m << "VolumeOfInterest " << axisName[a] << " extent " << hi - lo << " at VoxelSize "
+        << voxelSize << " gives " << count << " voxels, needs 1 .. 1e9";
       return m.str();
     }
     n[a] = static_cast<std::int64_t>(count);

@@ -16,7 +16,10 @@ struct Ax
   bool ok;
 };
 
-inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 // Pairwise combination of §4.5; axes are orientations, so b is flipped onto a's hemisphere.
 // A neighbour of weight zero never enters, whether the other one is missing or not: on a
@@ -53,13 +56,15 @@ inline Ax mix(const Ax& a, Ax b, double t, Interp interp)
     return r;
   }
   // sin(acos c) = sqrt(1 − c²): one transcendental call fewer per pair.
-  const double s = std::sqrt(1.0 - c * c), wa = std::sin((1.0 - t) * w) / s, wb = std::sin(t * w) / s;
+  const double s = std::sqrt(1.0 - c * c), wa = std::sin((1.0 - t) * w) / s,
+               wb = std::sin(t * w) / s;
   for (int d = 0; d < 3; ++d)
     r.v[d] = wa * a.v[d] + wb * b.v[d];
   return r;
 }
 
-inline Ax fetch(const TissueBlock& b, std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t label)
+inline Ax fetch(
+  const TissueBlock& b, std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t label)
 {
   Ax a;
   a.ok = false;
@@ -82,7 +87,8 @@ bool sampleAxis(const TissueBlock& block, const double p[3], std::int32_t label,
   {
     const Ax a = fetch(block, static_cast<std::int64_t>(std::floor(p[0])),
       static_cast<std::int64_t>(std::floor(p[1])),
-      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(p[2])), 0, block.nz - 1), label);
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(p[2])), 0, block.nz - 1),
+      label);
     if (!a.ok)
       return false;
     const double n = std::sqrt(dot3(a.v, a.v));

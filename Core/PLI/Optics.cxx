@@ -31,7 +31,8 @@ std::vector<double> gaussianWeights(double sigma)
   double sum = 0.0;
   for (std::int64_t m = -R; m <= R; ++m)
   {
-    w[static_cast<std::size_t>(m + R)] = std::exp(-static_cast<double>(m) * static_cast<double>(m) / (2.0 * sigma * sigma));
+    w[static_cast<std::size_t>(m + R)] =
+      std::exp(-static_cast<double>(m) * static_cast<double>(m) / (2.0 * sigma * sigma));
     sum += w[static_cast<std::size_t>(m + R)];
   }
   for (double& x : w)
@@ -48,15 +49,16 @@ std::int64_t mirrorIndex(std::int64_t i, std::int64_t n)
   return r < n ? r : period - 1 - r;
 }
 
-Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sigma, const GridRange& range, Stack& out)
+Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sigma,
+  const GridRange& range, Stack& out)
 {
   Status st;
   const std::int64_t R = gaussianRadius(sigma);
   if (R < 0 || R > 2 * std::max(nGX, nGY))
   {
     std::ostringstream m;
-    m << "blur: sigma " << sigma << " voxels gives a kernel wider than twice the " << nGX << " x " << nGY
-      << " voxel image";
+    m << "blur: sigma " << sigma << " voxels gives a kernel wider than twice the " << nGX << " x "
+      << nGY << " voxel image";
     st.error = m.str();
     return st;
   }
@@ -64,7 +66,9 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
   const int nr = in.nrho;
   // The kernel reads mirror(a + m) for a in [a0, a1), |m| <= R: the mirror image of the contiguous
   // range [a0 − R, a1 − 1 + R], itself contiguous, all of [0, n) once it spans a period 2n.
-  auto covered = [&](std::int64_t a0, std::int64_t a1, std::int64_t n, std::int64_t have0, std::int64_t have1) {
+  auto covered =
+    [&](std::int64_t a0, std::int64_t a1, std::int64_t n, std::int64_t have0, std::int64_t have1)
+  {
     if (a1 <= a0)
       return true;
     std::int64_t lo = n, hi = -1;
@@ -77,7 +81,8 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
     }
     return lo >= have0 && hi < have1;
   };
-  if (!covered(range.i0, range.i1, nGX, in.x0, in.x0 + in.nx) || !covered(range.j0, range.j1, nGY, in.y0, in.y0 + in.ny))
+  if (!covered(range.i0, range.i1, nGX, in.x0, in.x0 + in.nx) ||
+    !covered(range.j0, range.j1, nGY, in.y0, in.y0 + in.ny))
   {
     st.error = "blur: the voxel piece does not hold the kernel halo of the requested range";
     return st;
@@ -113,7 +118,8 @@ Status blurStack(const Stack& in, std::int64_t nGX, std::int64_t nGY, double sig
   return st;
 }
 
-Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scale, const GridRange& px, Stack& out)
+Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scale,
+  const GridRange& px, Stack& out)
 {
   Status st;
   const int nr = in.nrho;
@@ -126,7 +132,8 @@ Status binStack(const Stack& in, std::int64_t nVX, std::int64_t nVY, double scal
     {
       std::int64_t x0, x1;
       voxelsOfPixel(p, scale, nVX, x0, x1);
-      if (x0 < in.x0 || x1 > in.x0 + in.nx || y0 < in.y0 || y1 > in.y0 + in.ny || x1 <= x0 || y1 <= y0)
+      if (x0 < in.x0 || x1 > in.x0 + in.nx || y0 < in.y0 || y1 > in.y0 + in.ny || x1 <= x0 ||
+        y1 <= y0)
       {
         std::ostringstream m;
         m << "binning: pixel (" << p << "," << q << ") needs voxels outside the piece";
@@ -187,8 +194,8 @@ double logFactorial(double k)
     return s;
   }
   const double n = k + 1.0, n2 = n * n;
-  return (n - 0.5) * std::log(n) - n + 0.5 * std::log(2.0 * M_PI) + 1.0 / (12.0 * n) - 1.0 / (360.0 * n * n2) +
-    1.0 / (1260.0 * n * n2 * n2);
+  return (n - 0.5) * std::log(n) - n + 0.5 * std::log(2.0 * M_PI) + 1.0 / (12.0 * n) -
+    1.0 / (360.0 * n * n2) + 1.0 / (1260.0 * n * n2 * n2);
 }
 
 double samplePoisson(RandomStream& rng, double lambda)
@@ -220,13 +227,15 @@ double samplePoisson(RandomStream& rng, double lambda)
       return k;
     if (k < 0.0 || (us < 0.013 && V > us))
       continue;
-    if (std::log(V) + std::log(invalpha) - std::log(a / (us * us) + b) <= -lambda + k * loglam - logFactorial(k))
+    if (std::log(V) + std::log(invalpha) - std::log(a / (us * us) + b) <=
+      -lambda + k * loglam - logFactorial(k))
       return k;
   }
 }
 } // namespace
 
-double sampleCounts(double I, double gain, std::uint64_t seed, std::uint64_t key1, std::uint64_t key2)
+double sampleCounts(
+  double I, double gain, std::uint64_t seed, std::uint64_t key1, std::uint64_t key2)
 {
   if (gain == 0.0 || !std::isfinite(I) || I <= 0.0)
     return I;
@@ -250,7 +259,8 @@ void addNoise(Stack& px, double gain, std::uint64_t seed, int view, std::int64_t
       {
         double& v = px.at(i, j, k);
         const std::uint64_t key1 = static_cast<std::uint64_t>(j * nPxX + i);
-        const std::uint64_t key2 = (static_cast<std::uint64_t>(view) << 32) | static_cast<std::uint64_t>(k);
+        const std::uint64_t key2 =
+          (static_cast<std::uint64_t>(view) << 32) | static_cast<std::uint64_t>(k);
         v = sampleCounts(v, gain, seed, key1, key2);
       }
 }

@@ -17,7 +17,8 @@ namespace pli
 /// Kernel radii from here on are refused (a weight vector of gigabytes, or an int overflow).
 constexpr std::int64_t kMaxGaussianRadius = std::int64_t{ 1 } << 30;
 
-/// Kernel radius R = int(4σ + 0.5) (§5.1); 0 for σ <= 0, −1 when not finite or >= kMaxGaussianRadius.
+/// Kernel radius R = int(4σ + 0.5) (§5.1); 0 for σ <= 0, −1 when not finite or >=
+/// kMaxGaussianRadius.
 std::int64_t gaussianRadius(double sigmaVox);
 
 /// Normalised weights w_m, m = −R..R, R = gaussianRadius(σ) (§5.1). σ <= 0 → {1}; empty when R < 0.
@@ -40,10 +41,12 @@ Status binStack(const Stack& in, std::int64_t nVoxX, std::int64_t nVoxY, double 
 /// Camera counts with mean I and variance g·I (§5.3): Gamma–Poisson mixture for g > 1, Poisson for
 /// g = 1, nothing for g = 0. The stream of value (pixel, k) is RandomStream(seed, global pixel
 /// index p + q·nPxX, view·2^32 + k), so any split or thread count gives the same numbers.
-void addNoise(Stack& pixels, double gain, std::uint64_t seed, int view, std::int64_t nPxX, int threads);
+void addNoise(
+  Stack& pixels, double gain, std::uint64_t seed, int view, std::int64_t nPxX, int threads);
 
 /// One noisy sample with mean I (exposed for the statistical tests).
-double sampleCounts(double I, double gain, std::uint64_t seed, std::uint64_t key1, std::uint64_t key2);
+double sampleCounts(
+  double I, double gain, std::uint64_t seed, std::uint64_t key1, std::uint64_t key2);
 
 } // namespace pli
 } // namespace fiberpli

@@ -1,13 +1,13 @@
 #include "PLI/PLIPipeline.h"
 
 #include "Model/InnerRadii.h"
-#include "PLI/OptionLimits.h"
-#include "Util/NumberFormat.h"
 #include "PLI/Optics.h"
+#include "PLI/OptionLimits.h"
 #include "PLI/Simulator.h"
 #include "PLI/TissueSpec.h"
 #include "Util/EnumCode.h"
 #include "Util/MemoryBudget.h"
+#include "Util/NumberFormat.h"
 #include "Util/ValueCheck.h"
 
 #include <algorithm>
@@ -26,8 +26,8 @@ constexpr double kDeg = M_PI / 180.0;
 
 /// "" when every value of the list `name` is finite, inside [lo, hi) (or (lo, hi) when loOpen)
 /// and distinct, and the list has at least `minCount` values; else the message naming it.
-std::string checkAngleList(const char* name, const std::vector<double>& v, double lo, bool loOpen, double hi,
-  std::size_t minCount, std::size_t maxCount)
+std::string checkAngleList(const char* name, const std::vector<double>& v, double lo, bool loOpen,
+  double hi, std::size_t minCount, std::size_t maxCount)
 {
   std::ostringstream m;
   if (v.size() < minCount || v.size() > maxCount)
@@ -39,13 +39,15 @@ std::string checkAngleList(const char* name, const std::vector<double>& v, doubl
   {
     if (!std::isfinite(v[a]) || (loOpen ? !(v[a] > lo) : !(v[a] >= lo)) || !(v[a] < hi))
     {
-      m << name << "[" << a << "] is " << v[a] << " deg, must be in " << (loOpen ? "(" : "[") << lo << ", " << hi << ")";
+      m << name << "[" << a << "] is " << v[a] << " deg, must be in " << (loOpen ? "(" : "[") << lo
+        << ", " << hi << ")";
       return m.str();
     }
     for (std::size_t b = 0; b < a; ++b)
       if (std::fabs(v[a] - v[b]) < 1e-9)
       {
-        m << name << "[" << b << "] and [" << a << "] are both " << v[a] << " deg: the values must be distinct";
+        m << name << "[" << b << "] and [" << a << "] are both " << v[a]
+          << " deg: the values must be distinct";
         return m.str();
       }
   }
@@ -53,14 +55,15 @@ std::string checkAngleList(const char* name, const std::vector<double>& v, doubl
 }
 
 /// The polarimeter set-up of the options: polarizer angles and tilted views (degrees), or an error.
-std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, std::vector<double>& tiltDeg,
-  std::vector<double>& azDeg)
+std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg,
+  std::vector<double>& tiltDeg, std::vector<double>& azDeg)
 {
   std::ostringstream m;
   rotDeg = o.rotationAngles;
   if (rotDeg.empty())
   {
-    const std::string count = ValueChecks().within("NumberOfRotations", o.numberOfRotations, 3, kMaxRotationAngles).error();
+    const std::string count =
+      ValueChecks().within("NumberOfRotations", o.numberOfRotations, 3, kMaxRotationAngles).error();
     if (!count.empty())
     {
       return count;
@@ -68,7 +71,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     for (int k = 0; k < o.numberOfRotations; ++k)
       rotDeg.push_back(k * 180.0 / o.numberOfRotations);
   }
-  std::string e = checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, kMaxRotationAngles);
+  std::string e =
+    checkAngleList("RotationAngles", rotDeg, 0.0, false, 180.0, 3, kMaxRotationAngles);
   if (!e.empty())
     return e;
   tiltDeg = o.tiltAngles;
@@ -89,8 +93,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
     return e;
   if (tiltDeg.size() * azDeg.size() > static_cast<std::size_t>(kMaxTiltedViews))
   {
-    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size() << ") gives more than "
-      << kMaxTiltedViews << " views";
+    m << "TiltAngles (" << tiltDeg.size() << ") x TiltAzimuths (" << azDeg.size()
+      << ") gives more than " << kMaxTiltedViews << " views";
     return m.str();
   }
   return {};
@@ -99,7 +103,8 @@ std::string polarimeterSetUp(const PLIOptions& o, std::vector<double>& rotDeg, s
 
 std::string interpolationFromCode(int code, Interp& interpolation)
 {
-  return enumFromCode(code, 2, "Interpolation", "0 (nearest), 1 (linear) or 2 (Slerp)", interpolation);
+  return enumFromCode(
+    code, 2, "Interpolation", "0 (nearest), 1 (linear) or 2 (Slerp)", interpolation);
 }
 
 Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
@@ -113,8 +118,8 @@ Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
     .within("LightIntensity", o.lightIntensity, 0.0, kMaxLightIntensity)
     .positive("StepSize", o.stepSize)
     .atLeast("OpticalSigma", o.opticalSigma, 0.0)
-    .require(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain), "NoiseGain", o.noiseGain,
-      "0 or in [1, " + formatNumber(kMaxNoiseGain) + "]")
+    .require(o.noiseGain == 0.0 || (o.noiseGain >= 1.0 && o.noiseGain <= kMaxNoiseGain),
+      "NoiseGain", o.noiseGain, "0 or in [1, " + formatNumber(kMaxNoiseGain) + "]")
     .atLeast("RefractiveIndex", o.refractiveIndex, 1.0)
     .atLeast("NumberOfThreads", o.numberOfThreads, 0)
     .atLeast("tile size", o.tileSize, 1);
@@ -153,14 +158,16 @@ Status planPLIImage(const FiberModel& model, const PLIOptions& o, PLIPlan& plan)
   if (4.0 * o.opticalSigma > widestSide)
   {
     std::ostringstream m;
-    m << "OpticalSigma is " << o.opticalSigma << " pixels: the blur kernel (4 sigma) is wider than the image of "
-      << plan.pixels[0] << " x " << plan.pixels[1] << " pixels; use at most " << widestSide / 4.0;
+    m << "OpticalSigma is " << o.opticalSigma
+      << " pixels: the blur kernel (4 sigma) is wider than the image of " << plan.pixels[0] << " x "
+      << plan.pixels[1] << " pixels; use at most " << widestSide / 4.0;
     st.error = m.str();
     return st;
   }
   plan.sigmaVox = o.opticalSigma * o.pixelSize / o.voxelSize;
   plan.bytesPerVoxel = kTileBytesPerVoxel;
-  plan.estimatedBytes = estimatePieceBytes(plan, o, GridRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
+  plan.estimatedBytes =
+    estimatePieceBytes(plan, o, GridRange{ 0, plan.pixels[0], 0, plan.pixels[1] });
   return st;
 }
 
@@ -170,8 +177,8 @@ Status planPLITissue(const FiberModel& model, const PLIOptions& o, PLIPlan& plan
   if (bundles.empty())
     for (const Fiber& f : model.fibers)
       bundles.push_back(f.bundle);
-  Status st = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption, o.backgroundAbsorption, plan.tissue,
-    o.myelin || hasInnerRadii(model));
+  Status st = makeTissueSpec(o.layers, bundles, o.birefringence, o.absorption,
+    o.backgroundAbsorption, plan.tissue, o.myelin || hasInnerRadii(model));
   if (!st.ok())
     return st;
   plan.tissue.radius = o.radiusModel;
@@ -192,8 +199,8 @@ std::string resolutionWarning(const FiberModel& model, const PLIOptions& o)
       first = false;
     }
   if (!first && o.voxelSize > 0.5 * rmin)
-    return "VoxelSize " + formatNumber(o.voxelSize) + " > half the smallest fiber radius " + formatNumber(rmin) +
-      ": layers are not resolved";
+    return "VoxelSize " + formatNumber(o.voxelSize) + " > half the smallest fiber radius " +
+      formatNumber(rmin) + ": layers are not resolved";
   return {};
 }
 
@@ -254,7 +261,8 @@ SimParams simParams(const PLIPlan& plan, const PLIOptions& o)
   return sp;
 }
 
-Status runPLI(const FiberModel& model, const PLIOptions& o, GridRange px, PLIImage& image, const ProgressFn& progress)
+Status runPLI(const FiberModel& model, const PLIOptions& o, GridRange px, PLIImage& image,
+  const ProgressFn& progress)
 {
   PLIPlan plan;
   Status st = planPLI(model, o, plan);
@@ -268,8 +276,8 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, GridRange px, PLIIma
   return run;
 }
 
-Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planIn, GridRange px, PLIImage& image,
-  const ProgressFn& progress)
+Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planIn, GridRange px,
+  PLIImage& image, const ProgressFn& progress)
 {
   image = PLIImage();
   image.plan = planIn;
@@ -277,11 +285,12 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   const PLIPlan& plan = image.plan;
   if (px.nx() <= 0 && px.ny() <= 0 && px.i0 == 0 && px.j0 == 0)
     px = GridRange{ 0, plan.pixels[0], 0, plan.pixels[1] };
-  if (px.i0 < 0 || px.j0 < 0 || px.i1 > plan.pixels[0] || px.j1 > plan.pixels[1] || px.nx() < 1 || px.ny() < 1)
+  if (px.i0 < 0 || px.j0 < 0 || px.i1 > plan.pixels[0] || px.j1 > plan.pixels[1] || px.nx() < 1 ||
+    px.ny() < 1)
   {
     std::ostringstream m;
-    m << "pixel range [" << px.i0 << "," << px.i1 << ")x[" << px.j0 << "," << px.j1 << ") is not inside the image "
-      << plan.pixels[0] << " x " << plan.pixels[1];
+    m << "pixel range [" << px.i0 << "," << px.i1 << ")x[" << px.j0 << "," << px.j1
+      << ") is not inside the image " << plan.pixels[0] << " x " << plan.pixels[1];
     st.error = m.str();
     return st;
   }
@@ -290,10 +299,10 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   // The budget of this piece only: under MPI every rank holds its own columns and pixels, so a
   // job too large for one process may fit split over the ranks.
   std::ostringstream what;
-  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0] << " x "
-       << plan.lattice.n[1] << " x " << plan.lattice.n[2] << " voxels (" << cols.nx() << " x " << cols.ny()
-       << " voxel columns in this piece), " << plan.rho.size() << " polarizer angles and " << plan.views.size()
-       << " views";
+  what << "VoxelSize " << o.voxelSize << " with a VolumeOfInterest of " << plan.lattice.n[0]
+       << " x " << plan.lattice.n[1] << " x " << plan.lattice.n[2] << " voxels (" << cols.nx()
+       << " x " << cols.ny() << " voxel columns in this piece), " << plan.rho.size()
+       << " polarizer angles and " << plan.views.size() << " views";
   st.error = checkMemoryBudget(estimatePieceBytes(plan, o, px), what.str());
   if (!st.ok())
   {
@@ -307,7 +316,8 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   if (progress)
     simProgress = [&progress](double f) { return progress(0.95 * f); };
   std::vector<Stack> voxelStacks;
-  SimResult sr = simulate(model, plan.tissue, plan.lattice, sp, plan.views, cols, voxelStacks, simProgress);
+  SimResult sr =
+    simulate(model, plan.tissue, plan.lattice, sp, plan.views, cols, voxelStacks, simProgress);
   st.warnings.insert(st.warnings.end(), sr.status.warnings.begin(), sr.status.warnings.end());
   if (!sr.status.error.empty())
   {
@@ -333,7 +343,8 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
   for (std::size_t v = 0; v < voxelStacks.size(); ++v)
   {
     Stack blurred, pix;
-    Status b = blurStack(voxelStacks[v], plan.lattice.n[0], plan.lattice.n[1], plan.sigmaVox, needed, blurred);
+    Status b = blurStack(
+      voxelStacks[v], plan.lattice.n[0], plan.lattice.n[1], plan.sigmaVox, needed, blurred);
     voxelStacks[v] = Stack(); // free the voxel stack early
     if (!b.ok())
     {
@@ -349,7 +360,8 @@ Status runPLI(const FiberModel& model, const PLIOptions& o, const PLIPlan& planI
     addNoise(pix, o.noiseGain, o.seed, static_cast<int>(v), plan.pixels[0], o.numberOfThreads);
     image.views.push_back(std::move(pix));
   }
-  image.opticsSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  image.opticsSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   reportProgress(progress, 1.0);
   return st;
 }

@@ -28,14 +28,16 @@ TileReach imageReach(const PLIPlan& plan, const PLIOptions& options, const GridR
   if (px.nx() < 1 || px.ny() < 1)
     return TileReach();
   const GridRange cols = voxelColumnsFor(plan, options, px);
-  return columnsReach(plan.lattice, linkRegion(plan.lattice, simParams(plan, options), plan.views, cols), largestScale(plan));
+  return columnsReach(plan.lattice,
+    linkRegion(plan.lattice, simParams(plan, options), plan.views, cols), largestScale(plan));
 }
 
 TileReach tissueReach(const PLIPlan& plan, const VoxelBox& box)
 {
   if (box.count() <= 0)
     return TileReach();
-  return columnsReach(plan.lattice, GridRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, largestScale(plan));
+  return columnsReach(
+    plan.lattice, GridRange{ box.lo[0], box.hi[0], box.lo[1], box.hi[1] }, largestScale(plan));
 }
 
 } // namespace pli

@@ -93,14 +93,14 @@ struct SimParams
 {
   double wavelengthNm = 525.0;
   double lightIntensity = 26000.0;
-  double step = 1.0;        ///< voxels
-  std::vector<double> rho;  ///< polarizer angles, radians
+  double step = 1.0;       ///< voxels
+  std::vector<double> rho; ///< polarizer angles, radians
   Interp interp = Interp::Slerp;
   TiltConvention conv = TiltConvention::Physical;
   StepRule stepRule = StepRule::ExactLength;
   LateralOutside lateral = LateralOutside::SampleFibers;
-  int tile = 64;            ///< B of the column tiles (§3.5)
-  int threads = 0;          ///< 0 = all cores
+  int tile = 64;   ///< B of the column tiles (§3.5)
+  int threads = 0; ///< 0 = all cores
 };
 
 /// Image stack of one view: value of column/pixel (x0 + i, y0 + j) and rotation k at

@@ -32,11 +32,16 @@ LabelProps LabelProps::fromSpec(const TissueSpec& spec)
 
 std::int64_t RayMarcher::lateralReach(std::int64_t nz, double theta)
 {
-  return theta == 0.0 ? 0 : static_cast<std::int64_t>(std::ceil(0.5 * static_cast<double>(nz) * std::tan(theta)));
+  return theta == 0.0
+    ? 0
+    : static_cast<std::int64_t>(std::ceil(0.5 * static_cast<double>(nz) * std::tan(theta)));
 }
 
-RayMarcher::RayMarcher(const SectionLattice& lattice, const SimParams& params, const View& view, const LabelProps& props)
-  : lat_(lattice), par_(params), props_(props)
+RayMarcher::RayMarcher(
+  const SectionLattice& lattice, const SimParams& params, const View& view, const LabelProps& props)
+  : lat_(lattice)
+  , par_(params)
+  , props_(props)
 {
   const double th = view.theta, ph = view.phi;
   const double c = std::cos(th), s = std::sin(th);
@@ -97,7 +102,8 @@ void RayMarcher::midPlanePoint(std::int64_t i, std::int64_t j, double out[2]) co
   if (stretch_ == 1.0)
     return;
   // Only the component along the tilt azimuth is stretched (the tilt axis is perpendicular to d).
-  const double t = (stretch_ - 1.0) * ((out[0] - centre_[0]) * dir_[0] + (out[1] - centre_[1]) * dir_[1]);
+  const double t =
+    (stretch_ - 1.0) * ((out[0] - centre_[0]) * dir_[0] + (out[1] - centre_[1]) * dir_[1]);
   out[0] += t * dir_[0];
   out[1] += t * dir_[1];
 }
@@ -123,7 +129,8 @@ GridRange RayMarcher::midPlaneColumns(const GridRange& cols) const
   return GridRange{ column(lo[0]) - 1, column(hi[0]) + 2, column(lo[1]) - 1, column(hi[1]) + 2 };
 }
 
-void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j, const GridRange& clamp, double* out) const
+void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j,
+  const GridRange& clamp, double* out) const
 {
   const int nr = static_cast<int>(c2r_.size());
   // Stokes S1..S3 per rotation without attenuation: attenuation is a scalar for all four
@@ -164,7 +171,8 @@ void RayMarcher::march(const TissueBlock& block, std::int64_t i, std::int64_t j,
     const double p[3] = { px0 + m * L_[0], py0 + m * L_[1], m * L_[2] };
     const std::int64_t vi = static_cast<std::int64_t>(std::floor(p[0]));
     const std::int64_t vj = static_cast<std::int64_t>(std::floor(p[1]));
-    const std::int64_t vk = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(p[2])), 0, nz - 1);
+    const std::int64_t vk =
+      std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(p[2])), 0, nz - 1);
     const std::int32_t label = block.contains(vi, vj) ? block.label(vi, vj, vk) : 0;
     const double l = len_[s];
     muSum += props_.mu[static_cast<std::size_t>(label)] * l;

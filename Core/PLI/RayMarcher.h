@@ -27,14 +27,16 @@ struct LabelProps
 class RayMarcher
 {
 public:
-  RayMarcher(const SectionLattice& lattice, const SimParams& params, const View& view, const LabelProps& props);
+  RayMarcher(const SectionLattice& lattice, const SimParams& params, const View& view,
+    const LabelProps& props);
 
   /// Lateral reach of the ray around its column centre, voxels (ceil((n_z/2)·tan θ_t)).
   static std::int64_t lateralReach(std::int64_t nz, double theta);
   std::int64_t numberOfSteps() const { return static_cast<std::int64_t>(len_.size()); }
 
-  /// SectionLattice position (voxel units, lateral) where the ray of column (i, j) crosses the section's
-  /// mid-plane: the column centre, or on the tilted sensor its stretched image (View::stretch).
+  /// SectionLattice position (voxel units, lateral) where the ray of column (i, j) crosses the
+  /// section's mid-plane: the column centre, or on the tilted sensor its stretched image
+  /// (View::stretch).
   void midPlanePoint(std::int64_t i, std::int64_t j, double out[2]) const;
 
   /// Columns holding the mid-plane points of the rays of `cols` (grown by 1 on the tilted sensor,
@@ -43,7 +45,8 @@ public:
 
   /// Marches the ray of column (i, j) through `block` and writes I(ρ_k) = ½(S0 − S1) for every k
   /// to out[0..nrho). `clamp` = lateral stencil bounds for interpolation (see sampleAxis).
-  void march(const TissueBlock& block, std::int64_t i, std::int64_t j, const GridRange& clamp, double* out) const;
+  void march(const TissueBlock& block, std::int64_t i, std::int64_t j, const GridRange& clamp,
+    double* out) const;
 
 private:
   SectionLattice lat_;
@@ -53,9 +56,9 @@ private:
   double L_[3] = { 0, 0, 1 };
   double B_[3][3]; ///< v_b = B·v
   double p0off_[2] = { 0, 0 };
-  double dir_[2] = { 1, 0 };     ///< tilt azimuth d
-  double stretch_ = 1.0;         ///< View::stretch
-  double centre_[2] = { 0, 0 };  ///< image centre c, voxel units
+  double dir_[2] = { 1, 0 };      ///< tilt azimuth d
+  double stretch_ = 1.0;          ///< View::stretch
+  double centre_[2] = { 0, 0 };   ///< image centre c, voxel units
   std::vector<double> len_, mid_; ///< step lengths and midpoint distances along the ray (voxels)
   std::vector<double> c2r_, s2r_;
 };

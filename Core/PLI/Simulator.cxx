@@ -52,7 +52,8 @@ std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& vi
   return interp == Interp::NN ? 0 : 1;
 }
 
-GridRange linkRegion(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views, const GridRange& cols)
+GridRange linkRegion(const SectionLattice& lat, const SimParams& par,
+  const std::vector<View>& views, const GridRange& cols)
 {
   const std::int64_t halo = tiltHalo(lat, views, par.interp);
   // Links of every column any ray reads: on the tilted sensor the stretched image of cols.
@@ -60,14 +61,14 @@ GridRange linkRegion(const SectionLattice& lat, const SimParams& par, const std:
   for (const View& v : views)
   {
     const GridRange r = grow(RayMarcher(lat, par, v, LabelProps()).midPlaneColumns(cols), halo);
-    region = GridRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1), std::min(region.j0, r.j0),
-      std::max(region.j1, r.j1) };
+    region = GridRange{ std::min(region.i0, r.i0), std::max(region.i1, r.i1),
+      std::min(region.j0, r.j0), std::max(region.j1, r.j1) };
   }
   return region;
 }
 
-double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
-  const GridRange& cols)
+double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par,
+  const std::vector<View>& views, const GridRange& cols)
 {
   const double h = static_cast<double>(tiltHalo(lat, views, par.interp));
   const double B = std::min<double>(par.tile, std::max<double>(cols.nx(), cols.ny()));
@@ -83,8 +84,8 @@ double estimateSimulationBytes(const SectionLattice& lat, const SimParams& par, 
   return threads * tile + outBytes;
 }
 
-std::string validateSimulation(const SectionLattice& lat, const SimParams& par, const std::vector<View>& views,
-  const GridRange& cols)
+std::string validateSimulation(const SectionLattice& lat, const SimParams& par,
+  const std::vector<View>& views, const GridRange& cols)
 {
   std::ostringstream m;
   const std::string voxel = ValueChecks().positive("VoxelSize", lat.voxel).error();
@@ -105,21 +106,24 @@ std::string validateSimulation(const SectionLattice& lat, const SimParams& par, 
   else if (par.tile < 1)
     m << mustBe("tile size", par.tile, ">= 1");
   else if (cols.nx() < 1 || cols.ny() < 1)
-    m << "column range [" << cols.i0 << "," << cols.i1 << ")x[" << cols.j0 << "," << cols.j1 << ") is empty";
+    m << "column range [" << cols.i0 << "," << cols.i1 << ")x[" << cols.j0 << "," << cols.j1
+      << ") is empty";
   if (!m.str().empty())
     return m.str();
   for (std::size_t v = 0; v < views.size(); ++v)
   {
     if (!(views[v].theta >= 0.0 && views[v].theta < M_PI / 4.0))
     {
-      m << "TiltAngle of view " << v << " is " << views[v].theta * 180.0 / M_PI << " deg in tissue, must be in [0, 45)";
+      m << "TiltAngle of view " << v << " is " << views[v].theta * 180.0 / M_PI
+        << " deg in tissue, must be in [0, 45)";
       return m.str();
     }
   }
   std::ostringstream what;
-  what << "VoxelSize " << lat.voxel << " with VolumeOfInterest (" << lat.n[0] << " x " << lat.n[1] << " x " << lat.n[2]
-       << " voxels)";
-  const std::string tooBig = checkMemoryBudget(estimateSimulationBytes(lat, par, views, cols), what.str());
+  what << "VoxelSize " << lat.voxel << " with VolumeOfInterest (" << lat.n[0] << " x " << lat.n[1]
+       << " x " << lat.n[2] << " voxels)";
+  const std::string tooBig =
+    checkMemoryBudget(estimateSimulationBytes(lat, par, views, cols), what.str());
   if (!tooBig.empty())
     return tooBig + ": increase VoxelSize or reduce the volume";
   // Steps per ray: StepSize far below the voxel size would take forever.
@@ -150,9 +154,11 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
   tissueLinkTable(model, spec, lat, region, B, table);
   res.estimatedBytes += table.links.size() * sizeof(SectionLink);
   if (table.zeroLengthLinks > 0)
-    res.status.warnings.push_back(std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
+    res.status.warnings.push_back(
+      std::to_string(table.zeroLengthLinks) + " zero-length links skipped");
   if (table.unknownBundleFibers > 0)
-    res.status.warnings.push_back(std::to_string(table.unknownBundleFibers) + " fibers of bundles without layers skipped");
+    res.status.warnings.push_back(
+      std::to_string(table.unknownBundleFibers) + " fibers of bundles without layers skipped");
 
   out.assign(views.size(), Stack());
   for (Stack& s : out)
@@ -174,14 +180,18 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
     tanMax = std::max(tanMax, std::tan(v.theta));
   for (std::int64_t k = 0; k < lat.n[2]; ++k)
   {
-    const double dz = std::fabs(static_cast<double>(k) + 0.5 - 0.5 * static_cast<double>(lat.n[2])) + 1.0;
-    reach[static_cast<std::size_t>(k)] = std::min<std::int64_t>(halo, static_cast<std::int64_t>(std::ceil(dz * tanMax)) + 2);
+    const double dz =
+      std::fabs(static_cast<double>(k) + 0.5 - 0.5 * static_cast<double>(lat.n[2])) + 1.0;
+    reach[static_cast<std::size_t>(k)] =
+      std::min<std::int64_t>(halo, static_cast<std::int64_t>(std::ceil(dz * tanMax)) + 2);
   }
 
   const int threads = resolveThreadCount(par.threads);
   std::vector<TissueBlock> blocks(static_cast<std::size_t>(threads));
-  std::vector<double> tVox(static_cast<std::size_t>(threads), 0.0), tProp(static_cast<std::size_t>(threads), 0.0);
-  std::vector<std::int64_t> nVox(static_cast<std::size_t>(threads), 0), nSteps(static_cast<std::size_t>(threads), 0);
+  std::vector<double> tVox(static_cast<std::size_t>(threads), 0.0),
+    tProp(static_cast<std::size_t>(threads), 0.0);
+  std::vector<std::int64_t> nVox(static_cast<std::size_t>(threads), 0),
+    nSteps(static_cast<std::size_t>(threads), 0);
   std::vector<std::int64_t> labelled(tiles.size(), 0);
   std::vector<char> overlap(tiles.size(), 0);
 
@@ -226,8 +236,10 @@ SimResult simulate(const FiberModel& model, const TissueSpec& spec, const Sectio
         if (first && block.contains(tile.i0, tile.j0) && block.contains(tile.i1 - 1, tile.j1 - 1))
         {
           std::int64_t inside = 0;
-          for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]); ++j)
-            for (std::int64_t i = std::max<std::int64_t>(tile.i0, 0); i < std::min(tile.i1, lat.n[0]); ++i)
+          for (std::int64_t j = std::max<std::int64_t>(tile.j0, 0); j < std::min(tile.j1, lat.n[1]);
+               ++j)
+            for (std::int64_t i = std::max<std::int64_t>(tile.i0, 0);
+                 i < std::min(tile.i1, lat.n[0]); ++i)
               for (std::int64_t k = 0; k < lat.n[2]; ++k)
                 inside += block.label(i, j, k) != 0 ? 1 : 0;
           labelled[static_cast<std::size_t>(ti)] = inside;

@@ -21,8 +21,8 @@ constexpr std::size_t kTileBytesPerVoxel = 16;
 struct SimResult
 {
   Status status; ///< error, warnings, and aborted when progress asked to stop (out is then empty)
-  bool emptySection = false;   ///< no fiber voxel in the requested columns: background only
-  bool overlap = false;        ///< some voxel was reachable by two fibers (nearest won; no warning here)
+  bool emptySection = false; ///< no fiber voxel in the requested columns: background only
+  bool overlap = false; ///< some voxel was reachable by two fibers (nearest won; no warning here)
   double voxeliseCpuSeconds = 0.0;  ///< summed over threads
   double propagateCpuSeconds = 0.0; ///< summed over threads
   std::int64_t voxelsVoxelised = 0; ///< including tile halos
@@ -36,8 +36,8 @@ std::int64_t tiltHalo(const SectionLattice& lattice, const std::vector<View>& vi
 /// Voxel columns whose links the rays of `cols` read: the columns and, on the tilted sensor, the
 /// columns of their stretched mid-plane images, grown by the tilt halo (the region of simulate's
 /// link table, and of the fibers an MPI tile receives, PLIReach.h).
-GridRange linkRegion(const SectionLattice& lattice, const SimParams& params, const std::vector<View>& views,
-  const GridRange& cols);
+GridRange linkRegion(const SectionLattice& lattice, const SimParams& params,
+  const std::vector<View>& views, const GridRange& cols);
 
 /// Memory estimate (bytes) of simulate() for these arguments, without allocating.
 double estimateSimulationBytes(const SectionLattice& lattice, const SimParams& params,

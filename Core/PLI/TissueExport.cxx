@@ -28,7 +28,8 @@ Status tissueBox(const PLIPlan& plan, const double box[6], VoxelBox& out)
       continue;
     }
     std::ostringstream m;
-    if (!std::isfinite(box[2 * a]) || !std::isfinite(box[2 * a + 1]) || !(box[2 * a] <= box[2 * a + 1]))
+    if (!std::isfinite(box[2 * a]) || !std::isfinite(box[2 * a + 1]) ||
+      !(box[2 * a] <= box[2 * a + 1]))
     {
       m << "TissueVolume " << axisName[a] << " range [" << box[2 * a] << ", " << box[2 * a + 1]
         << "] must have min <= max (or min > max on every axis for the whole VolumeOfInterest)";
@@ -67,7 +68,8 @@ double tissueExportBytes(const PLIPlan& plan, const PLIOptions& options, const V
   const double tile = std::min(B, static_cast<double>(box.hi[0] - box.lo[0])) *
     std::min(B, static_cast<double>(box.hi[1] - box.lo[1]));
   const double block = tile * static_cast<double>(plan.lattice.n[2]) * kTileBytesPerVoxel;
-  const double arrays = static_cast<double>(box.count()) * (sizeof(std::int32_t) + 3 * sizeof(float));
+  const double arrays =
+    static_cast<double>(box.count()) * (sizeof(std::int32_t) + 3 * sizeof(float));
   return block + arrays;
 }
 
@@ -80,8 +82,8 @@ std::string checkTissueBudget(const PLIPlan& plan, const PLIOptions& options, co
   return err.empty() ? err : err + ": choose a smaller TissueVolume or a larger VoxelSize";
 }
 
-Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box,
-  TissueVolume& out, const ProgressFn& progress)
+Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options,
+  const VoxelBox& box, TissueVolume& out, const ProgressFn& progress)
 {
   Status st;
   out = TissueVolume();
@@ -121,7 +123,8 @@ Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptio
       for (std::int64_t j = tile.j0; j < tile.j1; ++j)
         for (std::int64_t i = tile.i0; i < tile.i1; ++i)
         {
-          const std::size_t p = static_cast<std::size_t>(((k - box.lo[2]) * ny + (j - cols.j0)) * nx + (i - cols.i0));
+          const std::size_t p =
+            static_cast<std::size_t>(((k - box.lo[2]) * ny + (j - cols.j0)) * nx + (i - cols.i0));
           out.label[p] = block.label(i, j, k);
           block.axis(i, j, k, &out.axis[3 * p]);
         }

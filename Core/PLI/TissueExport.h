@@ -47,8 +47,8 @@ struct TissueVolume
 /// slot b (plan.tissue: sorted bundle ids, L = maxLayers()). progress is called between column
 /// tiles of options.tileSize; when it returns false the export stops (the Status is aborted, the
 /// arrays empty).
-Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options, const VoxelBox& box,
-  TissueVolume& out, const ProgressFn& progress = {});
+Status exportTissue(const FiberModel& model, const PLIPlan& plan, const PLIOptions& options,
+  const VoxelBox& box, TissueVolume& out, const ProgressFn& progress = {});
 
 } // namespace pli
 } // namespace fiberpli

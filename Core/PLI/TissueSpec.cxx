@@ -127,9 +127,11 @@ Status validateLayers(std::vector<Layer>& layers, const std::string& where)
     if (l.scale > 1.0)
       st.warnings.push_back("Layers: scale " + formatNumber(l.scale) + " > 1 in " + where);
     if (l.model == AxisModel::Parallel && l.dn > 0.0)
-      st.warnings.push_back("Layers: parallel layer with dn > 0 in " + where + " shows up rotated by 90 deg");
+      st.warnings.push_back(
+        "Layers: parallel layer with dn > 0 in " + where + " shows up rotated by 90 deg");
     if (l.model == AxisModel::Radial && l.dn < 0.0)
-      st.warnings.push_back("Layers: radial layer with dn < 0 in " + where + " shows up rotated by 90 deg");
+      st.warnings.push_back(
+        "Layers: radial layer with dn < 0 in " + where + " shows up rotated by 90 deg");
   }
   if (!std::is_sorted(layers.begin(), layers.end(),
         [](const Layer& a, const Layer& b) { return a.scale < b.scale; }))
@@ -224,7 +226,8 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
         std::string extra;
         if (!(in >> id) || (in >> extra))
         {
-          st.error = "Layers: bundle prefix '" + group.substr(0, colon) + "' in " + where0 + " is not an integer";
+          st.error = "Layers: bundle prefix '" + group.substr(0, colon) + "' in " + where0 +
+            " is not an integer";
           return st;
         }
         if (specific.count(id))
@@ -257,7 +260,8 @@ Status makeTissueSpec(const std::string& layersText, const std::vector<int>& bun
     }
     else
     {
-      st.error = "Layers: bundle " + formatNumber(id) + " has no group and there is no default group";
+      st.error =
+        "Layers: bundle " + formatNumber(id) + " has no group and there is no default group";
       return st;
     }
   }

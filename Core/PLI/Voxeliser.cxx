@@ -15,7 +15,8 @@ void TissueBlock::axis(std::int64_t i, std::int64_t j, std::int64_t k, float out
   std::memcpy(out, &words[4 * index(i, j, k)], 3 * sizeof(float));
 }
 
-void TissueBlock::setVoxel(std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t lab, const float ax[3])
+void TissueBlock::setVoxel(
+  std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t lab, const float ax[3])
 {
   const std::size_t w = 4 * index(i, j, k);
   std::memcpy(&words[w], ax, 3 * sizeof(float));
@@ -68,7 +69,7 @@ struct BlockColumn
   std::int32_t strand;
   std::int32_t labelBase;
   bool* overlap;
-  double cx, cy;          ///< the column's voxel centre (for the inner radius of an axon layer)
+  double cx, cy; ///< the column's voxel centre (for the inner radius of an axon layer)
   RadiusModel radius;
 
   bool skip(std::int64_t k) const { return out > 0 && out > (*reach)[static_cast<std::size_t>(k)]; }
@@ -132,16 +133,19 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
   {
     const SectionLink& lk = t.links[g];
     const std::vector<Layer>* layers = &spec.layers[static_cast<std::size_t>(lk.slot)];
-    forEachCoveredVoxel(t, g, fill, nz, [&](std::int64_t i, std::int64_t j) {
-      std::int64_t out = 0;
-      if (shape)
+    forEachCoveredVoxel(t, g, fill, nz,
+      [&](std::int64_t i, std::int64_t j)
       {
-        const GridRange& c = shape->core;
-        out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
-      }
-      return BlockColumn{ w + 4 * block.index(i, j, 0), &t, layers, shape ? &shape->reach : &noReach, out, g,
-        lk.strand, 1 + lk.slot * L, &stats.overlap, static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5, spec.radius };
-    });
+        std::int64_t out = 0;
+        if (shape)
+        {
+          const GridRange& c = shape->core;
+          out = std::max({ c.i0 - i, i - (c.i1 - 1), c.j0 - j, j - (c.j1 - 1), std::int64_t(0) });
+        }
+        return BlockColumn{ w + 4 * block.index(i, j, 0), &t, layers,
+          shape ? &shape->reach : &noReach, out, g, lk.strand, 1 + lk.slot * L, &stats.overlap,
+          static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5, spec.radius };
+      });
   }
 
   // Second pass: the owner key is replaced in place by the optic axis.
@@ -159,7 +163,8 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
         {
           ++stats.labelled;
           const SectionLink& lk = t.links[cell[2]];
-          const Layer& layer = spec.layers[static_cast<std::size_t>(lk.slot)][static_cast<std::size_t>((lab - 1) % L)];
+          const Layer& layer =
+            spec.layers[static_cast<std::size_t>(lk.slot)][static_cast<std::size_t>((lab - 1) % L)];
           const Vec3 ax = lk.q - lk.p;
           if (layer.model == AxisModel::Parallel)
           {
@@ -170,7 +175,8 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
           }
           else if (layer.model == AxisModel::Radial)
           {
-            const Vec3 c{ static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5, static_cast<double>(k) + 0.5 };
+            const Vec3 c{ static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5,
+              static_cast<double>(k) + 0.5 };
             double tt = dot(c - lk.p, ax) / norm2(ax);
             tt = tt < 0.0 ? 0.0 : (tt > 1.0 ? 1.0 : tt);
             const Vec3 d = c - (lk.p + tt * ax);
@@ -188,8 +194,8 @@ void voxeliseBlock(const LinkTable& t, const TissueSpec& spec, const SectionLatt
     }
 }
 
-VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const GridRange& cols, TissueBlock& block, LateralOutside lateral)
+VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec,
+  const SectionLattice& lattice, const GridRange& cols, TissueBlock& block, LateralOutside lateral)
 {
   LinkTable table;
   tissueLinkTable(model, spec, lattice, cols, 64, table);

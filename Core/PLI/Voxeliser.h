@@ -1,6 +1,6 @@
 /// Voxeliser: capsule fibers → layered tissue on the voxel lattice, one lateral block at a time
-/// (docs/pli-simulation.md §3.3, §3.5). A block holds 16 bytes per voxel: while filling, the owner key
-/// (d2 double, link id) and the label; afterwards the optic axis (3 × float) and the label.
+/// (docs/pli-simulation.md §3.3, §3.5). A block holds 16 bytes per voxel: while filling, the owner
+/// key (d2 double, link id) and the label; afterwards the optic axis (3 × float) and the label.
 #pragma once
 
 #include "Model/FiberModel.h"
@@ -42,15 +42,16 @@ struct TissueBlock
   }
   /// Optic axis after finalisation; (0,0,0) = no axis.
   void axis(std::int64_t i, std::int64_t j, std::int64_t k, float out[3]) const;
-  void setVoxel(std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t label, const float axis[3]);
+  void setVoxel(
+    std::int64_t i, std::int64_t j, std::int64_t k, std::int32_t label, const float axis[3]);
   /// Sizes the buffer (reusing its capacity) for cols × nz, all voxels unowned.
   void reset(const GridRange& c, std::int64_t nzIn);
 };
 
 struct VoxeliseStats
 {
-  bool overlap = false;        ///< a voxel was reachable by two different fibers (strands, LinkTable.h)
-  std::int64_t labelled = 0;   ///< voxels with label > 0 in the block
+  bool overlap = false; ///< a voxel was reachable by two different fibers (strands, LinkTable.h)
+  std::int64_t labelled = 0; ///< voxels with label > 0 in the block
 };
 
 /// Fills `block` (already reset to its columns) from the candidate links: ownership by the rule of
@@ -66,11 +67,13 @@ struct HaloShape
   std::vector<std::int64_t> reach;
 };
 void voxeliseBlock(const LinkTable& table, const TissueSpec& spec, const SectionLattice& lattice,
-  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats, const HaloShape* shape = nullptr);
+  LateralOutside lateral, TissueBlock& block, VoxeliseStats& stats,
+  const HaloShape* shape = nullptr);
 
 /// Convenience for tests and field export: links for `cols`, then voxeliseBlock.
-VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec, const SectionLattice& lattice,
-  const GridRange& cols, TissueBlock& block, LateralOutside lateral = LateralOutside::SampleFibers);
+VoxeliseStats voxelise(const FiberModel& model, const TissueSpec& spec,
+  const SectionLattice& lattice, const GridRange& cols, TissueBlock& block,
+  LateralOutside lateral = LateralOutside::SampleFibers);
 
 } // namespace pli
 } // namespace fiberpli

@@ -33,7 +33,8 @@ bool continues(const Fiber& a, const Fiber& b)
 std::int32_t findRoot(std::vector<std::int32_t>& parent, std::int32_t f)
 {
   while (parent[static_cast<std::size_t>(f)] != f)
-    f = parent[static_cast<std::size_t>(f)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
+    f = parent[static_cast<std::size_t>(f)] =
+      parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(f)])];
   return f;
 }
 } // namespace
@@ -51,10 +52,11 @@ std::vector<std::int32_t> fiberStrands(const FiberModel& model)
     if (model.fibers[f].size() >= 2)
       byStart.push_back(static_cast<std::int32_t>(f));
   }
-  auto startX = [&](std::int32_t f) { return model.fibers[static_cast<std::size_t>(f)].points.front().x; };
-  std::sort(byStart.begin(), byStart.end(), [&](std::int32_t a, std::int32_t b) {
-    return startX(a) < startX(b) || (startX(a) == startX(b) && a < b);
-  });
+  auto startX = [&](std::int32_t f)
+  { return model.fibers[static_cast<std::size_t>(f)].points.front().x; };
+  std::sort(byStart.begin(), byStart.end(),
+    [&](std::int32_t a, std::int32_t b)
+    { return startX(a) < startX(b) || (startX(a) == startX(b) && a < b); });
   for (const std::int32_t a : byStart)
   {
     const Fiber& fa = model.fibers[static_cast<std::size_t>(a)];
@@ -86,8 +88,9 @@ std::vector<int> bundlesOf(const FiberModel& model)
   return ids;
 }
 
-void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles, const std::vector<double>& slotScale,
-  RadiusModel radius, const SectionLattice& lat, const GridRange& region, std::int64_t binSize, LinkTable& t)
+void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles,
+  const std::vector<double>& slotScale, RadiusModel radius, const SectionLattice& lat,
+  const GridRange& region, std::int64_t binSize, LinkTable& t)
 {
   t = LinkTable();
   t.radius = radius;
@@ -104,11 +107,13 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
   std::vector<std::vector<int>> fibersOfSlot(slotBundles.size());
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
-    const auto it = std::lower_bound(slotBundles.begin(), slotBundles.end(), model.fibers[f].bundle);
+    const auto it =
+      std::lower_bound(slotBundles.begin(), slotBundles.end(), model.fibers[f].bundle);
     if (it == slotBundles.end() || *it != model.fibers[f].bundle)
       ++t.unknownBundleFibers;
     else
-      fibersOfSlot[static_cast<std::size_t>(it - slotBundles.begin())].push_back(static_cast<int>(f));
+      fibersOfSlot[static_cast<std::size_t>(it - slotBundles.begin())].push_back(
+        static_cast<int>(f));
   }
   const std::vector<std::int32_t> strand = fiberStrands(model);
   const double inv = 1.0 / lat.voxel;
@@ -155,9 +160,11 @@ void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles
         const std::uint32_t g = static_cast<std::uint32_t>(t.links.size());
         t.links.push_back(L);
         const std::int64_t i0 = std::max<std::int64_t>(region.i0, static_cast<std::int64_t>(fi0));
-        const std::int64_t i1 = std::min<std::int64_t>(region.i1 - 1, static_cast<std::int64_t>(fi1));
+        const std::int64_t i1 =
+          std::min<std::int64_t>(region.i1 - 1, static_cast<std::int64_t>(fi1));
         const std::int64_t j0 = std::max<std::int64_t>(region.j0, static_cast<std::int64_t>(fj0));
-        const std::int64_t j1 = std::min<std::int64_t>(region.j1 - 1, static_cast<std::int64_t>(fj1));
+        const std::int64_t j1 =
+          std::min<std::int64_t>(region.j1 - 1, static_cast<std::int64_t>(fj1));
         for (std::int64_t by = (j0 - t.by0) / t.binSize; by <= (j1 - t.by0) / t.binSize; ++by)
           for (std::int64_t bx = (i0 - t.bx0) / t.binSize; bx <= (i1 - t.bx0) / t.binSize; ++bx)
             t.bins[static_cast<std::size_t>(by * t.nbx + bx)].push_back(g);

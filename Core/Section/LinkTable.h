@@ -1,13 +1,14 @@
-/// LinkTable and the one voxel-ownership rule of a section (docs/pli-simulation.md §3.3): which fiber
-/// link owns a voxel centre. The simulation's voxeliser (Core/PLI/Voxeliser.h) and the ground truth
-/// (Core/Analysis/GroundTruth.h) both build this table and visit voxels with forEachCoveredVoxel and
-/// ownerWins, in voxel units, so the "true orientation" of a voxel is exactly the one simulated.
+/// LinkTable and the one voxel-ownership rule of a section (docs/pli-simulation.md §3.3): which
+/// fiber link owns a voxel centre. The simulation's voxeliser (Core/PLI/Voxeliser.h) and the ground
+/// truth (Core/Analysis/GroundTruth.h) both build this table and visit voxels with
+/// forEachCoveredVoxel and ownerWins, in voxel units, so the "true orientation" of a voxel is
+/// exactly the one simulated.
 ///
-/// The rule: links are numbered g in the order (bundle slot, fiber index, link index); a voxel centre
-/// c is covered by link g when d² = |c − X|² <= S²·r², X the nearest point of the link's axis, r the
-/// local radius there (RadiusModel) and S the scale of the link's slot; of the links covering c, the
-/// one with the smallest d² owns it, ties going to the larger g. The owner does not depend on the
-/// order the links are visited in, nor on how the lattice is split into blocks.
+/// The rule: links are numbered g in the order (bundle slot, fiber index, link index); a voxel
+/// centre c is covered by link g when d² = |c − X|² <= S²·r², X the nearest point of the link's
+/// axis, r the local radius there (RadiusModel) and S the scale of the link's slot; of the links
+/// covering c, the one with the smallest d² owns it, ties going to the larger g. The owner does not
+/// depend on the order the links are visited in, nor on how the lattice is split into blocks.
 #pragma once
 
 #include "Geometry/Vec3.h"
@@ -23,7 +24,8 @@
 namespace fiberpli
 {
 
-/// Local radius of a link (§3.3): Linear taper (fastPLI) or the collision capsule radius max(rP, rQ).
+/// Local radius of a link (§3.3): Linear taper (fastPLI) or the collision capsule radius max(rP,
+/// rQ).
 enum class RadiusModel : std::uint8_t
 {
   Linear,
@@ -33,12 +35,14 @@ enum class RadiusModel : std::uint8_t
 /// One link of a fiber in voxel units of the lattice.
 struct SectionLink
 {
-  Vec3 p, q;          ///< voxel units: (point − origin)/voxel
+  Vec3 p, q; ///< voxel units: (point − origin)/voxel
   double rp = 0, rq = 0;
-  double ip = 0, iq = 0;  ///< inner radii (voxel units): Fiber::innerRadii, or rp, rq without a sheath
+  double ip = 0,
+         iq = 0; ///< inner radii (voxel units): Fiber::innerRadii, or rp, rq without a sheath
   std::int32_t slot = 0;  ///< bundle slot
   std::int32_t fiber = 0; ///< index in FiberModel::fibers
-  std::int32_t strand = 0; ///< fiberStrands: the same for the periodic translates of one closed fiber
+  std::int32_t strand =
+    0; ///< fiberStrands: the same for the periodic translates of one closed fiber
 };
 
 /// All links that can reach a lateral region, in the order g of the rule, with a 2-D bin grid over
@@ -46,19 +50,20 @@ struct SectionLink
 struct LinkTable
 {
   std::vector<SectionLink> links;
-  std::vector<double> scale;       ///< S per bundle slot
+  std::vector<double> scale; ///< S per bundle slot
   RadiusModel radius = RadiusModel::Linear;
   std::int64_t binSize = 64, bx0 = 0, by0 = 0, nbx = 0, nby = 0;
   std::vector<std::vector<std::uint32_t>> bins;
   int zeroLengthLinks = 0;
-  int unknownBundleFibers = 0;     ///< fibers whose bundle has no slot (skipped)
+  int unknownBundleFibers = 0; ///< fibers whose bundle has no slot (skipped)
 };
 
 /// Collects the links whose grown bounding box meets the columns `region` (global voxel indices)
 /// and the slab z ∈ [0, n_z). slotBundles are the bundle ids of the slots (sorted, distinct),
 /// slotScale their S; fibers of other bundles are skipped and counted.
-void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles, const std::vector<double>& slotScale,
-  RadiusModel radius, const SectionLattice& lattice, const GridRange& region, std::int64_t binSize, LinkTable& table);
+void buildLinkTable(const FiberModel& model, const std::vector<int>& slotBundles,
+  const std::vector<double>& slotScale, RadiusModel radius, const SectionLattice& lattice,
+  const GridRange& region, std::int64_t binSize, LinkTable& table);
 
 /// Per fiber the index of the first fiber of its strand. A strand is a closed fiber of a periodic
 /// cell and its translates by its closure T = last − first (PeriodicTiling.h makes them): fiber b
@@ -94,9 +99,11 @@ inline double innerRadiusAt(const SectionLink& l, double t, RadiusModel m)
 
 /// Visits every voxel centre of the columns `fill` × [0, nz) that link g covers (the capsule test
 /// of the rule). `column(i, j)` gives a visitor for column (i, j) with `bool skip(k)` (a voxel the
-/// caller never reads: not even tested) and `void cover(k, d2, r)` (covered, at d² and local radius r).
+/// caller never reads: not even tested) and `void cover(k, d2, r)` (covered, at d² and local radius
+/// r).
 template <class Column>
-void forEachCoveredVoxel(const LinkTable& t, std::uint32_t g, const GridRange& fill, std::int64_t nz, Column&& column)
+void forEachCoveredVoxel(
+  const LinkTable& t, std::uint32_t g, const GridRange& fill, std::int64_t nz, Column&& column)
 {
   const SectionLink& lk = t.links[g];
   const double S = t.scale[static_cast<std::size_t>(lk.slot)];
@@ -122,7 +129,8 @@ void forEachCoveredVoxel(const LinkTable& t, std::uint32_t g, const GridRange& f
     {
       // Only a cheap superset: the k where the centre is within `grow` of the infinite axis
       // line (a quadratic in z), widened by a voxel; the exact test below decides.
-      const double wx = static_cast<double>(i) + 0.5 - lk.p.x, wy = static_cast<double>(j) + 0.5 - lk.p.y;
+      const double wx = static_cast<double>(i) + 0.5 - lk.p.x,
+                   wy = static_cast<double>(j) + 0.5 - lk.p.y;
       const double e = wx * u.x + wy * u.y;
       const double qc = wx * wx + wy * wy - e * e - grow * grow;
       std::int64_t k0 = lo[2], k1 = hi[2];

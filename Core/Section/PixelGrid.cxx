@@ -36,14 +36,16 @@ std::int64_t pixelCount(std::int64_t nVoxels, double scale)
   return static_cast<std::int64_t>(std::llround(static_cast<double>(nVoxels) * scale));
 }
 
-void voxelsOfPixel(std::int64_t p, double scale, std::int64_t nVox, std::int64_t& first, std::int64_t& last)
+void voxelsOfPixel(
+  std::int64_t p, double scale, std::int64_t nVox, std::int64_t& first, std::int64_t& last)
 {
   const std::int64_t npx = pixelCount(nVox, scale);
   first = last = 0;
   if (p < 0 || p >= npx)
     return;
   // Start a little before the analytic bound and walk: the integer function decides.
-  std::int64_t i = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(static_cast<double>(p) / scale)) - 2);
+  std::int64_t i = std::max<std::int64_t>(
+    0, static_cast<std::int64_t>(std::floor(static_cast<double>(p) / scale)) - 2);
   while (i > 0 && pixelOfVoxel(i - 1, scale) >= p)
     --i;
   while (i < nVox && pixelOfVoxel(i, scale) < p)
@@ -64,8 +66,8 @@ std::string checkPixelGrid(const PixelGrid& g, std::int64_t& nx, std::int64_t& n
   std::ostringstream msg;
   const std::string sizes = ValueChecks()
                               .positive("VoxelSize", l.voxel)
-                              .require(std::isfinite(g.pixelSize) && g.pixelSize >= l.voxel, "PixelSize",
-                                g.pixelSize, ">= VoxelSize " + formatNumber(l.voxel))
+                              .require(std::isfinite(g.pixelSize) && g.pixelSize >= l.voxel,
+                                "PixelSize", g.pixelSize, ">= VoxelSize " + formatNumber(l.voxel))
                               .error();
   if (!sizes.empty())
   {
@@ -75,7 +77,8 @@ std::string checkPixelGrid(const PixelGrid& g, std::int64_t& nx, std::int64_t& n
   {
     msg << "voxel counts " << l.n[0] << " x " << l.n[1] << " x " << l.n[2] << " must be >= 0";
   }
-  else if (!std::isfinite(l.origin[0]) || !std::isfinite(l.origin[1]) || !std::isfinite(l.origin[2]))
+  else if (!std::isfinite(l.origin[0]) || !std::isfinite(l.origin[1]) ||
+    !std::isfinite(l.origin[2]))
   {
     msg << "lattice origin is not finite";
   }

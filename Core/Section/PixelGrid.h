@@ -23,7 +23,10 @@ struct GridRange
 };
 
 /// The whole nx × ny image.
-inline GridRange wholeImage(std::int64_t nx, std::int64_t ny) { return { 0, nx, 0, ny }; }
+inline GridRange wholeImage(std::int64_t nx, std::int64_t ny)
+{
+  return { 0, nx, 0, ny };
+}
 
 /// Empty string when nx, ny >= 0 and the range lies inside the image (an empty range is allowed),
 /// else a message naming the offending bound.
@@ -35,7 +38,8 @@ std::int64_t pixelOfVoxel(std::int64_t i, double scale);
 std::int64_t pixelCount(std::int64_t nVoxels, double scale);
 /// Voxels [first, last) that bin into pixel p (empty past the image); voxels mapped past the last
 /// pixel are dropped.
-void voxelsOfPixel(std::int64_t p, double scale, std::int64_t nVoxels, std::int64_t& first, std::int64_t& last);
+void voxelsOfPixel(
+  std::int64_t p, double scale, std::int64_t nVoxels, std::int64_t& first, std::int64_t& last);
 
 /// A lattice and the pixel size of its camera image (PixelSize >= VoxelSize).
 struct PixelGrid

@@ -1,5 +1,6 @@
-/// SectionLattice: the voxel lattice of a simulated section (docs/pli-simulation.md §3.1), shared by
-/// the simulation (Core/PLI) and the ground truth (Core/Analysis) so that both see the same voxels.
+/// SectionLattice: the voxel lattice of a simulated section (docs/pli-simulation.md §3.1), shared
+/// by the simulation (Core/PLI) and the ground truth (Core/Analysis) so that both see the same
+/// voxels.
 #pragma once
 
 #include <cstdint>

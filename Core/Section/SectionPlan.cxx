@@ -19,8 +19,8 @@ std::string checkSectionSizes(double voxelSize, double pixelSize)
     .error();
 }
 
-std::string planSection(const FiberModel& model, const double voiIn[6], double voxelSize, double pixelSize,
-  SectionPlan& plan)
+std::string planSection(const FiberModel& model, const double voiIn[6], double voxelSize,
+  double pixelSize, SectionPlan& plan)
 {
   plan = SectionPlan();
   std::string err = checkSectionSizes(voxelSize, pixelSize);
@@ -49,8 +49,8 @@ std::string planSection(const FiberModel& model, const double voiIn[6], double v
   return {};
 }
 
-PixelGrid latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx, std::int64_t ny,
-  double zMin, double zMax, int samplesPerPixel)
+PixelGrid latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx,
+  std::int64_t ny, double zMin, double zMax, int samplesPerPixel)
 {
   PixelGrid g;
   const int s = samplesPerPixel < 1 ? 1 : samplesPerPixel;

@@ -1,5 +1,5 @@
-/// SectionPlan: the one planning of a simulated section (docs/pli-simulation.md §3.1, §5.2) from the
-/// properties VolumeOfInterest, VoxelSize and PixelSize that PLISimulation and
+/// SectionPlan: the one planning of a simulated section (docs/pli-simulation.md §3.1, §5.2) from
+/// the properties VolumeOfInterest, VoxelSize and PixelSize that PLISimulation and
 /// FiberOrientationGroundTruth share: the voxel lattice, the pixel grid and the image geometry.
 /// Both filters call planSection, so their images always have the same pixels.
 #pragma once
@@ -16,12 +16,13 @@ namespace fiberpli
 
 struct SectionPlan : PixelGrid
 {
-  std::int64_t pixels[2] = { 0, 0 };    ///< whole image n_px × n_py
-  double imageOrigin[3] = { 0, 0, 0 };  ///< centre of pixel (0, 0) at the section's mid-plane, µm
-  double thickness = 0.0;               ///< n_z·VoxelSize, µm
+  std::int64_t pixels[2] = { 0, 0 };   ///< whole image n_px × n_py
+  double imageOrigin[3] = { 0, 0, 0 }; ///< centre of pixel (0, 0) at the section's mid-plane, µm
+  double thickness = 0.0;              ///< n_z·VoxelSize, µm
 };
 
-/// "" when VoxelSize > 0 and PixelSize >= VoxelSize (both finite), else the error naming the property.
+/// "" when VoxelSize > 0 and PixelSize >= VoxelSize (both finite), else the error naming the
+/// property.
 std::string checkSectionSizes(double voxelSize, double pixelSize);
 
 /// Plans the section of the properties (sizes in µm): checks the sizes, resolves
@@ -35,7 +36,7 @@ std::string planSection(const FiberModel& model, const double volumeOfInterest[6
 /// pixel size, sampled by samplesPerPixel² voxel columns per pixel over z ∈ [zMin, zMax]
 /// (nz = max(1, round((zMax − zMin)/voxel)) voxels). For the ground truth of a grid that does not
 /// come from PLISimulation.
-PixelGrid latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx, std::int64_t ny,
-  double zMin, double zMax, int samplesPerPixel);
+PixelGrid latticeForPixelGrid(const Vec3& corner, double pixelSize, std::int64_t nx,
+  std::int64_t ny, double zMin, double zMax, int samplesPerPixel);
 
 } // namespace fiberpli

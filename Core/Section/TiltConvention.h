@@ -1,6 +1,7 @@
-/// TiltConvention: how a tissue vector is seen by the tilted beam (docs/pli-simulation.md §4.3), the
-/// one enumeration of the simulation that writes it and the analysis that fits tilted views. Its
-/// integer code is the PLISimulation property TiltConvention and the field data tilt_convention.
+/// TiltConvention: how a tissue vector is seen by the tilted beam (docs/pli-simulation.md §4.3),
+/// the one enumeration of the simulation that writes it and the analysis that fits tilted views.
+/// Its integer code is the PLISimulation property TiltConvention and the field data
+/// tilt_convention.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +21,9 @@ enum class TiltConvention : std::uint8_t
 std::string tiltConventionFromCode(int code, TiltConvention& convention);
 
 /// The integer code of a convention (property value and field data).
-inline int tiltConventionCode(TiltConvention c) { return static_cast<int>(c); }
+inline int tiltConventionCode(TiltConvention c)
+{
+  return static_cast<int>(c);
+}
 
 } // namespace fiberpli

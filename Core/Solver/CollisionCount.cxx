@@ -16,8 +16,8 @@
 namespace fiberpli
 {
 
-std::size_t countCollisions(const FiberModel& model, double minimumGap, int numberOfThreads,
-  const PeriodicCell& cell)
+std::size_t countCollisions(
+  const FiberModel& model, double minimumGap, int numberOfThreads, const PeriodicCell& cell)
 {
   std::vector<CapsuleLink> links;
   std::vector<CapsulePair> pairs;
@@ -42,7 +42,8 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap, int numb
   if (cell.enabled())
   {
     PeriodicPairs finder;
-    if (!finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow).empty())
+    if (!finder.findPairs(links, cell, minimumGap, numberOfThreads, pairs, maxPairs, &overflow)
+           .empty())
     {
       return std::numeric_limits<std::size_t>::max(); // cell too small for its links: no count
     }

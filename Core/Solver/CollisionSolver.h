@@ -99,23 +99,27 @@ struct CollisionSolverResult : Status
   int bestStep = 0;               ///< ... and the step it occurred
   /// Per output fiber, per output point: its position along the input fiber as a fractional input
   /// point index (3.5 = midpoint of input points 3 and 4), for interpolating other point arrays
-  /// (floats: linear; integers: take floor). Points are moved, so this is the origin, not the place.
+  /// (floats: linear; integers: take floor). Points are moved, so this is the origin, not the
+  /// place.
   std::vector<std::vector<double>> sourceIndex;
-  double radiusScale = 1.0;   ///< capsule size reached by radius growth (1 = full size)
+  double radiusScale = 1.0; ///< capsule size reached by radius growth (1 = full size)
   /// Fiber volume Σ π ρ² · link length over the periodic cell's volume (-1 without a cell).
   double volumeFraction = -1.0;
   /// Smallest surface gap δ − ρa − ρb over all pairs of capsules, at most minGapProbe (µm).
   double minGap = 0.0;
   double minGapProbe = 0.0; ///< pairs farther apart than this are not examined for minGap
   // Distributed runs (docs/solver.md §13; 0 otherwise): this rank's share and traffic.
-  std::size_t rankFibers = 0;     ///< fibers this rank owned at the end (before they went home)
-  std::size_t peakRankPoints = 0; ///< most it held in a step: owned points + halo links (one point each)
+  std::size_t rankFibers = 0; ///< fibers this rank owned at the end (before they went home)
+  std::size_t peakRankPoints =
+    0; ///< most it held in a step: owned points + halo links (one point each)
   std::size_t peakHaloLinks = 0; ///< most halo links (of other ranks' fibers) it held in a step
-  std::size_t peakHeldLinks = 0;  ///< most links (own or halo) it held for its pair tests in a step
-  double haloBytesPerStep = 0.0;  ///< bytes it sent per step, mean: links out and pushes back
-  std::size_t migrations = 0;     ///< fibers that changed rank during the solve (all ranks)
-  std::size_t testerRecuts = 0;   ///< re-cuts at equal pair work that moved a tester slab cut (same on all ranks) ...
-  double testerCutMove = 0.0;     ///< ... and the largest move of a cut, as a fraction of the slab axis' span
+  std::size_t peakHeldLinks = 0; ///< most links (own or halo) it held for its pair tests in a step
+  double haloBytesPerStep = 0.0; ///< bytes it sent per step, mean: links out and pushes back
+  std::size_t migrations = 0;    ///< fibers that changed rank during the solve (all ranks)
+  std::size_t testerRecuts =
+    0; ///< re-cuts at equal pair work that moved a tester slab cut (same on all ranks) ...
+  double testerCutMove =
+    0.0; ///< ... and the largest move of a cut, as a fraction of the slab axis' span
 };
 
 /// Called after every move step with the step number (1, 2, …) and the current model (in a
@@ -186,13 +190,15 @@ CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOp
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
 /// solver's pair limit it stops counting and returns a number larger than that limit; in a
 /// periodic cell too small for its links (PeriodicPairs refuses it) it returns SIZE_MAX, never 0.
-std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0, int numberOfThreads = 0,
-  const PeriodicCell& periodicCell = PeriodicCell{});
+std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0,
+  int numberOfThreads = 0, const PeriodicCell& periodicCell = PeriodicCell{});
 
 /// Σ π ρ_k² · |link k| over all links (ρ = capsule radius) divided by the cell volume, or without
 /// a cell by the volume of the model's bounding box (points grown by their radii); 0 if empty.
-/// Summed exactly (the same bits for any order or split); comm: over all ranks' fibers (collective).
-double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm = nullptr);
+/// Summed exactly (the same bits for any order or split); comm: over all ranks' fibers
+/// (collective).
+double cellVolumeFraction(
+  const FiberModel& model, const PeriodicCell& cell, SolverComm* comm = nullptr);
 
 /// Empty when the options are usable, else a message naming the option and its value.
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& options);

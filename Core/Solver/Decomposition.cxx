@@ -60,8 +60,10 @@ void keepAndSort(RankFibers& r, const std::vector<char>& keep)
   for (std::size_t f = 0; f < r.size(); ++f)
     if (keep[f])
       order.push_back(f);
-  std::sort(order.begin(), order.end(), [&st](std::size_t a, std::size_t b) { return st.global[a] < st.global[b]; });
-  const auto permute = [&order](auto& v) {
+  std::sort(order.begin(), order.end(),
+    [&st](std::size_t a, std::size_t b) { return st.global[a] < st.global[b]; });
+  const auto permute = [&order](auto& v)
+  {
     std::remove_reference_t<decltype(v)> out;
     out.reserve(order.size());
     for (std::size_t i : order)
@@ -153,7 +155,8 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
   {
     lo[d] = s.periodic_ ? cell.lo[d] : -m[d];
     hi[d] = s.periodic_ ? cell.hi[d] : m[3 + d];
-    room[d] = s.periodic_ ? hi[d] - lo[d] : std::max(0.0, m[9 + d] + m[6 + d]); // middles wrap in a cell
+    room[d] =
+      s.periodic_ ? hi[d] - lo[d] : std::max(0.0, m[9 + d] + m[6 + d]); // middles wrap in a cell
   }
   // The axis with room for the most whole slabs that each own fibers and are wider than a fiber
   // and its halo: floor(room_a / (e_a + 2·reach)), e_a the mean fiber extent along a (a rank's
@@ -178,7 +181,8 @@ SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, S
   for (int d = 1; d < 3; ++d)
   {
     const int c = s.axis_;
-    const bool better = slabs[d] > slabs[c] || (slabs[d] == slabs[c] && extentSum[d] < extentSum[c]);
+    const bool better =
+      slabs[d] > slabs[c] || (slabs[d] == slabs[c] && extentSum[d] < extentSum[c]);
     if (spans(d) && (!spans(c) || better))
       s.axis_ = d;
   }
@@ -216,9 +220,11 @@ void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm, std::
   if (work >= 0)
   {
     std::vector<std::int64_t> links(nr, 0);
-    const auto slabOfBin = [this](std::size_t b) {
+    const auto slabOfBin = [this](std::size_t b)
+    {
       return static_cast<std::size_t>(std::upper_bound(testCuts_.begin(), testCuts_.end(),
-        static_cast<double>(b) / static_cast<double>(kBins)) - testCuts_.begin());
+                                        static_cast<double>(b) / static_cast<double>(kBins)) -
+        testCuts_.begin());
     };
     for (std::size_t b = 0; b < kBins; ++b)
       links[slabOfBin(b)] += count[b];
@@ -230,7 +236,8 @@ void SlabLayout::cutTesterSlabs(const FiberModel& local, SolverComm& comm, std::
     for (std::size_t b = 0; b < kBins; ++b)
     {
       const std::size_t q = slabOfBin(b);
-      weight[b] = links[q] > 0 ? static_cast<double>(count[kBins + q]) / static_cast<double>(links[q]) : 0.0;
+      weight[b] =
+        links[q] > 0 ? static_cast<double>(count[kBins + q]) / static_cast<double>(links[q]) : 0.0;
     }
   }
   double total = 0.0;
@@ -273,7 +280,8 @@ int SlabLayout::testerOf(double x) const
   {
     return 0;
   }
-  return static_cast<int>(std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
+  return static_cast<int>(
+    std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
 }
 
 double SlabLayout::testerLo(int q) const
@@ -344,7 +352,8 @@ std::string agreeOnError(SolverComm& comm, const std::string& localError)
   const std::string message(in[who].begin(), in[who].end());
   // When only some ranks failed, say which one (the same text on every rank); when all failed
   // (a bad option, the same everywhere) the message stands alone.
-  const bool all = std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
+  const bool all =
+    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
   return all ? message : "rank " + std::to_string(who) + ": " + message;
 }
 
@@ -422,8 +431,8 @@ double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverCo
   while (lo < hi)
   {
     const std::uint64_t mid = lo + (hi - lo) / 2;
-    std::vector<std::int64_t> c{ static_cast<std::int64_t>(std::count_if(bits.begin(), bits.end(),
-      [mid](std::uint64_t b) { return b <= mid; })) };
+    std::vector<std::int64_t> c{ static_cast<std::int64_t>(
+      std::count_if(bits.begin(), bits.end(), [mid](std::uint64_t b) { return b <= mid; })) };
     comm.sum(c);
     if (c[0] > k)
       hi = mid;

@@ -1,15 +1,16 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
 /// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
-/// run, the one with room for the most fiber-and-halo widths) holds the fiber's reference point, the middle of its extent along that axis (in a
-/// periodic cell wrapped into the cell). Every rank keeps its owned fibers, in global fiber order;
-/// fibers travel between ranks as byte records through SolverComm::exchange. The pair work goes
-/// by region (links, not fibers: Solver/LinkExchange.h).
+/// run, the one with room for the most fiber-and-halo widths) holds the fiber's reference point,
+/// the middle of its extent along that axis (in a periodic cell wrapped into the cell). Every rank
+/// keeps its owned fibers, in global fiber order; fibers travel between ranks as byte records
+/// through SolverComm::exchange. The pair work goes by region (links, not fibers:
+/// Solver/LinkExchange.h).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
-#include "Solver/SolverState.h"
 #include "Solver/SolverComm.h"
+#include "Solver/SolverState.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -46,7 +47,8 @@ public:
   /// Rank testing the pairs of a link whose centre is at x along the axis (Solver/LinkExchange.h):
   /// slabs cut so that each holds as many link centres of the start model as the others (the pair
   /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
-  /// of it), then re-cut during the run at equal measured work (balanceTesterSlabs). Ownership (owner, slabOf) keeps equal widths: it decides only shape control and moves.
+  /// of it), then re-cut during the run at equal measured work (balanceTesterSlabs). Ownership
+  /// (owner, slabOf) keeps equal widths: it decides only shape control and moves.
   int testerOf(double x) const;
   /// Collective: re-cuts the tester slabs at equal pair work. work: this rank's pair-search work
   /// since the last cut (CollisionGrid::work). A slab's current links each weigh its work per link
@@ -56,7 +58,8 @@ public:
   void balanceTesterSlabs(const FiberModel& local, std::int64_t work, SolverComm& comm);
   /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
   double testerLo(int q) const;
-  /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a cell).
+  /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a
+  /// cell).
   double wrapShift(double x) const;
   int axis() const { return axis_; }
   /// The cell's edge along the axis (0 without a cell).
@@ -68,7 +71,8 @@ private:
   int ranks_ = 1;
   bool periodic_ = false;
   PeriodicCell cell_; // wrapShift: the cell's own rule along axis_
-  std::vector<double> testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
+  std::vector<double>
+    testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
   double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
   // every rank) or its slab's measured work per link (every rank passes its work >= 0).

@@ -34,7 +34,8 @@ using Reader = ByteReader;
 
 // The all-to-all of the buffers for other ranks (this rank's own links and pushes never go
 // into a buffer: out[me] stays empty).
-std::vector<std::vector<char>> exchangeAll(const std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
+std::vector<std::vector<char>> exchangeAll(
+  const std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
 {
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
@@ -45,7 +46,8 @@ std::vector<std::vector<char>> exchangeAll(const std::vector<std::vector<char>>&
 // ascending order without a sort: repeatedly the stream whose next record has the least key
 // hands it over. peek(s, key) gives stream s's next key (false: s is done); take(s) consumes
 // that record. Each record is peeked once, then taken.
-template <class Key, class Peek, class Take> void mergeStreams(std::size_t streams, Peek peek, Take take)
+template <class Key, class Peek, class Take>
+void mergeStreams(std::size_t streams, Peek peek, Take take)
 {
   std::vector<Key> next(streams);
   std::vector<std::size_t> live; // streams with records left
@@ -86,7 +88,8 @@ double centre(const CapsuleLink& l, int axis)
 // side (rounding). In a cell an interval shorter than the cell minus the widest slab cannot wrap
 // back into the slab it starts in, so its slabs run cyclically from a's to b's.
 // widest: the widest tester slab.
-template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
+template <class F>
+void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
 {
   const double period = layout.period();
   if (period > 0.0 && b - a >= 0.999 * (period - widest))
@@ -98,7 +101,8 @@ template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, doub
   const int qa = layout.testerOf(a), qb = layout.testerOf(b);
   if (period > 0.0)
   {
-    const int n = std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
+    const int n =
+      std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
     for (int j = 0; j < n; ++j)
       f(static_cast<std::size_t>(((qa - 1 + j) % ranks + ranks) % ranks));
     return;
@@ -108,8 +112,8 @@ template <class F> void forNearbySlabs(const SlabLayout& layout, int ranks, doub
 }
 
 // Writes the run of own[first, first + count) (links of one fiber, consecutive).
-void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first, std::size_t count,
-  const FiberModel& model, const std::vector<std::int64_t>& global)
+void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first,
+  std::size_t count, const FiberModel& model, const std::vector<std::int64_t>& global)
 {
   const CapsuleLink& l = own[first];
   const Fiber& fib = model.fibers[l.fiber];
@@ -133,8 +137,8 @@ double capsuleRadius(double r0, double r1, double scale)
 }
 
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
-  std::vector<CapsuleLink>& held, HeldLinkInfo& info)
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
+  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info)
 {
   const int axis = layout.axis();
   const std::size_t nr = static_cast<std::size_t>(comm.size());
@@ -167,7 +171,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   double grow = 0.0, widest = 0.0;
   for (std::size_t q = 0; q < nr; ++q)
   {
-    widest = std::max(widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
+    widest = std::max(
+      widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
     if (region[2 * q + 1] > -HUGE_VAL)
     {
       const int r = static_cast<int>(q);
@@ -177,7 +182,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
         grow = std::max(grow, region[2 * q + 1] - layout.testerLo(r + 1));
     }
   }
-  grow += 1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
+  grow +=
+    1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
   // Down-only routing without a cell: below[t] is the highest top of the regions of the slabs
   // below t, so a link of slab t whose extent lies more than reach above it goes to t alone
   // (most links; the general search below would find the same).
@@ -189,7 +195,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   std::vector<std::vector<char>> out(nr);
   std::vector<std::size_t> first(nr), count(nr, 0), stamp(nr, SIZE_MAX), open, dests;
   std::vector<std::pair<std::size_t, std::size_t>> mine;
-  const auto closeRun = [&](std::size_t q) {
+  const auto closeRun = [&](std::size_t q)
+  {
     if (q == static_cast<std::size_t>(me))
       mine.emplace_back(first[q], count[q]);
     else
@@ -209,14 +216,16 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     }
     else
     {
-      forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow, [&](std::size_t q) {
-        if ((!downOnly || q <= t) && region[2 * q + 1] > -HUGE_VAL &&
-          within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+      forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow,
+        [&](std::size_t q)
         {
-          dests.push_back(q);
-          stamp[q] = i;
-        }
-      });
+          if ((!downOnly || q <= t) && region[2 * q + 1] > -HUGE_VAL &&
+            within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+          {
+            dests.push_back(q);
+            stamp[q] = i;
+          }
+        });
     }
     const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
     std::size_t kept = 0;
@@ -261,7 +270,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   std::size_t nextMine = 0;
   std::vector<Vec3> p;
   std::vector<double> r;
-  const auto peek = [&](std::size_t q, std::uint64_t& key) {
+  const auto peek = [&](std::size_t q, std::uint64_t& key)
+  {
     if (q == static_cast<std::size_t>(me))
     {
       if (nextMine == mine.size())
@@ -276,7 +286,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     key = linkKey(head[q].fiber, head[q].k0);
     return true;
   };
-  const auto take = [&](std::size_t q) {
+  const auto take = [&](std::size_t q)
+  {
     if (q == static_cast<std::size_t>(me))
     {
       const auto [at, n] = mine[nextMine++];
@@ -329,10 +340,13 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
   const int me = comm.rank();
   // Sizes first, so that every buffer is written once into its final place.
   std::vector<std::size_t> size(nr, 0);
-  const auto bytes = [](std::uint32_t sides) {
-    return sizeof(PushHeader) + ((sides & 1) ? 2 * sizeof(Vec3) : 0) + ((sides & 2) ? 2 * sizeof(Vec3) : 0);
+  const auto bytes = [](std::uint32_t sides)
+  {
+    return sizeof(PushHeader) + ((sides & 1) ? 2 * sizeof(Vec3) : 0) +
+      ((sides & 2) ? 2 * sizeof(Vec3) : 0);
   };
-  const auto route = [me](const LinkPairPush& p, auto send) {
+  const auto route = [me](const LinkPairPush& p, auto send)
+  {
     if (p.ownerA == p.ownerB)
     {
       if (p.ownerA != me)
@@ -347,44 +361,50 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
     }
   };
   for (const LinkPairPush& p : tested)
-    route(p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
+    route(
+      p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
   std::vector<std::vector<char>> out(nr);
   for (std::size_t q = 0; q < nr; ++q)
     out[q].resize(size[q]);
   std::fill(size.begin(), size.end(), 0); // now: bytes written
   for (const LinkPairPush& p : tested)
   {
-    route(p, [&](int to, std::uint32_t sides) {
-      char* at = out[static_cast<std::size_t>(to)].data() + size[static_cast<std::size_t>(to)];
-      const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
-      std::memcpy(at, &h, sizeof h);
-      at += sizeof h;
-      if (sides & 1)
+    route(p,
+      [&](int to, std::uint32_t sides)
       {
-        std::memcpy(at, &p.a0, sizeof(Vec3));
-        std::memcpy(at + sizeof(Vec3), &p.a1, sizeof(Vec3));
-        at += 2 * sizeof(Vec3);
-      }
-      if (sides & 2)
-      {
-        std::memcpy(at, &p.b0, sizeof(Vec3));
-        std::memcpy(at + sizeof(Vec3), &p.b1, sizeof(Vec3));
-      }
-      size[static_cast<std::size_t>(to)] += bytes(sides);
-    });
+        char* at = out[static_cast<std::size_t>(to)].data() + size[static_cast<std::size_t>(to)];
+        const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
+        std::memcpy(at, &h, sizeof h);
+        at += sizeof h;
+        if (sides & 1)
+        {
+          std::memcpy(at, &p.a0, sizeof(Vec3));
+          std::memcpy(at + sizeof(Vec3), &p.a1, sizeof(Vec3));
+          at += 2 * sizeof(Vec3);
+        }
+        if (sides & 2)
+        {
+          std::memcpy(at, &p.b0, sizeof(Vec3));
+          std::memcpy(at + sizeof(Vec3), &p.b1, sizeof(Vec3));
+        }
+        size[static_cast<std::size_t>(to)] += bytes(sides);
+      });
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
   // A side not sent stays zero: its fiber is not this rank's. A sender's pairs come in pair
   // order, so their first fibers ascend: one cursor through `global` finds them.
-  const auto localOf = [&global](std::uint32_t fiber) {
+  const auto localOf = [&global](std::uint32_t fiber)
+  {
     const auto it = std::lower_bound(global.begin(), global.end(), std::int64_t{ fiber });
-    return it != global.end() && *it == fiber ? static_cast<std::uint32_t>(it - global.begin()) : kNotOwned;
+    return it != global.end() && *it == fiber ? static_cast<std::uint32_t>(it - global.begin())
+                                              : kNotOwned;
   };
   received.resize(nr);
   for (std::size_t q = 0; q < nr; ++q)
   {
     received[q].clear();
-    received[q].reserve(in[q].size() / (sizeof(PushHeader) + 2 * sizeof(Vec3))); // at most this many
+    received[q].reserve(
+      in[q].size() / (sizeof(PushHeader) + 2 * sizeof(Vec3))); // at most this many
     Reader rd(in[q]);
     std::size_t cursor = 0;
     while (!rd.done())
@@ -402,7 +422,9 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
         rd.get(&x.push.a1);
         while (cursor < global.size() && global[cursor] < h.fiberA)
           ++cursor;
-        x.localA = cursor < global.size() && global[cursor] == h.fiberA ? static_cast<std::uint32_t>(cursor) : kNotOwned;
+        x.localA = cursor < global.size() && global[cursor] == h.fiberA
+          ? static_cast<std::uint32_t>(cursor)
+          : kNotOwned;
       }
       if (h.sides & 2)
       {

@@ -34,10 +34,11 @@ inline std::uint64_t linkKey(std::uint32_t fiber, std::uint32_t k)
 /// What a rank knows of each link it holds, besides its capsule.
 struct HeldLinkInfo
 {
-  std::vector<double> pointRadius; ///< the smaller radius of the link's two points (unscaled)
-  std::vector<int> owner;          ///< the rank owning the link's fiber
+  std::vector<double> pointRadius;  ///< the smaller radius of the link's two points (unscaled)
+  std::vector<int> owner;           ///< the rank owning the link's fiber
   std::vector<std::uint32_t> local; ///< the fiber's index in this rank's model, or kNotOwned
-  std::vector<char> tested;        ///< 1: a link of this rank's tester slab (testedPairs says which of its pairs the rank tests)
+  std::vector<char> tested; ///< 1: a link of this rank's tester slab (testedPairs says which of its
+                            ///< pairs the rank tests)
 };
 
 /// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester
@@ -56,18 +57,18 @@ double capsuleRadius(double r0, double r1, double scale);
 /// Sends every owned link to every rank whose test region comes within `reach` of the link's
 /// extent along the slab axis (modulo the cell), without a cell only to the ranks of its own
 /// tester slab and the lower ones (testedPairs). A rank's test region is the extent of all links
-/// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts it.
-/// own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
-/// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius scale they were built with. Consecutive links of a fiber
-/// travel as one run of points (about 32 bytes a link); the links a rank keeps of its own are
-/// copied, not serialised. Returns in `held` (CapsuleLink::fiber =
-/// global fiber index, in global link order, merged from the senders' runs; the buffers' capacity
-/// is kept) and `info` what this rank receives: with reach at
-/// least 2·ρmax + gap every colliding partner of a link tested here is held here. Collective (a
-/// maximum of 2·R values, one exchange); returns what was sent to other ranks.
+/// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts
+/// it. own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
+/// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius
+/// scale they were built with. Consecutive links of a fiber travel as one run of points (about 32
+/// bytes a link); the links a rank keeps of its own are copied, not serialised. Returns in `held`
+/// (CapsuleLink::fiber = global fiber index, in global link order, merged from the senders' runs;
+/// the buffers' capacity is kept) and `info` what this rank receives: with reach at least 2·ρmax +
+/// gap every colliding partner of a link tested here is held here. Collective (a maximum of 2·R
+/// values, one exchange); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach, SolverComm& comm,
-  std::vector<CapsuleLink>& held, HeldLinkInfo& info);
+  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
+  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).
@@ -100,26 +101,28 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
 /// link of `me` are merged with those received: every tester sends in pair order, the global
 /// one (its held links are in global link order), and each pair comes from one tester only.
 template <class Take>
-void forPushesInPairOrder(const std::vector<LinkPairPush>& tested, const std::vector<CapsulePair>& pairs,
-  const std::vector<std::uint32_t>& local, const std::vector<std::vector<ReceivedPush>>& received, Take take)
+void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
+  const std::vector<CapsulePair>& pairs, const std::vector<std::uint32_t>& local,
+  const std::vector<std::vector<ReceivedPush>>& received, Take take)
 {
   using Key = std::pair<std::uint64_t, std::uint64_t>;
-  const auto key = [](const LinkPairPush& x) { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
+  const auto key = [](const LinkPairPush& x)
+  { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
   // Each record's key is computed once: the senders' next ones are kept, as is the next own one.
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
-  std::vector<Key> next(received.size());           // its key
+  std::vector<Key> next(received.size());          // its key
   for (std::size_t q = 0; q < received.size(); ++q)
   {
     if (!received[q].empty())
       next[q] = key(received[q][0].push);
   }
-  std::size_t i = 0;       // next pair tested here
+  std::size_t i = 0;            // next pair tested here
   std::size_t keyed = SIZE_MAX; // the pair whose key mine holds
   Key mine;
   for (;;)
   {
     while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
-      ++i; // neither link is this rank's
+      ++i;                       // neither link is this rank's
     std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
     for (std::size_t q = 0; q < received.size(); ++q)
     {

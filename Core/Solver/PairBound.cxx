@@ -9,7 +9,8 @@
 namespace fiberpli
 {
 
-PairBound packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap, SolverComm* comm)
+PairBound packingPairBound(
+  const std::vector<CapsuleLink>& links, double minimumGap, SolverComm* comm)
 {
   std::vector<double> extremes{ -HUGE_VAL, 0.0 }; // −ρ_min, ρ_max: one maximum
   ExactSum length;

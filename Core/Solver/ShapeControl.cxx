@@ -37,7 +37,8 @@ void insertMidpoint(Fiber& f, FiberPointState& st, std::size_t i)
   const Vec3 p = 0.5 * (f.points[i] + f.points[i + 1]);
   const Vec3 v = 0.5 * (st.velocity[i] + st.velocity[i + 1]);
   const double s = 0.5 * (st.source[i] + st.source[i + 1]);
-  const double r = st.inputRadii.empty() ? 0.5 * (f.radii[i] + f.radii[i + 1]) : profileRadius(st.inputRadii, s);
+  const double r =
+    st.inputRadii.empty() ? 0.5 * (f.radii[i] + f.radii[i + 1]) : profileRadius(st.inputRadii, s);
   f.points.insert(f.points.begin() + off, p);
   f.radii.insert(f.radii.begin() + off, r);
   st.velocity.insert(st.velocity.begin() + off, v);
@@ -108,7 +109,8 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
   return d - dot(d, t) * t;
 }
 
-bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength, std::size_t minPoints)
+bool controlSegmentLength(
+  Fiber& f, FiberPointState& st, double segmentLength, std::size_t minPoints)
 {
   if (!(segmentLength > 0.0))
   {
@@ -171,7 +173,8 @@ bool controlSegmentLength(Fiber& f, FiberPointState& st, double segmentLength, s
   return changed;
 }
 
-bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule, const Vec3* closure)
+bool controlCurvature(
+  Fiber& f, double minRadius, double step, EndPointRule rule, const Vec3* closure)
 {
   const std::size_t n = f.points.size();
   if (!(minRadius > 0.0) || n < 3)
@@ -181,7 +184,8 @@ bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule
   std::vector<Vec3> delta(n);
   bool violated = false;
   // Vertex i with neighbours pm, pp; its neighbours' moves go to points im and ip.
-  auto bend = [&](const Vec3& pm, std::size_t i, const Vec3& pp, std::size_t im, std::size_t ip) {
+  auto bend = [&](const Vec3& pm, std::size_t i, const Vec3& pp, std::size_t im, std::size_t ip)
+  {
     const Vec3& pi = f.points[i];
     if (classifyVertex(pm, pi, pp, minRadius) != Bend::Violated)
     {
@@ -232,7 +236,8 @@ bool curvatureOk(const Fiber& f, double minRadius, const Vec3* closure)
     return true;
   }
   if (closure &&
-    classifyVertex(f.points[n - 2] - *closure, f.points[0], f.points[1], minRadius) == Bend::Violated)
+    classifyVertex(f.points[n - 2] - *closure, f.points[0], f.points[1], minRadius) ==
+      Bend::Violated)
   {
     return false;
   }
@@ -262,10 +267,12 @@ std::string checkCoordinateResolution(const FiberModel& model, double segmentLen
       {
         if (!(std::fabs(fib.points[i][d]) <= limit))
         {
-          return "fiber " + formatNumber(f) + " (fiber_id " + formatNumber(fib.id) + ") point " + formatNumber(i) +
-            " has coordinate " + formatNumber(fib.points[i][d]) + " um, more than " +
-            formatNumber(kMaxCoordinateOverSegment) + " x the segment length " + formatNumber(segmentLength) +
-            " um: double precision cannot resolve links of that length so far from the origin (move the model "
+          return "fiber " + formatNumber(f) + " (fiber_id " + formatNumber(fib.id) + ") point " +
+            formatNumber(i) + " has coordinate " + formatNumber(fib.points[i][d]) +
+            " um, more than " + formatNumber(kMaxCoordinateOverSegment) + " x the segment length " +
+            formatNumber(segmentLength) +
+            " um: double precision cannot resolve links of that length so far from the origin "
+            "(move the model "
             "towards the origin or raise SegmentLength)";
         }
       }

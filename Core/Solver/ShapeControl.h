@@ -48,8 +48,8 @@ Vec3 constrainEndMove(const Fiber& f, std::size_t i, const Vec3& d, EndPointRule
 /// have f.size() entries. Returns true when a point was inserted or removed. Bounded: a link whose
 /// midpoint rounds to one of its ends is left as it is, and one pass takes at most four times the
 /// steps its links can need.
-bool controlSegmentLength(Fiber& f, FiberPointState& state, double segmentLength,
-  std::size_t minPoints = 2);
+bool controlSegmentLength(
+  Fiber& f, FiberPointState& state, double segmentLength, std::size_t minPoints = 2);
 
 /// Largest |coordinate| of a point relative to the segment length L̄ (µm/µm): there neighbouring
 /// doubles are 2.2e-4 L̄ apart, still fine enough for split and merge; much farther out a
@@ -68,8 +68,8 @@ std::string checkCoordinateResolution(const FiberModel& model, double segmentLen
 /// closure (non-null): the fiber is closed through a periodic cell, its last point is the first
 /// shifted by *closure; the first/last point is then a vertex like any other (its neighbours are
 /// p_{n−2} − closure and p_1), has no end-point rule, and both copies move alike.
-bool controlCurvature(Fiber& f, double minRadius, double step, EndPointRule rule,
-  const Vec3* closure = nullptr);
+bool controlCurvature(
+  Fiber& f, double minRadius, double step, EndPointRule rule, const Vec3* closure = nullptr);
 
 /// True when every interior vertex (and with closure the first/last one) has circumradius >=
 /// minRadius and angle >= 60° (same tests as controlCurvature; degenerate vertices with a

@@ -3,8 +3,8 @@
 #include "Model/PeriodicCellRule.h"
 #include "Solver/SolverEngine.h"
 #include "Util/MemoryBudget.h"
-#include "Util/Threads.h"
 #include "Util/NumberFormat.h"
+#include "Util/Threads.h"
 
 #include <cmath>
 #include <cstring>
@@ -39,7 +39,8 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
   {
     const Fiber& fib = model.fibers[f];
     std::size_t h = fib.points.size();
-    const auto mix = [&h](const void* data, std::size_t bytes) {
+    const auto mix = [&h](const void* data, std::size_t bytes)
+    {
       const auto* c = static_cast<const unsigned char*>(data);
       for (std::size_t i = 0; i < bytes; ++i)
         h = h * 1099511628211ull + c[i];
@@ -125,9 +126,11 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
   {
     msg << "StallSteps is " << o.stallSteps << ", must be >= 0 (0 = off)";
   }
-  else if (!std::isfinite(o.initialRadiusScale) || o.initialRadiusScale < 0.0 || o.initialRadiusScale > 1.0)
+  else if (!std::isfinite(o.initialRadiusScale) || o.initialRadiusScale < 0.0 ||
+    o.initialRadiusScale > 1.0)
   {
-    msg << "InitialRadiusScale is " << o.initialRadiusScale << ", must be in [0, 1] (0 = automatic, 1 = off)";
+    msg << "InitialRadiusScale is " << o.initialRadiusScale
+        << ", must be in [0, 1] (0 = automatic, 1 = off)";
   }
   else if (!std::isfinite(o.tortuosity) || o.tortuosity < 0.0 || o.tortuosity > 3.0)
   {
@@ -170,12 +173,15 @@ std::string checkMemory(const SolverEngine& s)
     }
     points += static_cast<double>(f.size());
   }
-  const double estimate = s.st_.segmentLength > 0.0 ? points + length / (s.st_.segmentLength * (2.0 / 3.0)) : points;
+  const double estimate =
+    s.st_.segmentLength > 0.0 ? points + length / (s.st_.segmentLength * (2.0 / 3.0)) : points;
   // Colliding pairs per link at the start of a dense run: a partner fiber crosses a link's reach
   // of ~4 radii with 1 + 4ρ/L̄ of its links; 2 partners per link at the paper's density (measured:
   // 5 pairs per link at L̄ = 2.5ρ, 40 at L̄ = ρ/8).
-  const double meanLink = s.st_.segmentLength > 0.0 ? s.st_.segmentLength : length / std::max(1.0, points);
-  const double pairsPerLink = meanLink > 0.0 ? 2.0 * (1.0 + 4.0 * medianRadius(s.model_) / meanLink) : 2.0;
+  const double meanLink =
+    s.st_.segmentLength > 0.0 ? s.st_.segmentLength : length / std::max(1.0, points);
+  const double pairsPerLink =
+    meanLink > 0.0 ? 2.0 * (1.0 + 4.0 * medianRadius(s.model_) / meanLink) : 2.0;
   const double bytes = estimate * (bytesPerPoint() + pairsPerLink * bytesPerPair());
   std::ostringstream what;
   what << "SegmentLength " << s.st_.segmentLength << " with a total fiber length of " << length
@@ -191,7 +197,8 @@ std::string checkMemory(const SolverEngine& s)
 // Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
 // kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
 // the colliding pairs grow with the square of the copies or the gap.
-std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
+std::string checkStacksAndGap(
+  const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
 {
   std::ostringstream msg;
   const DuplicateStacks d = findDuplicateStacks(model);

@@ -26,7 +26,9 @@ std::string validatePiece(const FiberModel& piece, const std::vector<std::int64_
 std::string checkMemory(const SolverEngine& s);
 
 /// Exact copies of a fiber beyond a few, and a MinimumGap beyond a few radii: both would make the
-/// colliding pairs grow with the square of the copies or the gap. comm: the largest radius of all ranks.
-std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm);
+/// colliding pairs grow with the square of the copies or the gap. comm: the largest radius of all
+/// ranks.
+std::string checkStacksAndGap(
+  const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm);
 
 } // namespace fiberpli

@@ -32,7 +32,10 @@ public:
   int size() const override { return 1; }
   void sum(std::vector<std::int64_t>&) override {}
   void max(std::vector<double>&) override {}
-  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override { return send; }
+  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override
+  {
+    return send;
+  }
 };
 
 } // namespace fiberpli

@@ -81,9 +81,11 @@ PairBound SolverEngine::wholeModelPairBound() const
 std::string SolverEngine::packingMessage(const PairBound& bound) const
 {
   std::ostringstream msg;
-  msg << "more than " << static_cast<std::size_t>(bound.pairs) << " capsule pairs of " << bound.links
-      << " links collide (MinimumGap " << o_.minimumGap << "), more than any packing of fibers of capsule radius up to "
-      << bound.rhoMax << " um can have: the fibers lie (nearly) on top of each other; spread them or lower the radii";
+  msg
+    << "more than " << static_cast<std::size_t>(bound.pairs) << " capsule pairs of " << bound.links
+    << " links collide (MinimumGap " << o_.minimumGap
+    << "), more than any packing of fibers of capsule radius up to " << bound.rhoMax
+    << " um can have: the fibers lie (nearly) on top of each other; spread them or lower the radii";
   return msg.str();
 }
 
@@ -106,7 +108,8 @@ bool SolverEngine::findBoundedPairs(bool boundFirst)
   }
   const double budget = memoryBudgetBytes() - bytesPerPoint() * static_cast<double>(links_.size());
   const double affordable = std::max(0.0, budget) / bytesPerPair();
-  const double belowBound = comm_ ? HUGE_VAL : kPairsPerLinkBelowBound * static_cast<double>(links_.size());
+  const double belowBound =
+    comm_ ? HUGE_VAL : kPairsPerLinkBelowBound * static_cast<double>(links_.size());
   double limit = std::min({ bound.pairs, affordable, belowBound });
   bool overflow = false;
   if (!searchPairs(limit, overflow))
@@ -140,7 +143,8 @@ bool SolverEngine::findBoundedPairs(bool boundFirst)
   }
   msg << " collide (MinimumGap " << o_.minimumGap << "): "
       << checkMemoryBudget((static_cast<double>(maxPairs) + 1.0) * bytesPerPair() +
-           bytesPerPoint() * static_cast<double>(links_.size()), "storing them beside the links")
+             bytesPerPoint() * static_cast<double>(links_.size()),
+           "storing them beside the links")
       << "; lower the density or MinimumGap";
   if (comm_)
   {
@@ -160,12 +164,13 @@ bool SolverEngine::searchPairs(double limit, bool& overflow)
   overflow = false;
   if (periodic())
   {
-    detectError_ =
-      periodic_.findPairs(links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, tested);
+    detectError_ = periodic_.findPairs(
+      links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, tested);
     pairWork_ += periodic_.work();
     return detectError_.empty();
   }
-  overflow = !grid_.findPairs(links_, o_.minimumGap, threads_, pairs_, maxPairs, tested, testedPairs(layout_));
+  overflow = !grid_.findPairs(
+    links_, o_.minimumGap, threads_, pairs_, maxPairs, tested, testedPairs(layout_));
   pairWork_ += grid_.work();
   return true;
 }

@@ -78,8 +78,8 @@ void SolverEngine::migrate()
 // links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
 // from all owners, with the current positions (so they are complete for this step), or with
 // the wider reach of the minimum-gap probe (then not counted as a step's traffic).
-void SolverEngine::gatherLinks(const std::vector<char>* active, const std::vector<char>* closed, double scale,
-  bool forGapProbe)
+void SolverEngine::gatherLinks(
+  const std::vector<char>* active, const std::vector<char>* closed, double scale, bool forGapProbe)
 {
   buildLinks(model_, active, threads_, comm_ ? ownLinks_ : links_, &pointOffset_, closed, scale);
   if (!comm_)
@@ -87,7 +87,8 @@ void SolverEngine::gatherLinks(const std::vector<char>* active, const std::vecto
     return;
   }
   const double reach = forGapProbe ? probeReach_ : pairReach_;
-  const TrafficCount sent = exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
+  const TrafficCount sent =
+    exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
   if (forGapProbe)
   {
     return;
@@ -99,7 +100,8 @@ void SolverEngine::gatherLinks(const std::vector<char>* active, const std::vecto
     halo += f == kNotOwned ? 1 : 0;
   peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
   peakHaloLinks_ = std::max(peakHaloLinks_, halo);
-  peakRankPoints_ = std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
+  peakRankPoints_ =
+    std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
 }
 
 // Owned fibers whose middle left this rank's slab (after a move): they migrate next step.

@@ -32,7 +32,9 @@ class SolverEngine
 {
 public:
   SolverEngine(FiberModel& model, const CollisionSolverOptions& o, int threads)
-    : model_(model), o_(o), threads_(threads)
+    : model_(model)
+    , o_(o)
+    , threads_(threads)
   {
   }
 
@@ -58,11 +60,12 @@ public:
   // a step, and for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
-  std::uint64_t pairWork_ = 0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
+  std::uint64_t pairWork_ =
+    0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
   std::size_t testerRecuts_ = 0; // balanceTesters calls that moved a cut ...
   double testerCutMove_ = 0.0;   // ... and the largest move, as a fraction of the axis' span
-  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0, peakRankPoints_ = 0,
-              peakHeldLinks_ = 0;
+  std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0,
+              peakRankPoints_ = 0, peakHeldLinks_ = 0;
 
   RankFibers rankFibers() { return RankFibers{ model_, st_ }; }
 
@@ -85,7 +88,8 @@ public:
   // This rank's share of the counts: pairs, links, changed.
   std::vector<std::int64_t> localCounts(bool changed) const
   {
-    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()), changed ? 1 : 0 };
+    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()),
+      changed ? 1 : 0 };
   }
   static Counts countsOf(const std::vector<std::int64_t>& v)
   {

@@ -114,7 +114,8 @@ namespace
 {
 // What the solver keeps per point (model point and radius, velocity and source index, force) and
 // per link (its capsule and the grid's buffers); links ≈ points.
-constexpr double kBytesPerPoint = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
+constexpr double kBytesPerPoint =
+  2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
 } // namespace
 
 double bytesPerPoint()

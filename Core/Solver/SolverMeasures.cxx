@@ -14,7 +14,8 @@ double SolverEngine::overlapFreeScale() const
   double f = 1.0;
   for (const CapsulePair& p : pairs_)
   {
-    f = std::min(f, std::max(0.0, p.distance - o_.minimumGap) / (links_[p.a].rho + links_[p.b].rho));
+    f =
+      std::min(f, std::max(0.0, p.distance - o_.minimumGap) / (links_[p.a].rho + links_[p.b].rho));
   }
   return comm_ ? minOverRanks(*comm_, f) : f;
 }
@@ -65,12 +66,13 @@ double smallestGap(SolverEngine& s, double probe)
   {
     if (s.periodic())
     {
-      s.periodic_.findPairs(
-        s.links_, s.o_.periodicCell, g, s.threads_, near, static_cast<std::size_t>(-1), nullptr, tested);
+      s.periodic_.findPairs(s.links_, s.o_.periodicCell, g, s.threads_, near,
+        static_cast<std::size_t>(-1), nullptr, tested);
     }
     else
     {
-      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), tested, testedPairs(s.layout_));
+      s.grid_.findPairs(s.links_, g, s.threads_, near, static_cast<std::size_t>(-1), tested,
+        testedPairs(s.layout_));
     }
     const bool any = s.comm_ ? anyRank(*s.comm_, !near.empty()) : !near.empty();
     if (any || !(g < probe))

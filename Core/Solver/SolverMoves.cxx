@@ -26,7 +26,8 @@ bool SolverEngine::shapeControl()
     FiberPointState& st = st_.points[static_cast<std::size_t>(f)];
     const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
     const Vec3* closure = closed ? &st_.closure[static_cast<std::size_t>(f)] : nullptr;
-    bool c = controlTortuosity(fib, o_.tortuosity, tortuosityTolerance(), moveCap(), 5.0 * st_.segmentLength, closure);
+    bool c = controlTortuosity(
+      fib, o_.tortuosity, tortuosityTolerance(), moveCap(), 5.0 * st_.segmentLength, closure);
     c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2) || c;
     c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
     close(static_cast<std::size_t>(f));
@@ -94,8 +95,8 @@ void SolverEngine::separate()
     const CapsuleLink& lb = links_[p.b];
     const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
     const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
-    const double sigma =
-      boostedPush(std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap), st_.pushScale, overlap);
+    const double sigma = boostedPush(
+      std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap), st_.pushScale, overlap);
     const Vec3 n = sigma * p.direction;
     LinkPairPush& out = push_[static_cast<std::size_t>(pi)];
     out.fiberA = la.fiber;
@@ -113,7 +114,8 @@ void SolverEngine::separate()
   const double spread = o_.pushSpread;
   // One pair's pushes onto the points of its links that this rank owns (fa, fb: the links'
   // fibers in the model, SIZE_MAX: another rank's; that side is added there, in the same order).
-  const auto apply = [this, spread](const LinkPairPush& p, std::size_t fa, std::size_t fb) {
+  const auto apply = [this, spread](const LinkPairPush& p, std::size_t fa, std::size_t fb)
+  {
     if (fa != SIZE_MAX)
     {
       force_[pointOffset_[fa] + p.kA] += p.a0;
@@ -128,7 +130,8 @@ void SolverEngine::separate()
     {
       // [ours] The outer neighbours follow: a bump instead of a kink, so the push does not
       // create the curvature violations that shape control then undoes step after step.
-      const auto add = [this, spread](std::size_t i, const Vec3& push) {
+      const auto add = [this, spread](std::size_t i, const Vec3& push)
+      {
         if (i != SIZE_MAX)
           force_[i] += spread * push;
       };
@@ -157,9 +160,11 @@ void SolverEngine::separate()
     std::vector<std::vector<ReceivedPush>> received;
     returnPushes(push_, st_.global, *comm_, sent, received);
     haloBytes_ += sent.bytes;
-    const auto own = [](std::uint32_t f) { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
+    const auto own = [](std::uint32_t f)
+    { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
     forPushesInPairOrder(push_, pairs_, held_.local, received,
-      [&](const LinkPairPush& p, std::uint32_t fa, std::uint32_t fb) { apply(p, own(fa), own(fb)); });
+      [&](const LinkPairPush& p, std::uint32_t fa, std::uint32_t fb)
+      { apply(p, own(fa), own(fb)); });
   }
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
   const double drag = o_.drag;

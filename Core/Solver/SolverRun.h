@@ -15,8 +15,13 @@ namespace fiberpli
 
 struct CollisionSolverRun::Impl
 {
-  Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob, SolverComm* c)
-    : model(m), options(o), progress(p), observer(ob), s(m, options, 1)
+  Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob,
+    SolverComm* c)
+    : model(m)
+    , options(o)
+    , progress(p)
+    , observer(ob)
+    , s(m, options, 1)
   {
     s.comm_ = c;
   }
@@ -35,7 +40,8 @@ struct CollisionSolverRun::Impl
   ProgressFn progress;
   StepObserver observer;
   SolverEngine s;
-  FiberModel input; // periodic or distributed runs: the model before preparation, restored on an error
+  FiberModel
+    input; // periodic or distributed runs: the model before preparation, restored on an error
   CollisionSolverResult result;
   Phase phase = Phase::Created;
 
@@ -81,7 +87,8 @@ struct CollisionSolverRun::Impl
   std::string misfit(const CollisionSolverState& saved) const;
   double stepShareAfter(int steps) const
   {
-    return options.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / options.maxSteps) : 1.0;
+    return options.maxSteps > 0 ? std::min(1.0, static_cast<double>(steps) / options.maxSteps)
+                                : 1.0;
   }
   // The pair limit (or a periodic cell too small for the links) met in the middle of a run.
   void failDetection(const std::string& where)
@@ -105,8 +112,10 @@ struct CollisionSolverRun::Impl
     RankFibers fibers = s.rankFibers();
     result.rankFibers = fibers.size();
     redistribute(fibers, s.st_.home, *s.comm_);
-    result.migrations = static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
-    result.haloBytesPerStep = s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
+    result.migrations =
+      static_cast<std::size_t>(sumOverRanks(static_cast<std::int64_t>(s.migrations_)));
+    result.haloBytesPerStep =
+      s.haloExchanges_ > 0 ? static_cast<double>(s.haloBytes_) / s.haloExchanges_ : 0.0;
     result.peakHaloLinks = s.peakHaloLinks_;
     result.peakRankPoints = s.peakRankPoints_;
     result.peakHeldLinks = s.peakHeldLinks_;

@@ -81,7 +81,8 @@ void prepareFibers(SolverEngine& s, std::vector<std::string>& warnings)
   }
   if (s.comm_) // the warnings count all ranks
   {
-    std::vector<std::int64_t> n{ static_cast<std::int64_t>(repeated), static_cast<std::int64_t>(tooShort) };
+    std::vector<std::int64_t> n{ static_cast<std::int64_t>(repeated),
+      static_cast<std::int64_t>(tooShort) };
     s.comm_->sum(n);
     repeated = static_cast<std::size_t>(n[0]);
     tooShort = static_cast<std::size_t>(n[1]);
@@ -166,7 +167,8 @@ void configure(SolverEngine& s, std::vector<std::string>& warnings)
   if (s.o_.maxDisplacement > 1.0)
   {
     warnings.push_back("MaxDisplacement " + formatNumber(s.o_.maxDisplacement) +
-      " is above 1: a point may move farther than the thinnest fiber's radius per step, so fibers can "
+      " is above 1: a point may move farther than the thinnest fiber's radius per step, so fibers "
+      "can "
       "pass through each other unseen");
   }
   s.st_.vMax = s.o_.maxDisplacement * rMin;

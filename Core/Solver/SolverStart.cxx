@@ -2,8 +2,8 @@
 #include "Solver/SolverRun.h"
 
 #include "Solver/SolverChecks.h"
-#include "Util/Threads.h"
 #include "Util/NumberFormat.h"
+#include "Util/Threads.h"
 
 #include <numeric>
 
@@ -81,7 +81,8 @@ bool CollisionSolverRun::start()
     // Stacks of nearly identical fibers are refused on the input as it came, before the model
     // changes (the limit is checked again at every step; periodic runs restore the input).
     const bool found = s.detect(nullptr, false, true);
-    if (r.failAgreed(found ? std::string() : s.detectError_)) // detect() agrees on it over the ranks
+    if (r.failAgreed(
+          found ? std::string() : s.detectError_)) // detect() agrees on it over the ranks
     {
       return false;
     }
@@ -112,10 +113,12 @@ std::string CollisionSolverRun::Impl::misfit(const CollisionSolverState& saved) 
   {
     // Every rank would number its fibers 0..n-1: the global indices would collide.
     error = "the saved solver state has no global fiber indices (a serial state): it cannot "
-            "resume a run over " + formatNumber(r.s.comm_->size()) + " ranks";
+            "resume a run over " +
+      formatNumber(r.s.comm_->size()) + " ranks";
   }
-  if (error.empty() && (saved.points.size() != nf || saved.active.size() != nf ||
-    saved.closed.size() != nf || saved.closure.size() != nf))
+  if (error.empty() &&
+    (saved.points.size() != nf || saved.active.size() != nf || saved.closed.size() != nf ||
+      saved.closure.size() != nf))
   {
     error = "the saved solver state is for " + formatNumber(saved.points.size()) +
       " fibers, the model has " + formatNumber(nf);
@@ -136,7 +139,8 @@ std::string CollisionSolverRun::Impl::misfit(const CollisionSolverState& saved) 
   return error;
 }
 
-std::string CollisionSolverRun::resume(const CollisionSolverState& saved, const ResumeAgreement& agree)
+std::string CollisionSolverRun::resume(
+  const CollisionSolverState& saved, const ResumeAgreement& agree)
 {
   Impl& r = *impl_;
   r.phase = Impl::Phase::Failed;

@@ -53,8 +53,9 @@ bool CollisionSolverRun::step()
     st.pushScale = pushScaleFor(count, counts.links, o.pushBoost);
   }
   const double stepShare = r.stepShareAfter(st.steps);
-  const double resolved = st.firstCount > 0 ? 1.0 - std::log1p(static_cast<double>(count)) /
-      std::log1p(static_cast<double>(st.firstCount)) : 1.0;
+  const double resolved = st.firstCount > 0
+    ? 1.0 - std::log1p(static_cast<double>(count)) / std::log1p(static_cast<double>(st.firstCount))
+    : 1.0;
   st.done = std::max(st.done, std::min(0.99, std::max(stepShare, resolved)));
   // A step of a large model takes long (~0.1 s per 1e5 links): then abort is also checked
   // between its two long phases (shape control and detection; moves), so a stop request waits
@@ -76,7 +77,8 @@ bool CollisionSolverRun::step()
     st.sinceImprovement = 0;
     st.first = true;
   }
-  const auto end = [&r]() {
+  const auto end = [&r]()
+  {
     r.phase = Impl::Phase::Ended;
     return false;
   };
@@ -170,7 +172,8 @@ CollisionSolverResult CollisionSolverRun::finish()
   if (st.scale < 1.0)
   {
     // The output has the input radii: count what is left at full size.
-    const double reached = s.periodic() ? s.fiberVolume() / o.periodicCell.volume() * st.scale * st.scale : -1.0;
+    const double reached =
+      s.periodic() ? s.fiberVolume() / o.periodicCell.volume() * st.scale * st.scale : -1.0;
     st.scale = 1.0;
     if (!s.detect())
     {

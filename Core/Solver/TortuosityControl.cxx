@@ -19,12 +19,13 @@ double fiberTortuosity(const Fiber& f, const Vec3* closure)
   {
     length += distance(f.points[i], f.points[i + 1]);
   }
-  const double chord = closure ? std::sqrt(norm2(*closure)) : distance(f.points.front(), f.points.back());
+  const double chord =
+    closure ? std::sqrt(norm2(*closure)) : distance(f.points.front(), f.points.back());
   return chord > 0.0 ? length / chord : 0.0;
 }
 
-bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove, double minWavelength,
-  const Vec3* closure)
+bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove,
+  double minWavelength, const Vec3* closure)
 {
   const std::size_t n = f.size();
   if (target <= 1.0 || n < 3 || !(maxMove > 0.0))

@@ -26,7 +26,7 @@ double fiberTortuosity(const Fiber& f, const Vec3* closure = nullptr);
 /// (small slopes: τ − 1 grows with the square of the deviations), limited so that no point moves
 /// more than maxMove. A straight fiber has nothing to scale and stays. target <= 1 disables it.
 /// Returns true when it moved points.
-bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove, double minWavelength,
-  const Vec3* closure = nullptr);
+bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove,
+  double minWavelength, const Vec3* closure = nullptr);
 
 } // namespace fiberpli

@@ -1,6 +1,7 @@
 // Independent reference for the collision tests: segment distance as the minimum of the four
 // end point–segment distances and the interior critical point (a different construction from
-// Geometry/SegmentDistance), and an O(N²) pair list with the docs/solver.md §3.1 rules written out again.
+// Geometry/SegmentDistance), and an O(N²) pair list with the docs/solver.md §3.1 rules written out
+// again.
 #pragma once
 
 #include "Model/FiberModel.h"
@@ -73,7 +74,8 @@ inline std::vector<RefLink> refLinks(const fiberpli::FiberModel& m)
 
 /// All (a, b), a < b global link ids, with δ < ρa + ρb + gap; same fiber: not adjacent and the
 /// arc length strictly between them >= 2·(ρa + ρb).
-inline std::vector<std::pair<std::size_t, std::size_t>> refPairs(const std::vector<RefLink>& l, double gap = 0.0)
+inline std::vector<std::pair<std::size_t, std::size_t>> refPairs(
+  const std::vector<RefLink>& l, double gap = 0.0)
 {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   for (std::size_t a = 0; a < l.size(); ++a)

@@ -32,14 +32,17 @@ std::string slurp(const std::string& path)
   return s.str();
 }
 
-std::size_t pick(RandomStream& rng, std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng.uniform() * static_cast<double>(n)); }
+std::size_t pick(RandomStream& rng, std::size_t n)
+{
+  return n == 0 ? 0 : static_cast<std::size_t>(rng.uniform() * static_cast<double>(n));
+}
 
 std::string mutate(std::string s, RandomStream& rng)
 {
-  static const char* textTokens[] = { "1e999", "nan", "-inf", "99999999999999999999999", "-0", "\n\n\n", "#", "\r",
-    "0x1p3", "1e-400", "+", "-", ".", "\t", "  ", "\0" };
-  static const std::uint32_t hugeInts[] = { 0x7fffffffu, 0xffffffffu, 0x80000000u, 0x7fc00000u, 0x7f800000u,
-    0xff800000u, 0x00000001u, 0x7f7fffffu };
+  static const char* textTokens[] = { "1e999", "nan", "-inf", "99999999999999999999999", "-0",
+    "\n\n\n", "#", "\r", "0x1p3", "1e-400", "+", "-", ".", "\t", "  ", "\0" };
+  static const std::uint32_t hugeInts[] = { 0x7fffffffu, 0xffffffffu, 0x80000000u, 0x7fc00000u,
+    0x7f800000u, 0xff800000u, 0x00000001u, 0x7f7fffffu };
   const int edits = 1 + static_cast<int>(pick(rng, 4));
   for (int e = 0; e < edits; ++e)
   {
@@ -78,14 +81,16 @@ std::string mutate(std::string s, RandomStream& rng)
         const std::uint32_t v = hugeInts[pick(rng, sizeof hugeInts / sizeof hugeInts[0])];
         for (int b = 0; b < 4; ++b)
         {
-          s[at + static_cast<std::size_t>(b)] = static_cast<char>(v >> (8 * (rng.uniform() < 0.5 ? b : 3 - b)));
+          s[at + static_cast<std::size_t>(b)] =
+            static_cast<char>(v >> (8 * (rng.uniform() < 0.5 ? b : 3 - b)));
         }
         break;
       }
       case 4: // text tokens
       {
         const char* t = textTokens[pick(rng, sizeof textTokens / sizeof textTokens[0])];
-        s.insert(pick(rng, s.size() + 1), std::string(t, t[0] ? std::char_traits<char>::length(t) : 1));
+        s.insert(
+          pick(rng, s.size() + 1), std::string(t, t[0] ? std::char_traits<char>::length(t) : 1));
         break;
       }
       case 5: // delete a chunk
@@ -118,8 +123,9 @@ void check(const FiberReadResult& r, const char* reader, int sample, int i)
   }
   if (!r.ok() && (r.error.find("fuzz.in") == std::string::npos || !r.model.fibers.empty()))
   {
-    std::fprintf(stderr, "FAIL %s sample %d mutation %d: error without file name or with data: %s\n", reader,
-      sample, i, r.error.c_str());
+    std::fprintf(stderr,
+      "FAIL %s sample %d mutation %d: error without file name or with data: %s\n", reader, sample,
+      i, r.error.c_str());
     ++failures;
   }
 }
@@ -138,13 +144,15 @@ void checkTsf(const TsfReadResult& r, int sample, int i)
   }
   if (r.ok() && !good)
   {
-    std::fprintf(stderr, "FAIL tsf sample %d mutation %d: read ok but offsets missing or a value not finite\n",
-      sample, i);
+    std::fprintf(stderr,
+      "FAIL tsf sample %d mutation %d: read ok but offsets missing or a value not finite\n", sample,
+      i);
     ++failures;
   }
   if (!r.ok() && (r.error.find("fuzz.in") == std::string::npos || !r.values.empty()))
   {
-    std::fprintf(stderr, "FAIL tsf sample %d mutation %d: error without file name or with data: %s\n", sample, i,
+    std::fprintf(stderr,
+      "FAIL tsf sample %d mutation %d: error without file name or with data: %s\n", sample, i,
       r.error.c_str());
     ++failures;
   }
@@ -155,11 +163,12 @@ void checkTsf(const TsfReadResult& r, int sample, int i)
 int main()
 {
   const std::string dir = FIBERPLI_TEST_DATA_DIR;
-  std::vector<std::string> samples = { slurp(dir + "/fastpli/fastpli.dat"), slurp(dir + "/tracks/sample.tck"),
-    slurp(dir + "/tracks/sample.trk"), slurp(dir + "/tracks/sample.radius.tsf") };
+  std::vector<std::string> samples = { slurp(dir + "/fastpli/fastpli.dat"),
+    slurp(dir + "/tracks/sample.tck"), slurp(dir + "/tracks/sample.trk"),
+    slurp(dir + "/tracks/sample.radius.tsf") };
   samples.push_back(slurp(dir + "/fastpli/cube.dat").substr(0, 4000)); // a few fibers of the cube
-  samples.push_back(slurp(dir + "/substrates/voxel.csv"));   // CATERPillar
-  samples.push_back(slurp(dir + "/substrates/strands.txt")); // CACTUS
+  samples.push_back(slurp(dir + "/substrates/voxel.csv"));             // CATERPillar
+  samples.push_back(slurp(dir + "/substrates/strands.txt"));           // CACTUS
   for (const std::string& s : samples)
   {
     if (s.empty())
@@ -223,7 +232,8 @@ int main()
       }
       runs += 6;
       if ((i & 63) == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > budgetSeconds)
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+          budgetSeconds)
       {
         std::printf("time budget reached after sample %d mutation %d\n", sample, i);
         sample = static_cast<int>(samples.size());

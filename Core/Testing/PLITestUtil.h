@@ -41,7 +41,8 @@ inline double dirDiff(double a, double b)
 }
 
 /// Straight fiber through c along unit u, ±half µm long, constant radius.
-inline fiberpli::Fiber line(const fiberpli::Vec3& c, const fiberpli::Vec3& u, double half, double r, int bundle = 0)
+inline fiberpli::Fiber line(
+  const fiberpli::Vec3& c, const fiberpli::Vec3& u, double half, double r, int bundle = 0)
 {
   fiberpli::Fiber f;
   f.points = { c - half * u, c + half * u };

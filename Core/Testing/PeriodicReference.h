@@ -1,5 +1,6 @@
 // Independent references for periodic cells (share no code with the solver; distances come from
-// BruteForceOverlap.h): the overlap count over all 27 images and the volume fraction by Monte Carlo.
+// BruteForceOverlap.h): the overlap count over all 27 images and the volume fraction by Monte
+// Carlo.
 #pragma once
 
 #include "BruteForceOverlap.h"
@@ -18,7 +19,8 @@ using fiberpli::FiberModel;
 using fiberpli::RandomStream;
 
 // The periodic cube of the periodic tests: r 0.8 µm, points 2 µm apart, displacement ±0.3 µm.
-inline fiberpli::CubeOptions periodicCube(int populations, double edge, double phi, std::uint64_t seed = 3)
+inline fiberpli::CubeOptions periodicCube(
+  int populations, double edge, double phi, std::uint64_t seed = 3)
 {
   fiberpli::CubeOptions o;
   o.populations = populations;
@@ -80,14 +82,16 @@ inline std::size_t refPeriodicCount(const FiberModel& m, double L)
   return count;
 }
 
-// Fraction of [-L/2, L/2]³ inside any capsule image, by uniform samples (no cell list: small cells).
+// Fraction of [-L/2, L/2]³ inside any capsule image, by uniform samples (no cell list: small
+// cells).
 inline double monteCarloFraction(const FiberModel& m, double L, int samples)
 {
   RandomStream rng(99);
   int hits = 0;
   for (int s = 0; s < samples; ++s)
   {
-    const Vec3 p{ rng.uniform(-L / 2, L / 2), rng.uniform(-L / 2, L / 2), rng.uniform(-L / 2, L / 2) };
+    const Vec3 p{ rng.uniform(-L / 2, L / 2), rng.uniform(-L / 2, L / 2),
+      rng.uniform(-L / 2, L / 2) };
     bool inside = false;
     for (const Fiber& f : m.fibers)
     {

@@ -46,7 +46,8 @@ inline bool bitwiseEqual(const fiberpli::FiberModel& a, const fiberpli::FiberMod
     const fiberpli::Fiber& y = b.fibers[f];
     if (x.id != y.id || x.bundle != y.bundle || x.points.size() != y.points.size() ||
       x.radii.size() != y.radii.size() ||
-      std::memcmp(x.points.data(), y.points.data(), x.points.size() * sizeof(fiberpli::Vec3)) != 0 ||
+      std::memcmp(x.points.data(), y.points.data(), x.points.size() * sizeof(fiberpli::Vec3)) !=
+        0 ||
       std::memcmp(x.radii.data(), y.radii.data(), x.radii.size() * sizeof(double)) != 0)
       return false;
   }

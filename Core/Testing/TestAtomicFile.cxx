@@ -82,11 +82,23 @@ TEST(AtomicFile, WritesNewAndReplacesExistingFile)
 {
   TempDir dir;
   const std::string target = dir.path + "/a.txt";
-  ASSERT_EQ(writeFileAtomically(target, [](std::ostream& out) { out << "first"; return std::string(); }), "");
+  ASSERT_EQ(writeFileAtomically(target,
+              [](std::ostream& out)
+              {
+                out << "first";
+                return std::string();
+              }),
+    "");
   EXPECT_EQ(slurp(target), "first");
   ::chmod(target.c_str(), 0640);
   const std::string big(300000, 'x'); // larger than the stream buffer
-  ASSERT_EQ(writeFileAtomically(target, [&](std::ostream& out) { out << big; return std::string(); }), "");
+  ASSERT_EQ(writeFileAtomically(target,
+              [&](std::ostream& out)
+              {
+                out << big;
+                return std::string();
+              }),
+    "");
   EXPECT_EQ(slurp(target), big);
   struct stat st;
   ASSERT_EQ(::stat(target.c_str(), &st), 0);
@@ -99,18 +111,22 @@ TEST(AtomicFile, FailingContentKeepsTheOldFile)
   TempDir dir;
   const std::string target = dir.path + "/keep.dat";
   spit(target, "old content");
-  const std::string err = writeFileAtomically(target, [](std::ostream& out) {
-    out << "half of the new content";
-    return std::string("fiber 3 is broken");
-  });
+  const std::string err = writeFileAtomically(target,
+    [](std::ostream& out)
+    {
+      out << "half of the new content";
+      return std::string("fiber 3 is broken");
+    });
   EXPECT_EQ(err, "fiber 3 is broken");
   EXPECT_EQ(slurp(target), "old content");
   EXPECT_EQ(dir.entries().size(), 1u);
 
-  const std::string thrown = writeFileAtomically(target, [](std::ostream& out) -> std::string {
-    out << "partial";
-    throw std::runtime_error("out of memory");
-  });
+  const std::string thrown = writeFileAtomically(target,
+    [](std::ostream& out) -> std::string
+    {
+      out << "partial";
+      throw std::runtime_error("out of memory");
+    });
   EXPECT_NE(thrown.find(target), std::string::npos) << thrown;
   EXPECT_NE(thrown.find("out of memory"), std::string::npos) << thrown;
   EXPECT_EQ(slurp(target), "old content");
@@ -121,13 +137,23 @@ TEST(AtomicFile, UnwritableTargetsAreErrorsNamingThePath)
 {
   TempDir dir;
   const std::string missing = dir.path + "/no/such/dir/x.dat";
-  std::string err = writeFileAtomically(missing, [](std::ostream& out) { out << "x"; return std::string(); });
+  std::string err = writeFileAtomically(missing,
+    [](std::ostream& out)
+    {
+      out << "x";
+      return std::string();
+    });
   EXPECT_NE(err.find(missing), std::string::npos) << err;
   EXPECT_NE(err.find("No such file or directory"), std::string::npos) << err;
 
   const std::string sub = dir.path + "/sub";
   ASSERT_EQ(::mkdir(sub.c_str(), 0755), 0);
-  err = writeFileAtomically(sub, [](std::ostream& out) { out << "x"; return std::string(); });
+  err = writeFileAtomically(sub,
+    [](std::ostream& out)
+    {
+      out << "x";
+      return std::string();
+    });
   EXPECT_NE(err.find(sub), std::string::npos) << err;
   EXPECT_NE(err.find("directory"), std::string::npos) << err;
   struct stat st;
@@ -163,8 +189,10 @@ TEST(AtomicFile, FiberWriterKeepsOldFileOnInvalidModel)
   ASSERT_TRUE(back.ok()) << back.error;
   EXPECT_EQ(back.model.fibers.size(), 1u);
   EXPECT_TRUE(canReadFiberFile(target));
-  EXPECT_NE(writeFiberFile(dir.path + "/model.trk", good).find("cannot write this extension"), std::string::npos);
-  EXPECT_NE(readFiberFile(dir.path + "/nothing.dat", 1.0).error.find(dir.path + "/nothing.dat"), std::string::npos);
+  EXPECT_NE(writeFiberFile(dir.path + "/model.trk", good).find("cannot write this extension"),
+    std::string::npos);
+  EXPECT_NE(readFiberFile(dir.path + "/nothing.dat", 1.0).error.find(dir.path + "/nothing.dat"),
+    std::string::npos);
 }
 
 TEST(AtomicFile, FailedRenameRemovesTheTemporaryFile)
@@ -173,12 +201,14 @@ TEST(AtomicFile, FailedRenameRemovesTheTemporaryFile)
   // after the temporary file is complete: the error names the path and no temporary file remains.
   TempDir dir;
   const std::string target = dir.path + "/late.dat";
-  const std::string err = writeFileAtomically(target, [&](std::ostream& out) {
-    out << "content";
-    ::mkdir(target.c_str(), 0755);
-    std::ofstream(target + "/inside") << "x";
-    return std::string();
-  });
+  const std::string err = writeFileAtomically(target,
+    [&](std::ostream& out)
+    {
+      out << "content";
+      ::mkdir(target.c_str(), 0755);
+      std::ofstream(target + "/inside") << "x";
+      return std::string();
+    });
   EXPECT_NE(err.find("cannot replace " + target), std::string::npos) << err;
   EXPECT_EQ(dir.entries().size(), 1u) << "temporary file left behind";
   ::unlink((target + "/inside").c_str());
@@ -193,17 +223,20 @@ TEST(AtomicFile, TemporaryNameIsUnpredictable)
   std::vector<std::string> temporaries;
   for (int k = 0; k < 2; ++k)
   {
-    ASSERT_EQ(writeFileAtomically(target, [&](std::ostream& out) {
-      for (const std::string& name : dir.entries())
-      {
-        if (name.rfind("out.dat.tmp-", 0) == 0)
-        {
-          temporaries.push_back(name);
-        }
-      }
-      out << "x";
-      return std::string();
-    }), "");
+    ASSERT_EQ(writeFileAtomically(target,
+                [&](std::ostream& out)
+                {
+                  for (const std::string& name : dir.entries())
+                  {
+                    if (name.rfind("out.dat.tmp-", 0) == 0)
+                    {
+                      temporaries.push_back(name);
+                    }
+                  }
+                  out << "x";
+                  return std::string();
+                }),
+      "");
   }
   ASSERT_EQ(temporaries.size(), 2u);
   EXPECT_NE(temporaries[0], temporaries[1]);
@@ -226,8 +259,18 @@ TEST(AtomicFile, FilePairFailingSecondWriteKeepsBothOldFiles)
   spit(a, "old a");
   spit(b, "old b");
   const std::string err = writeFilesAtomically({
-    AtomicPart{ a, [](std::ostream& out) { out << "new a"; return std::string(); } },
-    AtomicPart{ b, [](std::ostream& out) { out << "half of new b"; return std::string("No space left on device"); } },
+    AtomicPart{ a,
+      [](std::ostream& out)
+      {
+        out << "new a";
+        return std::string();
+      } },
+    AtomicPart{ b,
+      [](std::ostream& out)
+      {
+        out << "half of new b";
+        return std::string("No space left on device");
+      } },
   });
   EXPECT_EQ(err, "No space left on device");
   EXPECT_EQ(slurp(a), "old a");
@@ -235,8 +278,18 @@ TEST(AtomicFile, FilePairFailingSecondWriteKeepsBothOldFiles)
   EXPECT_EQ(dir.entries().size(), 2u);
 
   ASSERT_EQ(writeFilesAtomically({
-              AtomicPart{ a, [](std::ostream& out) { out << "new a"; return std::string(); } },
-              AtomicPart{ b, [](std::ostream& out) { out << "new b"; return std::string(); } },
+              AtomicPart{ a,
+                [](std::ostream& out)
+                {
+                  out << "new a";
+                  return std::string();
+                } },
+              AtomicPart{ b,
+                [](std::ostream& out)
+                {
+                  out << "new b";
+                  return std::string();
+                } },
             }),
     "");
   EXPECT_EQ(slurp(a), "new a");
@@ -253,9 +306,15 @@ TEST(AtomicFile, FilePairFailedSecondRenamePutsTheFirstBack)
   const std::string b = dir.path + "/second.dat";
   spit(a, "old first");
   const std::string err = writeFilesAtomically({
-    AtomicPart{ a, [](std::ostream& out) { out << "new first"; return std::string(); } },
+    AtomicPart{ a,
+      [](std::ostream& out)
+      {
+        out << "new first";
+        return std::string();
+      } },
     AtomicPart{ b,
-      [&](std::ostream& out) {
+      [&](std::ostream& out)
+      {
         out << "new second";
         ::mkdir(b.c_str(), 0755);
         std::ofstream(b + "/inside") << "x";
@@ -314,7 +373,8 @@ TEST(AtomicFile, ReadersRefuseAFifoWithoutBlocking)
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     EXPECT_FALSE(canReadFiberFile(fifo));
     const FiberReadResult r = readFiberFile(fifo, 1.0); // blocks forever without the check
-    EXPECT_NE(r.error.find(fifo + " is a FIFO (named pipe), not a regular file"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find(fifo + " is a FIFO (named pipe), not a regular file"), std::string::npos)
+      << r.error;
   }
   // A .tck whose radius file is a FIFO.
   const std::string tck = dir.path + "/model.tck";

@@ -54,7 +54,8 @@ TEST(Beading, EveryFiberHasTheRequestedCVAndMeanOne)
 TEST(Beading, FieldHasTheRequestedCorrelationLength)
 {
   // Squared-exponential correlation: at lag ℓ it is exp(−1/2) = 0.607, at 3ℓ exp(−4.5) = 0.011.
-  // Estimated from many long fibers (200 ℓ each, so the per-fiber standardisation barely biases it).
+  // Estimated from many long fibers (200 ℓ each, so the per-fiber standardisation barely biases
+  // it).
   const double ell = 2.0;
   const std::size_t n = 801; // spacing 0.5 µm = ℓ/4
   const std::vector<double> arc = uniformArc(n, 400.0);

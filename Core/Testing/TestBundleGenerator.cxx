@@ -1,6 +1,6 @@
-// FiberBundleSource Core (docs/tissue-models.md §2, §5.4, §6, §7, §8): fibers inside the bundle, following
-// a curved trajectory without twist, ids and bundle ids per shape, reproducibility, Ranvier profile,
-// bad input messages.
+// FiberBundleSource Core (docs/tissue-models.md §2, §5.4, §6, §7, §8): fibers inside the bundle,
+// following a curved trajectory without twist, ids and bundle ids per shape, reproducibility,
+// Ranvier profile, bad input messages.
 #include "Tissue/BundleGenerator.h"
 #include "Tissue/BundleShapes.h"
 
@@ -85,7 +85,8 @@ TEST(BundleGenerator, CylinderDefaultsFillTheBundleOnTheGrid)
     for (std::size_t k = 0; k < f.points.size(); ++k)
     {
       const Vec3& p = f.points[k];
-      EXPECT_LE(std::hypot(p.y, p.z), o.bundleRadius - o.fiberRadius + o.displacement * std::sqrt(3.0));
+      EXPECT_LE(
+        std::hypot(p.y, p.z), o.bundleRadius - o.fiberRadius + o.displacement * std::sqrt(3.0));
       EXPECT_NEAR(p.x, -30.0 + 2.0 * k, o.displacement + 1e-12);
       EXPECT_EQ(f.radii[k], 0.8);
     }
@@ -139,9 +140,9 @@ TEST(BundleGenerator, FollowsACurvedTrajectoryWithoutTwist)
     for (std::size_t k = 0; k < f.points.size(); ++k)
     {
       const Vec3 off = f.points[k] - t.points[k];
-      EXPECT_NEAR(norm(off), rho, 1e-9);                     // distance to the trajectory constant
-      EXPECT_NEAR(dot(off, fr.tangent[k]), 0.0, 1e-9);       // cross-section perpendicular
-      EXPECT_NEAR(off.z, o0.z, 1e-9);                        // planar curve: no twist about the axis
+      EXPECT_NEAR(norm(off), rho, 1e-9);               // distance to the trajectory constant
+      EXPECT_NEAR(dot(off, fr.tangent[k]), 0.0, 1e-9); // cross-section perpendicular
+      EXPECT_NEAR(off.z, o0.z, 1e-9);                  // planar curve: no twist about the axis
     }
   }
 }
@@ -181,7 +182,8 @@ TEST(BundleGenerator, RandomSeedsStayInsideAndAddingFibersKeepsTheOldOnes)
   {
     for (std::size_t k = 0; k < f.points.size(); ++k)
     {
-      EXPECT_LE(std::hypot(f.points[k].y, f.points[k].z), o.bundleRadius - f.radii[k] + o.displacement * std::sqrt(3.0));
+      EXPECT_LE(std::hypot(f.points[k].y, f.points[k].z),
+        o.bundleRadius - f.radii[k] + o.displacement * std::sqrt(3.0));
       EXPECT_LE(f.radii[k], o.bundleRadius);
     }
   }
@@ -189,7 +191,8 @@ TEST(BundleGenerator, RandomSeedsStayInsideAndAddingFibersKeepsTheOldOnes)
 
 TEST(BundleGenerator, SameSeedIsBitIdenticalOtherSeedDiffers)
 {
-  for (BundleShape shape : { BundleShape::Cylinder, BundleShape::Crossing, BundleShape::YShape, BundleShape::Chiasm })
+  for (BundleShape shape :
+    { BundleShape::Cylinder, BundleShape::Crossing, BundleShape::YShape, BundleShape::Chiasm })
   {
     BundleOptions o;
     o.shape = shape;
@@ -237,12 +240,13 @@ TEST(BundleGenerator, YShapeSplitsTheTrunkIntoTwoBranches)
   for (const Fiber& f : m.fibers)
   {
     const double side = f.bundle == 0 ? -1.0 : 1.0;
-    EXPECT_NEAR(f.points.front().y, -30.0, 1e-9);             // trunk starts at y = −H
-    EXPECT_TRUE(side * f.points.front().x >= 0.0);            // half-disc by the sign of x
-    EXPECT_GT(side * f.points.back().x, 0.0);                 // ends on its own side
+    EXPECT_NEAR(f.points.front().y, -30.0, 1e-9);  // trunk starts at y = −H
+    EXPECT_TRUE(side * f.points.front().x >= 0.0); // half-disc by the sign of x
+    EXPECT_GT(side * f.points.back().x, 0.0);      // ends on its own side
     const Vec3 b{ side * std::sin(half), std::cos(half), 0.0 };
     const std::size_t n = f.points.size();
-    EXPECT_NEAR(dot(normalized(f.points[n - 1] - f.points[n - 3]), b), 1.0, 1e-6); // leaves along b±
+    EXPECT_NEAR(
+      dot(normalized(f.points[n - 1] - f.points[n - 3]), b), 1.0, 1e-6); // leaves along b±
   }
 }
 
@@ -331,8 +335,8 @@ TEST(BundleGenerator, RanvierNodesHaveDepthAndSpacing)
       }
       if ((!atMin || k + 1 == f.points.size()) && runStart >= 0.0)
       {
-        // Only nodes whose flat part [c − w/2, c + w/2] lies well inside the fiber (insertions within
-        // the snapping tolerance of an end point are dropped).
+        // Only nodes whose flat part [c − w/2, c + w/2] lies well inside the fiber (insertions
+        // within the snapping tolerance of an end point are dropped).
         if (runStart > 1.0 && runEnd < 59.0)
         {
           EXPECT_NEAR(runEnd - runStart, 1.0, 1e-9); // sampled at c ± w/2
@@ -447,8 +451,8 @@ TEST(BundleGenerator, WarnsWhenTheBundleFoldsAtABend)
 
 TEST(BundleGenerator, ShapeNamesRoundTrip)
 {
-  for (BundleShape s : { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing, BundleShape::YShape,
-         BundleShape::Chiasm })
+  for (BundleShape s : { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing,
+         BundleShape::YShape, BundleShape::Chiasm })
   {
     BundleShape parsed = BundleShape::Cylinder;
     EXPECT_TRUE(parseBundleShape(bundleShapeName(s), parsed));
@@ -502,5 +506,6 @@ TEST(BundleGenerator, ChiasmSidePathIsATangentArcAndNoUncrossedFiberFolds)
   EXPECT_EQ(uncrossed, 44);
   // A nerve too short for the arc still warns.
   o.length = 10.0;
-  EXPECT_NE(bundleWarnings(o, nullptr).find("Chiasm side path radius of curvature"), std::string::npos);
+  EXPECT_NE(
+    bundleWarnings(o, nullptr).find("Chiasm side path radius of curvature"), std::string::npos);
 }

@@ -45,7 +45,8 @@ std::vector<std::pair<std::size_t, std::size_t>> pairIds(const std::vector<Capsu
   return out;
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> gridPairs(const FiberModel& m, int threads = 1, double gap = 0.0)
+std::vector<std::pair<std::size_t, std::size_t>> gridPairs(
+  const FiberModel& m, int threads = 1, double gap = 0.0)
 {
   CollisionGrid grid;
   std::vector<CapsulePair> pairs;
@@ -185,13 +186,15 @@ TEST(CollisionGrid, SparseAndDenseGridsGiveTheBruteForcePairs)
   // Links sort by cell by counting when the grid has at most 2 cells per link, else by keys
   // (docs/solver.md §3.3). Two clusters 1 mm apart make a grid of ~10^6 cells for 600 links
   // (keys); one cluster alone a dense one (counting). One grid object alternates between them.
-  const auto cluster = [](FiberModel& m, const Vec3& at, std::uint64_t seed) {
+  const auto cluster = [](FiberModel& m, const Vec3& at, std::uint64_t seed)
+  {
     RandomStream rng(seed, 0, 0);
     for (int i = 0; i < 300; ++i)
     {
       const Vec3 a = at + Vec3{ rng.uniform(0, 15), rng.uniform(0, 15), rng.uniform(0, 15) };
       const Vec3 d{ rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2) };
-      m.fibers.push_back(fiber({ a, a + d, a + 2.0 * d }, rng.uniform(0.2, 0.6), static_cast<std::int64_t>(m.fibers.size())));
+      m.fibers.push_back(fiber({ a, a + d, a + 2.0 * d }, rng.uniform(0.2, 0.6),
+        static_cast<std::int64_t>(m.fibers.size())));
     }
   };
   FiberModel dense, sparse;
@@ -218,8 +221,9 @@ TEST(CollisionGrid, StopsExactlyWhenThePairsExceedTheLimit)
   // count is the limit where findPairs switches from "all found" to "refused", for any threads.
   FiberModel m;
   for (int i = 0; i < 20; ++i)
-    m.fibers.push_back(fiber({ { 0, double(i), 0 }, { 2, double(i), 0 }, { 4, double(i), 0 },
-                               { 6, double(i), 0 } }, 0.8, i));
+    m.fibers.push_back(
+      fiber({ { 0, double(i), 0 }, { 2, double(i), 0 }, { 4, double(i), 0 }, { 6, double(i), 0 } },
+        0.8, i));
   const std::vector<CapsuleLink> links = linksOf(m);
   const std::size_t expected = fiberpli_test::refPairs(fiberpli_test::refLinks(m)).size();
   ASSERT_GT(expected, 40u);
@@ -276,7 +280,9 @@ TEST(CollisionGrid, LowerOnlyFindsExactlyThePairsWhoseLowerLinkIsMarked)
   PeriodicPairs finder;
   std::vector<CapsulePair> all, some;
   ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, all), "");
-  ASSERT_EQ(finder.findPairs(inCell, cell, 0.0, 2, some, static_cast<std::size_t>(-1), nullptr, &marked), "");
+  ASSERT_EQ(
+    finder.findPairs(inCell, cell, 0.0, 2, some, static_cast<std::size_t>(-1), nullptr, &marked),
+    "");
   std::vector<std::pair<std::size_t, std::size_t>> restricted;
   for (const auto& p : pairIds(all))
     if (marked[p.first])
@@ -303,14 +309,17 @@ TEST(CollisionGrid, PackingBoundAdmitsDenseStartsButNotStacks)
   o.edgeLength = std::sqrt(3.0) * 30.0 * std::sqrt(0.5) / 2.0;
   const FiberModel dense = generateCube(o);
   const std::vector<CapsuleLink> denseLinks = linksOf(dense);
-  const double denseCount = static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(dense)).size());
+  const double denseCount =
+    static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(dense)).size());
   EXPECT_LT(denseCount, 0.5 * packingPairBound(denseLinks, 0.0).pairs);
 
   FiberModel stack;
   for (int i = 0; i < 200; ++i)
-    stack.fibers.push_back(fiber({ { 0, 0, 0 }, { 2, 0, 0 }, { 4, 0, 0 }, { 6, 0, 0 }, { 8, 0, 0 } }, 0.8, i));
+    stack.fibers.push_back(
+      fiber({ { 0, 0, 0 }, { 2, 0, 0 }, { 4, 0, 0 }, { 6, 0, 0 }, { 8, 0, 0 } }, 0.8, i));
   const std::vector<CapsuleLink> stackLinks = linksOf(stack);
-  const double stackCount = static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(stack)).size());
+  const double stackCount =
+    static_cast<double>(fiberpli_test::refPairs(fiberpli_test::refLinks(stack)).size());
   EXPECT_GT(stackCount, packingPairBound(stackLinks, 0.0).pairs);
 }
 
@@ -334,7 +343,9 @@ TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
   std::vector<CapsulePair> all, allPeriodic;
   ASSERT_TRUE(grid.findPairs(links, 0.0, 2, all));
   ASSERT_EQ(finder.findPairs(links, cell, 0.0, 2, allPeriodic), "");
-  const auto filtered = [](const std::vector<CapsulePair>& pairs, const std::vector<char>& mask, bool either = false) {
+  const auto filtered =
+    [](const std::vector<CapsulePair>& pairs, const std::vector<char>& mask, bool either = false)
+  {
     std::vector<std::pair<std::size_t, std::size_t>> out;
     for (const auto& p : pairIds(pairs))
       if (mask[std::min(p.first, p.second)] || (either && mask[std::max(p.first, p.second)]))
@@ -351,20 +362,24 @@ TEST(CollisionGrid, LowerOnlyEqualsTheFilteredPairs)
                              : (i < 40);
     for (int threads : { 1, 2 })
     {
-      const std::string what = "pattern " + std::to_string(pattern) + " threads " + std::to_string(threads);
+      const std::string what =
+        "pattern " + std::to_string(pattern) + " threads " + std::to_string(threads);
       std::vector<CapsulePair> got;
       ASSERT_TRUE(grid.findPairs(links, 0.0, threads, got, static_cast<std::size_t>(-1), &mask));
       const auto expected = filtered(all, mask);
       EXPECT_GT(expected.size(), 0u) << what;
       EXPECT_EQ(pairIds(got), expected) << what;
-      ASSERT_TRUE(grid.findPairs(links, 0.0, threads, got, static_cast<std::size_t>(-1), &mask, TestedPairs::EitherLink));
+      ASSERT_TRUE(grid.findPairs(
+        links, 0.0, threads, got, static_cast<std::size_t>(-1), &mask, TestedPairs::EitherLink));
       const auto expectedEither = filtered(all, mask, true);
       if (pattern != 3) // the first 40 flagged: a flagged link's partner below it is flagged too
       {
         EXPECT_GT(expectedEither.size(), expected.size()) << what;
       }
       EXPECT_EQ(pairIds(got), expectedEither) << what;
-      ASSERT_EQ(finder.findPairs(links, cell, 0.0, threads, got, static_cast<std::size_t>(-1), nullptr, &mask), "");
+      ASSERT_EQ(finder.findPairs(
+                  links, cell, 0.0, threads, got, static_cast<std::size_t>(-1), nullptr, &mask),
+        "");
       const auto expectedPeriodic = filtered(allPeriodic, mask);
       EXPECT_GT(expectedPeriodic.size(), expected.size()) << what; // pairs across the faces too
       EXPECT_EQ(pairIds(got), expectedPeriodic) << what;

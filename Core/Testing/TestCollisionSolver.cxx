@@ -28,7 +28,9 @@ double minAxisDistance(const Fiber& a, const Fiber& b)
   double d = HUGE_VAL;
   for (std::size_t i = 0; i + 1 < a.size(); ++i)
     for (std::size_t j = 0; j + 1 < b.size(); ++j)
-      d = std::min(d, fiberpli_test::refSegmentDistance(a.points[i], a.points[i + 1], b.points[j], b.points[j + 1]));
+      d = std::min(d,
+        fiberpli_test::refSegmentDistance(
+          a.points[i], a.points[i + 1], b.points[j], b.points[j + 1]));
   return d;
 }
 
@@ -191,7 +193,8 @@ TEST(CollisionSolver, HairpinLegsAreSeparated)
 TEST(ShapeControl, SplitAndMerge)
 {
   FiberPointState st;
-  auto reset = [&](const Fiber& f) {
+  auto reset = [&](const Fiber& f)
+  {
     st.velocity.assign(f.size(), Vec3{});
     st.source.clear();
     for (std::size_t i = 0; i < f.size(); ++i)
@@ -419,11 +422,13 @@ TEST(CollisionSolver, ProgressFalseAborts)
   FiberModel m = paperCube(2, 60, 5);
   CollisionSolverOptions o;
   int calls = 0;
-  const CollisionSolverResult r = solveCollisions(m, o, [&](double f) {
-    EXPECT_GT(f, 0.0);
-    EXPECT_LE(f, 1.0);
-    return ++calls < 3;
-  });
+  const CollisionSolverResult r = solveCollisions(m, o,
+    [&](double f)
+    {
+      EXPECT_GT(f, 0.0);
+      EXPECT_LE(f, 1.0);
+      return ++calls < 3;
+    });
   EXPECT_TRUE(r.aborted);
   EXPECT_EQ(r.steps, 3);
   EXPECT_EQ(calls, 3);
@@ -438,11 +443,13 @@ TEST(CollisionSolver, ObserverSeesEveryStep)
   CollisionSolverOptions o;
   o.maxSteps = 20;
   int last = 0;
-  const CollisionSolverResult r = solveCollisions(m, o, {}, [&](int step, const FiberModel& cur) {
-    EXPECT_EQ(step, last + 1);
-    EXPECT_EQ(cur.fibers.size(), 30u);
-    last = step;
-  });
+  const CollisionSolverResult r = solveCollisions(m, o, {},
+    [&](int step, const FiberModel& cur)
+    {
+      EXPECT_EQ(step, last + 1);
+      EXPECT_EQ(cur.fibers.size(), 30u);
+      last = step;
+    });
   EXPECT_EQ(last, r.steps);
 }
 
@@ -456,22 +463,24 @@ TEST(CollisionSolver, EndPointsMovePerpendicular)
   o.maxSteps = 30;
   FiberModel prev = m;
   int checked = 0;
-  solveCollisions(m, o, {}, [&](int, const FiberModel& cur) {
-    for (std::size_t f = 0; f < cur.fibers.size(); ++f)
+  solveCollisions(m, o, {},
+    [&](int, const FiberModel& cur)
     {
-      const Fiber& a = prev.fibers[f];
-      const Fiber& b = cur.fibers[f];
-      const std::size_t n = a.size();
-      const Vec3 t0 = normalized(a.points[1] - a.points[0]);
-      const Vec3 t1 = normalized(a.points[n - 1] - a.points[n - 2]);
-      const Vec3 d0 = b.points[0] - a.points[0];
-      const Vec3 d1 = b.points[n - 1] - a.points[n - 1];
-      EXPECT_LE(std::fabs(dot(d0, t0)), 1e-12 * (norm(d0) + 1e-300) + 1e-15);
-      EXPECT_LE(std::fabs(dot(d1, t1)), 1e-12 * (norm(d1) + 1e-300) + 1e-15);
-      checked += norm(d0) > 0.0 ? 1 : 0;
-    }
-    prev = cur;
-  });
+      for (std::size_t f = 0; f < cur.fibers.size(); ++f)
+      {
+        const Fiber& a = prev.fibers[f];
+        const Fiber& b = cur.fibers[f];
+        const std::size_t n = a.size();
+        const Vec3 t0 = normalized(a.points[1] - a.points[0]);
+        const Vec3 t1 = normalized(a.points[n - 1] - a.points[n - 2]);
+        const Vec3 d0 = b.points[0] - a.points[0];
+        const Vec3 d1 = b.points[n - 1] - a.points[n - 1];
+        EXPECT_LE(std::fabs(dot(d0, t0)), 1e-12 * (norm(d0) + 1e-300) + 1e-15);
+        EXPECT_LE(std::fabs(dot(d1, t1)), 1e-12 * (norm(d1) + 1e-300) + 1e-15);
+        checked += norm(d0) > 0.0 ? 1 : 0;
+      }
+      prev = cur;
+    });
   EXPECT_GT(checked, 0);
 }
 
@@ -622,7 +631,8 @@ TEST(CollisionSolver, ThinFibersAmongThickOnesWarnOfTheSlowStepCap)
 {
   // The step cap is MaxDisplacement x the smallest radius: one 0.2 µm fiber beside 1 µm ones slows
   // every fiber, and the warning names the option and the resulting step; equal radii do not warn.
-  const auto solveWithRadii = [](double thin, double maxDisplacement = 0.125) {
+  const auto solveWithRadii = [](double thin, double maxDisplacement = 0.125)
+  {
     FiberModel m;
     for (int i = 0; i < 4; ++i)
       m.fibers.push_back(line({ -5, 3.0 * i, 0 }, { 1, 0, 0 }, 11, i == 0 ? thin : 1.0, i));
@@ -631,7 +641,8 @@ TEST(CollisionSolver, ThinFibersAmongThickOnesWarnOfTheSlowStepCap)
     o.maxDisplacement = maxDisplacement;
     return solveCollisions(m, o);
   };
-  const auto mentions = [](const CollisionSolverResult& r, const std::string& text) {
+  const auto mentions = [](const CollisionSolverResult& r, const std::string& text)
+  {
     for (const std::string& w : r.warnings)
       if (w.find(text) != std::string::npos)
         return true;
@@ -703,7 +714,9 @@ TEST(CollisionSolver, StacksOfIdenticalFibersAreRefusedInBoundedMemory)
     CollisionSolverOptions o;
     o.numberOfThreads = 2;
     const CollisionSolverResult r = solveCollisions(m, o);
-    EXPECT_NE(r.error.find("fiber id 0 has " + std::to_string(copies - 1) + " exact copies"), std::string::npos) << r.error;
+    EXPECT_NE(r.error.find("fiber id 0 has " + std::to_string(copies - 1) + " exact copies"),
+      std::string::npos)
+      << r.error;
     EXPECT_EQ(r.steps, 0);
     EXPECT_TRUE(bitwiseEqual(m, in));
   }
@@ -750,7 +763,9 @@ TEST(CollisionSolver, HugeMinimumGapIsRefused)
   CollisionSolverOptions o;
   o.minimumGap = 1e6;
   const CollisionSolverResult r = solveCollisions(m, o);
-  EXPECT_NE(r.error.find("MinimumGap is 1e+06, more than 10 x the largest fiber radius 0.8"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("MinimumGap is 1e+06, more than 10 x the largest fiber radius 0.8"),
+    std::string::npos)
+    << r.error;
   EXPECT_TRUE(bitwiseEqual(m, in));
   EXPECT_LT(peakRssBytes(), 100e6);
 }
@@ -856,16 +871,19 @@ TEST(CollisionSolver, PushBoostLeavesPaperDensityInputUnchanged)
 
 // A bundle of 9 fibers almost on top of each other (every link collides with ~5 links of each of
 // the 8 others: far above 9 pairs per link) gets the full boost: pushes × PushBoost (far below
-// half their overlaps of almost two radii) and the move cap × (1 + 0.6·(PushBoost − 1)). The outer fibers are pushed far beyond the cap, so the
-// largest move of the first step is exactly the (boosted) cap.
+// half their overlaps of almost two radii) and the move cap × (1 + 0.6·(PushBoost − 1)). The outer
+// fibers are pushed far beyond the cap, so the largest move of the first step is exactly the
+// (boosted) cap.
 TEST(CollisionSolver, PushBoostRaisesPushAndCapOnCrowdedInput)
 {
   FiberModel input;
   for (int i = 0; i < 9; ++i)
   {
-    input.fibers.push_back(line({ -10.0, 0.05 * (i % 3), 0.05 * (i / 3) }, { 1, 0, 0 }, 21, 1.0, i));
+    input.fibers.push_back(
+      line({ -10.0, 0.05 * (i % 3), 0.05 * (i / 3) }, { 1, 0, 0 }, 21, 1.0, i));
   }
-  const auto firstMove = [&](double boost, double& scale) {
+  const auto firstMove = [&](double boost, double& scale)
+  {
     FiberModel m = input;
     CollisionSolverOptions o;
     o.segmentLength = 1.0;
@@ -906,8 +924,9 @@ TEST(CollisionSolver, PushBoostOutOfRangeIsRefused)
 // the smallest g at each stage of the widening search (0.05, 0.2, 0.8 µm) and beyond the probe.
 TEST(CollisionSolver, MinGapIsTheSmallestSurfaceGapUpToTheProbe)
 {
-  for (const std::vector<double>& gaps : { std::vector<double>{ 0.5, 0.03, 0.7 }, std::vector<double>{ 0.5, 0.1 },
-         std::vector<double>{ 0.6, 0.5 }, std::vector<double>{ 1.0, 2.0 } })
+  for (const std::vector<double>& gaps :
+    { std::vector<double>{ 0.5, 0.03, 0.7 }, std::vector<double>{ 0.5, 0.1 },
+      std::vector<double>{ 0.6, 0.5 }, std::vector<double>{ 1.0, 2.0 } })
   {
     FiberModel m;
     double y = 0.0;
@@ -915,7 +934,8 @@ TEST(CollisionSolver, MinGapIsTheSmallestSurfaceGapUpToTheProbe)
     for (double g : gaps)
     {
       y += 1.6 + g;
-      m.fibers.push_back(line({ 0, y, 0 }, { 2, 0, 0 }, 8, 0.8, static_cast<std::int64_t>(m.fibers.size())));
+      m.fibers.push_back(
+        line({ 0, y, 0 }, { 2, 0, 0 }, 8, 0.8, static_cast<std::int64_t>(m.fibers.size())));
     }
     CollisionSolverOptions o;
     o.maxSteps = 0;

@@ -1,8 +1,9 @@
-// Cube benchmark generator (docs/tissue-models.md §6.1): counts, directions, displacement bound, seeds.
-#include "Tissue/CubeGenerator.h"
-#include "Tissue/BundleOptions.h"
-#include "Tissue/RadiusDistribution.h"
+// Cube benchmark generator (docs/tissue-models.md §6.1): counts, directions, displacement bound,
+// seeds.
 #include "MemoryLimitGuard.h"
+#include "Tissue/BundleOptions.h"
+#include "Tissue/CubeGenerator.h"
+#include "Tissue/RadiusDistribution.h"
 #include "Util/NumberFormat.h"
 
 #include <gtest/gtest.h>
@@ -173,7 +174,8 @@ TEST(CubeGenerator, LogNormalSpreadThatUnderflowsTheRadiiIsRefused)
   BundleOptions b;
   b.radiusDistribution = RadiusDistribution::LogNormal;
   b.radiusSpread = 1e300;
-  EXPECT_NE(validateBundleOptions(b).find("RadiusSpread is 1e+300"), std::string::npos) << validateBundleOptions(b);
+  EXPECT_NE(validateBundleOptions(b).find("RadiusSpread is 1e+300"), std::string::npos)
+    << validateBundleOptions(b);
   // The largest accepted spread still gives radii that are positive normal numbers.
   o.radiusSpread = kMaxLogNormalSpread;
   o.populations = 2;
@@ -208,8 +210,10 @@ TEST(CubeGenerator, VolumeFractionRefusalNamesItAndTheRealCount)
   EXPECT_EQ(e.find("NumberOfFibers"), std::string::npos) << e;
   // The count in the message is the count generateCube makes.
   const std::size_t made = generateCube(o).fibers.size();
-  EXPECT_NE(e.find("(" + std::to_string(made) + " fibers)"), std::string::npos) << made << ": " << e;
+  EXPECT_NE(e.find("(" + std::to_string(made) + " fibers)"), std::string::npos)
+    << made << ": " << e;
   // ... far below the old estimate, every fiber as thin as the thinnest radius r e^-3s.
   const double thinnest = o.fiberRadius * std::exp(-3.0 * o.radiusSpread);
-  EXPECT_LT(static_cast<double>(made), 0.01 * o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * thinnest * thinnest));
+  EXPECT_LT(static_cast<double>(made),
+    0.01 * o.volumeFraction * o.edgeLength * o.edgeLength / (M_PI * thinnest * thinnest));
 }

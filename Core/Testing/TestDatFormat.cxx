@@ -34,9 +34,15 @@ Fiber makeFiber(int bundle, std::initializer_list<std::array<double, 4>> pts)
   return f;
 }
 
-bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(double a, double b)
+{
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
-std::string dataPath(const std::string& name) { return std::string(FIBERPLI_TEST_DATA_DIR) + "/" + name; }
+std::string dataPath(const std::string& name)
+{
+  return std::string(FIBERPLI_TEST_DATA_DIR) + "/" + name;
+}
 
 } // namespace
 
@@ -211,7 +217,8 @@ TEST(DatFormat, BadLinesNameFileLineAndProblem)
   }
   // An endless line (binary junk without newlines) is refused without buffering it.
   const FiberReadResult r = readString("0 0 0 1\n" + std::string(100000, '7'));
-  EXPECT_NE(r.error.find("test.dat line 2: line is longer than 4096"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("test.dat line 2: line is longer than 4096"), std::string::npos)
+    << r.error;
 }
 
 TEST(DatFormat, WriterRefusesModelsItCannotRoundTrip)
@@ -234,7 +241,8 @@ TEST(DatFormat, WriterRefusesModelsItCannotRoundTrip)
 
 TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
 {
-  auto sniff = [](const std::string& text) {
+  auto sniff = [](const std::string& text)
+  {
     std::istringstream in(text);
     in.seekg(0);
     const bool yes = looksLikeFastPliDat(in);
@@ -245,7 +253,7 @@ TEST(DatFormat, SniffingAcceptsFastPliAndRejectsTecplot)
   EXPECT_TRUE(sniff("\n# comment\n1 2 3 0.5"));
   EXPECT_FALSE(sniff("TITLE = \"Example\"\nVARIABLES = \"X\", \"Y\"\nZONE I=2\n1 2\n3 4\n"));
   EXPECT_FALSE(sniff("VARIABLES = X Y Z R\n1 2 3 0.5\n"));
-  EXPECT_FALSE(sniff("1 2 3\n4 5 6\n"));        // 3 columns: a point cloud, not fibers
+  EXPECT_FALSE(sniff("1 2 3\n4 5 6\n"));         // 3 columns: a point cloud, not fibers
   EXPECT_FALSE(sniff("1 2 3 -0.5\n"));           // negative radius
   EXPECT_FALSE(sniff("1 2 3 0.5\n1 2 3 nan\n")); // NaN
   EXPECT_FALSE(sniff(""));
@@ -270,7 +278,8 @@ TEST(DatFormat, GarbageIsQuotedEscapedNeverEchoedRaw)
 {
   // A binary or damaged file: the message must not carry its raw bytes (an escape sequence would
   // act on the terminal that shows it), only printable ASCII, and a long token is cut short.
-  const std::string garbage = std::string("1 2 \x1b[2J\x1b]0;owned\x07\xff\x01") + std::string(200, 'x') + " 4\n";
+  const std::string garbage =
+    std::string("1 2 \x1b[2J\x1b]0;owned\x07\xff\x01") + std::string(200, 'x') + " 4\n";
   std::istringstream in(garbage);
   const FiberReadResult r = readFastPliDat(in, "broken.dat");
   ASSERT_FALSE(r.ok());

@@ -91,7 +91,8 @@ TEST(DiskPacking, DeterministicForTheStreamAndOtherStreamsDiffer)
 {
   const DiskDomain square{ 12.0, 12.0, true };
   const std::vector<double> r = gammaRadii(144.0, 0.7, 8);
-  const DiskPacking a = packDisks(r, square, 4, 6), b = packDisks(r, square, 4, 6), c = packDisks(r, square, 4, 7);
+  const DiskPacking a = packDisks(r, square, 4, 6), b = packDisks(r, square, 4, 6),
+                    c = packDisks(r, square, 4, 7);
   ASSERT_EQ(a.centres.size(), b.centres.size());
   bool differs = false;
   for (std::size_t i = 0; i < r.size(); ++i)
@@ -157,10 +158,12 @@ TEST(DiskPacking, ProgressRisesAndAStopReturnsAnAbortedEmptyPacking)
   const DiskDomain square{ 30.0, 30.0, true };
   const std::vector<double> r = gammaRadii(900.0, 0.85, 42);
   std::vector<double> seen;
-  const DiskPacking whole = packDisks(r, square, 42, 6, [&](double f) {
-    seen.push_back(f);
-    return true;
-  });
+  const DiskPacking whole = packDisks(r, square, 42, 6,
+    [&](double f)
+    {
+      seen.push_back(f);
+      return true;
+    });
   ASSERT_FALSE(seen.empty());
   EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
   EXPECT_GE(seen.front(), 0.0);
@@ -170,7 +173,9 @@ TEST(DiskPacking, ProgressRisesAndAStopReturnsAnAbortedEmptyPacking)
   const DiskPacking plain = packDisks(r, square, 42, 6);
   ASSERT_EQ(plain.centres.size(), whole.centres.size());
   for (std::size_t i = 0; i < plain.centres.size(); ++i)
-    EXPECT_TRUE(plain.centres[i].x == whole.centres[i].x && plain.centres[i].y == whole.centres[i].y) << i;
+    EXPECT_TRUE(
+      plain.centres[i].x == whole.centres[i].x && plain.centres[i].y == whole.centres[i].y)
+      << i;
   EXPECT_EQ(plain.scale, whole.scale);
   int calls = 0;
   const DiskPacking stopped = packDisks(r, square, 42, 6, [&](double) { return ++calls < 3; });

@@ -9,9 +9,9 @@
 #include "Solver/Decomposition.h"
 
 #include "BruteForceOverlap.h"
+#include "MemoryLimitGuard.h"
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
-#include "MemoryLimitGuard.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
@@ -37,8 +37,9 @@ struct RankRun
 
 // Cuts `whole` into `ranks` pieces in order (sizes: fibers per piece; empty = as even as
 // possible), solves them on thread ranks and returns every rank's piece and result.
-std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolverOptions& o, int ranks,
-  std::vector<std::size_t> sizes = {}, const std::function<ProgressFn(int)>& progress = {})
+std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolverOptions& o,
+  int ranks, std::vector<std::size_t> sizes = {},
+  const std::function<ProgressFn(int)>& progress = {})
 {
   if (sizes.empty())
   {
@@ -52,10 +53,13 @@ std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolver
     for (std::size_t i = 0; i < sizes[r]; ++i)
       runs[r].model.fibers.push_back(whole.fibers[at++]);
   }
-  runRanks(ranks, [&](SolverComm& comm) {
-    RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
-    run.result = solveCollisions(run.model, o, progress ? progress(comm.rank()) : ProgressFn{}, {}, &comm);
-  });
+  runRanks(ranks,
+    [&](SolverComm& comm)
+    {
+      RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
+      run.result =
+        solveCollisions(run.model, o, progress ? progress(comm.rank()) : ProgressFn{}, {}, &comm);
+    });
   return runs;
 }
 
@@ -72,8 +76,8 @@ bool sameBits(double a, double b)
 }
 
 // Every rank's result equals the serial one, and the pieces in rank order are its model.
-void expectSerial(const std::vector<RankRun>& runs, const FiberModel& serial, const CollisionSolverResult& s,
-  const std::string& what)
+void expectSerial(const std::vector<RankRun>& runs, const FiberModel& serial,
+  const CollisionSolverResult& s, const std::string& what)
 {
   std::size_t f = 0;
   for (const RankRun& run : runs)
@@ -86,7 +90,8 @@ void expectSerial(const std::vector<RankRun>& runs, const FiberModel& serial, co
     EXPECT_EQ(r.shapeOk, s.shapeOk) << what;
     EXPECT_EQ(r.bestCollisions, s.bestCollisions) << what;
     EXPECT_EQ(r.bestStep, s.bestStep) << what;
-    EXPECT_TRUE(sameBits(r.maxOverlap, s.maxOverlap)) << what << ": " << r.maxOverlap << " vs " << s.maxOverlap;
+    EXPECT_TRUE(sameBits(r.maxOverlap, s.maxOverlap))
+      << what << ": " << r.maxOverlap << " vs " << s.maxOverlap;
     EXPECT_TRUE(sameBits(r.minGap, s.minGap)) << what << ": " << r.minGap << " vs " << s.minGap;
     EXPECT_TRUE(sameBits(r.segmentLength, s.segmentLength)) << what;
     EXPECT_TRUE(sameBits(r.volumeFraction, s.volumeFraction)) << what;
@@ -103,9 +108,10 @@ void expectSerial(const std::vector<RankRun>& runs, const FiberModel& serial, co
   EXPECT_EQ(f, serial.fibers.size()) << what;
 }
 
-// 1, 2 and 3 ranks (or rankCounts) × 1 and 2 threads against the serial solve; the ranks really share the work
-// (each owns fibers, halos are exchanged).
-void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o, std::vector<int> rankCounts = { 1, 2, 3 })
+// 1, 2 and 3 ranks (or rankCounts) × 1 and 2 threads against the serial solve; the ranks really
+// share the work (each owns fibers, halos are exchanged).
+void expectAnyRanksAnyThreads(
+  const FiberModel& in, CollisionSolverOptions o, std::vector<int> rankCounts = { 1, 2, 3 })
 {
   FiberModel serial = in;
   o.numberOfThreads = 1;
@@ -118,7 +124,8 @@ void expectAnyRanksAnyThreads(const FiberModel& in, CollisionSolverOptions o, st
     {
       o.numberOfThreads = threads;
       const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
-      const std::string what = std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
+      const std::string what =
+        std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
       expectSerial(runs, serial, s, what);
       std::size_t owned = 0;
       for (const RankRun& run : runs)
@@ -168,17 +175,21 @@ TEST(DistributedSolver, AnOpenModelsHaloIsOneSided)
     // The links per tester slab at the start (the cut is of all ranks' link centres, whatever
     // the pieces: here rank 0 passes the whole model).
     std::vector<std::size_t> perSlab(static_cast<std::size_t>(ranks), 0);
-    runRanks(ranks, [&](SolverComm& comm) {
-      const SlabLayout layout = SlabLayout::make(comm.rank() == 0 ? in : FiberModel{}, PeriodicCell{}, comm);
-      if (comm.rank() != 0)
-        return;
-      const int a = layout.axis();
-      for (const Fiber& f : in.fibers)
+    runRanks(ranks,
+      [&](SolverComm& comm)
       {
-        for (std::size_t k = 0; k + 1 < f.size(); ++k)
-          ++perSlab[static_cast<std::size_t>(layout.testerOf(0.5 * (f.points[k][a] + f.points[k + 1][a])))];
-      }
-    });
+        const SlabLayout layout =
+          SlabLayout::make(comm.rank() == 0 ? in : FiberModel{}, PeriodicCell{}, comm);
+        if (comm.rank() != 0)
+          return;
+        const int a = layout.axis();
+        for (const Fiber& f : in.fibers)
+        {
+          for (std::size_t k = 0; k + 1 < f.size(); ++k)
+            ++perSlab[static_cast<std::size_t>(
+              layout.testerOf(0.5 * (f.points[k][a] + f.points[k + 1][a])))];
+        }
+      });
     std::size_t above = 0; // links of the slabs above q
     for (int q = ranks - 1; q >= 0; --q)
     {
@@ -229,11 +240,13 @@ TEST(DistributedSolver, AFlatModelIsSharedByTheRanks)
   for (int i = 0; i < 6; ++i)
   {
     m.fibers.push_back(line({ 0.0, 1.5 * i, 0.0 }, { 2.0, 0.0, 0.0 }, 11, 0.8, 2 * i)); // along x
-    m.fibers.push_back(line({ 1.5 * i + 0.3, -1.0, 0.0 }, { 0.0, 2.0, 0.0 }, 6, 0.8, 2 * i + 1)); // along y
+    m.fibers.push_back(
+      line({ 1.5 * i + 0.3, -1.0, 0.0 }, { 0.0, 2.0, 0.0 }, 6, 0.8, 2 * i + 1)); // along y
   }
   CollisionSolverOptions o;
   o.maxSteps = 30;
-  runRanks(1, [&](SolverComm& comm) { EXPECT_NE(SlabLayout::make(m, o.periodicCell, comm).axis(), 2); });
+  runRanks(
+    1, [&](SolverComm& comm) { EXPECT_NE(SlabLayout::make(m, o.periodicCell, comm).axis(), 2); });
   expectAnyRanksAnyThreads(m, o, { 2, 3 });
 }
 
@@ -269,7 +282,8 @@ TEST(DistributedSolver, AnOpenFiberAfterAClosedOneKeepsItsFoldBackPairs)
   for (int i = 0; i <= n; ++i)
   {
     const double a = 2.0 * pi * (length / turn) * i / n;
-    coil.points.push_back({ 3.0 + 0.5 * a / (2.0 * pi), 2.0 + R * std::cos(a), 2.0 + R * std::sin(a) });
+    coil.points.push_back(
+      { 3.0 + 0.5 * a / (2.0 * pi), 2.0 + R * std::cos(a), 2.0 + R * std::sin(a) });
   }
   coil.radii.assign(coil.points.size(), 0.8);
   m.fibers.push_back(coil);
@@ -299,7 +313,8 @@ TEST(DistributedSolver, AnOpenFiberAfterAClosedOneKeepsItsFoldBackPairs)
       const double rho = h.linkRadius(i) + h.linkRadius(j);
       if (arc[j] - arc[i + 1] < 2.0 * rho)
         continue;
-      const double d = fiberpli_test::refSegmentDistance(h.points[i], h.points[i + 1], h.points[j], h.points[j + 1]);
+      const double d = fiberpli_test::refSegmentDistance(
+        h.points[i], h.points[i + 1], h.points[j], h.points[j + 1]);
       EXPECT_GE(d, rho * (1.0 - 1e-9)) << "coil links " << i << " and " << j;
     }
   }
@@ -315,7 +330,8 @@ TEST(DistributedSolver, FibersMigrateAcrossRanksInAPeriodicCell)
   FiberModel m;
   const double xs[4] = { 9.3, 9.8, 0.15, 0.7 }; // pairs 0.5 and 0.55 apart, radius 0.8: overlap
   for (int i = 0; i < 4; ++i)
-    m.fibers.push_back(line({ xs[i], -10.0, 0.3 * i }, { 0, 2.0, 0 }, 11, 0.8, i)); // closed along y
+    m.fibers.push_back(
+      line({ xs[i], -10.0, 0.3 * i }, { 0, 2.0, 0 }, 11, 0.8, i)); // closed along y
   CollisionSolverOptions o;
   o.periodicCell.lo = { -10, -10, -10 };
   o.periodicCell.hi = { 10, 10, 10 };
@@ -347,7 +363,8 @@ TEST(DistributedSolver, EmptyRegionAndAFiberLongerThanARegion)
   FiberModel m;
   m.fibers.push_back(line({ 0, 0, 0 }, { 2.0, 0, 0 }, 14, 0.8, 0));
   int id = 1;
-  for (double x : { 1.0, 2.2, 3.4, 4.6, 24.0, 25.2, 26.4, 27.6 }) // diagonal in y-z: x is the slab axis
+  for (double x :
+    { 1.0, 2.2, 3.4, 4.6, 24.0, 25.2, 26.4, 27.6 }) // diagonal in y-z: x is the slab axis
     m.fibers.push_back(line({ x, -6.0, -5.6 }, { 0, 2.0, 2.0 }, 7, 0.8, id++));
   CollisionSolverOptions o;
   o.maxSteps = 300;
@@ -383,22 +400,27 @@ TEST(DistributedSolver, TesterSlabsHoldEqualLinkCounts)
   for (int ranks : { 2, 3 })
   {
     std::vector<std::vector<int>> testers(static_cast<std::size_t>(ranks));
-    runRanks(ranks, [&](SolverComm& comm) {
-      FiberModel piece;
-      for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += static_cast<std::size_t>(ranks))
-        piece.fibers.push_back(m.fibers[f]);
-      const SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
-      ASSERT_EQ(layout.axis(), 0);
-      for (const Fiber& f : m.fibers) // every link of a fiber has its centre at the fiber's x
-        testers[static_cast<std::size_t>(comm.rank())].push_back(layout.testerOf(f.points[0].x));
-    });
+    runRanks(ranks,
+      [&](SolverComm& comm)
+      {
+        FiberModel piece;
+        for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size();
+             f += static_cast<std::size_t>(ranks))
+          piece.fibers.push_back(m.fibers[f]);
+        const SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+        ASSERT_EQ(layout.axis(), 0);
+        for (const Fiber& f : m.fibers) // every link of a fiber has its centre at the fiber's x
+          testers[static_cast<std::size_t>(comm.rank())].push_back(layout.testerOf(f.points[0].x));
+      });
     std::vector<int> links(static_cast<std::size_t>(ranks), 0);
     for (int t : testers[0])
       links[static_cast<std::size_t>(t)] += 10;
     for (int q = 0; q < ranks; ++q)
     {
-      EXPECT_EQ(testers[static_cast<std::size_t>(q)], testers[0]) << "rank " << q << " cuts differently";
-      EXPECT_NEAR(links[static_cast<std::size_t>(q)], 400.0 / ranks, 10.0) << ranks << " ranks, slab " << q;
+      EXPECT_EQ(testers[static_cast<std::size_t>(q)], testers[0])
+        << "rank " << q << " cuts differently";
+      EXPECT_NEAR(links[static_cast<std::size_t>(q)], 400.0 / ranks, 10.0)
+        << ranks << " ranks, slab " << q;
     }
   }
 }
@@ -413,19 +435,22 @@ TEST(DistributedSolver, TesterSlabsRecutAtEqualWork)
   FiberModel m;
   for (int i = 0; i < 40; ++i)
     m.fibers.push_back(line({ 0.5 * i, 0.0, 0.0 }, { 0, 1.0, 0 }, 11, 0.3, i));
-  const auto testedByRank0 = [&](std::int64_t work0, std::int64_t work1) {
+  const auto testedByRank0 = [&](std::int64_t work0, std::int64_t work1)
+  {
     std::vector<std::vector<int>> counts(2);
-    runRanks(2, [&](SolverComm& comm) {
-      FiberModel piece;
-      for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += 2)
-        piece.fibers.push_back(m.fibers[f]);
-      SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
-      layout.balanceTesterSlabs(piece, comm.rank() == 0 ? work0 : work1, comm);
-      int n = 0;
-      for (const Fiber& f : m.fibers)
-        n += layout.testerOf(f.points[0].x) == 0 ? 1 : 0;
-      counts[static_cast<std::size_t>(comm.rank())].push_back(n);
-    });
+    runRanks(2,
+      [&](SolverComm& comm)
+      {
+        FiberModel piece;
+        for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += 2)
+          piece.fibers.push_back(m.fibers[f]);
+        SlabLayout layout = SlabLayout::make(piece, PeriodicCell{}, comm);
+        layout.balanceTesterSlabs(piece, comm.rank() == 0 ? work0 : work1, comm);
+        int n = 0;
+        for (const Fiber& f : m.fibers)
+          n += layout.testerOf(f.points[0].x) == 0 ? 1 : 0;
+        counts[static_cast<std::size_t>(comm.rank())].push_back(n);
+      });
     EXPECT_EQ(counts[0], counts[1]) << "the ranks cut differently";
     return counts[0].at(0);
   };
@@ -486,7 +511,8 @@ TEST(DistributedSolver, ReCutsThatMoveTheTesterSlabsKeepTheSerialResult)
     {
       o.numberOfThreads = threads;
       const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
-      const std::string what = std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
+      const std::string what =
+        std::to_string(ranks) + " ranks x " + std::to_string(threads) + " threads";
       expectSerial(runs, serial, s, what);
       for (const RankRun& run : runs)
       {
@@ -511,35 +537,39 @@ TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
     for (int r = 0; r < ranks; ++r)
     {
       const std::size_t n = in.fibers.size();
-      runs[r].model.fibers.assign(in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
+      runs[r].model.fibers.assign(
+        in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
     }
     std::vector<int> recutsBefore(static_cast<std::size_t>(ranks), -1);
-    runRanks(ranks, [&](SolverComm& comm) {
-      RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
-      FiberModel model;
-      CollisionSolverState state;
+    runRanks(ranks,
+      [&](SolverComm& comm)
       {
-        CollisionSolverRun first(run.model, o, {}, {}, &comm);
-        ASSERT_TRUE(first.start());
-        while (first.state().steps < 40 && first.step())
+        RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
+        FiberModel model;
+        CollisionSolverState state;
+        {
+          CollisionSolverRun first(run.model, o, {}, {}, &comm);
+          ASSERT_TRUE(first.start());
+          while (first.state().steps < 40 && first.step())
+          {
+          }
+          ASSERT_EQ(first.state().steps, 40);
+          model = run.model; // the fibers this rank owns at step 40
+          state = first.state();
+        } // (the first run is dropped unfinished, as a killed job)
+        CollisionSolverRun second(model, o, {}, {}, &comm);
+        ASSERT_EQ(second.resume(state), "");
+        while (second.step())
         {
         }
-        ASSERT_EQ(first.state().steps, 40);
-        model = run.model; // the fibers this rank owns at step 40
-        state = first.state();
-      } // (the first run is dropped unfinished, as a killed job)
-      CollisionSolverRun second(model, o, {}, {}, &comm);
-      ASSERT_EQ(second.resume(state), "");
-      while (second.step())
-      {
-      }
-      run.result = second.finish();
-      run.model = std::move(model);
-    });
+        run.result = second.finish();
+        run.model = std::move(model);
+      });
     expectSerial(runs, serial, s, "resumed at step 40 on " + std::to_string(ranks) + " ranks");
     for (const RankRun& run : runs)
     {
-      EXPECT_EQ(run.result.testerRecuts, 1u) << "the re-cut after step 64 must move the resumed run's cuts";
+      EXPECT_EQ(run.result.testerRecuts, 1u)
+        << "the re-cut after step 64 must move the resumed run's cuts";
       EXPECT_GT(run.result.testerCutMove, 0.05) << ranks << " ranks";
     }
   }
@@ -590,11 +620,13 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   }
   std::vector<std::string> errors(2);
   std::vector<FiberModel> after = pieces;
-  runRanks(2, [&](SolverComm& comm) {
-    const std::size_t p = static_cast<std::size_t>(comm.rank());
-    CollisionSolverRun run(after[p], o, {}, {}, &comm);
-    errors[p] = run.resume(states[p]);
-  });
+  runRanks(2,
+    [&](SolverComm& comm)
+    {
+      const std::size_t p = static_cast<std::size_t>(comm.rank());
+      CollisionSolverRun run(after[p], o, {}, {}, &comm);
+      errors[p] = run.resume(states[p]);
+    });
   for (std::size_t p = 0; p < 2; ++p)
   {
     EXPECT_NE(errors[p].find("no global fiber indices"), std::string::npos) << errors[p];
@@ -605,10 +637,12 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   }
   // One rank takes it (0..n-1 are then the global indices).
   FiberModel whole = pieces[0];
-  runRanks(1, [&](SolverComm& comm) {
-    CollisionSolverRun run(whole, o, {}, {}, &comm);
-    EXPECT_EQ(run.resume(states[0]), "");
-  });
+  runRanks(1,
+    [&](SolverComm& comm)
+    {
+      CollisionSolverRun run(whole, o, {}, {}, &comm);
+      EXPECT_EQ(run.resume(states[0]), "");
+    });
 }
 
 // Rank 1's callback asks to stop at its 6th call (after the 6th move): every rank stops there,
@@ -618,7 +652,8 @@ TEST(DistributedSolver, AStopOnOneRankStopsEveryRankAtTheSameStep)
   const FiberModel m = paperCube(1, 60, 3);
   CollisionSolverOptions o;
   o.maxSteps = 200;
-  const auto stopAtSixthCall = [] {
+  const auto stopAtSixthCall = []
+  {
     auto calls = std::make_shared<int>(0);
     return ProgressFn([calls](double) { return ++*calls < 6; });
   };
@@ -626,9 +661,8 @@ TEST(DistributedSolver, AStopOnOneRankStopsEveryRankAtTheSameStep)
   const CollisionSolverResult s = solveCollisions(serial, o, stopAtSixthCall());
   ASSERT_TRUE(s.aborted);
   ASSERT_EQ(s.steps, 6);
-  const std::vector<RankRun> runs = solveOnRanks(m, o, 3, {}, [&](int rank) {
-    return rank == 1 ? stopAtSixthCall() : ProgressFn{};
-  });
+  const std::vector<RankRun> runs = solveOnRanks(
+    m, o, 3, {}, [&](int rank) { return rank == 1 ? stopAtSixthCall() : ProgressFn{}; });
   expectSerial(runs, serial, s, "stopped on rank 1");
   for (const RankRun& run : runs)
     EXPECT_TRUE(run.result.aborted);
@@ -673,7 +707,9 @@ std::pair<double, double> testerSlab(const FiberModel& m, int axis, int q, int r
   std::sort(c.begin(), c.end());
   const double bins = 2.0 * L / 4096.0;
   const auto cut = [&](int k) { // the ceil(k·N/R)-th smallest centre
-    return c[(static_cast<std::size_t>(k) * c.size() + static_cast<std::size_t>(ranks) - 1) / ranks - 1];
+    return c[(static_cast<std::size_t>(k) * c.size() + static_cast<std::size_t>(ranks) - 1) /
+        ranks -
+      1];
   };
   return { q == 0 ? -0.5 * L : cut(q) - bins, q + 1 == ranks ? 0.5 * L : cut(q + 1) + bins };
 }
@@ -735,18 +771,22 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
     const double w = 0.5 * longest + 2.0 * rhoMax + 2.0 * steps * o.maxDisplacement * rMin + 1e-6;
     for (int ranks : { 2, 3, 6 }) // 6: slabs of 5 um, a link reaches only the nearby ones
     {
-      const std::string what = std::to_string(ranks) + " ranks, " + std::to_string(steps) + " steps";
+      const std::string what =
+        std::to_string(ranks) + " ranks, " + std::to_string(steps) + " steps";
       const std::vector<RankRun> runs = solveOnRanks(in, o, ranks);
       expectSerial(runs, serial, s, what);
       for (int q = 0; q < ranks; ++q)
       {
         const CollisionSolverResult& r = runs[static_cast<std::size_t>(q)].result;
-        EXPECT_LT(static_cast<double>(r.peakHeldLinks), 0.8 * links) << what << ", rank " << q << " of " << links;
-        EXPECT_LT(static_cast<double>(r.peakRankPoints), 0.8 * points) << what << ", rank " << q << " of " << points;
+        EXPECT_LT(static_cast<double>(r.peakHeldLinks), 0.8 * links)
+          << what << ", rank " << q << " of " << links;
+        EXPECT_LT(static_cast<double>(r.peakRankPoints), 0.8 * points)
+          << what << ", rank " << q << " of " << points;
         if (steps < 10) // the geometry is still (nearly) the input's: bound it by brute force
         {
           const std::pair<double, double> slab = testerSlab(in, axis, q, ranks, L);
-          EXPECT_LE(r.peakHeldLinks, linksNear(in, axis, slab.first, slab.second, w, L)) << what << ", rank " << q;
+          EXPECT_LE(r.peakHeldLinks, linksNear(in, axis, slab.first, slab.second, w, L))
+            << what << ", rank " << q;
           EXPECT_GT(r.peakHaloLinks, 0u) << what;
         }
       }
@@ -789,12 +829,15 @@ TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestFibers)
       const CubeOptions c = periodicCube(pops, 30.0, 0.3, seed);
       const FiberModel in = generateCube(c);
       const int expected = shortestFiberAxis(in);
-      runRanks(2, [&](SolverComm& comm) {
-        FiberModel piece;
-        for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < in.fibers.size(); f += 2)
-          piece.fibers.push_back(in.fibers[f]);
-        EXPECT_EQ(SlabLayout::make(piece, cubeCell(c), comm).axis(), expected) << pops << " populations, seed " << seed;
-      });
+      runRanks(2,
+        [&](SolverComm& comm)
+        {
+          FiberModel piece;
+          for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < in.fibers.size(); f += 2)
+            piece.fibers.push_back(in.fibers[f]);
+          EXPECT_EQ(SlabLayout::make(piece, cubeCell(c), comm).axis(), expected)
+            << pops << " populations, seed " << seed;
+        });
     }
   }
 }
@@ -812,7 +855,8 @@ TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
   FiberModel in;
   std::int64_t id = 0;
   for (int i = 0; i < 37; ++i) // along x, 10 links of 2 µm
-    in.fibers.push_back(line({ 5.0 * i, 1.0 + 2.0 * (i % 10), 0.5 + (i % 8) }, { 2.0, 0, 0 }, 11, 0.5, id++));
+    in.fibers.push_back(
+      line({ 5.0 * i, 1.0 + 2.0 * (i % 10), 0.5 + (i % 8) }, { 2.0, 0, 0 }, 11, 0.5, id++));
   for (int i = 0; i < 40; ++i) // along y, across the strip
     in.fibers.push_back(line({ 2.5 + 5.0 * i, 0.0, 0.3 + (i % 8) }, { 0, 2.0, 0 }, 11, 0.5, id++));
   ASSERT_EQ(shortestFiberAxis(in), 2) << "the rule of the shortest fibers would cut the thickness";
@@ -848,7 +892,8 @@ TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
     {
       const std::size_t held = runs[static_cast<std::size_t>(q)].result.peakHeldLinks;
       EXPECT_LE(held, linksNear(in, 0, cuts[q], cuts[q + 1], w, 0.0)) << what << ", rank " << q;
-      EXPECT_LT(static_cast<double>(held), 1.15 * links / ranks) << what << ", rank " << q << " of " << links;
+      EXPECT_LT(static_cast<double>(held), 1.15 * links / ranks)
+        << what << ", rank " << q << " of " << links;
     }
   }
 }
@@ -865,7 +910,8 @@ FiberModel stackAndSparseFibers(int k, int sparse)
   for (int i = 0; i < k; ++i)
     m.fibers.push_back(line({ 0, 1e-3 * i, 0 }, { 2, 0, 0 }, 10, 0.8, i));
   for (int i = 0; i < sparse; ++i)
-    m.fibers.push_back(line({ 0, 5.0 + 3.0 * (i % 20), 3.0 * (i / 20) }, { 2, 0, 0 }, 10, 0.8, k + i));
+    m.fibers.push_back(
+      line({ 0, 5.0 + 3.0 * (i % 20), 3.0 * (i / 20) }, { 2, 0, 0 }, 10, 0.8, k + i));
   return m;
 }
 } // namespace
@@ -890,7 +936,8 @@ TEST(DistributedSolver, ThePairLimitIsDecidedAsForTheWholeModel)
     ASSERT_EQ(s.steps, 2);
     ASSERT_GT(s.collisions, 400000u);
     for (int ranks : { 2, 3 })
-      expectSerial(solveOnRanks(in, o, ranks), serial, s, "copies beside sparse fibers, " + std::to_string(ranks) + " ranks");
+      expectSerial(solveOnRanks(in, o, ranks), serial, s,
+        "copies beside sparse fibers, " + std::to_string(ranks) + " ranks");
   }
   {
     const FiberModel in = stackAndSparseFibers(130, 0);
@@ -944,7 +991,8 @@ TEST(DistributedSolver, ARankOutOfMemoryBudgetFailsEveryRank)
 // message's count is true.
 TEST(DistributedSolver, APeriodicCornerStackIsBoundedByItsPhysicalPairs)
 {
-  const auto cornerStack = [](int copies) {
+  const auto cornerStack = [](int copies)
+  {
     FiberModel m;
     for (int i = 0; i < copies; ++i)
       m.fibers.push_back(line({ 0.5, -9.5 + 1e-3 * i, -9.5 }, { 2, 0, 0 }, 10, 0.8, i));
@@ -966,7 +1014,8 @@ TEST(DistributedSolver, APeriodicCornerStackIsBoundedByItsPhysicalPairs)
   ASSERT_EQ(s.steps, 1);
   EXPECT_EQ(s.collisions, open);
   for (int ranks : { 2, 3 })
-    expectSerial(solveOnRanks(in, o, ranks), serial, s, "corner stack, " + std::to_string(ranks) + " ranks");
+    expectSerial(
+      solveOnRanks(in, o, ranks), serial, s, "corner stack, " + std::to_string(ranks) + " ranks");
 
   const FiberModel over = cornerStack(120);
   FiberModel serialOver = over;

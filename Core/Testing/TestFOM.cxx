@@ -126,9 +126,8 @@ TEST(FOM, LegendIsTheHemisphereSeenFromAbove)
   ASSERT_EQ(fomLegend(n, FomScheme::HsvBlack, hsv), "");
   ASSERT_EQ(fomLegend(n, FomScheme::Rgb, rgb, { 7, 8, 9 }), "");
   ASSERT_EQ(hsv.size(), 3u * n * n);
-  auto at = [&](const std::vector<std::uint8_t>& img, int col, int row, int c) {
-    return int(img[3 * (static_cast<std::size_t>(row) * n + col) + c]);
-  };
+  auto at = [&](const std::vector<std::uint8_t>& img, int col, int row, int c)
+  { return int(img[3 * (static_cast<std::size_t>(row) * n + col) + c]); };
   const int mid = n / 2;
   // Centre: vertical fiber → black (HSV-black) / blue (RGB).
   EXPECT_EQ(at(hsv, mid, mid, 0) + at(hsv, mid, mid, 1) + at(hsv, mid, mid, 2), 0);
@@ -188,7 +187,8 @@ TEST(FOM, MaskBlackensBackgroundByRetardationOrTransmittance)
   }
   std::vector<std::uint8_t> rgb(3);
   EXPECT_FALSE(fomApplyMask(nullptr, 1, FomMask::Retardation, 0.1, rgb.data(), nullptr).empty());
-  EXPECT_FALSE(fomApplyMask(retardation, 1, FomMask::Retardation, std::nan(""), rgb.data(), nullptr).empty());
+  EXPECT_FALSE(
+    fomApplyMask(retardation, 1, FomMask::Retardation, std::nan(""), rgb.data(), nullptr).empty());
 }
 
 TEST(FOM, MaskThresholdIsAFractionOfTheLargestValue)
@@ -210,7 +210,9 @@ TEST(FOM, MaskThresholdIsAFractionOfTheLargestValue)
   EXPECT_EQ(t, 13000.0);
   ASSERT_TRUE(fomMaskThreshold(FomMask::Retardation, 1.0, 0.8, t).empty());
   EXPECT_EQ(t, 0.8);
-  ASSERT_TRUE(fomMaskThreshold(FomMask::Transmittance, 0.5, -std::numeric_limits<double>::infinity(), t).empty());
+  ASSERT_TRUE(
+    fomMaskThreshold(FomMask::Transmittance, 0.5, -std::numeric_limits<double>::infinity(), t)
+      .empty());
   EXPECT_EQ(t, 0.0);
   for (double bad : { -0.01, 1.01, std::nan("") })
   {

@@ -44,10 +44,13 @@ void withinSeconds(int seconds, const std::function<void()>& f)
 {
   auto done = std::make_shared<std::promise<void>>();
   std::future<void> finished = done->get_future();
-  std::thread([f, done] {
-    f();
-    done->set_value();
-  }).detach();
+  std::thread(
+    [f, done]
+    {
+      f();
+      done->set_value();
+    })
+    .detach();
   if (finished.wait_for(std::chrono::seconds(seconds)) != std::future_status::ready)
   {
     std::fprintf(stderr, "FAILED: not finished within %d s (hang)\n", seconds);
@@ -82,7 +85,8 @@ TEST(FarCoordinates, FarInputIsRefusedNamingFiberAndValue)
   o.maxSteps = 0;
   o.numberOfThreads = 1;
   const CollisionSolverResult r = solveCollisions(m, o);
-  EXPECT_NE(r.error.find("fiber 0 (fiber_id 0) point 0 has coordinate 3e+16"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("fiber 0 (fiber_id 0) point 0 has coordinate 3e+16"), std::string::npos)
+    << r.error;
   EXPECT_NE(r.error.find("SegmentLength"), std::string::npos) << r.error;
   EXPECT_EQ(m.fibers[0].points, in.fibers[0].points);
   EXPECT_EQ(checkCoordinateResolution(m, 2.0).empty(), false);
@@ -97,19 +101,24 @@ TEST(FarCoordinates, FarInputIsRefusedNamingFiberAndValue)
 TEST(FarCoordinates, AFarPieceOnOneRankFailsEveryRankWithoutHanging)
 {
   std::vector<std::string> errors(2);
-  withinSeconds(60, [&errors] {
-    fiberpli_test::runRanks(2, [&errors](SolverComm& comm) {
-      FiberModel piece = crossingPair(comm.rank() == 1 ? 3e16 : 0.0);
-      for (Fiber& f : piece.fibers)
-      {
-        f.id += 2 * comm.rank();
-      }
-      CollisionSolverOptions o;
-      o.maxSteps = 20;
-      o.numberOfThreads = 1;
-      errors[static_cast<std::size_t>(comm.rank())] = solveCollisions(piece, o, {}, {}, &comm).error;
+  withinSeconds(60,
+    [&errors]
+    {
+      fiberpli_test::runRanks(2,
+        [&errors](SolverComm& comm)
+        {
+          FiberModel piece = crossingPair(comm.rank() == 1 ? 3e16 : 0.0);
+          for (Fiber& f : piece.fibers)
+          {
+            f.id += 2 * comm.rank();
+          }
+          CollisionSolverOptions o;
+          o.maxSteps = 20;
+          o.numberOfThreads = 1;
+          errors[static_cast<std::size_t>(comm.rank())] =
+            solveCollisions(piece, o, {}, {}, &comm).error;
+        });
     });
-  });
   for (const std::string& e : errors)
   {
     EXPECT_NE(e.find("coordinate 3e+16"), std::string::npos) << e;

@@ -47,7 +47,8 @@ FiberModel lattice(double x0, double x1, double r)
   {
     for (int k = -1; k <= 1; ++k)
     {
-      m.fibers.push_back(straight({ x0, 2.5 * j, 2.5 * k }, { x1, 2.5 * j, 2.5 * k }, 8, r, m.fibers.size()));
+      m.fibers.push_back(
+        straight({ x0, 2.5 * j, 2.5 * k }, { x1, 2.5 * j, 2.5 * k }, 8, r, m.fibers.size()));
     }
   }
   return m;
@@ -88,7 +89,8 @@ TEST(FiberMetrics, CylindersThroughTheBoxGiveTheirExactVolumeFraction)
   const double exact = 9 * M_PI * r * r * 10 / 1000;
   EXPECT_LE(std::abs(m.volume.fraction - exact), m.volume.errorBound);
   EXPECT_LT(m.volume.errorBound, 0.03);
-  EXPECT_NEAR(m.volume.fraction, exact, 0.002); // voxel centres are far more accurate than the bound
+  EXPECT_NEAR(
+    m.volume.fraction, exact, 0.002); // voxel centres are far more accurate than the bound
   EXPECT_EQ(m.pairs.collisions, 0);
   EXPECT_NEAR(m.pairs.minGap, 2.5 - 2 * r, 1e-12); // neighbouring lattice fibers
 }
@@ -204,7 +206,8 @@ TEST(FiberMetrics, StraightFiberNeverCollidesWithItself)
 
 TEST(FiberMetrics, HairpinCollidesWithItself)
 {
-  // Two 10-link legs 0.8 µm apart (r = 0.5) joined at one end: leg–leg pairs far along the arc overlap.
+  // Two 10-link legs 0.8 µm apart (r = 0.5) joined at one end: leg–leg pairs far along the arc
+  // overlap.
   Fiber f;
   for (int k = 0; k <= 10; ++k)
   {
@@ -238,49 +241,49 @@ TEST(FiberMetrics, HashFindsWhatBruteForceFinds)
   }
   // Then with three long links (reach 2.65 > twice any short one: oversize, outside the hash).
   for (bool longLinks : { false, true })
-  for (bool periodic : { false, true })
-  {
-    if (longLinks && m.fibers.size() == 300)
+    for (bool periodic : { false, true })
     {
-      for (int i = 0; i < 3; ++i)
+      if (longLinks && m.fibers.size() == 300)
       {
-        const Vec3 a{ rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5) };
-        m.fibers.push_back(straight(a, a + Vec3{ 4.8, 0.3 * i, 0 }, 1, 0.25, 300 + i));
+        for (int i = 0; i < 3; ++i)
+        {
+          const Vec3 a{ rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5) };
+          m.fibers.push_back(straight(a, a + Vec3{ 4.8, 0.3 * i, 0 }, 1, 0.25, 300 + i));
+        }
+      }
+      PeriodicCell cell = periodic ? cube(5) : PeriodicCell{};
+      const CapsuleSet set = makeCapsules(m, cell);
+      std::int64_t collisions = 0;
+      double minGap = 1e300;
+      for (std::size_t i = 0; i < set.capsules.size(); ++i)
+      {
+        for (std::size_t j = i + 1; j < set.capsules.size(); ++j)
+        {
+          const Capsule &p = set.capsules[i], &q = set.capsules[j];
+          // every image within one period, not only the nearest midpoint image
+          double d = 1e300;
+          for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy)
+              for (int sz = -1; sz <= 1; ++sz)
+              {
+                if (!periodic && (sx || sy || sz))
+                  continue;
+                const Vec3 s{ 10.0 * sx, 10.0 * sy, 10.0 * sz };
+                d = std::min(d, segmentDistance(p.a, p.b, q.a + s, q.b + s));
+              }
+          const double gap = d - p.r - q.r;
+          collisions += gap < 0 ? 1 : 0;
+          minGap = std::min(minGap, gap);
+        }
+      }
+      ASSERT_GT(collisions, 5);
+      for (int threads : { 1, 2 })
+      {
+        const PairResult res = compareCapsulePairs(set, cell, threads, nullptr);
+        EXPECT_EQ(res.collisions, collisions) << periodic << threads << longLinks;
+        EXPECT_EQ(res.minGap, minGap) << periodic << threads << longLinks;
       }
     }
-    PeriodicCell cell = periodic ? cube(5) : PeriodicCell{};
-    const CapsuleSet set = makeCapsules(m, cell);
-    std::int64_t collisions = 0;
-    double minGap = 1e300;
-    for (std::size_t i = 0; i < set.capsules.size(); ++i)
-    {
-      for (std::size_t j = i + 1; j < set.capsules.size(); ++j)
-      {
-        const Capsule &p = set.capsules[i], &q = set.capsules[j];
-        // every image within one period, not only the nearest midpoint image
-        double d = 1e300;
-        for (int sx = -1; sx <= 1; ++sx)
-          for (int sy = -1; sy <= 1; ++sy)
-            for (int sz = -1; sz <= 1; ++sz)
-            {
-              if (!periodic && (sx || sy || sz))
-                continue;
-              const Vec3 s{ 10.0 * sx, 10.0 * sy, 10.0 * sz };
-              d = std::min(d, segmentDistance(p.a, p.b, q.a + s, q.b + s));
-            }
-        const double gap = d - p.r - q.r;
-        collisions += gap < 0 ? 1 : 0;
-        minGap = std::min(minGap, gap);
-      }
-    }
-    ASSERT_GT(collisions, 5);
-    for (int threads : { 1, 2 })
-    {
-      const PairResult res = compareCapsulePairs(set, cell, threads, nullptr);
-      EXPECT_EQ(res.collisions, collisions) << periodic << threads << longLinks;
-      EXPECT_EQ(res.minGap, minGap) << periodic << threads << longLinks;
-    }
-  }
 }
 
 TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
@@ -302,8 +305,9 @@ TEST(FiberMetrics, SpreadOutModelKeepsTheHashSmall)
 
 TEST(FiberMetrics, LongUnwrappedFiberIsCheckedAgainstTheMemoryBudget)
 {
-  // One fiber closed through a 10 µm cell after 1e5 periods: its 1e5 links of just under 10 µm (one cell
-  // edge each: longer ones are refused outright) each reach ~100 voxel layers, 1e7 layer entries
+  // One fiber closed through a 10 µm cell after 1e5 periods: its 1e5 links of just under 10 µm (one
+  // cell edge each: longer ones are refused outright) each reach ~100 voxel layers, 1e7 layer
+  // entries
   // (~320 MB), refused before any is stored; the Monte Carlo cells are refused too.
   FiberModel m;
   m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, 1e6 }, 100001, 0.5, 0));
@@ -338,8 +342,10 @@ TEST(FiberMetrics, SegmentDistanceMatchesSampling)
     {
       v[3] = v[2] + (v[1] - v[0]) * 0.7;
     }
-    EXPECT_NEAR(segmentDistance(v[0], v[1], v[2], v[3]), sampledDistance(v[0], v[1], v[2], v[3]), 2e-3);
-    EXPECT_LE(segmentDistance(v[0], v[1], v[2], v[3]), sampledDistance(v[0], v[1], v[2], v[3]) + 1e-12);
+    EXPECT_NEAR(
+      segmentDistance(v[0], v[1], v[2], v[3]), sampledDistance(v[0], v[1], v[2], v[3]), 2e-3);
+    EXPECT_LE(
+      segmentDistance(v[0], v[1], v[2], v[3]), sampledDistance(v[0], v[1], v[2], v[3]) + 1e-12);
   }
 }
 
@@ -405,24 +411,29 @@ TEST(FiberMetrics, BadOptionsAreErrorsNamingTheValue)
   flat.boxHi.z = flat.boxLo.z;
   EXPECT_NE(computeFiberMetrics(m, flat, nullptr).error.find("Box"), std::string::npos);
   MetricsOptions negative = box(5, -1);
-  EXPECT_NE(computeFiberMetrics(m, negative, nullptr).error.find("VoxelSize -1"), std::string::npos);
+  EXPECT_NE(
+    computeFiberMetrics(m, negative, nullptr).error.find("VoxelSize -1"), std::string::npos);
   MetricsOptions tiny = box(5, 1e-4);
   EXPECT_NE(computeFiberMetrics(m, tiny, nullptr).error.find("voxels"), std::string::npos);
   MetricsOptions badCell = box(5, 0.1);
   badCell.cell = cube(5);
   badCell.cell.hi.x = badCell.cell.lo.x;
-  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  EXPECT_NE(
+    computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
   // The cell is checked whatever is measured: a zero-width or infinite cell would give a wrong
   // collision count and a NaN gap.
   badCell.volumeFraction = false;
-  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  EXPECT_NE(
+    computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
   badCell.cell = cube(5);
   badCell.cell.hi.y = std::numeric_limits<double>::infinity();
-  EXPECT_NE(computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
+  EXPECT_NE(
+    computeFiberMetrics(m, badCell, nullptr).error.find("periodic_cell"), std::string::npos);
   // A planar model has no volume in its point bounds: the message says to set Box.
   FiberModel planar;
   planar.fibers.push_back(straight({ 0, 0, 0 }, { 1, 0, 0 }, 2, 0.5, 0));
-  EXPECT_NE(computeFiberMetrics(planar, MetricsOptions{}, nullptr).error.find("set Box"), std::string::npos);
+  EXPECT_NE(computeFiberMetrics(planar, MetricsOptions{}, nullptr).error.find("set Box"),
+    std::string::npos);
 }
 
 TEST(FiberMetrics, EmptyModelAndAbort)
@@ -431,7 +442,8 @@ TEST(FiberMetrics, EmptyModelAndAbort)
   EXPECT_TRUE(empty.error.empty());
   EXPECT_EQ(empty.fibers, 0u);
   EXPECT_TRUE(std::isnan(empty.volume.fraction));
-  const MetricsResult aborted = computeFiberMetrics(lattice(-8, 8, 1), box(5, 0.05), [](double) { return false; });
+  const MetricsResult aborted =
+    computeFiberMetrics(lattice(-8, 8, 1), box(5, 0.05), [](double) { return false; });
   EXPECT_TRUE(aborted.aborted);
 }
 
@@ -451,12 +463,15 @@ TEST(FiberMetrics, MonteCarloAgreesWithinItsStandardError)
   EXPECT_NEAR(one.volume.errorBound, std::sqrt(exact * (1 - exact) / 400000), 2e-5);
   EXPECT_LE(std::abs(one.volume.fraction - exact), 4 * one.volume.errorBound);
   o.numberOfThreads = 2;
-  EXPECT_EQ(computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
+  EXPECT_EQ(
+    computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
   o.seed = 12;
-  EXPECT_NE(computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
+  EXPECT_NE(
+    computeFiberMetrics(lattice(-8, 8, r), o, nullptr).volume.fraction, one.volume.fraction);
 
   FiberModel m;
-  m.fibers.push_back(straight({ 5, 4.5, 0 }, { 15, 4.5, 0 }, 10, r, 0)); // one period away, wrapping in y
+  m.fibers.push_back(
+    straight({ 5, 4.5, 0 }, { 15, 4.5, 0 }, 10, r, 0)); // one period away, wrapping in y
   o.cell = cube(5);
   const MetricsResult periodic = computeFiberMetrics(m, o, nullptr);
   EXPECT_LE(std::abs(periodic.volume.fraction - M_PI * 10 / 1000), 4 * periodic.volume.errorBound);
@@ -485,8 +500,11 @@ TEST(FiberMetrics, LinksLongerThanThePeriodicCellAreRefusedAtOnce)
   o.cell.hi = { 5, 5, 5 };
   o.numberOfThreads = 1;
   const MetricsResult r = computeFiberMetrics(m, o, {});
-  EXPECT_NE(r.error.find("fiber 2 (fiber_id 12) link 0 spans 99 um along x, more than the periodic cell's edge 10"),
-    std::string::npos) << r.error;
+  EXPECT_NE(
+    r.error.find(
+      "fiber 2 (fiber_id 12) link 0 spans 99 um along x, more than the periodic cell's edge 10"),
+    std::string::npos)
+    << r.error;
   EXPECT_NE(r.error.find("UsePeriodicCell"), std::string::npos) << r.error;
   m.fibers.pop_back();
   const MetricsResult ok = computeFiberMetrics(m, o, {});

@@ -25,7 +25,8 @@ bool sameFiber(const Fiber& a, const Fiber& b)
 }
 
 // generate(piece, pieces) for 1..5 pieces against generate(0, 1).
-void expectPiecesMakeTheWhole(const std::function<FiberModel(int, int)>& generate, const std::string& what)
+void expectPiecesMakeTheWhole(
+  const std::function<FiberModel(int, int)>& generate, const std::string& what)
 {
   const FiberModel whole = generate(0, 1);
   ASSERT_GE(whole.fibers.size(), 5u) << what << ": too few fibers to split";
@@ -40,8 +41,9 @@ void expectPiecesMakeTheWhole(const std::function<FiberModel(int, int)>& generat
       ASSERT_EQ(range.begin, next) << what;
       for (const Fiber& f : part.fibers)
       {
-        ASSERT_TRUE(sameFiber(f, whole.fibers[next])) << what << ": fiber " << next << " of piece " << piece
-                                                      << " of " << pieces << " differs from the whole model";
+        ASSERT_TRUE(sameFiber(f, whole.fibers[next]))
+          << what << ": fiber " << next << " of piece " << piece << " of " << pieces
+          << " differs from the whole model";
         ++next;
       }
     }
@@ -97,14 +99,16 @@ TEST(FiberPieces, PeriodicCubes)
   o.radiusSpread = 0.3;
   o.radiusDistribution = RadiusDistribution::LogNormal;
   ASSERT_EQ(validateCubeOptions(o), "");
-  expectPiecesMakeTheWhole([&](int p, int n) { return generateCube(o, p, n); }, "periodic cube, volume fraction");
+  expectPiecesMakeTheWhole(
+    [&](int p, int n) { return generateCube(o, p, n); }, "periodic cube, volume fraction");
   // Lattice sites are shuffled over all fibers of a population: a piece takes the same sites.
   o.radiusSpread = 0.0;
   o.populations = 2;
   o.volumeFraction = 0.4;
   o.seeding = CubeSeeding::Lattice;
   ASSERT_EQ(validateCubeOptions(o), "");
-  expectPiecesMakeTheWhole([&](int p, int n) { return generateCube(o, p, n); }, "periodic cube, lattice");
+  expectPiecesMakeTheWhole(
+    [&](int p, int n) { return generateCube(o, p, n); }, "periodic cube, lattice");
 }
 
 TEST(FiberPieces, MorePiecesThanFibers)
@@ -128,8 +132,8 @@ TEST(FiberPieces, Bundles)
   {
     curve.push_back({ 3.0 * i, 0.05 * i * i, 0.0 });
   }
-  for (BundleShape shape :
-    { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing, BundleShape::YShape, BundleShape::Chiasm })
+  for (BundleShape shape : { BundleShape::Cylinder, BundleShape::Trajectory, BundleShape::Crossing,
+         BundleShape::YShape, BundleShape::Chiasm })
   {
     BundleOptions o;
     o.shape = shape;
@@ -143,7 +147,8 @@ TEST(FiberPieces, Bundles)
   BundleOptions random;
   random.numberOfFibers = 40;
   random.shape = BundleShape::Chiasm;
-  expectPiecesMakeTheWhole([&](int p, int n) { return generateBundle(random, nullptr, nullptr, p, n); },
+  expectPiecesMakeTheWhole([&](int p, int n)
+    { return generateBundle(random, nullptr, nullptr, p, n); },
     "random-seeded chiasm");
 }
 

@@ -176,7 +176,8 @@ TEST(GroundTruth, VerticalFiberS8a)
   for (bool reversed : { false, true })
   {
     FiberModel m;
-    m.fibers.push_back(reversed ? straight({ 1, 3, 7 }, { 1, 3, 0 }, 2) : straight({ 1, 3, 0 }, { 1, 3, 7 }, 2));
+    m.fibers.push_back(
+      reversed ? straight({ 1, 3, 7 }, { 1, 3, 0 }, 2) : straight({ 1, 3, 0 }, { 1, 3, 7 }, 2));
     PixelGrid lat;
     lat.lattice.n[0] = 3;
     lat.lattice.n[1] = 5;
@@ -240,8 +241,8 @@ TEST(GroundTruth, PartialCoverageFraction)
   EXPECT_DOUBLE_EQ(maps.fraction[0], (4 + 4) * 2 / 40.0);
 }
 
-// docs/pli-simulation.md §3.3 tie rule: a voxel equidistant from two links belongs to the larger global link index,
-// and links are numbered bundle by bundle, not in the order of the fiber list.
+// docs/pli-simulation.md §3.3 tie rule: a voxel equidistant from two links belongs to the larger
+// global link index, and links are numbered bundle by bundle, not in the order of the fiber list.
 TEST(GroundTruth, TiesGoToTheLaterLinkInBundleOrder)
 {
   for (int swap = 0; swap < 2; ++swap)
@@ -310,7 +311,8 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
   // Bad input is reported, naming the problem.
   PixelGrid bad = lat;
   bad.pixelSize = 0.5;
-  EXPECT_NE(computeGroundTruth(m, bad, o1, wholeImage(10, 10), part).error.find("PixelSize"), std::string::npos);
+  EXPECT_NE(computeGroundTruth(m, bad, o1, wholeImage(10, 10), part).error.find("PixelSize"),
+    std::string::npos);
   FiberModel broken = m;
   broken.fibers[3].radii[0] = -1;
   EXPECT_NE(computeGroundTruth(broken, lat, o1, wholeImage(10, 10), part).error, "");
@@ -321,10 +323,11 @@ TEST(GroundTruth, ThreadsAndSubRangesGiveIdenticalMaps)
 TEST(GroundTruth, ModelOrientationHistogram)
 {
   FiberModel m;
-  m.fibers.push_back(straight({ 0, 0, 0 }, { 1, 0, 0 }, 1));                       // φ 0, θ 90 → (2, 0)
-  m.fibers.push_back(straight({ 0, 0, 0 }, { -1, 0, 0 }, 1));                      // φ 180, θ 90 → (2, 2)
-  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, -1 }, 1));                      // antipode +z: θ 0 → (0, 0)
-  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, -1, -1 }, 1));                     // antipode (0,1,1): φ 90, θ 45 → (1, 1)
+  m.fibers.push_back(straight({ 0, 0, 0 }, { 1, 0, 0 }, 1));  // φ 0, θ 90 → (2, 0)
+  m.fibers.push_back(straight({ 0, 0, 0 }, { -1, 0, 0 }, 1)); // φ 180, θ 90 → (2, 2)
+  m.fibers.push_back(straight({ 0, 0, 0 }, { 0, 0, -1 }, 1)); // antipode +z: θ 0 → (0, 0)
+  m.fibers.push_back(
+    straight({ 0, 0, 0 }, { 0, -1, -1 }, 1)); // antipode (0,1,1): φ 90, θ 45 → (1, 1)
   const std::vector<double> h = modelOrientationHistogram(m, 4, 3, false, false);
   ASSERT_EQ(h.size(), 12u);
   EXPECT_EQ(h[2 * 4 + 0], 1.0);

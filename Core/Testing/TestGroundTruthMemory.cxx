@@ -56,7 +56,8 @@ TEST(GroundTruthMemory, SizeFollowsTheMemoryBudget)
   GroundTruthMaps maps;
   GroundTruthOptions o;
   o.threads = 1;
-  const std::string err = computeGroundTruth(diagonalFiber(10), lat, o, GridRange{ 0, 500, 0, 500 }, maps).error;
+  const std::string err =
+    computeGroundTruth(diagonalFiber(10), lat, o, GridRange{ 0, 500, 0, 500 }, maps).error;
   EXPECT_NE(err.find("500 x 500 pixels"), std::string::npos) << err;
   EXPECT_NE(err.find("memory budget"), std::string::npos) << err;
   EXPECT_TRUE(maps.fraction.empty()) << "allocated before the check";
@@ -74,12 +75,14 @@ TEST(GroundTruthMemory, LargeGridInBoundedMemory)
     GroundTruthMaps maps;
     GroundTruthOptions o;
     o.threads = 1;
-    const std::string err = computeGroundTruth(diagonalFiber(1500), lat, o, GridRange{ 0, 1500, 0, 1500 }, maps).error;
+    const std::string err =
+      computeGroundTruth(diagonalFiber(1500), lat, o, GridRange{ 0, 1500, 0, 1500 }, maps).error;
     const double grown = peakRssBytes() - before;
     const bool ok = err.empty() && maps.fraction[0] > 0.0 && grown < 400.0 * 1024 * 1024;
     if (!ok)
     {
-      std::fprintf(stderr, "error '%s', peak RSS grew by %.0f MB\n", err.c_str(), grown / 1048576.0);
+      std::fprintf(
+        stderr, "error '%s', peak RSS grew by %.0f MB\n", err.c_str(), grown / 1048576.0);
     }
     _exit(ok ? 0 : 1);
   }

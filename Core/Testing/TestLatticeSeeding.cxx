@@ -39,12 +39,15 @@ double bruteSpacing(double L, const std::vector<std::vector<LatticeSite>>& sites
     for (std::size_t i = 0; i < sites[k].size(); ++i)
     {
       for (std::size_t j = i + 1; j < sites[k].size(); ++j)
-        best = std::min(best, std::hypot(wrap(sites[k][i].t1 - sites[k][j].t1, L), wrap(sites[k][i].t2 - sites[k][j].t2, L)));
+        best = std::min(best,
+          std::hypot(
+            wrap(sites[k][i].t1 - sites[k][j].t1, L), wrap(sites[k][i].t2 - sites[k][j].t2, L)));
       for (std::size_t q = k + 1; q < sites.size(); ++q)
       {
         const int shared = 3 - int(k) - int(q);
         for (const LatticeSite& s : sites[q])
-          best = std::min(best, wrap(coordinate(int(k), sites[k][i], shared) - coordinate(int(q), s, shared), L));
+          best = std::min(
+            best, wrap(coordinate(int(k), sites[k][i], shared) - coordinate(int(q), s, shared), L));
       }
     }
   }
@@ -78,7 +81,8 @@ TEST(LatticeSeeding, SpacingIsTheBruteForceSpacingAndEverySiteIsInTheCell)
       }
       if (pops > 1 || lattice.sites[0].size() > 1)
       {
-        EXPECT_NEAR(lattice.spacing, bruteSpacing(L, lattice.sites), 1e-9) << pops << " / " << count;
+        EXPECT_NEAR(lattice.spacing, bruteSpacing(L, lattice.sites), 1e-9)
+          << pops << " / " << count;
       }
     }
   }
@@ -104,7 +108,8 @@ TEST(LatticeSeeding, ClosedFormsOfTheThreeArrangements)
   const PeriodicLattice three = periodicLattice(12.0, { 9, 9, 8 });
   EXPECT_DOUBLE_EQ(three.spacing, 2.0);
   EXPECT_EQ(three.sites[2].size(), 9u);
-  // Straight touching rods at a = 4r fill 3π/16 of the cell (58.9 %, the densest cubic rod packing).
+  // Straight touching rods at a = 4r fill 3π/16 of the cell (58.9 %, the densest cubic rod
+  // packing).
   EXPECT_NEAR(3 * 9 * M_PI * 1.0 * 12.0 / (12.0 * 12.0 * 12.0), 3.0 * M_PI / 16.0, 1e-12);
 }
 
@@ -160,8 +165,8 @@ TEST(LatticeSeeding, DenseCellsSolveToZeroOverlapsAtTheRequestedFraction)
     int pops;
     double edge, phi;
   };
-  for (const Case c : { Case{ 1, 12.0, 0.8 }, Case{ 2, 16.0, 0.62 }, Case{ 3, 12.8, 0.5 },
-         Case{ 3, 14.0, 0.55 } })
+  for (const Case c :
+    { Case{ 1, 12.0, 0.8 }, Case{ 2, 16.0, 0.62 }, Case{ 3, 12.8, 0.5 }, Case{ 3, 14.0, 0.55 } })
   {
     const CubeOptions cube = latticeCube(c.pops, c.edge, c.phi, 11);
     FiberModel m = generateCube(cube);
@@ -200,7 +205,8 @@ TEST(LatticeSeeding, AMillionFibersInThreePopulationsAreSeededInBoundedTime)
 {
   // The three bundled blocks were chosen by a scan over all pairs of candidate blocks in each of
   // 60 bisection steps: about a minute for 10^6 fibers, several for 3·10^6, with no progress and
-  // no abort. The same choice is now a query per block (seconds are plenty; it takes well under one).
+  // no abort. The same choice is now a query per block (seconds are plenty; it takes well under
+  // one).
   const std::vector<int> counts{ 333334, 333333, 333333 };
   auto done = std::make_shared<std::promise<PeriodicLattice>>();
   std::future<PeriodicLattice> result = done->get_future();
@@ -217,7 +223,8 @@ TEST(LatticeSeeding, AMillionFibersInThreePopulationsAreSeededInBoundedTime)
     EXPECT_GE(lattice.sites[k].size(), static_cast<std::size_t>(counts[k]));
   }
   // Sites a spacing apart in a 1000 um cross-section of ~333 334 fibers per population: the
-  // spacing is of the order of 1000 / sqrt(333 334 / (3/4)) (blocks) or 1000 / sqrt(333 334) / 2 (rods).
+  // spacing is of the order of 1000 / sqrt(333 334 / (3/4)) (blocks) or 1000 / sqrt(333 334) / 2
+  // (rods).
   EXPECT_GT(lattice.spacing, 0.5 * 1000.0 / std::sqrt(333334.0));
   EXPECT_LT(lattice.spacing, 1000.0 / std::sqrt(333334.0) * 1.2);
 }

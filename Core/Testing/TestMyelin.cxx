@@ -1,4 +1,5 @@
-// Myelin (docs/tissue-models.md §10.4): the inner radius of the Constant and Lee2019 g-ratio models.
+// Myelin (docs/tissue-models.md §10.4): the inner radius of the Constant and Lee2019 g-ratio
+// models.
 #include "Tissue/Myelin.h"
 
 #include <gtest/gtest.h>

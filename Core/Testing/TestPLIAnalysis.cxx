@@ -1,10 +1,10 @@
-// PLI analysis (docs/pli-analysis.md §2, §3; test vectors A-1 … A-5): EPA on equidistant and arbitrary
-// polarizer angles, inclination from retardation, and the tilt fit on closed-form views.
-#include "Analysis/Epa.h"
-#include "Analysis/RetardationInclination.h"
+// PLI analysis (docs/pli-analysis.md §2, §3; test vectors A-1 … A-5): EPA on equidistant and
+// arbitrary polarizer angles, inclination from retardation, and the tilt fit on closed-form views.
 #include "Analysis/Axis.h"
-#include "Analysis/TiltFit.h"
+#include "Analysis/Epa.h"
 #include "Analysis/PliAnalysis.h"
+#include "Analysis/RetardationInclination.h"
+#include "Analysis/TiltFit.h"
 
 #include "Util/Random.h"
 
@@ -50,7 +50,8 @@ double dirDiffDeg(double a, double b)
 
 // Closed-form intensity of a homogeneous fiber, the paper's equation (docs/pli-simulation.md §1),
 // written here independently of any simulator: I(ρ) = I_T·(1 + sin 2(ρ − φ)·sin δ).
-std::vector<double> homogeneousFiber(double iT, double phi, double sinDelta, const std::vector<double>& rho)
+std::vector<double> homogeneousFiber(
+  double iT, double phi, double sinDelta, const std::vector<double>& rho)
 {
   std::vector<double> I;
   for (double r : rho)
@@ -89,7 +90,8 @@ EpaPixel epa(const std::vector<double>& I, const std::vector<double>& rho)
 // the single voxel of docs/pli-simulation.md §8 S-1.
 TEST(PLIAnalysis, EpaSingleVoxelA1)
 {
-  const std::vector<double> I = { 6500, 10203.645730, 10203.645730, 6500, 2796.354270, 2796.354270 };
+  const std::vector<double> I = { 6500, 10203.645730, 10203.645730, 6500, 2796.354270,
+    2796.354270 };
   const EpaPixel p = epa(I, anglesDeg({ 0, 30, 60, 90, 120, 150 }));
   EXPECT_NEAR(p.transmittance, 13000.0, 13000.0 * 1e-9);
   EXPECT_LE(dirDiffDeg(p.direction, 0.0), 1e-6);
@@ -137,7 +139,8 @@ TEST(PLIAnalysis, EpaLeastSquaresOnIrregularAnglesA2)
   EXPECT_GT(std::abs(p.transmittance - w.transmittance), 1e-3);
 }
 
-// A-2 remaining rows: known amplitude and phase on 9 equidistant angles (sign convention of docs/pli-analysis.md §2.3).
+// A-2 remaining rows: known amplitude and phase on 9 equidistant angles (sign convention of
+// docs/pli-analysis.md §2.3).
 TEST(PLIAnalysis, EpaKnownHarmonicsA2)
 {
   const std::vector<double> rho = equidistant(9);
@@ -146,16 +149,16 @@ TEST(PLIAnalysis, EpaKnownHarmonicsA2)
     double a0, a1, b1, T, dirDeg, ret;
   };
   const Case cases[] = {
-    { 1000, 300, -400, 2000, 26.565051177077990, 0.5 },
-    { 1000, -300, 0, 2000, 90, 0.3 },
-    { 1000, 0, 400, 2000, 135, 0.4 },
-    { 1000, 0, -400, 2000, 45, 0.4 },
+    { 1000, 300, -400, 2000, 26.565051177077990, 0.5 }, { 1000, -300, 0, 2000, 90, 0.3 },
+    { 1000, 0, 400, 2000, 135, 0.4 }, { 1000, 0, -400, 2000, 45, 0.4 },
     { 100, 150, 0, 200, 0, 1.0 }, // 1.5 clamped
     { 500, 0, 0, 1000, 0, 0 },    // flat: direction 0 by the rule of docs/pli-analysis.md §2.3
   };
   for (const Case& c : cases)
   {
-    const EpaPixel p = epa(sample([&](double r) { return c.a0 + c.a1 * std::sin(2 * r) + c.b1 * std::cos(2 * r); }, rho), rho);
+    const EpaPixel p = epa(
+      sample([&](double r) { return c.a0 + c.a1 * std::sin(2 * r) + c.b1 * std::cos(2 * r); }, rho),
+      rho);
     EXPECT_NEAR(p.transmittance, c.T, c.T * 1e-9);
     EXPECT_LE(dirDiffDeg(p.direction, c.dirDeg * kDeg), 1e-6) << c.a1 << " " << c.b1;
     EXPECT_NEAR(p.retardation, c.ret, 1e-9);
@@ -255,8 +258,9 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
     const std::vector<double> I = homogeneousFiber(1000 + p, p * 0.1, 0.02 * p, rho);
     stack.insert(stack.end(), I.begin(), I.end());
   }
-  stack[3 * 6 + 2] = NAN;                     // pixel 3: non-finite sample
-  for (int k = 0; k < 6; ++k) stack[4 * 6 + k] = 0.0; // pixel 4: no light (a0 = 0)
+  stack[3 * 6 + 2] = NAN; // pixel 3: non-finite sample
+  for (int k = 0; k < 6; ++k)
+    stack[4 * 6 + k] = 0.0; // pixel 4: no light (a0 = 0)
 
   EpaMaps one, two, part;
   ASSERT_EQ(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, one).error, "");
@@ -293,7 +297,10 @@ TEST(PLIAnalysis, EpaMapsSubRangeInvalidPixelsAndThreads)
   }
   EXPECT_NE(computeEpa(stack.data(), nx, ny, rho, GridRange{ 0, 8, 0, 5 }, 1, part).error, "");
   // Cancellation is reported, not ignored.
-  EXPECT_TRUE(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part, [](double) { return false; }).aborted);
+  EXPECT_TRUE(computeEpa(stack.data(), nx, ny, rho, wholeImage(nx, ny), 1, part,
+    [](double) {
+      return false;
+    }).aborted);
 }
 
 // inclination from retardation with r_ref = 0.6579387259 (t_rel 0.4571428571).
@@ -337,7 +344,8 @@ TEST(PLIAnalysis, InclinationMapAutomaticReference)
   // Explicit reference larger than every r: the in-plane pixel is now inclined.
   ASSERT_EQ(inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 0.9, 1, out), "");
   EXPECT_GT(out[0] / kDeg, 10.0);
-  const std::string err = inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 1.5, 1, out);
+  const std::string err =
+    inclinationMapFromRetardation(ret.data(), 5, 1, wholeImage(5, 1), 1.5, 1, out);
   EXPECT_NE(err.find("ReferenceRetardation"), std::string::npos) << err;
   // All-zero retardation (automatic r_ref = 0): every pixel is vertical, no division by zero.
   std::vector<double> zero(3, 0.0);
@@ -363,11 +371,13 @@ struct Column
 // Closed-form intensities of a uniform column in view j (0 flat; 1..4 tilt azimuths 0°, 90°,
 // 180°, 270°) by tilting the specimen by tau (in tissue) about u = (−sin ψ, cos ψ, 0): the
 // beam sees the axis rotated by −tau (Physical: v_b = Rᵀv) or +tau (FastPLI: R·v), along a path
-// d/cos tau. I = (I0/4)(1 − sin δ · sin 2(ρ − φ_b)), δ = 2π·Δn·path·cos²α_b/λ (docs/pli-simulation.md §4.2).
-std::vector<double> columnView(const Column& c, int j, double tau, bool physical, const std::vector<double>& rho)
+// d/cos tau. I = (I0/4)(1 − sin δ · sin 2(ρ − φ_b)), δ = 2π·Δn·path·cos²α_b/λ
+// (docs/pli-simulation.md §4.2).
+std::vector<double> columnView(
+  const Column& c, int j, double tau, bool physical, const std::vector<double>& rho)
 {
-  Vec3 v{ std::cos(c.inclDeg * kDeg) * std::cos(c.dirDeg * kDeg), std::cos(c.inclDeg * kDeg) * std::sin(c.dirDeg * kDeg),
-    std::sin(c.inclDeg * kDeg) };
+  Vec3 v{ std::cos(c.inclDeg * kDeg) * std::cos(c.dirDeg * kDeg),
+    std::cos(c.inclDeg * kDeg) * std::sin(c.dirDeg * kDeg), std::sin(c.inclDeg * kDeg) };
   double path = c.thickness;
   if (j > 0)
   {
@@ -390,7 +400,10 @@ std::vector<double> columnView(const Column& c, int j, double tau, bool physical
 struct Views
 {
   std::vector<double> v[5];
-  std::vector<const double*> ptr() const { return { v[0].data(), v[1].data(), v[2].data(), v[3].data(), v[4].data() }; }
+  std::vector<const double*> ptr() const
+  {
+    return { v[0].data(), v[1].data(), v[2].data(), v[3].data(), v[4].data() };
+  }
 };
 
 Views columnViews(const Column& c, double tau, bool physical, const std::vector<double>& rho)
@@ -431,9 +444,12 @@ TEST(PLIAnalysis, TiltFitClosedFormViewsA4)
     double viewDir[5], viewRet[5];
   };
   const Row rows[] = {
-    { 30, 20, { 30.0, 31.1522, 28.1205, 29.1380, 31.5904 }, { 0.592436, 0.560579, 0.576308, 0.622326, 0.611887 } },
-    { 120, -60, { 120.0, 110.9569, 115.9364, 127.4660, 125.6920 }, { 0.178557, 0.154483, 0.233520, 0.213062, 0.132072 } },
-    { 0, 45, { 0.0, 0.0, 174.5252, 0.0, 5.4748 }, { 0.351375, 0.287748, 0.356027, 0.416439, 0.356027 } },
+    { 30, 20, { 30.0, 31.1522, 28.1205, 29.1380, 31.5904 },
+      { 0.592436, 0.560579, 0.576308, 0.622326, 0.611887 } },
+    { 120, -60, { 120.0, 110.9569, 115.9364, 127.4660, 125.6920 },
+      { 0.178557, 0.154483, 0.233520, 0.213062, 0.132072 } },
+    { 0, 45, { 0.0, 0.0, 174.5252, 0.0, 5.4748 },
+      { 0.351375, 0.287748, 0.356027, 0.416439, 0.356027 } },
   };
   EpaFit epaFit;
   ASSERT_EQ(epaFit.init(rho), "");
@@ -452,10 +468,12 @@ TEST(PLIAnalysis, TiltFitClosedFormViewsA4)
         EXPECT_LE(dirDiffDeg(p.direction, row.viewDir[e] * kDeg), 1e-4) << row.dir << " view " << j;
         EXPECT_NEAR(p.retardation, row.viewRet[e], 1e-6) << row.dir << " view " << j;
       }
-      const TiltFit fit = makeFit(rho, 5.5, physical ? TiltConvention::Physical : TiltConvention::FastPLI, 1.0);
+      const TiltFit fit =
+        makeFit(rho, 5.5, physical ? TiltConvention::Physical : TiltConvention::FastPLI, 1.0);
       const TiltFitResult f = fit.pixel(views.ptr());
       EXPECT_LE(axisError(f.direction, f.inclinationSigned, row.dir * kDeg, row.incl * kDeg), 1e-6)
-        << row.dir << "," << row.incl << " got " << f.direction / kDeg << "," << f.inclinationSigned / kDeg;
+        << row.dir << "," << row.incl << " got " << f.direction / kDeg << ","
+        << f.inclinationSigned / kDeg;
       EXPECT_NEAR(f.relativeThickness, 0.4571428571, 0.4571428571 * 1e-8);
       EXPECT_LT(f.chi2, 1e-20);
       EXPECT_NEAR(f.inclination, std::abs(f.inclinationSigned), 0.0);
@@ -486,7 +504,8 @@ TEST(PLIAnalysis, TiltFitFastPliRoflCaseA5)
     const Views views = columnViews(col, 5.5 * kDeg, conv == TiltConvention::Physical, rho);
     const TiltFitResult f = makeFit(rho, 5.5, conv, 1.0).pixel(views.ptr());
     EXPECT_LE(axisError(f.direction, f.inclinationSigned, 0.0, 45 * kDeg), 1e-6)
-      << f.direction / kDeg << " " << f.inclinationSigned / kDeg << " t " << f.relativeThickness << " chi2 " << f.chi2 << " it " << f.iterations;
+      << f.direction / kDeg << " " << f.inclinationSigned / kDeg << " t " << f.relativeThickness
+      << " chi2 " << f.chi2 << " it " << f.iterations;
     // fastPLI reports (180°, −45°): the same axis.
     EXPECT_LE(axisError(f.direction, f.inclinationSigned, M_PI, -45 * kDeg), 1e-6);
     EXPECT_NEAR(f.relativeThickness, 0.4571428571, 1e-8);
@@ -507,7 +526,8 @@ TEST(PLIAnalysis, TiltFitRecoversRandomAxes)
     col.dn = -rng.uniform(0.0004, 0.0018); // t_rel 0.18 … 0.82
     const double tRel = 4 * col.thickness * std::abs(col.dn) / (col.lambdaNm * 1e-3);
     const TiltFitResult f = fit.pixel(columnViews(col, 8.0 * kDeg, true, rho).ptr());
-    EXPECT_LE(axisError(f.direction, f.inclinationSigned, col.dirDeg * kDeg, col.inclDeg * kDeg), 1e-6)
+    EXPECT_LE(
+      axisError(f.direction, f.inclinationSigned, col.dirDeg * kDeg, col.inclDeg * kDeg), 1e-6)
       << col.dirDeg << "," << col.inclDeg << " t " << tRel << " got " << f.direction / kDeg << ","
       << f.inclinationSigned / kDeg << " t " << f.relativeThickness;
     EXPECT_NEAR(f.relativeThickness, tRel, 1e-7 * tRel);
@@ -578,10 +598,13 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
   }
   o.views = fourTiltViews(6 * kDeg);
   o.gain = 0.0; // noise-free → 1
-  const std::vector<const double*> tilts{ stacks[1].data(), stacks[2].data(), stacks[3].data(), stacks[4].data() };
+  const std::vector<const double*> tilts{ stacks[1].data(), stacks[2].data(), stacks[3].data(),
+    stacks[4].data() };
   TiltMaps one, two;
-  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 1, one).error, "");
-  ASSERT_EQ(computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 2, two).error, "");
+  ASSERT_EQ(
+    computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 1, one).error, "");
+  ASSERT_EQ(
+    computeTiltFit(stacks[0].data(), tilts, nx, ny, rho, o, wholeImage(nx, ny), 2, two).error, "");
   EXPECT_TRUE(sameBits(one.direction, two.direction));
   EXPECT_TRUE(sameBits(one.inclinationSigned, two.inclinationSigned));
   EXPECT_TRUE(sameBits(one.relativeThickness, two.relativeThickness));
@@ -594,10 +617,15 @@ TEST(PLIAnalysis, TiltFitErrorsMapsAndThreads)
       EXPECT_TRUE(std::isnan(one.chi2[p]));
       continue;
     }
-    EXPECT_LE(axisError(one.direction[p], one.inclinationSigned[p], 7.0 * p * kDeg, (-70.0 + 6.0 * p) * kDeg), 1e-6) << p;
+    EXPECT_LE(axisError(one.direction[p], one.inclinationSigned[p], 7.0 * p * kDeg,
+                (-70.0 + 6.0 * p) * kDeg),
+      1e-6)
+      << p;
   }
-  const std::vector<const double*> missing{ stacks[1].data(), nullptr, stacks[3].data(), stacks[4].data() };
-  const std::string e2 = computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two).error;
+  const std::vector<const double*> missing{ stacks[1].data(), nullptr, stacks[3].data(),
+    stacks[4].data() };
+  const std::string e2 =
+    computeTiltFit(stacks[0].data(), missing, nx, ny, rho, o, wholeImage(nx, ny), 1, two).error;
   EXPECT_NE(e2.find("intensity_tilt_1"), std::string::npos) << e2;
 }
 
@@ -628,7 +656,14 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   PliAnalysisOptions o;
   PliAnalysisMaps m;
   std::vector<double> fractions;
-  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m, [&](double f) { fractions.push_back(f); return true; }).error, "");
+  ASSERT_EQ(analysePli(s, o, wholeImage(nx, ny), m,
+              [&](double f)
+              {
+                fractions.push_back(f);
+                return true;
+              })
+              .error,
+    "");
   EXPECT_EQ(m.method, InclinationMethod::Tilt);
   ASSERT_FALSE(fractions.empty());
   EXPECT_EQ(fractions.back(), 1.0);
@@ -656,7 +691,8 @@ TEST(PLIAnalysis, DriverOnUniformSlabA8Core)
   // Automatic reference with a "global" maximum supplied by the caller (MPI AllReduce stand-in).
   o.referenceRetardation = 0.0;
   int calls = 0;
-  o.globalMaxRetardation = [&](double local) {
+  o.globalMaxRetardation = [&](double local)
+  {
     ++calls;
     EXPECT_NEAR(local, 0.592436, 1e-6);
     return 0.6579387259;
@@ -687,7 +723,8 @@ TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
   InclinationMethod method = InclinationMethod::Auto;
   for (int bad : { -1, 3, 1000 })
   {
-    EXPECT_EQ(inclinationMethodFromCode(bad, method), "InclinationMethod is " + std::to_string(bad) +
+    EXPECT_EQ(inclinationMethodFromCode(bad, method),
+      "InclinationMethod is " + std::to_string(bad) +
         ", must be 0 (Auto), 1 (Retardation) or 2 (Tilt)");
     EXPECT_EQ(method, InclinationMethod::Auto);
   }
@@ -699,7 +736,8 @@ TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
   for (double bad : { -0.25, 1.5, std::nan("") })
   {
     o.referenceRetardation = bad;
-    EXPECT_NE(checkPliAnalysisOptions(o).find("ReferenceRetardation is "), std::string::npos) << bad;
+    EXPECT_NE(checkPliAnalysisOptions(o).find("ReferenceRetardation is "), std::string::npos)
+      << bad;
   }
   o.referenceRetardation = 1.0;
   EXPECT_EQ(checkPliAnalysisOptions(o), "");
@@ -717,5 +755,6 @@ TEST(PLIAnalysis, OptionsOutsideTheirRangesAreNamed)
   o.noiseGain = -0.5;
   PliStack stack;
   PliAnalysisMaps maps;
-  EXPECT_NE(analysePli(stack, o, GridRange{ 0, 0, 0, 0 }, maps).error.find("NoiseGain is -0.5"), std::string::npos);
+  EXPECT_NE(analysePli(stack, o, GridRange{ 0, 0, 0, 0 }, maps).error.find("NoiseGain is -0.5"),
+    std::string::npos);
 }

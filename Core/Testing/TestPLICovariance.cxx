@@ -1,6 +1,6 @@
 // Rotation and mirror covariance of every PLI view, registered and on the tilted sensor (where the
-// image is stretched about its centre along the tilt azimuth). Turning the fiber model by 90°, 180° or 270°
-// about z, or mirroring it in x or y, must turn every image of every view exactly:
+// image is stretched about its centre along the tilt azimuth). Turning the fiber model by 90°, 180°
+// or 270° about z, or mirroring it in x or y, must turn every image of every view exactly:
 //  - pixel (i, j) goes where the transform puts the voxel centre;
 //  - the view of tilt azimuth φ_t goes to the azimuth of the transformed beam direction;
 //  - polarizer angles: a rotation by α turns every fiber direction by α, so I'(ρ) = I(ρ − α);
@@ -45,7 +45,8 @@ const Transform kTransforms[] = {
 FiberModel model()
 {
   FiberModel m;
-  auto add = [&m](Vec3 c, Vec3 u, double r) {
+  auto add = [&m](Vec3 c, Vec3 u, double r)
+  {
     Fiber f;
     f.points = { c - 32.0 * u, c + 32.0 * u };
     f.radii = { r, r };
@@ -84,7 +85,10 @@ PLIImage run(const FiberModel& m, const PLIOptions& o)
   return img;
 }
 
-int wrap(int k, int n) { return ((k % n) + n) % n; }
+int wrap(int k, int n)
+{
+  return ((k % n) + n) % n;
+}
 } // namespace
 
 TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
@@ -96,7 +100,8 @@ TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
         for (double step : { 0.5, 1.0, 2.0 })
         {
           PLIOptions o = options(interp, step);
-          o.tiltConvention = conv; // both conventions rotate the axes with the stage, either way round
+          o.tiltConvention =
+            conv; // both conventions rotate the axes with the stage, either way round
           // The tilted sensor stretches about the image centre along the azimuth: both turn with T.
           o.tiltedSensor = sensor;
           const PLIImage ref = run(base, o);
@@ -131,14 +136,17 @@ TEST(PLICovariance, EveryViewTurnsWithTheModelForEveryInterpolationAndStep)
                   const std::int64_t j2 = (static_cast<std::int64_t>(c.y) + n - 1) / 2;
                   for (int k = 0; k < kRot; ++k)
                   {
-                    const int k2 = T.mirror() ? wrap(kRot / 2 - k, kRot) : wrap(k + T.rotationDeg() / 10, kRot);
-                    const double d = std::fabs(img.views[w].at(i2, j2, k2) - ref.views[v].at(i, j, k));
+                    const int k2 =
+                      T.mirror() ? wrap(kRot / 2 - k, kRot) : wrap(k + T.rotationDeg() / 10, kRot);
+                    const double d =
+                      std::fabs(img.views[w].at(i2, j2, k2) - ref.views[v].at(i, j, k));
                     worst = std::max(worst, d);
                   }
                 }
               ASSERT_LT(worst, 1e-12 * o.lightIntensity)
-                << T.name << " view " << v << " -> " << w << " interpolation " << static_cast<int>(interp)
-                << " StepSize " << step << " convention " << static_cast<int>(conv) << " TiltedSensor " << sensor;
+                << T.name << " view " << v << " -> " << w << " interpolation "
+                << static_cast<int>(interp) << " StepSize " << step << " convention "
+                << static_cast<int>(conv) << " TiltedSensor " << sensor;
             }
           }
         }

@@ -4,8 +4,8 @@
 #include "MemoryLimitGuard.h"
 #include "PLITestUtil.h"
 
-#include "PLI/OptionLimits.h"
 #include "PLI/Optics.h"
+#include "PLI/OptionLimits.h"
 #include "PLI/PLIPipeline.h"
 
 #include <gtest/gtest.h>
@@ -218,7 +218,8 @@ TEST(PLILimits, MemoryBudgetIsCheckedPerPiece)
   EXPECT_EQ(plan.estimatedBytes, wholeBytes);
   PLIImage full;
   ASSERT_TRUE(runPLI(oneFiber(), o, whole, full).ok());
-  const std::string between = std::to_string(static_cast<long long>(std::sqrt(wholeBytes * pieceBytes)));
+  const std::string between =
+    std::to_string(static_cast<long long>(std::sqrt(wholeBytes * pieceBytes)));
   fiberpli::testing::MemoryLimitGuard limit(between.c_str());
   EXPECT_TRUE(planPLI(oneFiber(), o, plan).ok()); // planning never refuses a job that may be split
   PLIImage img;
@@ -238,8 +239,8 @@ TEST(PLILimits, EnumerationCodesAreCheckedNotCast)
   Interp interp = Interp::Slerp;
   for (int bad : { -1, 3, 256 })
   {
-    EXPECT_EQ(interpolationFromCode(bad, interp), "Interpolation is " + std::to_string(bad) +
-        ", must be 0 (nearest), 1 (linear) or 2 (Slerp)");
+    EXPECT_EQ(interpolationFromCode(bad, interp),
+      "Interpolation is " + std::to_string(bad) + ", must be 0 (nearest), 1 (linear) or 2 (Slerp)");
     EXPECT_EQ(interp, Interp::Slerp); // untouched on error
   }
   EXPECT_EQ(interpolationFromCode(0, interp), "");
@@ -249,7 +250,8 @@ TEST(PLILimits, EnumerationCodesAreCheckedNotCast)
   TiltConvention convention = TiltConvention::Physical;
   for (int bad : { -1, 2, 256 })
   {
-    EXPECT_NE(tiltConventionFromCode(bad, convention).find("TiltConvention is " + std::to_string(bad)),
+    EXPECT_NE(
+      tiltConventionFromCode(bad, convention).find("TiltConvention is " + std::to_string(bad)),
       std::string::npos);
     EXPECT_EQ(convention, TiltConvention::Physical);
   }

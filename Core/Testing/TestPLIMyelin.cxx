@@ -26,7 +26,8 @@ SectionLattice lattice(int n, int nz)
   return l;
 }
 
-/// A straight fiber along z through (x, y) across the section, radius r, inner radius g·r (g = 0: none).
+/// A straight fiber along z through (x, y) across the section, radius r, inner radius g·r (g = 0:
+/// none).
 FiberModel straightFiber(double x, double y, double r, double g)
 {
   FiberModel m;
@@ -50,13 +51,15 @@ TEST(PLIMyelin, AxonAndSheathVoxelsAreTheLatticeCentresInsideTheirRadii)
   TissueSpec spec;
   ASSERT_TRUE(makeTissueSpec("", { 0 }, -0.001, 2.0, 0.0, spec, true).ok());
   ASSERT_EQ(spec.layers[0].size(), 2u);
-  EXPECT_EQ(spec.layers[0][1].dn, 0.001); // radial sheath: the opposite sign of the parallel default
+  EXPECT_EQ(
+    spec.layers[0][1].dn, 0.001); // radial sheath: the opposite sign of the parallel default
   EXPECT_EQ(spec.layers[0][0].dn, 0.0);
   const SectionLattice lat = lattice(21, 4);
   TissueBlock block;
   voxelise(m, spec, lat, { 0, 21, 0, 21 }, block);
   // Independent count: voxel centres (i + ½, j + ½) at distance ρ from the axis; axon ρ <= g·r,
-  // sheath g·r < ρ <= r. Their areas are π(g·r)² and π(1 − g²)·r² up to the lattice's boundary error.
+  // sheath g·r < ρ <= r. Their areas are π(g·r)² and π(1 − g²)·r² up to the lattice's boundary
+  // error.
   int axonExpected = 0, sheathExpected = 0;
   for (int i = 0; i < 21; ++i)
     for (int j = 0; j < 21; ++j)

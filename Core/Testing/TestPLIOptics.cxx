@@ -1,5 +1,5 @@
-// Optics (docs/pli-simulation.md §5, test vectors S-10): Gaussian PSF with mirrored edges, binning to
-// CCD pixels, Gamma–Poisson camera noise and its reproducibility.
+// Optics (docs/pli-simulation.md §5, test vectors S-10): Gaussian PSF with mirrored edges, binning
+// to CCD pixels, Gamma–Poisson camera noise and its reproducibility.
 #include "PLI/Optics.h"
 #include "PLITestUtil.h"
 #include "Util/Random.h"
@@ -130,7 +130,8 @@ TEST(PLIOptics, S10NoiseStatistics)
   {
     double I, g, meanTol, varRatio, varTol;
   };
-  const Case cases[] = { { 1000, 3, 0.5, 3, 0.05 }, { 50, 3, 0.1, 3, 0.1 }, { 1000, 1, 0.5, 1, 0.02 } };
+  const Case cases[] = { { 1000, 3, 0.5, 3, 0.05 }, { 50, 3, 0.1, 3, 0.1 },
+    { 1000, 1, 0.5, 1, 0.02 } };
   const int n = 400000;
   for (const Case& c : cases)
   {

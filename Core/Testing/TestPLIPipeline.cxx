@@ -1,5 +1,5 @@
-// End-to-end PLI simulation (docs/pli-simulation.md §8 S-6, S-7), determinism over threads and tiles,
-// pixel sub-rectangles equal to the crop of the whole image, option validation.
+// End-to-end PLI simulation (docs/pli-simulation.md §8 S-6, S-7), determinism over threads and
+// tiles, pixel sub-rectangles equal to the crop of the whole image, option validation.
 #include "PLI/PLIPipeline.h"
 #include "PLI/Simulator.h"
 #include "PLI/TissueSpec.h"
@@ -138,7 +138,8 @@ TEST(PLIPipeline, S7RadialMyelinColumns)
   p.threads = 1;
   std::vector<Stack> out;
   ASSERT_TRUE(simulate(m, spec, lat, p, { View{} }, { 0, 2, 0, 24 }, out).status.ok());
-  const std::pair<int, double> rows[] = { { 12, 0.066528 }, { 13, 0.202773 }, { 16, 0.459252 }, { 20, 0.419627 } };
+  const std::pair<int, double> rows[] = { { 12, 0.066528 }, { 13, 0.202773 }, { 16, 0.459252 },
+    { 20, 0.419627 } };
   for (const auto& r : rows)
     for (int i = 0; i < 2; ++i)
     {
@@ -221,7 +222,8 @@ TEST(PLIPipeline, EmptySectionGivesBackgroundAndWarning)
   // Path 6 µm untilted, 6/cos 5.5° µm in the tilted views.
   for (std::size_t v = 0; v < img.views.size(); ++v)
     for (double x : img.views[v].data)
-      EXPECT_NEAR(x, 6500 * std::exp(-2.0 * 0.006 / (v == 0 ? 1.0 : std::cos(5.5 * M_PI / 180))), 1e-9 * 6500);
+      EXPECT_NEAR(x, 6500 * std::exp(-2.0 * 0.006 / (v == 0 ? 1.0 : std::cos(5.5 * M_PI / 180))),
+        1e-9 * 6500);
 }
 
 TEST(PLIPipeline, OptionsAreValidatedBeforeAllocation)

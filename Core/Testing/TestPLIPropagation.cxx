@@ -94,7 +94,8 @@ TEST(PLIPropagation, S2Variants)
   }
   {
     const std::vector<double> I = singleVoxel({ 1, 0, 0 }, -0.001, 5, params());
-    const std::vector<double> ref = { 6500, 10203.645730, 10203.645730, 6500, 2796.354270, 2796.354270 };
+    const std::vector<double> ref = { 6500, 10203.645730, 10203.645730, 6500, 2796.354270,
+      2796.354270 };
     for (int k = 0; k < 6; ++k)
       EXPECT_NEAR(I[k], ref[k] * 0.7408182207, kTolI);
     EXPECT_NEAR(epa(I.data(), 6).T, 9630.636869, 9630.636869 * 1e-9);
@@ -107,7 +108,8 @@ TEST(PLIPropagation, S2Variants)
     EXPECT_LT(dirDiff(e.dirDeg, 0), 1e-4);
     EXPECT_NEAR(e.ret, 0.657939, 1e-6);
   }
-  expectIntensities(singleVoxel({ 0, 0, 1 }, -0.001, 0, params()), { 6500, 6500, 6500, 6500, 6500, 6500 });
+  expectIntensities(
+    singleVoxel({ 0, 0, 1 }, -0.001, 0, params()), { 6500, 6500, 6500, 6500, 6500, 6500 });
 }
 
 TEST(PLIPropagation, S3StepRule)
@@ -119,7 +121,8 @@ TEST(PLIPropagation, S3StepRule)
     const std::vector<double> I = singleVoxel({ 1, 0, 0 }, -0.001, 0, p);
     EXPECT_NEAR(epa(I.data(), 6).ret, 0.657939, 1e-6) << "ExactLength h " << h;
   }
-  const std::pair<double, double> midpoint[] = { { 1.0, 0.657939 }, { 0.5, 0.657939 }, { 0.3, 0.602213 }, { 2.0, 0.0 } };
+  const std::pair<double, double> midpoint[] = { { 1.0, 0.657939 }, { 0.5, 0.657939 },
+    { 0.3, 0.602213 }, { 2.0, 0.0 } };
   for (const auto& hr : midpoint)
   {
     SimParams p = params();
@@ -136,14 +139,16 @@ TEST(PLIPropagation, S4StackedVoxelsFixTheHandedness)
   {
     double bottom, top, dir, ret;
   };
-  const Row rows[] = { { 0, 0, 0, 0.990950 }, { 0, 90, -1, 0 }, { 0, 45, 18.491180, 0.823637 }, { 45, 0, 26.508820, 0.823637 } };
+  const Row rows[] = { { 0, 0, 0, 0.990950 }, { 0, 90, -1, 0 }, { 0, 45, 18.491180, 0.823637 },
+    { 45, 0, 26.508820, 0.823637 } };
   for (const Row& row : rows)
   {
     FiberModel m;
     m.fibers.push_back(line({ 30, 30, 30 }, dirVec(row.bottom, 0), 1e3, 40));
     m.fibers.push_back(line({ 30, 30, 90 }, dirVec(row.top, 0), 1e3, 40));
     std::vector<Stack> out;
-    SimResult r = simulate(m, oneLayer(-0.001, 0), voxels(2), params(), { View{} }, GridRange{ 0, 1, 0, 1 }, out);
+    SimResult r = simulate(
+      m, oneLayer(-0.001, 0), voxels(2), params(), { View{} }, GridRange{ 0, 1, 0, 1 }, out);
     ASSERT_TRUE(r.status.ok()) << r.status.error;
     const Epa e = epa(out[0].data.data(), 6);
     EXPECT_NEAR(e.T, 13000, 13000 * 1e-9);
@@ -173,10 +178,13 @@ TEST(PLIPropagation, S5TiltedSingleVoxelBothConventions)
       SimParams p = params();
       p.step = 1.0 / std::cos(th);
       p.conv = conv == 0 ? TiltConvention::Physical : TiltConvention::FastPLI;
-      const std::vector<double> I = singleVoxel(dirVec(0, 45), -0.001, 0, p, View{ th, row.az * M_PI / 180 });
+      const std::vector<double> I =
+        singleVoxel(dirVec(0, 45), -0.001, 0, p, View{ th, row.az * M_PI / 180 });
       const Epa e = epa(I.data(), 6);
-      EXPECT_NEAR(e.ret, conv == 0 ? row.retPhys : row.retFast, 1e-6) << "azimuth " << row.az << " conv " << conv;
-      EXPECT_LT(dirDiff(e.dirDeg, conv == 0 ? row.dirPhys : row.dirFast), 1e-4) << "azimuth " << row.az;
+      EXPECT_NEAR(e.ret, conv == 0 ? row.retPhys : row.retFast, 1e-6)
+        << "azimuth " << row.az << " conv " << conv;
+      EXPECT_LT(dirDiff(e.dirDeg, conv == 0 ? row.dirPhys : row.dirFast), 1e-4)
+        << "azimuth " << row.az;
       EXPECT_NEAR(e.T, 13000, 13000 * 1e-9);
     }
 }

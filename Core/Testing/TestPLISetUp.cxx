@@ -44,7 +44,8 @@ PLIOptions slabOptions()
 
 // Simulates and analyses like PLISimulation → PLIAnalysis: the analysis reads the set-up from the
 // plan exactly as the VTK filter reads it from the field data.
-PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, InclinationMethod method)
+PliAnalysisMaps simulateAndAnalyse(
+  const FiberModel& m, const PLIOptions& o, InclinationMethod method)
 {
   PLIImage img;
   const Status st = runPLI(m, o, fiberpli::GridRange{}, img);
@@ -57,10 +58,12 @@ PliAnalysisMaps simulateAndAnalyse(const FiberModel& m, const PLIOptions& o, Inc
   for (std::size_t v = 1; v < img.views.size(); ++v)
   {
     s.tilts.push_back(img.views[v].data.data());
-    s.tiltViews.push_back(TiltView{ img.plan.tiltDeg[v - 1] * kDeg, img.plan.azimuthDeg[v - 1] * kDeg });
+    s.tiltViews.push_back(
+      TiltView{ img.plan.tiltDeg[v - 1] * kDeg, img.plan.azimuthDeg[v - 1] * kDeg });
   }
-  s.convention = o.tiltConvention == fiberpli::TiltConvention::FastPLI ? fiberpli::TiltConvention::FastPLI
-                                                                   : fiberpli::TiltConvention::Physical;
+  s.convention = o.tiltConvention == fiberpli::TiltConvention::FastPLI
+    ? fiberpli::TiltConvention::FastPLI
+    : fiberpli::TiltConvention::Physical;
   s.noiseGain = 0.0;
   PliAnalysisOptions a;
   a.method = method;
@@ -112,8 +115,8 @@ TEST(PLISetUp, TiltFitReturnsTheInclinationForAnyTiltSet)
   const Case cases[] = {
     { { 3.9 }, {} },
     { { 8 }, {} },
-    { { 3.9, 8 }, {} },                   // 8 tilted views
-    { { 5.5 }, { 30, 150, 270 } },        // three azimuths, none on an axis
+    { { 3.9, 8 }, {} },            // 8 tilted views
+    { { 5.5 }, { 30, 150, 270 } }, // three azimuths, none on an axis
     { { 3.9, 8 }, { 45, 135, 225, 315 } },
   };
   for (const Case& c : cases)
@@ -130,8 +133,11 @@ TEST(PLISetUp, TiltFitReturnsTheInclinationForAnyTiltSet)
         for (std::size_t p = 0; p < m.direction.size(); ++p)
         {
           // Noise-free data fit the model exactly: far inside the 1° a measurement would need.
-          ASSERT_LT(angleBetweenAxesDeg(m.direction[p], m.inclinationSigned[p], 60 * kDeg, incl * kDeg), 0.01)
-            << c.angles.size() << " angles, " << c.azimuths.size() << " azimuths, inclination " << incl;
+          ASSERT_LT(
+            angleBetweenAxesDeg(m.direction[p], m.inclinationSigned[p], 60 * kDeg, incl * kDeg),
+            0.01)
+            << c.angles.size() << " angles, " << c.azimuths.size() << " azimuths, inclination "
+            << incl;
           ASSERT_NEAR(m.inclination[p] / kDeg, std::fabs(incl), 0.01);
         }
       }

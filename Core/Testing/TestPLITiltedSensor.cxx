@@ -1,8 +1,9 @@
-// The tilted-sensor mode (docs/pli-simulation.md §4.6): the tilted camera sees the section foreshortened
-// by cos τ along the tilt azimuth, about the image centre. Checked against closed forms on an
-// absorbing band (its optical-density integral and centroid along the tilt direction shrink by
-// cos τ, across it nothing changes), bit-for-bit identity where the mode must change nothing, and
-// independence of tile size, threads and pixel sub-range. Rotation covariance: TestPLICovariance.
+// The tilted-sensor mode (docs/pli-simulation.md §4.6): the tilted camera sees the section
+// foreshortened by cos τ along the tilt azimuth, about the image centre. Checked against closed
+// forms on an absorbing band (its optical-density integral and centroid along the tilt direction
+// shrink by cos τ, across it nothing changes), bit-for-bit identity where the mode must change
+// nothing, and independence of tile size, threads and pixel sub-range. Rotation covariance:
+// TestPLICovariance.
 #include "PLITestUtil.h"
 
 #include "PLI/PLIPipeline.h"
@@ -57,7 +58,8 @@ PLIImage run(const FiberModel& m, const PLIOptions& o, GridRange px = GridRange{
 }
 
 /// ∫ OD dx (µm) and the OD centroid (µm from the image centre) along row j of view v.
-void odMoments(const PLIImage& img, int v, std::int64_t j, double pixel, double& integral, double& centroid)
+void odMoments(
+  const PLIImage& img, int v, std::int64_t j, double pixel, double& integral, double& centroid)
 {
   const double background = 0.25 * 26000.0; // ½·(½ I0) without birefringence or absorption
   const Stack& s = img.views[static_cast<std::size_t>(v)];
@@ -177,5 +179,6 @@ TEST(PLITiltedSensor, IndependentOfTilesThreadsAndPieces)
     for (std::int64_t j = piece.j0; j < piece.j1; ++j)
       for (std::int64_t i = piece.i0; i < piece.i1; ++i)
         for (int k = 0; k < ref.views[v].nrho; ++k)
-          ASSERT_EQ(part.views[v].at(i, j, k), ref.views[v].at(i, j, k)) << v << " " << i << " " << j;
+          ASSERT_EQ(part.views[v].at(i, j, k), ref.views[v].at(i, j, k))
+            << v << " " << i << " " << j;
 }

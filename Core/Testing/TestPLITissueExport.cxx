@@ -65,7 +65,8 @@ Expected bruteForce(const FiberModel& m, const Vec3& c)
     double scale;
     char model;
   };
-  const std::vector<std::vector<L>> layers = { { { 0.5, 'p' }, { 0.75, 'b' }, { 1.0, 'r' } }, { { 1.0, 'p' } } };
+  const std::vector<std::vector<L>> layers = { { { 0.5, 'p' }, { 0.75, 'b' }, { 1.0, 'r' } },
+    { { 1.0, 'p' } } };
   const int bundleIds[2] = { 0, 3 }, maxLayers = 3;
   Expected e;
   double best = std::numeric_limits<double>::infinity();
@@ -90,7 +91,8 @@ Expected bruteForce(const FiberModel& m, const Vec3& c)
           ++l;
         e.label = 1 + slot * maxLayers + l;
         const Vec3 u = layers[slot][l].model == 'p' ? normalized(Q - P) : normalized(c - X);
-        const bool none = layers[slot][l].model == 'b' || (layers[slot][l].model == 'r' && norm(c - X) < 1e-9 * r);
+        const bool none =
+          layers[slot][l].model == 'b' || (layers[slot][l].model == 'r' && norm(c - X) < 1e-9 * r);
         e.axis[0] = none ? 0 : u.x;
         e.axis[1] = none ? 0 : u.y;
         e.axis[2] = none ? 0 : u.z;
@@ -189,10 +191,12 @@ TEST(PLITissueExport, ReportsProgressAndAborts)
   ASSERT_TRUE(tissueBox(plan, whole, vb).ok());
   std::vector<double> seen;
   TissueVolume tv;
-  const Status done = exportTissue(m, plan, o, vb, tv, [&seen](double f) {
-    seen.push_back(f);
-    return true;
-  });
+  const Status done = exportTissue(m, plan, o, vb, tv,
+    [&seen](double f)
+    {
+      seen.push_back(f);
+      return true;
+    });
   ASSERT_TRUE(done.error.empty());
   EXPECT_FALSE(done.aborted);
   ASSERT_EQ(seen.size(), 6u * 6u + 1u); // 24 x 24 columns in tiles of 4, then 1

@@ -50,7 +50,8 @@ TEST(PLIVoxeliser, S8aThinFiberRows)
 {
   const SectionLattice lat = box(3, 5, 7);
   TissueBlock b;
-  voxelise(fiber({ 1, 3, 0 }, { 1, 3, 7 }, 2), spec({ { 1, 0, 0, AxisModel::Parallel } }), lat, { 0, 3, 0, 5 }, b);
+  voxelise(fiber({ 1, 3, 0 }, { 1, 3, 7 }, 2), spec({ { 1, 0, 0, AxisModel::Parallel } }), lat,
+    { 0, 3, 0, 5 }, b);
   const int expected[3][5] = { { 0, 1, 1, 1, 1 }, { 0, 1, 1, 1, 1 }, { 0, 0, 1, 1, 0 } };
   for (int k = 0; k < 7; ++k)
     for (int i = 0; i < 3; ++i)
@@ -72,8 +73,8 @@ TEST(PLIVoxeliser, S8bRadialAxes)
 {
   const SectionLattice lat = box(15, 15, 15);
   TissueBlock b;
-  voxelise(fiber({ 0, 2.5, -5000 }, { 0, 2.5, 5000 }, 10), spec({ { 1, 0.004, 1, AxisModel::Radial } }), lat,
-    { 0, 15, 0, 15 }, b);
+  voxelise(fiber({ 0, 2.5, -5000 }, { 0, 2.5, 5000 }, 10),
+    spec({ { 1, 0.004, 1, AxisModel::Radial } }), lat, { 0, 15, 0, 15 }, b);
   for (int k = 0; k < 15; k += 7)
   {
     int count = 0;
@@ -171,14 +172,16 @@ TEST(PLIVoxeliser, LateralBackgroundLeavesOutsideEmpty)
 {
   const SectionLattice lat = box(4, 4, 4);
   TissueBlock b;
-  voxelise(fiber({ -100, 2, 2 }, { 100, 2, 2 }, 1.5), spec({ { 1, -0.001, 0, AxisModel::Parallel } }), lat,
-    { -3, 7, 0, 4 }, b, LateralOutside::Background);
+  voxelise(fiber({ -100, 2, 2 }, { 100, 2, 2 }, 1.5),
+    spec({ { 1, -0.001, 0, AxisModel::Parallel } }), lat, { -3, 7, 0, 4 }, b,
+    LateralOutside::Background);
   EXPECT_EQ(b.label(-1, 1, 1), 0);
   EXPECT_EQ(b.label(4, 1, 1), 0);
   EXPECT_EQ(b.label(0, 1, 1), 1);
   TissueBlock c;
-  voxelise(fiber({ -100, 2, 2 }, { 100, 2, 2 }, 1.5), spec({ { 1, -0.001, 0, AxisModel::Parallel } }), lat,
-    { -3, 7, 0, 4 }, c, LateralOutside::SampleFibers);
+  voxelise(fiber({ -100, 2, 2 }, { 100, 2, 2 }, 1.5),
+    spec({ { 1, -0.001, 0, AxisModel::Parallel } }), lat, { -3, 7, 0, 4 }, c,
+    LateralOutside::SampleFibers);
   EXPECT_EQ(c.label(-1, 1, 1), 1);
 }
 
@@ -215,7 +218,8 @@ TEST(PLIInterpolation, S9SlerpAndLerp)
   expectAxis(t, 1.0, Interp::Lerp, 0.707107, 0.707107);
   expectAxis(t, 0.9, Interp::NN, 1, 0);
 
-  const float f[3] = { static_cast<float>(std::cos(2 * M_PI / 3)), static_cast<float>(std::sin(2 * M_PI / 3)), 0 };
+  const float f[3] = { static_cast<float>(std::cos(2 * M_PI / 3)),
+    static_cast<float>(std::sin(2 * M_PI / 3)), 0 };
   const TissueBlock u = field(a, f);
   // Float storage of b limits these to ~1e-7.
   expectAxis(u, 0.9, Interp::Slerp, 0.913545, -0.406737);
@@ -241,8 +245,8 @@ TEST(PLIInterpolation, NoAxisWhenAllNeighboursMissing)
 TEST(PLILayers, GrammarAndValidation)
 {
   TissueSpec s;
-  Status st = makeTissueSpec("0.333 -0.004 10 p; 0.666 0 5 b; 1 0.004 1 r | 2: 1 -0.001 5 p", { 2, 0, 5, 0 }, -0.001,
-    0, 0.5, s);
+  Status st = makeTissueSpec("0.333 -0.004 10 p; 0.666 0 5 b; 1 0.004 1 r | 2: 1 -0.001 5 p",
+    { 2, 0, 5, 0 }, -0.001, 0, 0.5, s);
   ASSERT_TRUE(st.ok()) << st.error;
   ASSERT_EQ(s.bundleIds, (std::vector<int>{ 0, 2, 5 }));
   EXPECT_EQ(s.layers[0].size(), 3u);
@@ -325,7 +329,7 @@ TEST(PLIVoxeliser, ClosedFiberTranslatesAreOneStrand)
   EXPECT_FALSE(voxeliseTiledCell(m, cell(20, 20, 20)).overlap);
   // Fibers that merely touch end to start without being translates stay different fibers.
   FiberModel pair;
-  pair.fibers.push_back(line({ 6, 5, 5 }, { 1, 0, 0 }, 6, 2.0, 0));  // (0,5,5) → (12,5,5)
+  pair.fibers.push_back(line({ 6, 5, 5 }, { 1, 0, 0 }, 6, 2.0, 0));   // (0,5,5) → (12,5,5)
   pair.fibers.push_back(line({ 12, 11, 5 }, { 0, 1, 0 }, 6, 2.0, 0)); // (12,5,5) → (12,17,5)
   EXPECT_EQ(fiberStrands(pair), (std::vector<std::int32_t>{ 0, 1 }));
 }

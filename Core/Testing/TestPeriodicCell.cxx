@@ -2,13 +2,13 @@
 // The references here (overlap count over all 27 images, volume fraction by Monte Carlo over
 // the cell) share no code with the solver: distances come from BruteForceOverlap.h.
 #include "BruteForceOverlap.h"
-#include "PeriodicReference.h"
-#include "SolverTestModels.h"
-#include "ThreadComm.h"
 #include "Model/PeriodicCellRule.h"
 #include "Model/PeriodicTiling.h"
+#include "PeriodicReference.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
+#include "SolverTestModels.h"
+#include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 #include "Util/Random.h"
 
@@ -420,24 +420,28 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
   PeriodicCell cell;
   cell.lo = { -5.0, 0.25, 10.0 };
   cell.hi = { 7.0, 3.25, 10.5 }; // edges 12, 3, 0.5
-  FiberModel model; // straight along x and y: the slabs cut z
+  FiberModel model;              // straight along x and y: the slabs cut z
   model.fibers.push_back(fiberpli_test::line({ -5, 0.25, 10.2 }, { 4, 1, 0 }, 4, 0.1, 0));
-  runRanks(2, [&](SolverComm& comm) {
-    const SlabLayout layout = SlabLayout::make(model, cell, comm);
-    ASSERT_EQ(layout.axis(), 2);
-    for (const Vec3 p : { Vec3{ -5, 0.25, 10 }, Vec3{ 7, 3.25, 10.5 }, Vec3{ -41.5, 100.1, -3.3 }, Vec3{ 1e3, -1e-9, 10.49 } })
+  runRanks(2,
+    [&](SolverComm& comm)
     {
-      const Vec3 t = cell.wrapShift(p);
-      for (int d = 0; d < 3; ++d)
+      const SlabLayout layout = SlabLayout::make(model, cell, comm);
+      ASSERT_EQ(layout.axis(), 2);
+      for (const Vec3 p : { Vec3{ -5, 0.25, 10 }, Vec3{ 7, 3.25, 10.5 }, Vec3{ -41.5, 100.1, -3.3 },
+             Vec3{ 1e3, -1e-9, 10.49 } })
       {
-        const double e = cell.hi[d] - cell.lo[d];
-        EXPECT_EQ(t[d] / e, std::nearbyint(t[d] / e)) << "whole edges, axis " << d;
-        EXPECT_GE(p[d] + t[d], cell.lo[d]) << "axis " << d;
-        EXPECT_LT(p[d] + t[d], cell.hi[d] + 1e-12 * std::fabs(p[d])) << "axis " << d; // up to rounding
+        const Vec3 t = cell.wrapShift(p);
+        for (int d = 0; d < 3; ++d)
+        {
+          const double e = cell.hi[d] - cell.lo[d];
+          EXPECT_EQ(t[d] / e, std::nearbyint(t[d] / e)) << "whole edges, axis " << d;
+          EXPECT_GE(p[d] + t[d], cell.lo[d]) << "axis " << d;
+          EXPECT_LT(p[d] + t[d], cell.hi[d] + 1e-12 * std::fabs(p[d]))
+            << "axis " << d; // up to rounding
+        }
+        EXPECT_EQ(layout.wrapShift(p.z), t.z);
       }
-      EXPECT_EQ(layout.wrapShift(p.z), t.z);
-    }
-  });
+    });
 }
 
 TEST(PeriodicCube, AnEdgeTheSourceAcceptsTheSolverAccepts)
@@ -455,8 +459,10 @@ TEST(PeriodicCube, AnEdgeTheSourceAcceptsTheSolverAccepts)
   c.displacement = 0.3;
   c.edgeLength = 8.0;
   const std::string e = validateCubeOptions(c);
-  EXPECT_NE(e.find("EdgeLength is 8, too small for SegmentLength 2, Displacement 0.3 and FiberRadius 0.8"),
-    std::string::npos) << e;
+  EXPECT_NE(
+    e.find("EdgeLength is 8, too small for SegmentLength 2, Displacement 0.3 and FiberRadius 0.8"),
+    std::string::npos)
+    << e;
   EXPECT_NE(e.find("twice the largest link reach"), std::string::npos) << e;
   for (double edge : { 8.6, 9.0, 12.0 })
   {

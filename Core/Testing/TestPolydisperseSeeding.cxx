@@ -51,7 +51,8 @@ double smallestStraightGap(const FiberModel& m, double L)
       const int ka = fa.bundle, kb = fb.bundle;
       double distance = 0.0;
       if (ka == kb)
-        distance = std::hypot(wrap(p[(ka + 1) % 3] - q[(ka + 1) % 3], L), wrap(p[(ka + 2) % 3] - q[(ka + 2) % 3], L));
+        distance = std::hypot(
+          wrap(p[(ka + 1) % 3] - q[(ka + 1) % 3], L), wrap(p[(ka + 2) % 3] - q[(ka + 2) % 3], L));
       else
       {
         const int shared = 3 - ka - kb;
@@ -143,9 +144,9 @@ TEST(PolydisperseSeeding, DenseGammaCellsSolveToZeroOverlaps)
 {
   // One population at 0.85 in a (20 µm)³ cell and two at 0.72 in (16 µm)³ with Gamma radii; on
   // the lattice of the mean cross-section the (30 µm)³ cells of bench/README.md ("Polydisperse
-  // seeding") still had 7 625 (one population) and 2 331 (two) overlapping pairs after 3 000 steps. The step cap is 0.4 × the smallest
-  // radius (0.25 µm here): the default 0.125 moves a point 0.03 µm per step, too little to iron
-  // out the displacements of a cell at 0.85.
+  // seeding") still had 7 625 (one population) and 2 331 (two) overlapping pairs after 3 000 steps.
+  // The step cap is 0.4 × the smallest radius (0.25 µm here): the default 0.125 moves a point 0.03
+  // µm per step, too little to iron out the displacements of a cell at 0.85.
   struct Case
   {
     int pops;
@@ -183,7 +184,8 @@ TEST(PolydisperseSeeding, InfeasibleTargetKeepsEveryFiberWithItsRadius)
   o.displacement = 0.0;
   std::string warning;
   const FiberModel seeded = generateCube(o, 0, 1, &warning);
-  EXPECT_NE(warning.find("Seeding Lattice: the radii could not be separated in the cross-section"), std::string::npos)
+  EXPECT_NE(warning.find("Seeding Lattice: the radii could not be separated in the cross-section"),
+    std::string::npos)
     << warning;
   EXPECT_NE(warning.find("VolumeFraction 0.93"), std::string::npos) << warning;
   CubeOptions random = o;
@@ -216,7 +218,8 @@ TEST(PolydisperseSeeding, TwoPopulationSlabThinnerThanAFiberWarns)
   }
   const double h0 = 4.0 * area[0] / (area[0] + area[1]);
   ASSERT_TRUE(widest[0] > h0 || widest[1] > 4.0 - h0) << "the case this test is about";
-  EXPECT_NE(warning.find("thinner than its largest fiber's diameter"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("thinner than its largest fiber's diameter"), std::string::npos)
+    << warning;
   EXPECT_NE(warning.find("EdgeLength 4"), std::string::npos) << warning;
 }
 
@@ -227,7 +230,8 @@ TEST(PolydisperseSeeding, ThePackingsMemoryIsCheckedOnEveryPiece)
   CubeOptions o = gammaCube(1, 2000.0, 0.0, 1);
   o.volumeFraction = 0.0;
   o.numberOfFibers = 1000000;
-  o.segmentLength = 700.0; // 4 points per fiber (3 would span half the cell: the solver refuses that)
+  o.segmentLength =
+    700.0; // 4 points per fiber (3 would span half the cell: the solver refuses that)
   setenv("FIBERPLI_MEMORY_LIMIT", "200M", 1);
   const std::string e = validateCubeOptions(o, 8);
   o.seeding = CubeSeeding::Random;

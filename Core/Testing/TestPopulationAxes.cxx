@@ -22,7 +22,10 @@ CubeOptions twoPopulations()
   return o;
 }
 
-double degrees(double radians) { return radians * 180.0 / M_PI; }
+double degrees(double radians)
+{
+  return radians * 180.0 / M_PI;
+}
 } // namespace
 
 TEST(PopulationAxes, PeriodicAxesAreLatticeDirectionsNearTheAngle)
@@ -67,7 +70,8 @@ TEST(PopulationAxes, CubeFibersRunAlongTheCrossingAxisAndClose)
         ASSERT_TRUE(isClosedFiber(f, cubeCell(o), closure));
         EXPECT_EQ(f.points.back(), f.points.front() + (Vec3{ 24.0, 24.0, 0.0 }));
         // Points SegmentLength apart along the √2 L long fiber.
-        EXPECT_EQ(f.points.size(), static_cast<std::size_t>(std::lround(std::sqrt(2.0) * 24.0 / 2.0)) + 1);
+        EXPECT_EQ(
+          f.points.size(), static_cast<std::size_t>(std::lround(std::sqrt(2.0) * 24.0 / 2.0)) + 1);
       }
       if (f.bundle == 1)
       {
@@ -108,7 +112,8 @@ TEST(PopulationAxes, SharesSplitFibersAndVolume)
     volume[f.bundle] += M_PI * f.radii[0] * f.radii[0] * v.edgeLength;
     rmax = std::max(rmax, f.radii[0]);
   }
-  EXPECT_NEAR(volume[0] / (volume[0] + volume[1]), 2.0 / 3.0, M_PI * rmax * rmax * v.edgeLength / (volume[0] + volume[1]));
+  EXPECT_NEAR(volume[0] / (volume[0] + volume[1]), 2.0 / 3.0,
+    M_PI * rmax * rmax * v.edgeLength / (volume[0] + volume[1]));
 }
 
 TEST(PopulationAxes, SheetsSeparateAndInterwovenMixesThePopulations)
@@ -154,7 +159,8 @@ TEST(PopulationAxes, BadValuesNameTheProperty)
   o.crossingAngle = 45.0;
   o.periodic = true;
   o.seeding = CubeSeeding::Lattice;
-  EXPECT_NE(validateCubeOptions(o).find("CrossingAngle is 45, which needs Seeding Random"), std::string::npos);
+  EXPECT_NE(validateCubeOptions(o).find("CrossingAngle is 45, which needs Seeding Random"),
+    std::string::npos);
   o = twoPopulations();
   o.populationShares = { 1.0, -2.0 };
   EXPECT_NE(validateCubeOptions(o).find("PopulationShares value 1 is -2"), std::string::npos);
@@ -163,5 +169,6 @@ TEST(PopulationAxes, BadValuesNameTheProperty)
   o.populationShares = {};
   o.populations = 3;
   o.arrangement = CubeArrangement::Sheets;
-  EXPECT_NE(validateCubeOptions(o).find("Arrangement is Sheets, which needs Populations 2"), std::string::npos);
+  EXPECT_NE(validateCubeOptions(o).find("Arrangement is Sheets, which needs Populations 2"),
+    std::string::npos);
 }

@@ -29,11 +29,11 @@ TEST(PushBoost, PushIsTheUnboostedOneWithoutBoost)
 
 TEST(PushBoost, PushGrowsByTheScaleButNeverBeyondHalfTheOverlap)
 {
-  const double sigma0 = 0.02, scale = 3.0; // boosted push 0.06
-  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 1.0), 0.06);   // deep: the full boost
-  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.12), 0.06);  // exactly half the overlap
-  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.08), 0.04);  // half the overlap
-  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.03), 0.02);  // never below the unboosted push
+  const double sigma0 = 0.02, scale = 3.0;                  // boosted push 0.06
+  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 1.0), 0.06);  // deep: the full boost
+  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.12), 0.06); // exactly half the overlap
+  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.08), 0.04); // half the overlap
+  EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.03), 0.02); // never below the unboosted push
   EXPECT_DOUBLE_EQ(boostedPush(sigma0, scale, 0.0), 0.02);
 }
 

@@ -185,23 +185,44 @@ TEST(RealismKnobs, OpenCubeAndBundleFibersReachTortuosity)
 
 TEST(RealismKnobs, BadValuesNameTheProperty)
 {
-  const auto cubeError = [](auto set) {
+  const auto cubeError = [](auto set)
+  {
     CubeOptions o = periodicCube();
     set(o.realism);
     return validateCubeOptions(o);
   };
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = 0.9; }).find("Tortuosity is 0.9"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = NAN; }).find("Tortuosity is nan"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = 1.1; s.undulationWavelength = 0.0; })
-              .find("UndulationWavelength is 0"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 0.3; }).find("DispersionC2 is 0.3"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 1.2; }).find("DispersionC2 is 1.2"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = -0.1; }).find("BeadingCV is -0.1"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = 5.0; }).find("BeadingCV is 5"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = 0.2; s.beadingLength = -1.0; })
-              .find("BeadingLength is -1"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.gRatio = 1.0; }).find("GRatio is 1"), std::string::npos);
-  EXPECT_NE(cubeError([](ShapeOptions& s) { s.gRatio = -0.5; }).find("GRatio is -0.5"), std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = 0.9; }).find("Tortuosity is 0.9"),
+    std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.tortuosity = NAN; }).find("Tortuosity is nan"),
+    std::string::npos);
+  EXPECT_NE(cubeError(
+              [](ShapeOptions& s)
+              {
+                s.tortuosity = 1.1;
+                s.undulationWavelength = 0.0;
+              })
+              .find("UndulationWavelength is 0"),
+    std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 0.3; }).find("DispersionC2 is 0.3"),
+    std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.dispersionC2 = 1.2; }).find("DispersionC2 is 1.2"),
+    std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = -0.1; }).find("BeadingCV is -0.1"),
+    std::string::npos);
+  EXPECT_NE(cubeError([](ShapeOptions& s) { s.beadingCV = 5.0; }).find("BeadingCV is 5"),
+    std::string::npos);
+  EXPECT_NE(cubeError(
+              [](ShapeOptions& s)
+              {
+                s.beadingCV = 0.2;
+                s.beadingLength = -1.0;
+              })
+              .find("BeadingLength is -1"),
+    std::string::npos);
+  EXPECT_NE(
+    cubeError([](ShapeOptions& s) { s.gRatio = 1.0; }).find("GRatio is 1"), std::string::npos);
+  EXPECT_NE(
+    cubeError([](ShapeOptions& s) { s.gRatio = -0.5; }).find("GRatio is -0.5"), std::string::npos);
   EXPECT_TRUE(cubeError([](ShapeOptions&) {}).empty());
   BundleOptions b;
   b.realism.gRatio = 1.5;
@@ -222,7 +243,9 @@ TEST(RealismKnobs, TinyBeadingLengthAndShortWavelengthStayCheapAndAreWarned)
   o.realism.undulationWavelength = 3.0;
   std::string warning;
   generateCube(o, 0, 1, &warning);
-  EXPECT_NE(warning.find("UndulationWavelength 3 is shorter than 4 x SegmentLength"), std::string::npos) << warning;
+  EXPECT_NE(
+    warning.find("UndulationWavelength 3 is shorter than 4 x SegmentLength"), std::string::npos)
+    << warning;
   BundleOptions b;
   b.realism = o.realism;
   EXPECT_NE(bundleWarnings(b, nullptr).find("UndulationWavelength 3"), std::string::npos);
@@ -231,7 +254,8 @@ TEST(RealismKnobs, TinyBeadingLengthAndShortWavelengthStayCheapAndAreWarned)
   o.realism.tortuosity = 1.01;
   o.displacement = 0.6;
   generateCube(o, 0, 1, &warning);
-  EXPECT_NE(warning.find("Tortuosity 1.01: the Displacement 0.6 alone"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("Tortuosity 1.01: the Displacement 0.6 alone"), std::string::npos)
+    << warning;
 }
 
 TEST(RealismKnobs, NeighboursUndulateIndependently)
@@ -325,7 +349,8 @@ TEST(RealismKnobs, InterwovenPopulationsFillEverySubCube)
           const int c = std::min(2, static_cast<int>(3.0 * (u - std::floor(u))));
           cell = 3 * cell + c;
         }
-        length[static_cast<std::size_t>(2 * cell + f.bundle)] += distance(f.points[i - 1], f.points[i]);
+        length[static_cast<std::size_t>(2 * cell + f.bundle)] +=
+          distance(f.points[i - 1], f.points[i]);
       }
     double worst = 1.0;
     for (int c = 0; c < 27; ++c)
@@ -367,13 +392,15 @@ TEST(RealismKnobs, TargetShapesRebuildTheFibersAndScaleTowardsThem)
   b.displacement = 0.1;
   b.realism.tortuosity = 1.07;
   const std::vector<CrossSectionFiber> cs = makeCrossSection(b, 0);
-  const ResampledTrajectory t = resampleTrajectory({ { -30, 0, 0 }, { 30, 0, 0 } }, nullptr, b.segmentLength);
+  const ResampledTrajectory t =
+    resampleTrajectory({ { -30, 0, 0 }, { 30, 0, 0 } }, nullptr, b.segmentLength);
   const TrajectoryFrames fr = transportFrames(t.points);
   const FiberModel bundle = generateBundle(b, nullptr);
   ASSERT_EQ(bundle.fibers.size(), cs.size());
   for (std::size_t i = 0; i < cs.size(); ++i)
   {
-    const FiberShape shape = bundleFiberShape(t, fr, cs[i], b.displacement, b.realism, b.segmentLength, b.seed);
+    const FiberShape shape =
+      bundleFiberShape(t, fr, cs[i], b.displacement, b.realism, b.segmentLength, b.seed);
     EXPECT_EQ(shape.points(), bundle.fibers[i].points);
   }
 }

@@ -31,7 +31,8 @@ Fiber helix(const Vec3& centre, double R, double p, int turns, int n, int bundle
   for (int k = 0; k <= points; ++k)
   {
     const double t = 2.0 * M_PI * k / n;
-    f.points.push_back({ centre.x + R * std::cos(t), centre.y + R * std::sin(t), centre.z + p * k / double(points) });
+    f.points.push_back({ centre.x + R * std::cos(t), centre.y + R * std::sin(t),
+      centre.z + p * k / double(points) });
   }
   f.radii.assign(f.points.size(), 0.2);
   f.bundle = bundle;
@@ -66,7 +67,8 @@ MetricsOptions shapeOnly()
 TEST(RealismMetrics, ClosedHelicesHaveTheTortuosityOfTheirPitch)
 {
   // A helix of radius R and pitch q has τ = √(1 + (2πR/q)²); sampled with n chords per turn each
-  // chord is √((2R sin(π/n))² + (q/n)²), so the polyline's τ is n·chord/q (→ the former as n grows).
+  // chord is √((2R sin(π/n))² + (q/n)²), so the polyline's τ is n·chord/q (→ the former as n
+  // grows).
   const double L = 20.0, n = 720;
   FiberModel m;
   m.fibers.push_back(helix({ 5, 5, 0 }, 0.5, L, 4, 720, 0, 0));  // pitch 5
@@ -76,10 +78,10 @@ TEST(RealismMetrics, ClosedHelicesHaveTheTortuosityOfTheirPitch)
   o.cell = cellOf(L);
   const MetricsResult res = computeFiberMetrics(m, o, nullptr);
   ASSERT_TRUE(res.error.empty()) << res.error;
-  const auto polyline = [n](double R, double q) {
-    return n * std::sqrt(std::pow(2 * R * std::sin(M_PI / n), 2) + std::pow(q / n, 2)) / q;
-  };
-  const auto continuous = [](double R, double q) { return std::sqrt(1 + std::pow(2 * M_PI * R / q, 2)); };
+  const auto polyline = [n](double R, double q)
+  { return n * std::sqrt(std::pow(2 * R * std::sin(M_PI / n), 2) + std::pow(q / n, 2)) / q; };
+  const auto continuous = [](double R, double q)
+  { return std::sqrt(1 + std::pow(2 * M_PI * R / q, 2)); };
   ASSERT_EQ(res.realism.populations.size(), 2u);
   const PopulationRealism& p0 = res.realism.populations[0];
   EXPECT_EQ(p0.fibers, 2u);
@@ -100,8 +102,9 @@ TEST(RealismMetrics, ClosedHelicesHaveTheTortuosityOfTheirPitch)
 
 TEST(RealismMetrics, FanOfStraightFibersHasItsClosedFormC2)
 {
-  // N straight fibers at θ_i = −Θ + 2Θ·i/(N − 1) from z in the xz-plane: ⟨cos²θ⟩ = 1/2 + Σcos 2θ_i/(2N),
-  // and Σ cos 2θ_i = sin(N·d/2)/sin(d/2) with d = 4Θ/(N − 1) (a Dirichlet sum centred on 0).
+  // N straight fibers at θ_i = −Θ + 2Θ·i/(N − 1) from z in the xz-plane: ⟨cos²θ⟩ = 1/2 + Σcos
+  // 2θ_i/(2N), and Σ cos 2θ_i = sin(N·d/2)/sin(d/2) with d = 4Θ/(N − 1) (a Dirichlet sum centred on
+  // 0).
   const int N = 15;
   const double Theta = 30.0 * M_PI / 180.0;
   FiberModel m;
@@ -110,7 +113,8 @@ TEST(RealismMetrics, FanOfStraightFibersHasItsClosedFormC2)
     const double t = -Theta + 2 * Theta * i / (N - 1);
     // Lengths differ (weights would show) but the segment c2 of straight fibers is length-weighted.
     const double len = 10.0;
-    m.fibers.push_back(segment({ 3.0 * i, 0, 0 }, { 3.0 * i + len * std::sin(t), 0, len * std::cos(t) }, 5, 0.3, 7, i));
+    m.fibers.push_back(segment(
+      { 3.0 * i, 0, 0 }, { 3.0 * i + len * std::sin(t), 0, len * std::cos(t) }, 5, 0.3, 7, i));
   }
   const MetricsResult res = computeFiberMetrics(m, shapeOnly(), nullptr);
   ASSERT_TRUE(res.error.empty()) << res.error;
@@ -195,8 +199,8 @@ TEST(RealismMetrics, SinusoidalRadiusHasCVOfAmplitudeOverRootTwo)
 
 TEST(RealismMetrics, MyelinatedFiberGivesMyelinAndAxonFractionsInClosedForm)
 {
-  // A straight fiber of outer radius R along z through a periodic cell (a closed cylinder, no caps):
-  // fiber volume πR²L, axon πg²R²L, myelin πR²(1 − g²)L over the cell volume L³.
+  // A straight fiber of outer radius R along z through a periodic cell (a closed cylinder, no
+  // caps): fiber volume πR²L, axon πg²R²L, myelin πR²(1 − g²)L over the cell volume L³.
   const double L = 12.0, R = 2.0, g = 0.65;
   FiberModel m;
   m.fibers.push_back(segment({ 6, 6, 0 }, { 6, 6, L }, 12, R, 0, 0));
@@ -216,14 +220,16 @@ TEST(RealismMetrics, MyelinatedFiberGivesMyelinAndAxonFractionsInClosedForm)
   EXPECT_NEAR(res.realism.gRatio, g, 1e-12);
   EXPECT_NEAR(res.realism.populations[0].gRatio, g, 1e-12);
   EXPECT_EQ(res.realism.gRatioHistogram.count[0] + res.realism.gRatioHistogram.count[1] +
-      std::accumulate(res.realism.gRatioHistogram.count.begin() + 2, res.realism.gRatioHistogram.count.end(), std::size_t(0)),
+      std::accumulate(res.realism.gRatioHistogram.count.begin() + 2,
+        res.realism.gRatioHistogram.count.end(), std::size_t(0)),
     13u);
   // Monte Carlo: the same closed forms within 4 standard errors.
   o.monteCarlo = true;
   o.samples = 400000;
   const MetricsResult mc = computeFiberMetrics(m, o, nullptr);
   EXPECT_NEAR(mc.axonVolume.fraction, axon, 4 * mc.axonVolume.errorBound);
-  EXPECT_NEAR(mc.myelinFraction, fiber - axon, 4 * (mc.volume.errorBound + mc.axonVolume.errorBound));
+  EXPECT_NEAR(
+    mc.myelinFraction, fiber - axon, 4 * (mc.volume.errorBound + mc.axonVolume.errorBound));
   // Without inner radii nothing about myelin is claimed.
   m.fibers[0].innerRadii.clear();
   const MetricsResult none = computeFiberMetrics(m, o, nullptr);
@@ -238,13 +244,15 @@ TEST(RealismMetrics, BadInnerRadiiAndBinsAreErrorsNamingTheValue)
   FiberModel m;
   m.fibers.push_back(segment({ 0, 0, 0 }, { 0, 0, 4 }, 2, 1.0, 0, 5));
   MetricsOptions o = shapeOnly();
-  const auto errorWith = [&](std::vector<double> inner) {
+  const auto errorWith = [&](std::vector<double> inner)
+  {
     FiberModel bad = m;
     bad.fibers[0].innerRadii = std::move(inner);
     return computeFiberMetrics(bad, o, nullptr).error;
   };
   EXPECT_NE(errorWith({ 0.5, 1.5, 0.5 }).find("1.5"), std::string::npos);
-  EXPECT_NE(errorWith({ 0.5, NAN, 0.5 }).find("inner_radius of fiber 0 (fiber_id 5) point 1"), std::string::npos);
+  EXPECT_NE(errorWith({ 0.5, NAN, 0.5 }).find("inner_radius of fiber 0 (fiber_id 5) point 1"),
+    std::string::npos);
   EXPECT_NE(errorWith({ 0.5, 0.5 }).find("2 values for 3 points"), std::string::npos);
   EXPECT_NE(errorWith({ 0.5, 0.0, 0.5 }).find("> 0"), std::string::npos);
   EXPECT_TRUE(errorWith({ 0.5, 1.0, 0.5 }).empty()); // inner = radius: no sheath there, allowed
@@ -281,8 +289,8 @@ FiberModel grid(int (*population)(int, int))
   {
     for (int j = 0; j < 6; ++j)
     {
-      m.fibers.push_back(segment({ 1.0 + 2 * i, 1.0 + 2 * j, 0 }, { 1.0 + 2 * i, 1.0 + 2 * j, 12 }, 6, 0.8,
-        population(i, j), m.fibers.size()));
+      m.fibers.push_back(segment({ 1.0 + 2 * i, 1.0 + 2 * j, 0 }, { 1.0 + 2 * i, 1.0 + 2 * j, 12 },
+        6, 0.8, population(i, j), m.fibers.size()));
     }
   }
   return m;
@@ -299,7 +307,8 @@ TEST(RealismMetrics, MixingSeparatesHalvesFromInterleavedPopulations)
   o.samples = 300000;
   o.seed = 3;
   // Halves (x < 6 is population 0): the outer thirds along x hold one population only.
-  const MetricsResult halves = computeFiberMetrics(grid([](int i, int) { return i < 3 ? 0 : 1; }), o, nullptr);
+  const MetricsResult halves =
+    computeFiberMetrics(grid([](int i, int) { return i < 3 ? 0 : 1; }), o, nullptr);
   ASSERT_TRUE(halves.error.empty()) << halves.error;
   EXPECT_EQ(halves.mixing.minimum, 0.0);
   ASSERT_EQ(halves.mixing.bundles.size(), 2u);
@@ -308,7 +317,8 @@ TEST(RealismMetrics, MixingSeparatesHalvesFromInterleavedPopulations)
   EXPECT_NEAR(halves.mixing.share[middle * 2 + 0], 0.5, 0.02);
   // Checkerboard: every sub-cube holds two fibers of each: shares 1/2 within sampling error
   // (about 2000 fiber samples per sub-cube: standard error 0.011).
-  const MetricsResult mixed = computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), o, nullptr);
+  const MetricsResult mixed =
+    computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), o, nullptr);
   ASSERT_TRUE(mixed.error.empty()) << mixed.error;
   EXPECT_GT(mixed.mixing.minimum, 0.45);
   EXPECT_LE(mixed.mixing.minimum, 0.5);
@@ -318,8 +328,10 @@ TEST(RealismMetrics, MixingSeparatesHalvesFromInterleavedPopulations)
   one.numberOfThreads = 1;
   MetricsOptions two = o;
   two.numberOfThreads = 2;
-  const MetricsResult a = computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), one, nullptr);
-  const MetricsResult b = computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), two, nullptr);
+  const MetricsResult a =
+    computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), one, nullptr);
+  const MetricsResult b =
+    computeFiberMetrics(grid([](int i, int j) { return (i + j) % 2; }), two, nullptr);
   EXPECT_EQ(a.mixing.share, b.mixing.share);
   // One population: 1 without sampling.
   const MetricsResult single = computeFiberMetrics(grid([](int, int) { return 4; }), o, nullptr);

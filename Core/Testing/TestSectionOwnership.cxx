@@ -27,7 +27,8 @@ struct Case
 TEST(SectionOwnership, GroundTruthOwnersAreTheVoxelisersOnNearTiesAndSurfaces)
 {
   int tissue = 0, nearTies = 0, mismatches = 0;
-  for (const Case& c : { Case{ 0.1, 0.3, 0.7 }, Case{ 0.07, -0.21, 0.49 }, Case{ 0.3, 0.9, -0.3 }, Case{ 0.11, 0.33, 0.55 } })
+  for (const Case& c : { Case{ 0.1, 0.3, 0.7 }, Case{ 0.07, -0.21, 0.49 }, Case{ 0.3, 0.9, -0.3 },
+         Case{ 0.11, 0.33, 0.55 } })
   {
     const double h = c.voxel;
     const std::int64_t n = 40;
@@ -37,8 +38,10 @@ TEST(SectionOwnership, GroundTruthOwnersAreTheVoxelisersOnNearTiesAndSurfaces)
     FiberModel m;
     // An X mirror-symmetric about the centre column x = 20.5 (a plane of voxel centres): every
     // centre on it is equidistant from both axes, in exact arithmetic.
-    m.fibers.push_back(plitest::line(at(20.5, 20.5), normalized(Vec3{ 1, 1, 0 }), 40 * h, 6 * h, 0));
-    m.fibers.push_back(plitest::line(at(20.5, 20.5), normalized(Vec3{ -1, 1, 0 }), 40 * h, 6 * h, 1));
+    m.fibers.push_back(
+      plitest::line(at(20.5, 20.5), normalized(Vec3{ 1, 1, 0 }), 40 * h, 6 * h, 0));
+    m.fibers.push_back(
+      plitest::line(at(20.5, 20.5), normalized(Vec3{ -1, 1, 0 }), 40 * h, 6 * h, 1));
     // Fibers through centres with radii of whole voxels: centres 3 voxels away lie on the surface.
     m.fibers.push_back(plitest::line(at(5.5, 20.0), Vec3{ 0, 1, 0 }, 40 * h, 3 * h, 2));
     m.fibers.push_back(plitest::line(at(20.0, 35.5), Vec3{ 1, 0, 0 }, 40 * h, 4 * h, 2));
@@ -91,8 +94,9 @@ TEST(SectionOwnership, GroundTruthOwnersAreTheVoxelisersOnNearTiesAndSurfaces)
         if (std::min(e, M_PI - e) > 1e-5)
         {
           ++mismatches;
-          ADD_FAILURE() << "voxel " << i << "," << j << " (h " << h << "): voxelised axis at " << d * 180 / M_PI
-                        << " deg, ground truth " << maps.direction[p] * 180 / M_PI << " deg";
+          ADD_FAILURE() << "voxel " << i << "," << j << " (h " << h << "): voxelised axis at "
+                        << d * 180 / M_PI << " deg, ground truth " << maps.direction[p] * 180 / M_PI
+                        << " deg";
         }
       }
   }

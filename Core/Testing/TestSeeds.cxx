@@ -14,7 +14,10 @@ using namespace fiberpli;
 
 namespace
 {
-double dist(const Seed2D& a, const Seed2D& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+double dist(const Seed2D& a, const Seed2D& b)
+{
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
 } // namespace
 
 TEST(Seeds, TriangularGridNeighboursAreExactlyOneSpacingApart)
@@ -57,7 +60,8 @@ TEST(Seeds, TriangularGridIsCentredSymmetricAndSorted)
     EXPECT_LE(std::fabs(s.y), 4.0);
     origin = origin || (s.x == 0.0 && s.y == 0.0);
     const bool mirrored = std::any_of(grid.begin(), grid.end(),
-      [&](const Seed2D& t) { return std::fabs(t.x + s.x) < 1e-12 && std::fabs(t.y + s.y) < 1e-12; });
+      [&](const Seed2D& t)
+      { return std::fabs(t.x + s.x) < 1e-12 && std::fabs(t.y + s.y) < 1e-12; });
     EXPECT_TRUE(mirrored) << "seed " << i;
     if (i > 0)
     {
@@ -86,7 +90,8 @@ TEST(Seeds, CircleCropKeepsWholeFiberDiscsInside)
   }
   EXPECT_EQ(kept.size(), expected);
   // Lattice points of the hexagonal lattice (d = 2) within 9.2, counted independently in numpy: 85.
-  // The area estimate 2/(√3 d²)·π(R − r)² ≈ 77 of docs/tissue-models.md §8 misses the boundary term.
+  // The area estimate 2/(√3 d²)·π(R − r)² ≈ 77 of docs/tissue-models.md §8 misses the boundary
+  // term.
   EXPECT_EQ(kept.size(), 85u);
   const double nominal = M_PI * (R - r) * (R - r) * 2.0 / (std::sqrt(3.0) * d * d);
   EXPECT_NEAR(static_cast<double>(kept.size()), nominal, 0.15 * nominal);

@@ -1,8 +1,8 @@
 // Solver checkpoints (docs/solver.md §14): a run stopped after a checkpoint and resumed from the
 // file ends bit for bit like the uninterrupted run (open cube with drag and curvature; periodic
 // cell with radius growth), the resumed run really starts at the saved step, and a file that does
-// not belong to the run (other options, other input, an older version, damaged, not a checkpoint, missing) is an
-// error naming the file and what differs.
+// not belong to the run (other options, other input, an older version, damaged, not a checkpoint,
+// missing) is an error naming the file and what differs.
 #include "Checkpoint/SolverCheckpoint.h"
 #include "PeriodicReference.h"
 #include "SolverTestModels.h"
@@ -69,7 +69,8 @@ FiberModel denseOpenCube()
 }
 
 // A finished 30-step solve of the dense open cube that wrote a checkpoint every 10 steps (the
-// file then holds step 30, its previous generation step 20): what the tests reading a file start from.
+// file then holds step 30, its previous generation step 20): what the tests reading a file start
+// from.
 struct CheckpointedRun
 {
   const FiberModel in = denseOpenCube();
@@ -87,7 +88,8 @@ struct CheckpointedRun
 // Uninterrupted, then: checkpoints every `interval` steps, "killed" (aborted) at step `killAt`,
 // resumed from the file; both must end identically, and the resumed run must begin right after
 // the last checkpoint before the kill.
-void expectResumeEqualsUninterrupted(const FiberModel& in, const CollisionSolverOptions& o, int interval, int killAt)
+void expectResumeEqualsUninterrupted(
+  const FiberModel& in, const CollisionSolverOptions& o, int interval, int killAt)
 {
   FiberModel reference = in;
   const CollisionSolverResult r1 = solveCollisions(reference, o);
@@ -99,21 +101,23 @@ void expectResumeEqualsUninterrupted(const FiberModel& in, const CollisionSolver
   FiberModel killed = in;
   int lastStep = 0;
   const StepObserver count = [&](int step, const FiberModel&) { lastStep = step; };
-  const CollisionSolverResult aborted =
-    solveWithCheckpoints(killed, o, cp, [&](double) { return lastStep < killAt; }, count);
+  const CollisionSolverResult aborted = solveWithCheckpoints(
+    killed, o, cp, [&](double) { return lastStep < killAt; }, count);
   ASSERT_TRUE(aborted.error.empty()) << aborted.error;
   ASSERT_TRUE(aborted.aborted);
 
   cp.resume = true;
   FiberModel resumed = in; // the input again, as a re-submitted job would build it
   int firstStep = -1;
-  const StepObserver first = [&](int step, const FiberModel&) {
+  const StepObserver first = [&](int step, const FiberModel&)
+  {
     if (firstStep < 0)
       firstStep = step;
   };
   const CollisionSolverResult r2 = solveWithCheckpoints(resumed, o, cp, {}, first);
   ASSERT_TRUE(r2.error.empty()) << r2.error;
-  EXPECT_EQ(firstStep, killAt / interval * interval + 1) << "the resumed run must start after the last checkpoint";
+  EXPECT_EQ(firstStep, killAt / interval * interval + 1)
+    << "the resumed run must start after the last checkpoint";
   EXPECT_TRUE(bitwiseEqual(resumed, reference));
   EXPECT_EQ(r2.steps, r1.steps);
   EXPECT_EQ(r2.collisions, r1.collisions);
@@ -132,10 +136,13 @@ void runRanksWithin(int ranks, int seconds, const std::function<void(SolverComm&
 {
   auto done = std::make_shared<std::promise<void>>();
   std::future<void> finished = done->get_future();
-  std::thread([ranks, f, done] {
-    fiberpli_test::runRanks(ranks, f);
-    done->set_value();
-  }).detach();
+  std::thread(
+    [ranks, f, done]
+    {
+      fiberpli_test::runRanks(ranks, f);
+      done->set_value();
+    })
+    .detach();
   if (finished.wait_for(std::chrono::seconds(seconds)) != std::future_status::ready)
   {
     std::fprintf(stderr, "FAILED: the ranks did not finish within %d s (hang)\n", seconds);
@@ -248,23 +255,27 @@ TEST(SolverCheckpoint, AFileOfAnotherRunIsAnErrorNamingFileAndDifference)
     std::ifstream f(file.path, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(f), {});
   }
-  for (const std::string& bad : { bytes.substr(0, bytes.size() / 2), std::string(bytes).replace(bytes.size() / 2, 1, "~") })
+  for (const std::string& bad :
+    { bytes.substr(0, bytes.size() / 2), std::string(bytes).replace(bytes.size() / 2, 1, "~") })
   {
     std::ofstream(file.path, std::ios::binary) << bad;
     e = readSolverCheckpoint(file.path, o, fingerprint, model, state);
     EXPECT_NE(e.find("is damaged"), std::string::npos) << e;
   }
   std::ofstream(file.path, std::ios::binary) << "FiberPLI dat 1\n";
-  EXPECT_NE(readSolverCheckpoint(file.path, o, fingerprint, model, state).find("is not a FiberPLI solver checkpoint"),
+  EXPECT_NE(readSolverCheckpoint(file.path, o, fingerprint, model, state)
+              .find("is not a FiberPLI solver checkpoint"),
     std::string::npos);
   // Not readable (or gone): the previous generation (step 20) is taken; without it, an error.
   std::remove(file.path.c_str());
   FiberModel fromPrevious = in;
   int firstStep = -1;
-  e = solveWithCheckpoints(fromPrevious, o, { file.path, 0, true }, {}, [&](int step, const FiberModel&) {
-    if (firstStep < 0)
-      firstStep = step;
-  }).error;
+  e = solveWithCheckpoints(fromPrevious, o, { file.path, 0, true }, {},
+    [&](int step, const FiberModel&)
+    {
+      if (firstStep < 0)
+        firstStep = step;
+    }).error;
   EXPECT_EQ(e, "");
   EXPECT_EQ(firstStep, 21);
   std::remove(previousCheckpointPath(file.path).c_str());
@@ -290,12 +301,14 @@ TEST(SolverCheckpoint, AVersion2FileIsRefusedNamingFileAndVersions)
   }
   FiberModel model;
   CollisionSolverState state;
-  const std::string e = readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), model, state);
+  const std::string e =
+    readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), model, state);
   EXPECT_NE(e.find(run.file.path), std::string::npos) << e;
   EXPECT_NE(e.find("has version 2, this FiberPLI reads version 5"), std::string::npos) << e;
 
   FiberModel resumed = run.in;
-  const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 10, true });
+  const CollisionSolverResult r =
+    solveWithCheckpoints(resumed, run.options, { run.file.path, 10, true });
   EXPECT_EQ(r.error, e); // the newest generation's message (the previous one is version 2 too)
   EXPECT_EQ(r.steps, 0);
   EXPECT_TRUE(bitwiseEqual(resumed, run.in)) << "the caller's model must be unchanged";
@@ -310,8 +323,10 @@ TEST(SolverCheckpoint, AnUnwritableCheckpointStopsTheSolveNamingTheFile)
   const CollisionSolverResult r = solveWithCheckpoints(m, o, { path, 10, false });
   EXPECT_NE(r.error.find(path), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("at step 10"), std::string::npos) << r.error;
-  EXPECT_NE(solveWithCheckpoints(m, o, { "", 10, false }).error.find("CheckpointFile is empty"), std::string::npos);
-  EXPECT_NE(solveWithCheckpoints(m, o, { path, -1, false }).error.find("CheckpointInterval is -1"), std::string::npos);
+  EXPECT_NE(solveWithCheckpoints(m, o, { "", 10, false }).error.find("CheckpointFile is empty"),
+    std::string::npos);
+  EXPECT_NE(solveWithCheckpoints(m, o, { path, -1, false }).error.find("CheckpointInterval is -1"),
+    std::string::npos);
 }
 
 // Distributed (threads as ranks): one file per rank; a run stopped after a checkpoint and resumed
@@ -329,15 +344,19 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
   const auto piece = [&](int r) { return halfOf(whole, r); };
   std::vector<FiberModel> out(2);
   std::vector<CollisionSolverResult> results(2);
-  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
-    FiberModel m = piece(comm.rank());
-    int last = 0;
-    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 45; },
-      [&](int step, const FiberModel&) { last = step; }, &comm);
-    FiberModel again = piece(comm.rank());
-    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(again, o, { file.path, 20, true }, {}, {}, &comm);
-    out[static_cast<std::size_t>(comm.rank())] = std::move(again);
-  });
+  fiberpli_test::runRanks(2,
+    [&](SolverComm& comm)
+    {
+      FiberModel m = piece(comm.rank());
+      int last = 0;
+      solveWithCheckpoints(
+        m, o, { file.path, 20, false }, [&](double) { return last < 45; },
+        [&](int step, const FiberModel&) { last = step; }, &comm);
+      FiberModel again = piece(comm.rank());
+      results[static_cast<std::size_t>(comm.rank())] =
+        solveWithCheckpoints(again, o, { file.path, 20, true }, {}, {}, &comm);
+      out[static_cast<std::size_t>(comm.rank())] = std::move(again);
+    });
   for (int r = 0; r < 2; ++r)
   {
     const std::string own = checkpointPath(file.path, nullptr) + "." + std::to_string(r) + "-of-2";
@@ -353,10 +372,13 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
   // Rank 1's file cannot be written (a directory is in its place): both ranks fail at step 20.
   const std::string blocked = file.path + ".1-of-2";
   ASSERT_EQ(::mkdir(blocked.c_str(), 0700), 0);
-  fiberpli_test::runRanks(2, [&](SolverComm& comm) {
-    FiberModel m = piece(comm.rank());
-    results[static_cast<std::size_t>(comm.rank())] = solveWithCheckpoints(m, o, { file.path, 20, false }, {}, {}, &comm);
-  });
+  fiberpli_test::runRanks(2,
+    [&](SolverComm& comm)
+    {
+      FiberModel m = piece(comm.rank());
+      results[static_cast<std::size_t>(comm.rank())] =
+        solveWithCheckpoints(m, o, { file.path, 20, false }, {}, {}, &comm);
+    });
   ::rmdir(blocked.c_str());
   std::remove((file.path + ".0-of-2").c_str());
   EXPECT_NE(results[1].error.find(blocked), std::string::npos) << results[1].error;
@@ -378,28 +400,37 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   const auto piece = [&](int r) { return halfOf(whole, r); };
   TempFile file;
   const std::string own0 = file.path + ".0-of-2", own1 = file.path + ".1-of-2";
-  const auto stopAt45 = [&] {
-    runRanksWithin(2, 120, [&](SolverComm& comm) {
-      FiberModel m = piece(comm.rank());
-      int last = 0;
-      solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 45; },
-        [&](int step, const FiberModel&) { last = step; }, &comm);
-    });
+  const auto stopAt45 = [&]
+  {
+    runRanksWithin(2, 120,
+      [&](SolverComm& comm)
+      {
+        FiberModel m = piece(comm.rank());
+        int last = 0;
+        solveWithCheckpoints(
+          m, o, { file.path, 20, false }, [&](double) { return last < 45; },
+          [&](int step, const FiberModel&) { last = step; }, &comm);
+      });
   };
   std::vector<FiberModel> out(2);
   std::vector<CollisionSolverResult> results(2);
   std::vector<int> firstSteps(2, -1);
-  const auto resume = [&] {
-    runRanksWithin(2, 120, [&](SolverComm& comm) {
-      const std::size_t r = static_cast<std::size_t>(comm.rank());
-      out[r] = piece(comm.rank());
-      results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {},
-        [&](int step, const FiberModel&) {
-          if (firstSteps[r] < 0)
-            firstSteps[r] = step;
-        },
-        &comm);
-    });
+  const auto resume = [&]
+  {
+    runRanksWithin(2, 120,
+      [&](SolverComm& comm)
+      {
+        const std::size_t r = static_cast<std::size_t>(comm.rank());
+        out[r] = piece(comm.rank());
+        results[r] = solveWithCheckpoints(
+          out[r], o, { file.path, 20, true }, {},
+          [&](int step, const FiberModel&)
+          {
+            if (firstSteps[r] < 0)
+              firstSteps[r] = step;
+          },
+          &comm);
+      });
   };
 
   // Steps 40 (and 20 kept) on both ranks; rank 1 is put back to step 20 alone.
@@ -443,15 +474,16 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   }
   // The copy was written for rank 0's input: resume rank 1 from rank 0's piece too, so only the
   // fiber set (not the input fingerprint) is wrong.
-  runRanksWithin(2, 120, [&](SolverComm& comm) {
-    const std::size_t r = static_cast<std::size_t>(comm.rank());
-    out[r] = piece(0);
-    results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
-  });
+  runRanksWithin(2, 120,
+    [&](SolverComm& comm)
+    {
+      const std::size_t r = static_cast<std::size_t>(comm.rank());
+      out[r] = piece(0);
+      results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
+    });
   EXPECT_NE(results[1].error.find("exactly once"), std::string::npos) << results[1].error;
   EXPECT_NE(results[0].error.find("exactly once"), std::string::npos) << results[0].error;
 }
-
 
 // Rank 1's checkpoint reads (checksum, options and input fingerprint fine) but its state does not
 // fit its model: the refusal is agreed on before any other collective, so both ranks fail, naming
@@ -463,12 +495,15 @@ TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
   const auto piece = [&](int r) { return halfOf(whole, r); };
   TempFile file;
   const std::string own1 = file.path + ".1-of-2";
-  runRanksWithin(2, 120, [&](SolverComm& comm) {
-    FiberModel m = piece(comm.rank());
-    int last = 0;
-    solveWithCheckpoints(m, o, { file.path, 20, false }, [&](double) { return last < 25; },
-      [&](int step, const FiberModel&) { last = step; }, &comm);
-  });
+  runRanksWithin(2, 120,
+    [&](SolverComm& comm)
+    {
+      FiberModel m = piece(comm.rank());
+      int last = 0;
+      solveWithCheckpoints(
+        m, o, { file.path, 20, false }, [&](double) { return last < 25; },
+        [&](int step, const FiberModel&) { last = step; }, &comm);
+    });
   FiberModel saved;
   CollisionSolverState state;
   const std::uint64_t fingerprint = modelFingerprint(piece(1));
@@ -478,15 +513,19 @@ TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
   ASSERT_EQ(writeSolverCheckpoint(own1, saved, state, o, fingerprint), "");
   std::vector<CollisionSolverResult> results(2);
   std::vector<FiberModel> out{ piece(0), piece(1) };
-  runRanksWithin(2, 120, [&](SolverComm& comm) {
-    const std::size_t r = static_cast<std::size_t>(comm.rank());
-    results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
-  });
+  runRanksWithin(2, 120,
+    [&](SolverComm& comm)
+    {
+      const std::size_t r = static_cast<std::size_t>(comm.rank());
+      results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
+    });
   for (int r = 0; r < 2; ++r)
   {
     const std::string& e = results[r].error;
-    EXPECT_NE(e.find("'" + own1 + "': does not fit"), std::string::npos) << "rank " << r << ": " << e;
-    EXPECT_NE(e.find("fiber " + std::to_string(state.global[0])), std::string::npos) << "rank " << r << ": " << e;
+    EXPECT_NE(e.find("'" + own1 + "': does not fit"), std::string::npos)
+      << "rank " << r << ": " << e;
+    EXPECT_NE(e.find("fiber " + std::to_string(state.global[0])), std::string::npos)
+      << "rank " << r << ": " << e;
     EXPECT_TRUE(bitwiseEqual(out[r], piece(r))) << "rank " << r << " must keep its own piece";
   }
   EXPECT_NE(results[0].error.find("rank 1 failed"), std::string::npos) << results[0].error;
@@ -506,7 +545,8 @@ TEST(SolverCheckpoint, AFailedResumedRunLeavesTheCallersModel)
   FiberModel resumed = in;
   int firstStep = -1;
   const CollisionSolverResult r = solveWithCheckpoints(resumed, o, { file.path, 5, true }, {},
-    [&](int step, const FiberModel&) {
+    [&](int step, const FiberModel&)
+    {
       if (firstStep < 0)
         firstStep = step;
     });
@@ -527,7 +567,9 @@ TEST(SolverCheckpoint, ASoundFileWithAnUnsoundStateIsRefusedNamingFileAndField)
   ASSERT_EQ(run.error, "");
   FiberModel savedModel;
   CollisionSolverState savedState;
-  ASSERT_EQ(readSolverCheckpoint(run.file.path, run.options, modelFingerprint(run.in), savedModel, savedState), "");
+  ASSERT_EQ(readSolverCheckpoint(
+              run.file.path, run.options, modelFingerprint(run.in), savedModel, savedState),
+    "");
   std::remove(previousCheckpointPath(run.file.path).c_str()); // nothing older to fall back to
   struct Edit
   {
@@ -537,32 +579,40 @@ TEST(SolverCheckpoint, ASoundFileWithAnUnsoundStateIsRefusedNamingFileAndField)
   const std::vector<Edit> edits = {
     { "radius scale is nan", [](FiberModel&, CollisionSolverState& s) { s.scale = std::nan(""); } },
     { "radius scale is 1.5", [](FiberModel&, CollisionSolverState& s) { s.scale = 1.5; } },
-    { "segment length is 1e-09", [](FiberModel&, CollisionSolverState& s) { s.segmentLength = 1e-9; } },
-    { "coordinate 1e+300", [](FiberModel& m, CollisionSolverState&) { m.fibers[3].points[1].x = 1e300; } },
-    { "closure vector of fiber 2", [](FiberModel&, CollisionSolverState& s) { s.closure[2].y = std::nan(""); } },
+    { "segment length is 1e-09",
+      [](FiberModel&, CollisionSolverState& s) { s.segmentLength = 1e-9; } },
+    { "coordinate 1e+300",
+      [](FiberModel& m, CollisionSolverState&) { m.fibers[3].points[1].x = 1e300; } },
+    { "closure vector of fiber 2",
+      [](FiberModel&, CollisionSolverState& s) { s.closure[2].y = std::nan(""); } },
     { "flags fiber 0 (fiber_id 0) inactive",
-      [](FiberModel&, CollisionSolverState& s) { std::fill(s.active.begin(), s.active.end(), 0); } },
+      [](FiberModel&, CollisionSolverState& s)
+      { std::fill(s.active.begin(), s.active.end(), 0); } },
     { "move cap is 1e+09", [](FiberModel&, CollisionSolverState& s) { s.vMax = 1e9; } },
     { "step count is -4", [](FiberModel&, CollisionSolverState& s) { s.steps = -4; } },
     { "push scale is inf", [](FiberModel&, CollisionSolverState& s) { s.pushScale = HUGE_VAL; } },
-    { "velocity of fiber 1 (fiber_id 1) point 0", [](FiberModel&, CollisionSolverState& s) {
-        s.points[1].velocity[0].z = std::nan("");
-      } },
+    { "velocity of fiber 1 (fiber_id 1) point 0",
+      [](FiberModel&, CollisionSolverState& s) { s.points[1].velocity[0].z = std::nan(""); } },
   };
   for (const Edit& edit : edits)
   {
     FiberModel m = savedModel;
     CollisionSolverState st = savedState;
     edit.apply(m, st);
-    ASSERT_EQ(writeSolverCheckpoint(run.file.path, m, st, run.options, modelFingerprint(run.in)), "");
+    ASSERT_EQ(
+      writeSolverCheckpoint(run.file.path, m, st, run.options, modelFingerprint(run.in)), "");
     FiberModel resumed = run.in;
-    const CollisionSolverResult r = solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true });
-    EXPECT_NE(r.error.find("checkpoint file '" + run.file.path + "'"), std::string::npos) << r.error;
+    const CollisionSolverResult r =
+      solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true });
+    EXPECT_NE(r.error.find("checkpoint file '" + run.file.path + "'"), std::string::npos)
+      << r.error;
     EXPECT_NE(r.error.find(edit.expected), std::string::npos) << r.error;
     EXPECT_TRUE(bitwiseEqual(resumed, run.in)) << "a refused resume must leave the caller's model";
   }
   // The state as written resumes.
-  ASSERT_EQ(writeSolverCheckpoint(run.file.path, savedModel, savedState, run.options, modelFingerprint(run.in)), "");
+  ASSERT_EQ(writeSolverCheckpoint(
+              run.file.path, savedModel, savedState, run.options, modelFingerprint(run.in)),
+    "");
   FiberModel resumed = run.in;
   EXPECT_EQ(solveWithCheckpoints(resumed, run.options, { run.file.path, 0, true }).error, "");
 }
@@ -582,9 +632,10 @@ TEST(SolverCheckpoint, AFallBackToThePreviousGenerationIsAWarning)
   bool warned = false;
   for (const std::string& w : r.warnings)
   {
-    warned = warned || (w.find("'" + run.file.path + "'") != std::string::npos &&
-                         w.find("resumed from the previous generation '" + previousCheckpointPath(run.file.path) +
-                           "' at step 20") != std::string::npos);
+    warned = warned ||
+      (w.find("'" + run.file.path + "'") != std::string::npos &&
+        w.find("resumed from the previous generation '" + previousCheckpointPath(run.file.path) +
+          "' at step 20") != std::string::npos);
   }
   EXPECT_TRUE(warned) << (r.warnings.empty() ? std::string("no warning") : r.warnings.back());
 }
@@ -600,19 +651,25 @@ TEST(SolverCheckpoint, ResumingOnAnotherRankCountSaysWhichFilesExist)
   }
   const FiberModel whole = denseOpenCube();
   std::vector<std::string> errors(3);
-  runRanksWithin(3, 60, [&](SolverComm& comm) {
-    FiberModel piece;
-    for (std::size_t f = whole.fibers.size() * comm.rank() / 3; f < whole.fibers.size() * (comm.rank() + 1) / 3; ++f)
-      piece.fibers.push_back(whole.fibers[f]);
-    errors[static_cast<std::size_t>(comm.rank())] =
-      solveWithCheckpoints(piece, twoRankOptions(), { file.path, 0, true }, {}, {}, &comm).error;
-  });
+  runRanksWithin(3, 60,
+    [&](SolverComm& comm)
+    {
+      FiberModel piece;
+      for (std::size_t f = whole.fibers.size() * comm.rank() / 3;
+           f < whole.fibers.size() * (comm.rank() + 1) / 3; ++f)
+        piece.fibers.push_back(whole.fibers[f]);
+      errors[static_cast<std::size_t>(comm.rank())] =
+        solveWithCheckpoints(piece, twoRankOptions(), { file.path, 0, true }, {}, {}, &comm).error;
+    });
   for (const std::string& e : errors)
   {
-    EXPECT_NE(e.find("files for 2 ranks exist ('solve.ckpt.0-of-2', 'solve.ckpt.1-of-2')"), std::string::npos) << e;
+    EXPECT_NE(e.find("files for 2 ranks exist ('solve.ckpt.0-of-2', 'solve.ckpt.1-of-2')"),
+      std::string::npos)
+      << e;
   }
   FiberModel serial = whole;
-  const std::string e = solveWithCheckpoints(serial, twoRankOptions(), { file.path, 0, true }).error;
+  const std::string e =
+    solveWithCheckpoints(serial, twoRankOptions(), { file.path, 0, true }).error;
   EXPECT_NE(e.find("files for 2 ranks exist"), std::string::npos) << e;
 }
 
@@ -621,10 +678,12 @@ TEST(SolverCheckpoint, AFifoAsCheckpointFileIsRefusedWithoutBlocking)
   TempFile file;
   ASSERT_EQ(::mkfifo(file.path.c_str(), 0600), 0);
   std::string error;
-  runRanksWithin(1, 30, [&](SolverComm&) {
-    FiberModel m = denseOpenCube();
-    error = solveWithCheckpoints(m, twoRankOptions(), { file.path, 0, true }).error;
-  });
+  runRanksWithin(1, 30,
+    [&](SolverComm&)
+    {
+      FiberModel m = denseOpenCube();
+      error = solveWithCheckpoints(m, twoRankOptions(), { file.path, 0, true }).error;
+    });
   EXPECT_NE(error.find("'" + file.path + "'"), std::string::npos) << error;
   EXPECT_NE(error.find("FIFO"), std::string::npos) << error;
 }

@@ -13,7 +13,8 @@ FiberModel modelAt(int step)
 {
   FiberModel m;
   Fiber f;
-  f.points = { Vec3{ static_cast<double>(step), 0.0, 0.0 }, Vec3{ static_cast<double>(step), 0.0, 1.0 } };
+  f.points = { Vec3{ static_cast<double>(step), 0.0, 0.0 },
+    Vec3{ static_cast<double>(step), 0.0, 1.0 } };
   f.radii = { 1.0, 1.0 };
   m.fibers.push_back(f);
   return m;

@@ -31,7 +31,8 @@ TEST(Stratification, BlocksGetEqualCountsAndWeightsAndStrataEqualCounts)
   const int m = 6; // 3 × 3 blocks of 2 × 2 strata
   std::vector<double> weights;
   for (int i = 0; i < 100; ++i)
-    weights.push_back(0.3 + std::fmod(i * 0.618034, 1.0) * std::fmod(i * 0.414214, 2.0)); // uneven, in [0.3, 2.3)
+    weights.push_back(
+      0.3 + std::fmod(i * 0.618034, 1.0) * std::fmod(i * 0.414214, 2.0)); // uneven, in [0.3, 2.3)
   const std::vector<int> strata = assignStrata(weights, m, 42, 7);
   ASSERT_EQ(strata.size(), weights.size());
   std::vector<int> perStratum(36, 0);
@@ -69,8 +70,8 @@ TEST(Stratification, IntoStratumKeepsTheDrawnFractionInsideTheCell)
 {
   const double L = 30.0;
   EXPECT_DOUBLE_EQ(intoStratum(-15.0, 0, 3, L), -15.0);
-  EXPECT_DOUBLE_EQ(intoStratum(0.0, 1, 3, L), 0.0);   // the middle of the middle cell
-  EXPECT_DOUBLE_EQ(intoStratum(0.0, 2, 3, L), 10.0);  // the middle of the last cell
+  EXPECT_DOUBLE_EQ(intoStratum(0.0, 1, 3, L), 0.0);    // the middle of the middle cell
+  EXPECT_DOUBLE_EQ(intoStratum(0.0, 2, 3, L), 10.0);   // the middle of the last cell
   EXPECT_DOUBLE_EQ(intoStratum(-15.0, 2, 6, L), -5.0); // the start of cell 2 of 6
   for (double t = -15.0; t < 15.0; t += 0.7)
   {
@@ -105,7 +106,8 @@ CubeOptions threePopulationCell(CubeArrangement arrangement, bool undulating = t
 
 TEST(Stratification, InterwovenCellGivesEveryBlockOfEveryPopulationItsShare)
 {
-  // Straight fibers: a fiber's place is exact (the rigid moves of undulating ones are checked below).
+  // Straight fibers: a fiber's place is exact (the rigid moves of undulating ones are checked
+  // below).
   const CubeOptions o = threePopulationCell(CubeArrangement::Interwoven, false);
   const FiberModel m = generateCube(o);
   ASSERT_EQ(m.fibers.size(), 270u);
@@ -115,7 +117,8 @@ TEST(Stratification, InterwovenCellGivesEveryBlockOfEveryPopulationItsShare)
   {
     const int k = f.bundle;
     const double half = 0.5 * o.edgeLength;
-    const auto block = [&](double t) {
+    const auto block = [&](double t)
+    {
       const double u = (t + half) / o.edgeLength;
       return std::min(2, std::max(0, static_cast<int>(std::floor(3.0 * (u - std::floor(u))))));
     };

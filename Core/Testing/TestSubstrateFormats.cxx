@@ -26,7 +26,8 @@ FiberModel curvedModel()
     for (int i = 0; i < 6; ++i)
     {
       const double t = 0.7 * i;
-      fiber.points.push_back({ 3.0 * f + 0.4 * std::sin(t + f), 0.1 * std::cos(1.3 * t), 1.9 * i + 0.123456789 * f });
+      fiber.points.push_back(
+        { 3.0 * f + 0.4 * std::sin(t + f), 0.1 * std::cos(1.3 * t), 1.9 * i + 0.123456789 * f });
       fiber.radii.push_back(0.5 + 0.05 * i + 0.01 * f);
     }
     m.fibers.push_back(fiber);
@@ -91,8 +92,9 @@ TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
     std::size_t j = 0;
     for (std::size_t i = 0; i < a.size(); ++i)
     {
-      while (j < b.size() && !(b.points[j].x == a.points[i].x && b.points[j].y == a.points[i].y &&
-                                b.points[j].z == a.points[i].z))
+      while (j < b.size() &&
+        !(b.points[j].x == a.points[i].x && b.points[j].y == a.points[i].y &&
+          b.points[j].z == a.points[i].z))
       {
         ASSERT_GT(i, 0u) << "the first sphere is the first point";
         EXPECT_LT(segmentDistance(b.points[j], a.points[i - 1], a.points[i]), 1e-12);
@@ -107,7 +109,8 @@ TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
     for (std::size_t k = 0; k + 1 < b.size(); ++k)
     {
       const double rMin = std::min(back.innerRadii[f][k], back.innerRadii[f][k + 1]);
-      EXPECT_LE(norm(b.points[k + 1] - b.points[k]), caterpillarSphereSpacing(rMin, tol) * (1 + 1e-9));
+      EXPECT_LE(
+        norm(b.points[k + 1] - b.points[k]), caterpillarSphereSpacing(rMin, tol) * (1 + 1e-9));
     }
   }
 }
@@ -144,14 +147,20 @@ TEST(CaterpillarFormat, MalformedFilesNameTheLine)
   };
   const Case cases[] = {
     { "x,y,z\n1,2,3\n", "voxel.csv line 1: expected the CATERPillar header" },
-    { header + "axon 1 axon 0 1 2 3 0.5 0.8\naxon 1 axon 0 1 2\n", "voxel.csv line 3: expected 9 fields" },
-    { header + "axon 1 axon 0 1 nan 3 0.5 0.8\n", "voxel.csv line 2: 'nan' is not a finite number" },
-    { header + "axon 1 axon 0 1 2 3 0.5 -0.8\n", "voxel.csv line 2: outer_radius -0.8 must be > 0" },
-    { header + "axon 1 axon 0 1 2 3 -0.5 0.8\n", "voxel.csv line 2: inner_radius -0.5 must be > 0" },
-    { header + "axon 1 axon 0 1 2 3 0.9 0.8\n", "voxel.csv line 2: inner_radius 0.9 exceeds outer_radius 0.8" },
+    { header + "axon 1 axon 0 1 2 3 0.5 0.8\naxon 1 axon 0 1 2\n",
+      "voxel.csv line 3: expected 9 fields" },
+    { header + "axon 1 axon 0 1 nan 3 0.5 0.8\n",
+      "voxel.csv line 2: 'nan' is not a finite number" },
+    { header + "axon 1 axon 0 1 2 3 0.5 -0.8\n",
+      "voxel.csv line 2: outer_radius -0.8 must be > 0" },
+    { header + "axon 1 axon 0 1 2 3 -0.5 0.8\n",
+      "voxel.csv line 2: inner_radius -0.5 must be > 0" },
+    { header + "axon 1 axon 0 1 2 3 0.9 0.8\n",
+      "voxel.csv line 2: inner_radius 0.9 exceeds outer_radius 0.8" },
     { header + "axon 1.5 axon 0 1 2 3 0.5 0.8\n", "voxel.csv line 2: '1.5' is not an integer id" },
-    { header + "axon 1 axon 0 1 2 3 1 1\naxon 1 axon 0 1 2 4 1 1\naxon 2 axon 0 0 0 0 1 1\n"
-               "axon 1 axon 0 1 2 9 1 1\n",
+    { header +
+        "axon 1 axon 0 1 2 3 1 1\naxon 1 axon 0 1 2 4 1 1\naxon 2 axon 0 0 0 0 1 1\n"
+        "axon 1 axon 0 1 2 9 1 1\n",
       "voxel.csv line 5: axon 1 starts a second sphere chain" },
     { "", "voxel.csv line 1: no CATERPillar header" },
   };
@@ -207,11 +216,15 @@ TEST(CactusFormat, MalformedFilesNameTheLineWithoutReadingPastTheFile)
     std::string expected;
   };
   const Case cases[] = {
-    { "40\n10000000000\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 2: strand count 10000000000 needs at least" },
+    { "40\n10000000000\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 2: strand count 10000000000 needs at least" },
     { "40\n1\n10000000000\n0 0 0 1\n", "s.txt line 3: point count 10000000000 of strand 0 needs" },
-    { "40\n2\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 6: strand 1 of 2: file ends where a point count is expected" },
-    { "40\n1\n3\n0.000 0 0 1\n0.000 0 1 1\n", "s.txt line 6: file ends after 2 of the 3 points of strand 0" },
-    { "40\n1\n2\n0 0 0 1\n0 0 1 1\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 6: content after the last of the 1 strands" },
+    { "40\n2\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 6: strand 1 of 2: file ends where a point count is expected" },
+    { "40\n1\n3\n0.000 0 0 1\n0.000 0 1 1\n",
+      "s.txt line 6: file ends after 2 of the 3 points of strand 0" },
+    { "40\n1\n2\n0 0 0 1\n0 0 1 1\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 6: content after the last of the 1 strands" },
     { "40\n1\n2\n0 0 0 1\n0 nan 1 1\n", "s.txt line 5: 'nan' is not a finite number" },
     { "40\n1\n2\n0 0 0 1\n0 0 1 -1\n", "s.txt line 5: radius -1 must be > 0" },
     { "40\n1\n2\n0 0 0 1.000\n0 0 1.000\n", "s.txt line 5: expected 4 numbers" },

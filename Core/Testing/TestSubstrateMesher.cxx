@@ -29,17 +29,19 @@ Collected collect(const FiberModel& m, const PeriodicCell& cell, const Substrate
   const std::vector<std::vector<double>>* inner = nullptr)
 {
   Collected c;
-  const Status s = meshSubstrate(m, inner, cell, o, [&](const SubstrateSurface& surface) {
-    const auto first = static_cast<std::int64_t>(c.vertices.size());
-    c.vertices.insert(c.vertices.end(), surface.vertices.begin(), surface.vertices.end());
-    for (auto t : surface.triangles)
+  const Status s = meshSubstrate(m, inner, cell, o,
+    [&](const SubstrateSurface& surface)
     {
-      c.triangles.push_back({ t[0] + first, t[1] + first, t[2] + first });
-    }
-    ++c.surfaces;
-    c.innerSurfaces += surface.inner ? 1 : 0;
-    return true;
-  });
+      const auto first = static_cast<std::int64_t>(c.vertices.size());
+      c.vertices.insert(c.vertices.end(), surface.vertices.begin(), surface.vertices.end());
+      for (auto t : surface.triangles)
+      {
+        c.triangles.push_back({ t[0] + first, t[1] + first, t[2] + first });
+      }
+      ++c.surfaces;
+      c.innerSurfaces += surface.inner ? 1 : 0;
+      return true;
+    });
   EXPECT_TRUE(s.ok()) << s.error;
   return c;
 }
@@ -131,7 +133,10 @@ double enclosedVolume(const Collected& c, const PeriodicCell* cell)
   return cell != nullptr ? v + (cell->hi.x - cell->lo.x) * cap : v;
 }
 
-double polygonArea(double r, int n) { return 0.5 * n * r * r * std::sin(2.0 * M_PI / n); }
+double polygonArea(double r, int n)
+{
+  return 0.5 * n * r * r * std::sin(2.0 * M_PI / n);
+}
 
 PeriodicCell boxCell()
 {
@@ -220,7 +225,8 @@ TEST(SubstrateMesher, CutVerticesOnOppositeFacesMatchExactly)
       ++highFace[{ p.y, p.z }];
     }
   }
-  EXPECT_EQ(lowFace.size(), 32u); // the plane x = 0 ≡ 10 cuts the 16 quads of one link: 2 edges each
+  EXPECT_EQ(
+    lowFace.size(), 32u); // the plane x = 0 ≡ 10 cuts the 16 quads of one link: 2 edges each
   EXPECT_EQ(lowFace, highFace);
 }
 
@@ -239,7 +245,8 @@ TEST(SubstrateMesher, UndulatingLoopsStayClosedAndNearTheirTubeVolume)
     {
       const double t = 2.0 * M_PI * i / n;
       // Across the faces z = ±5 only (enclosedVolume needs closed sections on x = xmax).
-      fiber.points.push_back({ -2.5 + 5.0 * f + 0.8 * std::sin(t), 0.8 * std::cos(2 * t), -5.3 + 10.0 * i / n });
+      fiber.points.push_back(
+        { -2.5 + 5.0 * f + 0.8 * std::sin(t), 0.8 * std::cos(2 * t), -5.3 + 10.0 * i / n });
       fiber.radii.push_back(1.1);
     }
     m.fibers.push_back(fiber);
@@ -263,7 +270,8 @@ TEST(SubstrateMesher, OpenModelGivesCappedClosedTubesAndInnerSurfaces)
   FiberModel m;
   m.fibers.push_back(line({ 0.0, 0.0, 0.0 }, { 0.3, 0.4, 1.2 }, 6, 0.7, 0));
   m.fibers.push_back(line({ 5.0, 0.0, 0.0 }, { 0.0, 1.0, 0.0 }, 3, 0.4, 1));
-  std::vector<std::vector<double>> inner = { std::vector<double>(7, 0.5), std::vector<double>(4, 0.3) };
+  std::vector<std::vector<double>> inner = { std::vector<double>(7, 0.5),
+    std::vector<double>(4, 0.3) };
   SubstrateMeshOptions o;
   o.sides = 9;
   const PeriodicCell none;
@@ -281,9 +289,11 @@ TEST(SubstrateMesher, OpenModelGivesCappedClosedTubesAndInnerSurfaces)
   const double withInner = expected + polygonArea(0.5, 9) * l0 + polygonArea(0.3, 9) * 3.0;
   EXPECT_NEAR(enclosedVolume(both, nullptr), withInner, 1e-9 * withInner);
 
-  std::vector<std::vector<double>> tooBig = { std::vector<double>(7, 0.8), std::vector<double>(4, 0.3) };
+  std::vector<std::vector<double>> tooBig = { std::vector<double>(7, 0.8),
+    std::vector<double>(4, 0.3) };
   const Status s = meshSubstrate(m, &tooBig, none, o, [](const SubstrateSurface&) { return true; });
-  EXPECT_NE(s.error.find("inner_radius 0.8 of fiber 0 (id 0) point 0"), std::string::npos) << s.error;
+  EXPECT_NE(s.error.find("inner_radius 0.8 of fiber 0 (id 0) point 0"), std::string::npos)
+    << s.error;
 }
 
 TEST(SubstrateMesher, PlyHoldsOnlyWhatMcdcParses)
@@ -471,9 +481,11 @@ TEST(SubstrateMesher, RandomWalkersNeverCrossThePeriodicMesh)
   std::mt19937_64 rng(7);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
-  auto axisDistance = [&](const Vec3& p, std::size_t f) {
+  auto axisDistance = [&](const Vec3& p, std::size_t f)
+  {
     const Fiber& fiber = m.fibers[f];
-    return periodicAxisDistance(p, fiber.points.front(), fiber.points.back() - fiber.points.front(), cell);
+    return periodicAxisDistance(
+      p, fiber.points.front(), fiber.points.back() - fiber.points.front(), cell);
   };
   const double step = 0.15;
   int crossedIn = 0;

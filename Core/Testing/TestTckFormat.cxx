@@ -31,13 +31,15 @@ const double Inf = std::numeric_limits<double>::infinity();
 /// Two streamlines (3 and 2 points) and an empty one, as MRtrix would lay them out.
 std::vector<double> sampleValues()
 {
-  return { 1, 2, 3, 4, 5, 6, 7, 8, 9, NaN, NaN, NaN, -1, 0.5, 0.25, -2, 0, 1000, NaN, NaN, NaN, NaN, NaN, NaN,
-    Inf, Inf, Inf };
+  return { 1, 2, 3, 4, 5, 6, 7, 8, 9, NaN, NaN, NaN, -1, 0.5, 0.25, -2, 0, 1000, NaN, NaN, NaN, NaN,
+    NaN, NaN, Inf, Inf, Inf };
 }
 
-std::string headerWithOffset(const std::string& datatype, const std::string& extra, std::size_t offset)
+std::string headerWithOffset(
+  const std::string& datatype, const std::string& extra, std::size_t offset)
 {
-  return "mrtrix tracks\ndatatype: " + datatype + "\n" + extra + "file: . " + std::to_string(offset) + "\nEND\n";
+  return "mrtrix tracks\ndatatype: " + datatype + "\n" + extra + "file: . " +
+    std::to_string(offset) + "\nEND\n";
 }
 
 } // namespace
@@ -64,7 +66,8 @@ TEST(TckFormat, WriterMatchesTheSpecByteByByte)
   std::ostringstream out;
   ASSERT_EQ(writeTck(out, m), "");
   // Header: 14 + 20 + 27 + 9 + 11 + 4 = 85 bytes, so the data starts at byte 85. The timestamp is
-  // FNV-1a 64 of the data bytes below modulo 10^15, computed with Python (Testing/Data/tracks/README.md).
+  // FNV-1a 64 of the data bytes below modulo 10^15, computed with Python
+  // (Testing/Data/tracks/README.md).
   const std::string header =
     "mrtrix tracks\ndatatype: Float32LE\ntimestamp: 657864492963474\ncount: 2\nfile: . 85\nEND\n";
   ASSERT_EQ(header.size(), 85u);
@@ -72,18 +75,21 @@ TEST(TckFormat, WriterMatchesTheSpecByteByByte)
   const unsigned char data[] = {
     0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0x40, 0x00, 0x00, 0x40, 0x40, // 1 2 3
     0x00, 0x00, 0x80, 0x40, 0x00, 0x00, 0xa0, 0x40, 0x00, 0x00, 0xc0, 0x40, // 4 5 6
-    0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0, 0x7f, // NaN: end of streamline
+    0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0,
+    0x7f, // NaN: end of streamline
     0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80, 0xbf, 0x00, 0x00, 0x00, 0xc0, // 0.5 -1 -2
     0x00, 0x00, 0x80, 0x3e, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3f, // 0.25 0 1
     0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0, 0x7f, 0x00, 0x00, 0xc0, 0x7f, // NaN
     0x00, 0x00, 0x80, 0x7f, 0x00, 0x00, 0x80, 0x7f, 0x00, 0x00, 0x80, 0x7f, // Inf: end of file
   };
-  const std::string expected = header + std::string(reinterpret_cast<const char*>(data), sizeof data);
+  const std::string expected =
+    header + std::string(reinterpret_cast<const char*>(data), sizeof data);
   const std::string got = out.str();
   ASSERT_EQ(got.size(), expected.size());
   for (std::size_t i = 0; i < got.size(); ++i)
   {
-    ASSERT_EQ(static_cast<unsigned char>(got[i]), static_cast<unsigned char>(expected[i])) << "byte " << i;
+    ASSERT_EQ(static_cast<unsigned char>(got[i]), static_cast<unsigned char>(expected[i]))
+      << "byte " << i;
   }
 
   // And the reader reads the hand-made bytes back.
@@ -104,7 +110,8 @@ TEST(TckFormat, ReadsEveryDatatypeAndIgnoresOtherKeys)
     const bool f64 = type[5] == '6';
     const bool be = type[7] == 'B';
     // Padding between header and data (as MRtrix's MATLAB writer leaves) and extra keys.
-    const std::string extra = "timestamp: 1700000000.1\ncommand_history: tckgen a b\ncount: 3\ntotal_count: 3\n";
+    const std::string extra =
+      "timestamp: 1700000000.1\ncommand_history: tckgen a b\ncount: 3\ntotal_count: 3\n";
     const std::size_t offset = headerWithOffset(type, extra, 100).size() + 7;
     std::string file = headerWithOffset(type, extra, offset);
     file += std::string(offset - file.size(), '\0');
@@ -147,7 +154,8 @@ TEST(TckFormat, RoundTripKeepsPointsToFloatPrecision)
     {
       for (int a = 0; a < 3; ++a)
       {
-        EXPECT_EQ(r.model.fibers[k].points[i][a], static_cast<double>(static_cast<float>(m.fibers[k].points[i][a])));
+        EXPECT_EQ(r.model.fibers[k].points[i][a],
+          static_cast<double>(static_cast<float>(m.fibers[k].points[i][a])));
       }
       EXPECT_EQ(r.model.fibers[k].radii[i], 2.5);
     }
@@ -161,9 +169,12 @@ TEST(TckFormat, RoundTripKeepsPointsToFloatPrecision)
 TEST(TckFormat, BadFilesNameTheProblemAndWhere)
 {
   const std::string data = encode(sampleValues(), false, false);
-  auto file = [&](const std::string& extra, const std::string& body, const std::string& type = "Float32LE") {
+  auto file =
+    [&](const std::string& extra, const std::string& body, const std::string& type = "Float32LE")
+  {
     std::size_t offset = 0;
-    while (headerWithOffset(type, extra, offset).size() != offset) // header length includes its digits
+    while (
+      headerWithOffset(type, extra, offset).size() != offset) // header length includes its digits
     {
       offset = headerWithOffset(type, extra, offset).size();
     }
@@ -179,34 +190,47 @@ TEST(TckFormat, BadFilesNameTheProblemAndWhere)
   const std::size_t dataStart = good.size() - data.size();
   const std::vector<Case> cases = {
     { "mrtrix image\ndatatype: Float32LE\n", "t.tck line 1: not an MRtrix tracks file" },
-    { std::string("\x7f" "ELF\0\0\0", 7), "t.tck line 1:" },
+    { std::string("\x7f"
+                  "ELF\0\0\0",
+        7),
+      "t.tck line 1:" },
     { file("count: 3\n", data, "Int16LE"), "datatype 'Int16LE' is not supported" },
     { "mrtrix tracks\ndatatype: Float32LE\ncount: 0\nEND\n", "no 'file: . <offset>' line" },
     { "mrtrix tracks\nfile: . 40\nEND\n", "no 'datatype' line" },
-    { "mrtrix tracks\ndatatype: Float32LE\nfile: other.dat 0\nEND\n", "t.tck line 3: 'file: other.dat 0': only data in the same file" },
-    { "mrtrix tracks\ndatatype: Float32LE\nfile: . abc\nEND\n", "t.tck line 3: 'file: . abc': offset is not a number" },
+    { "mrtrix tracks\ndatatype: Float32LE\nfile: other.dat 0\nEND\n",
+      "t.tck line 3: 'file: other.dat 0': only data in the same file" },
+    { "mrtrix tracks\ndatatype: Float32LE\nfile: . abc\nEND\n",
+      "t.tck line 3: 'file: . abc': offset is not a number" },
     { "mrtrix tracks\ndatatype: Float32LE\nfile: . 5\nEND\n", "data offset 5 must lie between" },
-    { "mrtrix tracks\ndatatype: Float32LE\nfile: . 99999\nEND\n", "data offset 99999 must lie between" },
+    { "mrtrix tracks\ndatatype: Float32LE\nfile: . 99999\nEND\n",
+      "data offset 99999 must lie between" },
     { "mrtrix tracks\ndatatype: Float32LE\nfile: . 50\n", "header ends without an END line" },
-    { "mrtrix tracks\ndatatype: Float32LE\nthis line has no colon\nEND\n", "t.tck line 3: header line is not 'key: value'" },
-    { "mrtrix tracks\ndatatype: Float32LE\ndatatype: Float64LE\nEND\n", "t.tck line 3: 'datatype' given twice" },
+    { "mrtrix tracks\ndatatype: Float32LE\nthis line has no colon\nEND\n",
+      "t.tck line 3: header line is not 'key: value'" },
+    { "mrtrix tracks\ndatatype: Float32LE\ndatatype: Float64LE\nEND\n",
+      "t.tck line 3: 'datatype' given twice" },
     { file("count: 4000000000\n", data), "count 4000000000 needs at least 4000000001 triplets" },
     { file("count: 2\n", data), "header count 2 but the data holds 3 streamlines" },
     { file("count: 4\n", data), "header count 4 but the data holds 3 streamlines" },
     { file("count: -1\n", data), "count '-1' is not a number" },
-    { file("count: 3\n", data.substr(0, data.size() - 12)), "data ends without the Inf end-of-tracks triplet" },
-    { file("count: 3\n", data.substr(0, data.size() - 5)), "data ends without the Inf end-of-tracks triplet" },
+    { file("count: 3\n", data.substr(0, data.size() - 12)),
+      "data ends without the Inf end-of-tracks triplet" },
+    { file("count: 3\n", data.substr(0, data.size() - 5)),
+      "data ends without the Inf end-of-tracks triplet" },
     { file("count: 1\n", encode({ 1, 2, 3, NaN, 1, 2, Inf, Inf, Inf }, false, false)),
-      "t.tck byte " + std::to_string(dataStart + 12) + ": triplet mixes finite and NaN/Inf values" },
+      "t.tck byte " + std::to_string(dataStart + 12) +
+        ": triplet mixes finite and NaN/Inf values" },
   };
   for (const Case& c : cases)
   {
     const FiberReadResult r = readBytes(c.bytes);
     EXPECT_FALSE(r.ok()) << c.expect;
-    EXPECT_NE(r.error.find(c.expect), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expect;
+    EXPECT_NE(r.error.find(c.expect), std::string::npos)
+      << "got: " << r.error << "\nwanted: " << c.expect;
     EXPECT_TRUE(r.model.fibers.empty());
   }
-  EXPECT_NE(readBytes(good, 0.0).error.find("DefaultRadius 0 must be finite and > 0"), std::string::npos);
+  EXPECT_NE(
+    readBytes(good, 0.0).error.find("DefaultRadius 0 must be finite and > 0"), std::string::npos);
   EXPECT_NE(readBytes(good, NaN).error.find("DefaultRadius"), std::string::npos);
 }
 
@@ -229,7 +253,8 @@ TEST(TckFormat, WriterRefusesWhatItCannotStore)
 
 TEST(TckFormat, Sniffing)
 {
-  auto sniff = [](const std::string& s) {
+  auto sniff = [](const std::string& s)
+  {
     std::istringstream in(s);
     const bool yes = looksLikeTck(in);
     EXPECT_EQ(in.tellg(), std::streampos(0));

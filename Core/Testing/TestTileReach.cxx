@@ -95,7 +95,8 @@ double pointSegmentDistance2(const Vec3& p, const Vec3& a, const Vec3& b)
 
 /// Whether some voxel centre of columns `c` (every depth of a lattice with lower corner `o`, voxel
 /// size h and nz voxels deep) lies within S·r of a link of `fib`.
-bool touchesVoxels(const Fiber& fib, const double o[3], double h, std::int64_t nz, const GridRange& c, double S)
+bool touchesVoxels(
+  const Fiber& fib, const double o[3], double h, std::int64_t nz, const GridRange& c, double S)
 {
   for (std::size_t k = 0; k + 1 < fib.size(); ++k)
   {
@@ -114,8 +115,8 @@ bool touchesVoxels(const Fiber& fib, const double o[3], double h, std::int64_t n
 
 /// Brute force: no fiber of `model` missing from `part` (a selection in model order, ids
 /// distinct) touches a voxel of the columns.
-void expectLeftOutAreFar(const FiberModel& model, const FiberModel& part, const double o[3], double h,
-  std::int64_t nz, const GridRange& c, double S)
+void expectLeftOutAreFar(const FiberModel& model, const FiberModel& part, const double o[3],
+  double h, std::int64_t nz, const GridRange& c, double S)
 {
   std::size_t next = 0;
   for (const Fiber& f : model.fibers)
@@ -156,8 +157,8 @@ TEST(TileReach, SelectedFibersGiveTheSameTileAndLeaveOutOnlyFarFibers)
   PLIPlan plan;
   ASSERT_TRUE(planPLI(model, o, plan).ok());
   // Tiles of a 2 × 2 split and one of a single pixel row at the edge.
-  const std::vector<fiberpli::GridRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 }, { 0, 16, 12, 24 }, { 16, 32, 12, 24 },
-    { 0, 32, 23, 24 } };
+  const std::vector<fiberpli::GridRange> tiles = { { 0, 16, 0, 12 }, { 16, 32, 0, 12 },
+    { 0, 16, 12, 24 }, { 16, 32, 12, 24 }, { 0, 32, 23, 24 } };
   for (const fiberpli::GridRange& px : tiles)
   {
     const TileReach reach = imageReach(plan, o, px);
@@ -170,8 +171,10 @@ TEST(TileReach, SelectedFibersGiveTheSameTileAndLeaveOutOnlyFarFibers)
     ASSERT_TRUE(runPLI(part, o, px, tile).ok());
     expectSameImage(whole, tile);
     // Brute force: a fiber left out has no link within S·r of any voxel centre the rays read.
-    const GridRange region = linkRegion(plan.lattice, simParams(plan, o), plan.views, voxelColumnsFor(plan, o, px));
-    expectLeftOutAreFar(model, part, plan.lattice.origin, plan.lattice.voxel, plan.lattice.n[2], region, 1.2);
+    const GridRange region =
+      linkRegion(plan.lattice, simParams(plan, o), plan.views, voxelColumnsFor(plan, o, px));
+    expectLeftOutAreFar(
+      model, part, plan.lattice.origin, plan.lattice.voxel, plan.lattice.n[2], region, 1.2);
   }
 }
 
@@ -210,8 +213,8 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
   const PixelGrid lat = latticeForPixelGrid(Vec3{ -8, -6, 0 }, 1.0, 16, 12, -2.0, 2.0, 4);
   GroundTruthOptions opt;
   opt.threads = 1;
-  for (const fiberpli::GridRange range :
-    { fiberpli::GridRange{ 0, 8, 0, 6 }, fiberpli::GridRange{ 8, 16, 6, 12 }, fiberpli::GridRange{ 5, 6, 0, 12 } })
+  for (const fiberpli::GridRange range : { fiberpli::GridRange{ 0, 8, 0, 6 },
+         fiberpli::GridRange{ 8, 16, 6, 12 }, fiberpli::GridRange{ 5, 6, 0, 12 } })
   {
     const FiberModel part = selected(model, groundTruthReach(lat, opt, range));
     EXPECT_LT(part.fibers.size(), model.fibers.size());
@@ -236,7 +239,8 @@ TEST(TileReach, GroundTruthTileFromSelectedFibers)
     EXPECT_GT(tissuePixels, 0) << "no fiber in the tile: not a real comparison";
     // The voxels that bin into the range: centres inside its pixels.
     const GridRange voxels{ range.i0 * 4, range.i1 * 4, range.j0 * 4, range.j1 * 4 };
-    expectLeftOutAreFar(model, part, lat.lattice.origin, lat.lattice.voxel, lat.lattice.n[2], voxels, 1.0);
+    expectLeftOutAreFar(
+      model, part, lat.lattice.origin, lat.lattice.voxel, lat.lattice.n[2], voxels, 1.0);
   }
 }
 
@@ -270,14 +274,16 @@ TEST(TileReach, PeriodicTranslatesAgainstEveryTranslate)
     for (const Fiber& t : one.fibers)
       some = some || linkReaches(t, reach);
     const bool rule = fiberReaches(f, reach);
-    EXPECT_TRUE(!some || rule) << "fiber " << f.id << " has a translate in the tile but was left out";
+    EXPECT_TRUE(!some || rule) << "fiber " << f.id
+                               << " has a translate in the tile but was left out";
     if (rule)
       part.fibers.push_back(f);
   }
   EXPECT_LT(part.fibers.size(), model.fibers.size());
   FiberModel partTiled = part;
   ASSERT_EQ(tileModel(partTiled, cell, voi, &reach), "");
-  EXPECT_LT(partTiled.fibers.size(), tiled.fibers.size() / 2) << "the tile makes only its own translates";
+  EXPECT_LT(partTiled.fibers.size(), tiled.fibers.size() / 2)
+    << "the tile makes only its own translates";
   PLIOptions same = o;
   same.bundleIds = { 0, 1, 2 };
   PLIImage whole, tile;

@@ -51,7 +51,8 @@ TEST(TortuosityControl, TortuosityOfASineFiberIsItsArcLengthRatio)
   const Fiber straight = sineFiber(40.0, 0.0, 4, 21);
   EXPECT_DOUBLE_EQ(fiberTortuosity(straight), 1.0);
   const Vec3 closure{ 0.0, 0.0, 40.0 };
-  EXPECT_NEAR(fiberTortuosity(f, &closure), fiberTortuosity(f), 1e-12); // the closure is the chord here
+  EXPECT_NEAR(
+    fiberTortuosity(f, &closure), fiberTortuosity(f), 1e-12); // the closure is the chord here
 }
 
 TEST(TortuosityControl, RestoresAFlattenedSineToTheTarget)
@@ -82,7 +83,7 @@ TEST(TortuosityControl, LeavesFibersAtTheTargetOrStraightAlone)
   Fiber f = sineFiber(40.0, 0.7, 4, 81);
   const double tau = fiberTortuosity(f);
   const Fiber before = f;
-  EXPECT_FALSE(controlTortuosity(f, tau, 0.0, 0.1, 8.0));          // at the target
+  EXPECT_FALSE(controlTortuosity(f, tau, 0.0, 0.1, 8.0));           // at the target
   EXPECT_FALSE(controlTortuosity(f, tau + 0.001, 0.002, 0.1, 8.0)); // within the tolerance
   EXPECT_FALSE(controlTortuosity(f, 0.0, 0.0, 0.1, 8.0));           // off
   EXPECT_EQ(f.points, before.points);

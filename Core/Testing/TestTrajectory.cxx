@@ -1,5 +1,6 @@
-// Trajectory resampling and rotation-minimising frames (docs/tissue-models.md §2): arc-length spacing,
-// perpendicular untwisted cross-sections (analytic helix twist), 180° reversals, validation.
+// Trajectory resampling and rotation-minimising frames (docs/tissue-models.md §2): arc-length
+// spacing, perpendicular untwisted cross-sections (analytic helix twist), 180° reversals,
+// validation.
 #include "Tissue/Trajectory.h"
 
 #include <gtest/gtest.h>
@@ -151,7 +152,8 @@ TEST(Trajectory, HandlesHalfTurnReversals)
     EXPECT_NEAR(dot(cross(down.u[k], down.v[k]), down.tangent[k]), 1.0, 1e-15);
   }
   // A hairpin polyline reversing within a link.
-  const std::vector<Vec3> hairpin{ { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 1, 0, 0 }, { 0, 0, 0 } };
+  const std::vector<Vec3> hairpin{ { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 1, 0, 0 },
+    { 0, 0, 0 } };
   const TrajectoryFrames h = transportFrames(hairpin);
   for (std::size_t k = 0; k < hairpin.size(); ++k)
   {
@@ -164,7 +166,8 @@ TEST(Trajectory, HandlesHalfTurnReversals)
   EXPECT_NEAR(distance(rotateMinimal(a, -a, a), -a), 0.0, 1e-12);
   const Vec3 w = normalized(cross(a, Vec3{ 0, 0, 1 }));
   const Vec3 x = cross(a, w);
-  EXPECT_NEAR(dot(cross(rotateMinimal(a, -a, w), rotateMinimal(a, -a, x)), rotateMinimal(a, -a, a)), 1.0, 1e-12);
+  EXPECT_NEAR(dot(cross(rotateMinimal(a, -a, w), rotateMinimal(a, -a, x)), rotateMinimal(a, -a, a)),
+    1.0, 1e-12);
 }
 
 TEST(Trajectory, ValidationNamesThePoint)
@@ -180,7 +183,8 @@ TEST(Trajectory, ValidationNamesThePoint)
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_NE(validateTrajectory({ { inf, 0, 0 }, { 1, 0, 0 } }).find("point 0"), std::string::npos);
   const std::vector<double> badScale{ 1.0, -1.0 };
-  EXPECT_NE(validateTrajectory({ { 0, 0, 0 }, { 1, 0, 0 } }, &badScale).find("scale at point 1"), std::string::npos);
+  EXPECT_NE(validateTrajectory({ { 0, 0, 0 }, { 1, 0, 0 } }, &badScale).find("scale at point 1"),
+    std::string::npos);
   const std::vector<double> shortScale{ 1.0 };
   EXPECT_FALSE(validateTrajectory({ { 0, 0, 0 }, { 1, 0, 0 } }, &shortScale).empty());
   EXPECT_TRUE(validateTrajectory({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 0, 0 } }).empty());

@@ -120,8 +120,8 @@ TEST(TrkFormat, HeaderOffsetsFollowTheSpec)
   const std::string h = header(TrkSpec{});
   ASSERT_EQ(h.size(), 1000u);
   EXPECT_EQ(h.substr(0, 5), "TRACK");
-  EXPECT_EQ(static_cast<unsigned char>(h[6]), 10);   // dim[0] low byte
-  EXPECT_EQ(static_cast<unsigned char>(h[15]), 0x40); // voxel_size[0] = 2.0f = 00 00 00 40
+  EXPECT_EQ(static_cast<unsigned char>(h[6]), 10);     // dim[0] low byte
+  EXPECT_EQ(static_cast<unsigned char>(h[15]), 0x40);  // voxel_size[0] = 2.0f = 00 00 00 40
   EXPECT_EQ(static_cast<unsigned char>(h[443]), 0x3f); // vox_to_ras[0][0] = 1.0f = 00 00 80 3f
   EXPECT_EQ(h.substr(948, 3), "RAS");
   EXPECT_EQ(static_cast<unsigned char>(h[996]), 0xe8); // 1000 = 0x3e8
@@ -252,21 +252,30 @@ TEST(TrkFormat, BadFilesNameTheByteOffset)
     { with(props, oneTrack), "t.trk byte 238: n_properties -1 is negative" },
     { with(nanAffine, oneTrack), "t.trk byte 460: vox_to_ras holds a non-finite value" },
     { with(order, oneTrack), "t.trk byte 948: voxel_order 'RRS'" },
-    { with(moreDeclared, oneTrack), "t.trk byte 1028: header n_count 2 but the file ends after 1 tracks" },
-    { with(fewerDeclared, oneTrack + oneTrack), "t.trk byte 1028: header n_count 1 but 28 more bytes follow track 0" },
-    { with(hugeCount, oneTrack), "t.trk byte 988: n_count 2000000000 tracks cannot fit in the 28 bytes" },
+    { with(moreDeclared, oneTrack),
+      "t.trk byte 1028: header n_count 2 but the file ends after 1 tracks" },
+    { with(fewerDeclared, oneTrack + oneTrack),
+      "t.trk byte 1028: header n_count 1 but 28 more bytes follow track 0" },
+    { with(hugeCount, oneTrack),
+      "t.trk byte 988: n_count 2000000000 tracks cannot fit in the 28 bytes" },
     { with(negCount, oneTrack), "t.trk byte 988: n_count -5 is negative" },
-    { with(TrkSpec{}, hugeTrack), "t.trk byte 1000: track 0 declares 2147483647 points (25769803764 bytes) but only 12 bytes remain" },
+    { with(TrkSpec{}, hugeTrack),
+      "t.trk byte 1000: track 0 declares 2147483647 points (25769803764 bytes) but only 12 bytes "
+      "remain" },
     { with(TrkSpec{}, negTrack), "t.trk byte 1000: track 0 has a negative point count -1" },
-    { with(TrkSpec{}, oneTrack + nanTrack), "t.trk byte 1048: track 1 point 1 has a non-finite coordinate" },
-    { with(TrkSpec{}, oneTrack.substr(0, 27)), "t.trk byte 1000: track 0 declares 2 points (24 bytes) but only 23 bytes remain" },
-    { with(TrkSpec{}, oneTrack + "ab"), "t.trk byte 1028: file ends inside the point count of track 1" },
+    { with(TrkSpec{}, oneTrack + nanTrack),
+      "t.trk byte 1048: track 1 point 1 has a non-finite coordinate" },
+    { with(TrkSpec{}, oneTrack.substr(0, 27)),
+      "t.trk byte 1000: track 0 declares 2 points (24 bytes) but only 23 bytes remain" },
+    { with(TrkSpec{}, oneTrack + "ab"),
+      "t.trk byte 1028: file ends inside the point count of track 1" },
   };
   for (const Case& c : cases)
   {
     const FiberReadResult r = readBytes(c.bytes);
     EXPECT_FALSE(r.ok()) << c.expect;
-    EXPECT_NE(r.error.find(c.expect), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expect;
+    EXPECT_NE(r.error.find(c.expect), std::string::npos)
+      << "got: " << r.error << "\nwanted: " << c.expect;
     EXPECT_TRUE(r.model.fibers.empty());
   }
   EXPECT_NE(readBytes(good, -1.0).error.find("DefaultRadius -1"), std::string::npos);
@@ -291,7 +300,8 @@ TEST(TrkFormat, ReadsTheCommittedSampleFile)
 
 TEST(TrkFormat, Sniffing)
 {
-  auto sniff = [](const std::string& s) {
+  auto sniff = [](const std::string& s)
+  {
     std::istringstream in(s);
     const bool yes = looksLikeTrk(in);
     EXPECT_EQ(in.tellg(), std::streampos(0));

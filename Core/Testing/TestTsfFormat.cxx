@@ -48,9 +48,9 @@ TsfReadResult readBytes(const std::string& bytes)
   return readTsf(in, "r.tsf");
 }
 
-
 /// A .tsf with the given header keys and body; the `file:` offset is the header's own length.
-std::string tsfFile(const std::string& keys, const std::string& body, const std::string& magic = "mrtrix track scalars")
+std::string tsfFile(const std::string& keys, const std::string& body,
+  const std::string& magic = "mrtrix track scalars")
 {
   std::size_t offset = 0;
   for (;;)
@@ -104,15 +104,16 @@ TEST(TsfFormat, WriterMatchesThePythonSampleByteByByte)
   // Testing/Data/tracks/sample.radius.tsf was written with Python's struct module (README there).
   const std::string path = std::string(FIBERPLI_TEST_DATA_DIR) + "/tracks/sample.radius.tsf";
   const std::string sample = slurp(path);
-  const std::string header =
-    "mrtrix track scalars\ndatatype: Float32LE\ntimestamp: 657864492963474\ncount: 2\nfile: . 92\nEND\n";
+  const std::string header = "mrtrix track scalars\ndatatype: Float32LE\ntimestamp: "
+                             "657864492963474\ncount: 2\nfile: . 92\nEND\n";
   ASSERT_EQ(header.size(), 92u);
   const unsigned char data[] = {
     0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0xa0, 0x3f, 0x00, 0x00, 0xc0, 0x7f, // 0.5 1.25 NaN
     0x00, 0x00, 0x00, 0x40, 0xcd, 0xcc, 0xcc, 0x3d, 0x00, 0x00, 0xc0, 0x7f, // 2 0.1f NaN
     0x00, 0x00, 0x80, 0x7f,                                                 // Inf
   };
-  const std::string expected = header + std::string(reinterpret_cast<const char*>(data), sizeof data);
+  const std::string expected =
+    header + std::string(reinterpret_cast<const char*>(data), sizeof data);
   ASSERT_EQ(sample, expected) << "the committed sample is not what the README describes";
 
   std::ostringstream out;
@@ -121,7 +122,8 @@ TEST(TsfFormat, WriterMatchesThePythonSampleByteByByte)
   ASSERT_EQ(got.size(), expected.size());
   for (std::size_t i = 0; i < got.size(); ++i)
   {
-    ASSERT_EQ(static_cast<unsigned char>(got[i]), static_cast<unsigned char>(expected[i])) << "byte " << i;
+    ASSERT_EQ(static_cast<unsigned char>(got[i]), static_cast<unsigned char>(expected[i]))
+      << "byte " << i;
   }
 
   const TsfReadResult r = readBytes(sample);
@@ -137,7 +139,8 @@ TEST(TsfFormat, WriterMatchesThePythonSampleByteByByte)
   std::ostringstream bare;
   ASSERT_EQ(writeTsf(bare, {}, ""), "");
   EXPECT_EQ(bare.str().substr(0, bare.str().size() - 4),
-    "mrtrix track scalars\ndatatype: Float32LE\ncount: 0\nfile: . 65\nEND\n"); // 21 + 20 + 9 + 11 + 4
+    "mrtrix track scalars\ndatatype: Float32LE\ncount: 0\nfile: . 65\nEND\n"); // 21 + 20 + 9 + 11 +
+                                                                               // 4
 }
 
 TEST(TsfFormat, ReadsEveryDatatypeEmptyStreamlinesAndNoCount)
@@ -149,8 +152,9 @@ TEST(TsfFormat, ReadsEveryDatatypeEmptyStreamlinesAndNoCount)
     const std::vector<double> body = { 1.5, -2, 3, NaN, NaN, 1e-3, NaN, Inf };
     for (const std::string count : { "count: 3\n", "" })
     {
-      const std::string file = tsfFile("datatype: " + std::string(type) + "\ntimestamp: 17.5\nroi: x\n" + count,
-        encode(body, f64, be));
+      const std::string file =
+        tsfFile("datatype: " + std::string(type) + "\ntimestamp: 17.5\nroi: x\n" + count,
+          encode(body, f64, be));
       const TsfReadResult r = readBytes(file);
       ASSERT_TRUE(r.ok()) << type << ": " << r.error;
       EXPECT_EQ(r.timestamp, "17.5");
@@ -161,7 +165,9 @@ TEST(TsfFormat, ReadsEveryDatatypeEmptyStreamlinesAndNoCount)
       const std::size_t vs = f64 ? 8 : 4;
       const std::size_t start = file.size() - body.size() * vs;
       EXPECT_EQ(r.valueSize, vs);
-      EXPECT_EQ(r.firstValueOffsets, (std::vector<std::uint64_t>{ start, start + 4 * vs, start + 5 * vs })) << type;
+      EXPECT_EQ(
+        r.firstValueOffsets, (std::vector<std::uint64_t>{ start, start + 4 * vs, start + 5 * vs }))
+        << type;
     }
   }
 }
@@ -179,24 +185,35 @@ TEST(TsfFormat, BadFilesNameTheProblemAndWhere)
   };
   const std::vector<Case> cases = {
     { tsfFile("datatype: Float32LE\n", data, "mrtrix tracks"),
-      "r.tsf line 1: not an MRtrix track scalars file (first line must be 'mrtrix track scalars')" },
+      "r.tsf line 1: not an MRtrix track scalars file (first line must be 'mrtrix track "
+      "scalars')" },
     { tsfFile("datatype: Int32LE\n", data), "r.tsf line 2: datatype 'Int32LE' is not supported" },
-    { "mrtrix track scalars\ndatatype: Float32LE\nEND\n", "r.tsf: header has no 'file: . <offset>' line" },
-    { "mrtrix track scalars\ndatatype: Float32LE\nfile: . 3\nEND\n", "r.tsf line 3: data offset 3 must lie between" },
-    { "mrtrix track scalars\ndatatype: Float32LE\nfile: . 60\n", "header ends without an END line" },
-    { tsfFile("datatype: Float32LE\ntimestamp: 1\ntimestamp: 2\n", data), "r.tsf line 4: 'timestamp' given twice" },
-    { tsfFile("datatype: Float32LE\ncount: 3\n", data), "r.tsf line 3: header count 3 but the data holds 2 streamlines" },
-    { tsfFile("datatype: Float32LE\ncount: 1\n", data), "header count 1 but the data holds 2 streamlines" },
-    { tsfFile("datatype: Float32LE\ncount: 5000000000\n", data), "count 5000000000 needs at least 5000000001 values but only 28 bytes" },
+    { "mrtrix track scalars\ndatatype: Float32LE\nEND\n",
+      "r.tsf: header has no 'file: . <offset>' line" },
+    { "mrtrix track scalars\ndatatype: Float32LE\nfile: . 3\nEND\n",
+      "r.tsf line 3: data offset 3 must lie between" },
+    { "mrtrix track scalars\ndatatype: Float32LE\nfile: . 60\n",
+      "header ends without an END line" },
+    { tsfFile("datatype: Float32LE\ntimestamp: 1\ntimestamp: 2\n", data),
+      "r.tsf line 4: 'timestamp' given twice" },
+    { tsfFile("datatype: Float32LE\ncount: 3\n", data),
+      "r.tsf line 3: header count 3 but the data holds 2 streamlines" },
+    { tsfFile("datatype: Float32LE\ncount: 1\n", data),
+      "header count 1 but the data holds 2 streamlines" },
+    { tsfFile("datatype: Float32LE\ncount: 5000000000\n", data),
+      "count 5000000000 needs at least 5000000001 values but only 28 bytes" },
     { tsfFile("datatype: Float32LE\ncount: 2\n", data.substr(0, data.size() - 4)),
-      "r.tsf byte " + std::to_string(dataStart + data.size() - 4) + ": data ends without the Inf end-of-tracks value" },
-    { tsfFile("datatype: Float32LE\ncount: 2\n", data.substr(0, data.size() - 2)), "data ends without the Inf" },
+      "r.tsf byte " + std::to_string(dataStart + data.size() - 4) +
+        ": data ends without the Inf end-of-tracks value" },
+    { tsfFile("datatype: Float32LE\ncount: 2\n", data.substr(0, data.size() - 2)),
+      "data ends without the Inf" },
   };
   for (const Case& c : cases)
   {
     const TsfReadResult r = readBytes(c.bytes);
     EXPECT_FALSE(r.ok()) << c.expect;
-    EXPECT_NE(r.error.find(c.expect), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expect;
+    EXPECT_NE(r.error.find(c.expect), std::string::npos)
+      << "got: " << r.error << "\nwanted: " << c.expect;
     EXPECT_TRUE(r.values.empty());
   }
 }
@@ -204,7 +221,8 @@ TEST(TsfFormat, BadFilesNameTheProblemAndWhere)
 TEST(TsfFormat, WriterRefusesValuesThatWouldBreakTheStructure)
 {
   std::ostringstream out;
-  EXPECT_NE(writeTsf(out, { { 1, 2 }, { 3, NaN } }, "").find("streamline 1 point 1 has value nan"), std::string::npos);
+  EXPECT_NE(writeTsf(out, { { 1, 2 }, { 3, NaN } }, "").find("streamline 1 point 1 has value nan"),
+    std::string::npos);
   EXPECT_NE(writeTsf(out, { { Inf } }, "").find("streamline 0 point 0"), std::string::npos);
   EXPECT_NE(writeTsf(out, { { 1e39 } }, "").find("float32 range"), std::string::npos);
   EXPECT_NE(writeTsf(out, { { 1 } }, "1\nEND").find("line break"), std::string::npos);
@@ -242,7 +260,8 @@ TEST(TckRadii, RoundTripKeepsRadiiToFloatPrecisionAndTimestampsMatch)
     ASSERT_EQ(r.model.fibers[k].radii.size(), m.fibers[k].radii.size());
     for (std::size_t i = 0; i < m.fibers[k].radii.size(); ++i)
     {
-      EXPECT_EQ(r.model.fibers[k].radii[i], static_cast<double>(static_cast<float>(m.fibers[k].radii[i])))
+      EXPECT_EQ(
+        r.model.fibers[k].radii[i], static_cast<double>(static_cast<float>(m.fibers[k].radii[i])))
         << "fiber " << k << " point " << i;
     }
   }
@@ -259,7 +278,8 @@ TEST(TckRadii, RoundTripKeepsRadiiToFloatPrecisionAndTimestampsMatch)
   EXPECT_EQ(tckStamp, tckTimestamp(m));
   const std::string first = slurp(tck) + slurp(tckRadiusPath(tck));
   ASSERT_EQ(writeFiberFile(tck, r.model), "");
-  EXPECT_EQ(slurp(tck) + slurp(tckRadiusPath(tck)), first) << "rewriting what was read gives the same bytes";
+  EXPECT_EQ(slurp(tck) + slurp(tckRadiusPath(tck)), first)
+    << "rewriting what was read gives the same bytes";
 }
 
 TEST(TckRadii, MissingTsfGivesDefaultRadius)
@@ -282,7 +302,8 @@ TEST(TckRadii, MismatchedOrBadTsfIsAnErrorNamingIt)
   const FiberModel m = pairModel();
   ASSERT_EQ(writeFiberFile(tck, m), "");
   const std::string stamp = tckTimestamp(m);
-  auto tsfWith = [&](const std::vector<std::vector<double>>& values, const std::string& ts) {
+  auto tsfWith = [&](const std::vector<std::vector<double>>& values, const std::string& ts)
+  {
     std::ostringstream out;
     EXPECT_EQ(writeTsf(out, values, ts), "");
     return out.str();
@@ -295,20 +316,27 @@ TEST(TckRadii, MismatchedOrBadTsfIsAnErrorNamingIt)
     std::string expect;
   };
   const std::vector<Case> cases = {
-    { tsfWith({ { 1, 1, 1 }, { 1, 1 }, { 1, 1 } }, stamp), tsf + ": holds 3 streamlines but " + tck + " holds 2" },
+    { tsfWith({ { 1, 1, 1 }, { 1, 1 }, { 1, 1 } }, stamp),
+      tsf + ": holds 3 streamlines but " + tck + " holds 2" },
     { tsfWith({ { 1, 1, 1 } }, stamp), tsf + ": holds 1 streamlines but " + tck + " holds 2" },
     { tsfWith({ { 1, 1 }, { 1, 1 } }, stamp),
-      tsf + " byte " + std::to_string(start) + ": streamline 0 has 2 values but 3 points in " + tck },
+      tsf + " byte " + std::to_string(start) + ": streamline 0 has 2 values but 3 points in " +
+        tck },
     { tsfWith({ { 1, 1, 1 }, { 1, 1, 1 } }, stamp),
-      tsf + " byte " + std::to_string(start + 16) + ": streamline 1 has 3 values but 2 points in " + tck },
+      tsf + " byte " + std::to_string(start + 16) + ": streamline 1 has 3 values but 2 points in " +
+        tck },
     { tsfWith({ { 1, 1, 1 }, { 1, 1 } }, "12345"),
       tsf + ": timestamp '12345' differs from timestamp '" + stamp + "' of " + tck },
     { tsfWith({ { 1, 0, 1 }, { 1, 1 } }, stamp),
-      tsf + " byte " + std::to_string(start + 4) + ": radius 0 of streamline 0 point 1 must be finite and > 0" },
+      tsf + " byte " + std::to_string(start + 4) +
+        ": radius 0 of streamline 0 point 1 must be finite and > 0" },
     { tsfWith({ { 1, 1, 1 }, { 1, -0.5 } }, stamp),
-      tsf + " byte " + std::to_string(start + 20) + ": radius -0.5 of streamline 1 point 1 must be finite and > 0" },
-    // A NaN is the streamline separator, so a NaN radius splits the streamline: caught as a mismatch.
-    { tsfFile("datatype: Float32LE\ncount: 2\n", encode({ 1, NaN, 1, NaN, 1, 1, NaN, Inf }, false, false)),
+      tsf + " byte " + std::to_string(start + 20) +
+        ": radius -0.5 of streamline 1 point 1 must be finite and > 0" },
+    // A NaN is the streamline separator, so a NaN radius splits the streamline: caught as a
+    // mismatch.
+    { tsfFile("datatype: Float32LE\ncount: 2\n",
+        encode({ 1, NaN, 1, NaN, 1, 1, NaN, Inf }, false, false)),
       tsf + " line 3: header count 2 but the data holds 3 streamlines" },
     { tsfFile("datatype: Float32LE\n", encode({ 1, NaN, 1, NaN, 1, 1, NaN, Inf }, false, false)),
       tsf + ": holds 3 streamlines but " + tck + " holds 2" },
@@ -319,10 +347,12 @@ TEST(TckRadii, MismatchedOrBadTsfIsAnErrorNamingIt)
     spit(tsf, c.bytes);
     const FiberReadResult r = readFiberFile(tck, 1.0);
     EXPECT_FALSE(r.ok()) << c.expect;
-    EXPECT_NE(r.error.find(c.expect), std::string::npos) << "got: " << r.error << "\nwanted: " << c.expect;
+    EXPECT_NE(r.error.find(c.expect), std::string::npos)
+      << "got: " << r.error << "\nwanted: " << c.expect;
     EXPECT_TRUE(r.model.fibers.empty());
   }
-  // Without a timestamp in the .tsf (e.g. written by other tools) the structure check alone decides.
+  // Without a timestamp in the .tsf (e.g. written by other tools) the structure check alone
+  // decides.
   spit(tsf, tsfWith({ { 1, 2, 3 }, { 4, 5 } }, ""));
   const FiberReadResult ok = readFiberFile(tck, 1.0);
   ASSERT_TRUE(ok.ok()) << ok.error;
@@ -335,19 +365,25 @@ TEST(TckRadii, DroppedShortStreamlinesMustBeShortInTheTsfToo)
   const std::string tck = dir.path + "/x.tck";
   const std::string tsf = tckRadiusPath(tck);
   // Streamlines of 2, 1 and 2 points: readTck drops the middle one but keeps its position (id 1).
-  const std::string tckBody = encode({ 0, 0, 0, 1, 0, 0, NaN, NaN, NaN, 5, 5, 5, NaN, NaN, NaN, 0, 1, 0, 0, 2, 0,
-                                        NaN, NaN, NaN, Inf, Inf, Inf }, false, false);
+  const std::string tckBody = encode({ 0, 0, 0, 1, 0, 0, NaN, NaN, NaN, 5, 5, 5, NaN, NaN, NaN, 0,
+                                       1, 0, 0, 2, 0, NaN, NaN, NaN, Inf, Inf, Inf },
+    false, false);
   spit(tck, tsfFile("datatype: Float32LE\ncount: 3\n", tckBody, "mrtrix tracks"));
-  spit(tsf, tsfFile("datatype: Float32LE\ncount: 3\n", encode({ 1, 2, NaN, 9, NaN, 3, 4, NaN, Inf }, false, false)));
+  spit(tsf,
+    tsfFile("datatype: Float32LE\ncount: 3\n",
+      encode({ 1, 2, NaN, 9, NaN, 3, 4, NaN, Inf }, false, false)));
   const FiberReadResult r = readFiberFile(tck, 1.0);
   ASSERT_TRUE(r.ok()) << r.error;
   EXPECT_EQ(r.droppedFibers, 1u);
   ASSERT_EQ(r.model.fibers.size(), 2u);
   EXPECT_EQ(r.model.fibers[1].id, 2);
   EXPECT_EQ(r.model.fibers[1].radii, (std::vector<double>{ 3, 4 }));
-  spit(tsf, tsfFile("datatype: Float32LE\ncount: 3\n", encode({ 1, 2, NaN, 9, 9, NaN, 3, 4, NaN, Inf }, false, false)));
+  spit(tsf,
+    tsfFile("datatype: Float32LE\ncount: 3\n",
+      encode({ 1, 2, NaN, 9, 9, NaN, 3, 4, NaN, Inf }, false, false)));
   const FiberReadResult bad = readFiberFile(tck, 1.0);
-  EXPECT_NE(bad.error.find("streamline 1 has 2 values but fewer than 2 points"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("streamline 1 has 2 values but fewer than 2 points"), std::string::npos)
+    << bad.error;
 }
 
 TEST(TckRadii, RadiiFloat32CannotHoldAreRefusedBeforeAnyFileIsTouched)
@@ -359,8 +395,10 @@ TEST(TckRadii, RadiiFloat32CannotHoldAreRefusedBeforeAnyFileIsTouched)
   FiberModel m = pairModel();
   m.fibers[1].radii[0] = 1e-50; // float32 rounds it to 0
   const std::string err = writeFiberFile(tck, m);
-  EXPECT_NE(err.find(tckRadiusPath(tck) + ": cannot write .tsf: fiber 1 (fiber_id 0) point 0 has radius 1e-50"),
-    std::string::npos) << err;
+  EXPECT_NE(err.find(tckRadiusPath(tck) +
+              ": cannot write .tsf: fiber 1 (fiber_id 0) point 0 has radius 1e-50"),
+    std::string::npos)
+    << err;
   m.fibers[1].radii[0] = 1e39;
   EXPECT_NE(writeFiberFile(tck, m).find("has radius 1e+39"), std::string::npos);
   EXPECT_EQ(slurp(tck) + slurp(tckRadiusPath(tck)), before);

@@ -69,7 +69,8 @@ TEST(TubeMesher, StraightTubeHasTheExactPolygonalVolume)
   for (int sides : { 3, 8, 12, 33 })
   {
     FiberModel model;
-    model.fibers.push_back(makeFiber({ { 0, 0, 0 }, { 0, 0, 2 }, { 0, 0, 5 }, { 0, 0, 10 } }, { 1.5, 1.5, 1.5, 1.5 }));
+    model.fibers.push_back(
+      makeFiber({ { 0, 0, 0 }, { 0, 0, 2 }, { 0, 0, 5 }, { 0, 0, 10 } }, { 1.5, 1.5, 1.5, 1.5 }));
     TubeOptions o;
     o.sides = sides;
     TubeMesh m = meshTubes(model, o);
@@ -174,7 +175,8 @@ TEST(TubeMesher, OutputIsIndependentOfThreadCountAndCanBeAborted)
   FiberModel model;
   for (int f = 0; f < 600; ++f)
   {
-    model.fibers.push_back(makeFiber({ { 0, 0, 1.0 * f }, { 3, 1, 1.0 * f }, { 5, 0, 1.0 * f } }, { 0.4, 0.4, 0.4 }));
+    model.fibers.push_back(
+      makeFiber({ { 0, 0, 1.0 * f }, { 3, 1, 1.0 * f }, { 5, 0, 1.0 * f } }, { 0.4, 0.4, 0.4 }));
   }
   TubeOptions o;
   o.numberOfThreads = 1;
@@ -197,7 +199,8 @@ TEST(TubeMesher, SidesOutsideTheRangeAreNamed)
   for (int bad : { -1, 0, 2, kMaxTubeSides + 1 })
   {
     o.sides = bad;
-    EXPECT_EQ(checkTubeOptions(o), "NumberOfSides is " + std::to_string(bad) + ", must be in [3, 64]");
+    EXPECT_EQ(
+      checkTubeOptions(o), "NumberOfSides is " + std::to_string(bad) + ", must be in [3, 64]");
   }
   for (int good : { 3, 12, kMaxTubeSides })
   {
@@ -230,7 +233,8 @@ TEST(TubeMesher, InnerTubesAreClosedOutwardAndFollowTheInnerRadius)
   for (std::size_t t = 0; t < both.numberOfTriangles(); ++t)
   {
     TubeMesh& part = both.triangleSurface[t] ? inner : outer;
-    part.triangles.insert(part.triangles.end(), both.triangles.begin() + 3 * t, both.triangles.begin() + 3 * t + 3);
+    part.triangles.insert(
+      part.triangles.end(), both.triangles.begin() + 3 * t, both.triangles.begin() + 3 * t + 3);
     part.triangleFiber.push_back(both.triangleFiber[t]);
   }
   inner.points = outer.points = both.points;

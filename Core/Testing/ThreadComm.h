@@ -17,7 +17,13 @@ namespace fiberpli_test
 class ThreadBoard
 {
 public:
-  explicit ThreadBoard(int ranks) : ranks_(ranks), sums_(ranks), maxima_(ranks), mail_(ranks) {}
+  explicit ThreadBoard(int ranks)
+    : ranks_(ranks)
+    , sums_(ranks)
+    , maxima_(ranks)
+    , mail_(ranks)
+  {
+  }
 
   void barrier()
   {
@@ -48,7 +54,11 @@ private:
 class ThreadComm final : public fiberpli::SolverComm
 {
 public:
-  ThreadComm(ThreadBoard& board, int rank) : board_(board), rank_(rank) {}
+  ThreadComm(ThreadBoard& board, int rank)
+    : board_(board)
+    , rank_(rank)
+  {
+  }
   int rank() const override { return rank_; }
   int size() const override { return board_.ranks_; }
   // Each operation: write my slot, barrier, read all slots, barrier (before anyone writes again).
@@ -94,10 +104,12 @@ inline void runRanks(int ranks, const std::function<void(fiberpli::SolverComm&)>
   std::vector<std::thread> threads;
   for (int r = 0; r < ranks; ++r)
   {
-    threads.emplace_back([&board, &f, r] {
-      ThreadComm comm(board, r);
-      f(comm);
-    });
+    threads.emplace_back(
+      [&board, &f, r]
+      {
+        ThreadComm comm(board, r);
+        f(comm);
+      });
   }
   for (std::thread& t : threads)
     t.join();

@@ -48,7 +48,8 @@ std::vector<double> beadingFactors(const BeadingProfile& p, double sigmaScale)
   return f;
 }
 
-BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc, double ell, double cv, bool closed)
+BeadingProfile drawBeading(
+  RandomStream& rng, const std::vector<double>& arc, double ell, double cv, bool closed)
 {
   BeadingProfile p;
   p.closed = closed;
@@ -91,7 +92,8 @@ BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc, do
   if (!(sd > 0.0) || !(cv > 0.0))
     return p;
   // The CV of exp(σ g) grows with σ from 0: bracket, then bisect.
-  const auto cvOf = [&](double s) {
+  const auto cvOf = [&](double s)
+  {
     BeadingProfile q = p;
     q.sigma = s;
     return coefficientOfVariation(beadingFactors(q), closed);

@@ -32,13 +32,14 @@ struct BeadingProfile
 /// length + 4ℓ, so the ends are not tied together. Draws 2 normals per Fourier mode from rng
 /// (modes up to 5/(2πℓ) cycles per µm, at most one per point spacing over the period and at most
 /// kMaxBeadingModes).
-BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc, double correlationLength, double cv,
-  bool closed);
+BeadingProfile drawBeading(RandomStream& rng, const std::vector<double>& arc,
+  double correlationLength, double cv, bool closed);
 
 /// The most Fourier modes of one field (bounds the work for a tiny BeadingLength).
 constexpr int kMaxBeadingModes = 20000;
 
-/// The radius factors exp(σ'·g) / mean(exp(σ'·g)), σ' = sigmaScale·σ: mean 1 over the counted points.
+/// The radius factors exp(σ'·g) / mean(exp(σ'·g)), σ' = sigmaScale·σ: mean 1 over the counted
+/// points.
 std::vector<double> beadingFactors(const BeadingProfile& profile, double sigmaScale = 1.0);
 
 /// Coefficient of variation (population standard deviation / mean) of the values, the last one

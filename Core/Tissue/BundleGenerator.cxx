@@ -26,7 +26,8 @@ struct Path
   TrajectoryFrames frames;
 };
 
-Path makePath(const std::vector<Vec3>& control, const std::vector<double>* scale, double segmentLength)
+Path makePath(
+  const std::vector<Vec3>& control, const std::vector<double>* scale, double segmentLength)
 {
   Path p;
   p.trajectory = resampleTrajectory(control, scale, segmentLength);
@@ -54,7 +55,8 @@ struct Bundle
 
 // Lays the fibers of the bundles (in order: global fiber index = position in that order) that
 // fall into `range`; the others only take part in the cross-sections (seeds, radii, splits).
-FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& range, const BundleOptions& o)
+FiberModel layBundles(
+  const std::vector<Bundle>& bundles, const FiberRange& range, const BundleOptions& o)
 {
   const RanvierOptions ranvier = ranvierOf(o);
   FiberModel model;
@@ -66,8 +68,8 @@ FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& rang
     {
       if (next >= range.begin && next < range.end)
       {
-        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier, o.displacement, o.realism,
-          o.segmentLength, o.seed);
+        Fiber f = layFiber(b.path->trajectory, b.path->frames, (*b.cs)[idx], ranvier,
+          o.displacement, o.realism, o.segmentLength, o.seed);
         f.id = static_cast<std::int64_t>(next);
         f.bundle = b.bundle;
         model.fibers.push_back(std::move(f));
@@ -78,7 +80,8 @@ FiberModel layBundles(const std::vector<Bundle>& bundles, const FiberRange& rang
   return model;
 }
 
-FiberModel layBundles(const std::vector<Bundle>& bundles, int piece, int pieces, const BundleOptions& o)
+FiberModel layBundles(
+  const std::vector<Bundle>& bundles, int piece, int pieces, const BundleOptions& o)
 {
   std::size_t total = 0;
   for (const Bundle& b : bundles)
@@ -95,8 +98,9 @@ std::vector<std::size_t> allOf(const std::vector<CrossSectionFiber>& cs)
   return idx;
 }
 
-void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& straight, const Vec3& lateral,
-  double fraction, std::vector<std::size_t>& crossing, std::vector<std::size_t>& uncrossed)
+void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& straight,
+  const Vec3& lateral, double fraction, std::vector<std::size_t>& crossing,
+  std::vector<std::size_t>& uncrossed)
 {
   const Vec3& u0 = straight.frames.u.front();
   const Vec3& v0 = straight.frames.v.front();
@@ -106,7 +110,8 @@ void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& stra
   {
     key[j] = dot(cs[j].seed.x * u0 + cs[j].seed.y * v0, lateral);
   }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] > key[b]; });
+  std::stable_sort(
+    order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] > key[b]; });
   // The 1e-9 keeps an exact product such as 0.25·76 = 19 from rounding up through a last-bit error.
   const std::size_t count = std::min(cs.size(),
     static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(cs.size()) - 1e-9)));
@@ -116,18 +121,24 @@ void splitChiasmNerve(const std::vector<CrossSectionFiber>& cs, const Path& stra
   std::sort(crossing.begin(), crossing.end());
 }
 
-double yTurnRadius(const BundleOptions& o) { return std::max(2.0 * o.bundleRadius, 5.0 * o.fiberRadius); }
+double yTurnRadius(const BundleOptions& o)
+{
+  return std::max(2.0 * o.bundleRadius, 5.0 * o.fiberRadius);
+}
 // The uncrossed fibers are the lateral ones, on the inside of the side path's bend, up to
 // BundleRadius from its centre line: the same max(2R, 5r) as the Y keeps them >= R from the centre
 // of the turn.
-double chiasmTurnRadius(const BundleOptions& o) { return yTurnRadius(o); }
+double chiasmTurnRadius(const BundleOptions& o)
+{
+  return yTurnRadius(o);
+}
 // The fiber laid along the trajectory at its seed offset, dispersed: tilted about its middle by a
 // Watson angle θ (|cos θ| at the cross-section's quantile sequence, the azimuth from stream
 // Dispersion): a drift across the path growing linearly with arc length, so a straight bundle's
 // fiber runs at θ to the axis. θ is capped at kMaxBundleTilt so that no fiber runs (nearly) across
 // a bundle.
-std::vector<Vec3> laidPoints(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
-  const ShapeOptions& shape, std::uint64_t seed)
+std::vector<Vec3> laidPoints(const ResampledTrajectory& t, const TrajectoryFrames& fr,
+  const CrossSectionFiber& cf, const ShapeOptions& shape, std::uint64_t seed)
 {
   const std::size_t n = t.points.size();
   std::vector<Vec3> points(n);
@@ -137,24 +148,29 @@ std::vector<Vec3> laidPoints(const ResampledTrajectory& t, const TrajectoryFrame
   }
   if (shape.dispersed())
   {
-    const double offset = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, kGroupStream).uniform();
+    const double offset =
+      shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, kGroupStream).uniform();
     const double u1 = dispersionQuantile(offset, cf.key);
-    const double u2 = shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key).uniform();
+    const double u2 =
+      shapeStream(seed, ShapeFeature::Dispersion, cf.crossSection, cf.key).uniform();
     const double c = watsonTableForC2(shape.dispersionC2)->cosine(u1);
-    const double slope = std::min(std::tan(kMaxBundleTilt), std::sqrt(std::max(0.0, 1.0 - c * c)) / c);
+    const double slope =
+      std::min(std::tan(kMaxBundleTilt), std::sqrt(std::max(0.0, 1.0 - c * c)) / c);
     const double phi = 2.0 * M_PI * u2;
     std::vector<double> arc(n, 0.0);
     for (std::size_t k = 1; k < n; ++k)
       arc[k] = arc[k - 1] + distance(t.points[k - 1], t.points[k]);
     for (std::size_t k = 0; k < n; ++k)
-      points[k] += (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
+      points[k] +=
+        (arc[k] - 0.5 * arc.back()) * slope * (std::cos(phi) * fr.u[k] + std::sin(phi) * fr.v[k]);
   }
   return points;
 }
 } // namespace
 
-FiberShape bundleFiberShape(const ResampledTrajectory& t, const TrajectoryFrames& fr, const CrossSectionFiber& cf,
-  double displacement, const ShapeOptions& shape, double segmentLength, std::uint64_t seed)
+FiberShape bundleFiberShape(const ResampledTrajectory& t, const TrajectoryFrames& fr,
+  const CrossSectionFiber& cf, double displacement, const ShapeOptions& shape, double segmentLength,
+  std::uint64_t seed)
 {
   FiberShape target;
   target.base.points = laidPoints(t, fr, cf, shape, seed);
@@ -169,22 +185,22 @@ FiberShape bundleFiberShape(const ResampledTrajectory& t, const TrajectoryFrames
   {
     RandomStream ur = shapeStream(seed, ShapeFeature::Undulation, cf.crossSection, cf.key);
     target.undulation = drawUndulation(ur, length, shape.undulationWavelength, false);
-    target.reached = calibrateUndulation(target.base, target.undulation, shape.tortuosity, target.pointCount,
-      &target.jitter);
+    target.reached = calibrateUndulation(
+      target.base, target.undulation, shape.tortuosity, target.pointCount, &target.jitter);
   }
   return target;
 }
 
 Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSectionFiber& cf,
-  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape, double segmentLength,
-  std::uint64_t seed, bool* reached)
+  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape,
+  double segmentLength, std::uint64_t seed, bool* reached)
 {
   Fiber f;
   if (shape.undulating())
   {
-    // The undulated fiber replaces the laid polyline, its displacements drawn from the Jitter stream
-    // (its point count differs from the straight one's) and counted in the calibration; Ranvier's
-    // points then go onto the finished polyline, which they do not bend.
+    // The undulated fiber replaces the laid polyline, its displacements drawn from the Jitter
+    // stream (its point count differs from the straight one's) and counted in the calibration;
+    // Ranvier's points then go onto the finished polyline, which they do not bend.
     const FiberShape target = bundleFiberShape(t, fr, cf, displacement, shape, segmentLength, seed);
     if (reached)
       *reached = target.reached;
@@ -208,7 +224,8 @@ Fiber layFiber(const ResampledTrajectory& t, const TrajectoryFrames& fr, CrossSe
     for (std::size_t i = 1; i < arc.size(); ++i)
       arc[i] = arc[i - 1] + distance(f.points[i - 1], f.points[i]);
     RandomStream br = shapeStream(seed, ShapeFeature::Beading, cf.crossSection, cf.key);
-    const std::vector<double> factor = beadingFactors(drawBeading(br, arc, shape.beadingLength, shape.beadingCV, false));
+    const std::vector<double> factor =
+      beadingFactors(drawBeading(br, arc, shape.beadingLength, shape.beadingCV, false));
     for (std::size_t i = 0; i < f.radii.size(); ++i)
       f.radii[i] *= factor[i];
   }
@@ -244,7 +261,8 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
         path[b] = makePath(straightPath(H, b * omega), nullptr, o.segmentLength);
         cs[b] = makeCrossSection(o, static_cast<std::uint64_t>(b));
       }
-      return layBundles({ { &path[0], &cs[0], allOf(cs[0]), 0 }, { &path[1], &cs[1], allOf(cs[1]), 1 } }, piece,
+      return layBundles(
+        { { &path[0], &cs[0], allOf(cs[0]), 0 }, { &path[1], &cs[1], allOf(cs[1]), 1 } }, piece,
         pieces, o);
     }
     case BundleShape::YShape:
@@ -258,9 +276,12 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
         (cs[j].seed.x < 0.0 ? left : right).push_back(j);
       }
       const double step = 0.25 * o.segmentLength;
-      const Path leftPath = makePath(yBranchPath(H, omega, yTurnRadius(o), true, step), nullptr, o.segmentLength);
-      const Path rightPath = makePath(yBranchPath(H, omega, yTurnRadius(o), false, step), nullptr, o.segmentLength);
-      return layBundles({ { &leftPath, &cs, left, 0 }, { &rightPath, &cs, right, 1 } }, piece, pieces, o);
+      const Path leftPath =
+        makePath(yBranchPath(H, omega, yTurnRadius(o), true, step), nullptr, o.segmentLength);
+      const Path rightPath =
+        makePath(yBranchPath(H, omega, yTurnRadius(o), false, step), nullptr, o.segmentLength);
+      return layBundles(
+        { { &leftPath, &cs, left, 0 }, { &rightPath, &cs, right, 1 } }, piece, pieces, o);
     }
     case BundleShape::Chiasm:
     {
@@ -274,13 +295,15 @@ FiberModel generateBundle(const BundleOptions& o, const std::vector<Vec3>* traje
         const Vec3 d = chiasmDirection(omega, s == 1);
         straight[s] = makePath({ -H * d, H * d }, nullptr, o.segmentLength);
         cs[s] = makeCrossSection(o, static_cast<std::uint64_t>(s));
-        splitChiasmNerve(cs[s], straight[s], chiasmLateralNormal(omega, s == 1), o.uncrossedFraction, crossing[s],
-          uncrossed[s]);
-        side[s] = makePath(
-          chiasmSidePath(H, omega, chiasmTurnRadius(o), s == 1, 0.25 * o.segmentLength), nullptr, o.segmentLength);
+        splitChiasmNerve(cs[s], straight[s], chiasmLateralNormal(omega, s == 1),
+          o.uncrossedFraction, crossing[s], uncrossed[s]);
+        side[s] =
+          makePath(chiasmSidePath(H, omega, chiasmTurnRadius(o), s == 1, 0.25 * o.segmentLength),
+            nullptr, o.segmentLength);
       }
-      return layBundles({ { &straight[0], &cs[0], crossing[0], 0 }, { &straight[1], &cs[1], crossing[1], 1 },
-                          { &side[0], &cs[0], uncrossed[0], 2 }, { &side[1], &cs[1], uncrossed[1], 3 } },
+      return layBundles(
+        { { &straight[0], &cs[0], crossing[0], 0 }, { &straight[1], &cs[1], crossing[1], 1 },
+          { &side[0], &cs[0], uncrossed[0], 2 }, { &side[1], &cs[1], uncrossed[1], 3 } },
         piece, pieces, o);
     }
   }
@@ -302,7 +325,8 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   {
     // Each axis of U[−D, D]³ adds D²/3 per point: a link of length l becomes about √(l² + 2D²)
     // (docs/tissue-models.md §5.2); a fiber whose jitter alone is that tortuous gets no undulation.
-    const double jitterAlone = std::sqrt(1.0 + 2.0 * o.displacement * o.displacement / (o.segmentLength * o.segmentLength));
+    const double jitterAlone =
+      std::sqrt(1.0 + 2.0 * o.displacement * o.displacement / (o.segmentLength * o.segmentLength));
     if (jitterAlone >= o.realism.tortuosity)
     {
       std::ostringstream msg;
@@ -319,8 +343,8 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
   }
   else if (o.shape == BundleShape::Chiasm)
   {
-    t = resampleTrajectory(
-      chiasmSidePath(0.5 * o.length, o.crossingAngle * kDegree, chiasmTurnRadius(o), false, 0.25 * o.segmentLength),
+    t = resampleTrajectory(chiasmSidePath(0.5 * o.length, o.crossingAngle * kDegree,
+                             chiasmTurnRadius(o), false, 0.25 * o.segmentLength),
       nullptr, o.segmentLength);
   }
   else
@@ -335,10 +359,12 @@ std::string bundleWarnings(const BundleOptions& o, const std::vector<Vec3>* traj
     return std::string();
   }
   std::ostringstream msg;
-  msg << (o.shape == BundleShape::Chiasm ? "Chiasm side path" : "Trajectory") << " radius of curvature "
-      << rc << " um near resampled point " << where << " (" << t.points[where].x << ", "
-      << t.points[where].y << ", " << t.points[where].z << ") is smaller than BundleRadius x scale " << reach
-      << " um: fibers on the inside of the bend fold over; smooth the trajectory or reduce BundleRadius";
+  msg << (o.shape == BundleShape::Chiasm ? "Chiasm side path" : "Trajectory")
+      << " radius of curvature " << rc << " um near resampled point " << where << " ("
+      << t.points[where].x << ", " << t.points[where].y << ", " << t.points[where].z
+      << ") is smaller than BundleRadius x scale " << reach
+      << " um: fibers on the inside of the bend fold over; smooth the trajectory or reduce "
+         "BundleRadius";
   return msg.str();
 }
 

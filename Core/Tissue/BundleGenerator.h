@@ -1,6 +1,6 @@
-/// BundleGenerator: FiberBundleSource's Core (docs/tissue-models.md §2, §5, §6.2–§6.5, §7, §8). Builds
-/// bundles of fibers along trajectories: a straight cylinder, a user polyline, or the paper's
-/// crossing, Y-shaped and chiasm-like models, ready for the collision solver.
+/// BundleGenerator: FiberBundleSource's Core (docs/tissue-models.md §2, §5, §6.2–§6.5, §7, §8).
+/// Builds bundles of fibers along trajectories: a straight cylinder, a user polyline, or the
+/// paper's crossing, Y-shaped and chiasm-like models, ready for the collision solver.
 #pragma once
 
 #include "Model/FiberModel.h"
@@ -16,20 +16,21 @@
 namespace fiberpli
 {
 
-/// Lays one cross-section fiber along a resampled trajectory (docs/tissue-models.md §2, §5.2, §5.4):
-/// x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0) with
-/// radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x, y, z)
-/// from fiber.rng (which is advanced). id and bundle are left 0 for the caller.
-/// With dispersion (§10.2) the fiber is first tilted about its middle by a Watson-drawn angle
-/// (at most 75°) in a random direction across the path.
-/// With undulation (shape.tortuosity > 1, §10.1) the laid polyline is the base path of an
-/// undulated fiber of round(τ·L/l) + 1 points (frames u_k, v_k across it), displaced by draws of
-/// the fiber's Jitter stream, calibrated with them, and the Ranvier points are inserted on it
-/// afterwards; with beading (§10.3) the radii are multiplied by the fiber's profile along its arc
-/// length. Shape streams: (seed, crossSection, key) of shapeStream.
-Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames, CrossSectionFiber& fiber,
-  const RanvierOptions& ranvier, double displacement, const ShapeOptions& shape = {}, double segmentLength = 0.0,
-  std::uint64_t seed = 0, bool* reached = nullptr);
+/// Lays one cross-section fiber along a resampled trajectory (docs/tissue-models.md §2, §5.2,
+/// §5.4): x_k = T_k + σ_k·(s.x·u_k + s.y·v_k); then Ranvier profile points (if options.spacing > 0)
+/// with radius r_j·factor, else constant r_j; then every point + U[−D, D]³ drawn point by point (x,
+/// y, z) from fiber.rng (which is advanced). id and bundle are left 0 for the caller. With
+/// dispersion (§10.2) the fiber is first tilted about its middle by a Watson-drawn angle (at most
+/// 75°) in a random direction across the path. With undulation (shape.tortuosity > 1, §10.1) the
+/// laid polyline is the base path of an undulated fiber of round(τ·L/l) + 1 points (frames u_k, v_k
+/// across it), displaced by draws of the fiber's Jitter stream, calibrated with them, and the
+/// Ranvier points are inserted on it afterwards; with beading (§10.3) the radii are multiplied by
+/// the fiber's profile along its arc length. Shape streams: (seed, crossSection, key) of
+/// shapeStream.
+Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames,
+  CrossSectionFiber& fiber, const RanvierOptions& ranvier, double displacement,
+  const ShapeOptions& shape = {}, double segmentLength = 0.0, std::uint64_t seed = 0,
+  bool* reached = nullptr);
 
 /// The target shape of an undulated bundle fiber (Tissue/FiberShape.h, docs/tissue-models.md
 /// §10.8): the base path is the fiber laid along the trajectory at its seed offset (and dispersed),
@@ -37,8 +38,8 @@ Fiber layFiber(const ResampledTrajectory& trajectory, const TrajectoryFrames& fr
 /// Jitter stream; undulation from its Undulation stream, calibrated with the displacements. Nodes
 /// of Ranvier and beading come on top (layFiber).
 FiberShape bundleFiberShape(const ResampledTrajectory& trajectory, const TrajectoryFrames& frames,
-  const CrossSectionFiber& fiber, double displacement, const ShapeOptions& shape, double segmentLength,
-  std::uint64_t seed);
+  const CrossSectionFiber& fiber, double displacement, const ShapeOptions& shape,
+  double segmentLength, std::uint64_t seed);
 
 /// FiberBundleSource (docs/tissue-models.md §8). Shapes and bundle ids:
 /// - Cylinder: along x from (−Length/2, 0, 0) to (+Length/2, 0, 0); bundle 0.
@@ -57,8 +58,8 @@ FiberShape bundleFiberShape(const ResampledTrajectory& trajectory, const Traject
 ///   below the default R, and folded 32 of 44 uncrossed fibers). Only when the arc must shrink to
 ///   fit (H/tan(ω/2) < R, very short nerves or wide angles) does bundleWarnings report folding.
 /// All paths are resampled by arc length at SegmentLength (resampleTrajectory). Fiber ids are
-/// 0..N−1 in output order (bundle by bundle). Randomness: see makeCrossSection (cross-section index,
-/// seed index) — same options → bit-identical model. Returns an empty model when
+/// 0..N−1 in output order (bundle by bundle). Randomness: see makeCrossSection (cross-section
+/// index, seed index) — same options → bit-identical model. Returns an empty model when
 /// validateBundleOptions(options, trajectory, trajectoryScale, pieces) is not empty (call it first
 /// to get the message).
 /// Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece, pieces) of that order
@@ -67,9 +68,9 @@ FiberShape bundleFiberShape(const ResampledTrajectory& trajectory, const Traject
 FiberModel generateBundle(const BundleOptions& options, const std::vector<Vec3>* trajectory,
   const std::vector<double>* trajectoryScale = nullptr, int piece = 0, int pieces = 1);
 
-/// Non-fatal problems of valid options, docs/tissue-models.md §2 "Corners": a (resampled) trajectory
-/// whose smallest radius of curvature is below BundleRadius·max σ, where inner fibers fold over.
-/// Empty when none; else one message naming the radius, the point and the fix.
+/// Non-fatal problems of valid options, docs/tissue-models.md §2 "Corners": a (resampled)
+/// trajectory whose smallest radius of curvature is below BundleRadius·max σ, where inner fibers
+/// fold over. Empty when none; else one message naming the radius, the point and the fix.
 std::string bundleWarnings(const BundleOptions& options, const std::vector<Vec3>* trajectory,
   const std::vector<double>* trajectoryScale = nullptr);
 

@@ -36,11 +36,16 @@ const char* bundleShapeName(BundleShape shape)
 {
   switch (shape)
   {
-    case BundleShape::Cylinder: return "Cylinder";
-    case BundleShape::Trajectory: return "Trajectory";
-    case BundleShape::Crossing: return "Crossing";
-    case BundleShape::YShape: return "YShape";
-    case BundleShape::Chiasm: return "Chiasm";
+    case BundleShape::Cylinder:
+      return "Cylinder";
+    case BundleShape::Trajectory:
+      return "Trajectory";
+    case BundleShape::Crossing:
+      return "Crossing";
+    case BundleShape::YShape:
+      return "YShape";
+    case BundleShape::Chiasm:
+      return "Chiasm";
   }
   return "Unknown";
 }
@@ -136,14 +141,16 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   {
     msg << "RanvierSpacing is " << o.ranvierSpacing << ", must be finite";
   }
-  else if (ranvier > 0.0 && (!std::isfinite(o.ranvierDepth) || o.ranvierDepth < 0.0 || o.ranvierDepth >= 1.0))
+  else if (ranvier > 0.0 &&
+    (!std::isfinite(o.ranvierDepth) || o.ranvierDepth < 0.0 || o.ranvierDepth >= 1.0))
   {
     msg << "RanvierDepth is " << o.ranvierDepth << ", must be in [0, 1)";
   }
-  else if (ranvier > 0.0 && (!std::isfinite(o.ranvierLength) || o.ranvierLength <= 0.0 || 2.0 * o.ranvierLength > ranvier))
+  else if (ranvier > 0.0 &&
+    (!std::isfinite(o.ranvierLength) || o.ranvierLength <= 0.0 || 2.0 * o.ranvierLength > ranvier))
   {
-    msg << "RanvierLength is " << o.ranvierLength << ", must be > 0 and at most RanvierSpacing/2 = "
-        << 0.5 * ranvier;
+    msg << "RanvierLength is " << o.ranvierLength
+        << ", must be > 0 and at most RanvierSpacing/2 = " << 0.5 * ranvier;
   }
   if (!msg.str().empty())
   {
@@ -169,13 +176,18 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   const double fibers = seedCandidates(o) * crossSectionCount(o.shape);
   // A dispersed fiber is about 1/cos θ longer than its path (θ at most 75°): 1.5/√c2 covers the
   // mean of that with room to spare.
-  const double tilt = o.realism.dispersed() ? std::min(3.9, 1.5 / std::sqrt(o.realism.dispersionC2)) : 1.0;
-  const double perFiber = tilt * o.realism.tortuosity * pathLength / o.segmentLength + 2.0 + (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
+  const double tilt =
+    o.realism.dispersed() ? std::min(3.9, 1.5 / std::sqrt(o.realism.dispersionC2)) : 1.0;
+  const double perFiber = tilt * o.realism.tortuosity * pathLength / o.segmentLength + 2.0 +
+    (ranvier > 0.0 ? 5.0 * (pathLength / ranvier + 2.0) : 0.0);
   // Fibers alone first (a tiny FiberSpacing), then with their points.
-  const std::string fiberProblem = checkMemoryBudget(fiberModelBytes(fibers, 2.0 * fibers), "the fibers");
+  const std::string fiberProblem =
+    checkMemoryBudget(fiberModelBytes(fibers, 2.0 * fibers), "the fibers");
   const double share = 1.0 / std::max(1, pieces);
-  const std::string pointProblem = checkMemoryBudget(fiberModelBytes(share * fibers, share * fibers * perFiber),
-    pieces > 1 ? "the points of one piece of " + std::to_string(pieces) : std::string("the points"));
+  const std::string pointProblem =
+    checkMemoryBudget(fiberModelBytes(share * fibers, share * fibers * perFiber),
+      pieces > 1 ? "the points of one piece of " + std::to_string(pieces)
+                 : std::string("the points"));
   if (!fiberProblem.empty())
   {
     msg << "BundleRadius " << o.bundleRadius << " with FiberSpacing " << o.fiberSpacing
@@ -185,8 +197,9 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   else if (!pointProblem.empty())
   {
     msg << "Length " << pathLength / 1.5 << " with SegmentLength " << o.segmentLength
-        << " (and RanvierSpacing " << ranvier << ") for about " << fibers << " fibers would need about "
-        << fibers * perFiber << " points, more than the limit: " << pointProblem;
+        << " (and RanvierSpacing " << ranvier << ") for about " << fibers
+        << " fibers would need about " << fibers * perFiber
+        << " points, more than the limit: " << pointProblem;
   }
   return msg.str();
 }

@@ -12,7 +12,8 @@ std::vector<Vec3> straightPath(double halfLength, double angle)
   return { -halfLength * d, halfLength * d };
 }
 
-std::vector<Vec3> yBranchPath(double halfLength, double openingAngle, double turnRadius, bool left, double step)
+std::vector<Vec3> yBranchPath(
+  double halfLength, double openingAngle, double turnRadius, bool left, double step)
 {
   const double side = left ? -1.0 : 1.0;
   std::vector<Vec3> path;
@@ -61,7 +62,8 @@ double chiasmTurnRadius(double halfLength, double crossingAngle, double turnRadi
   return t > 0.0 ? std::min(turnRadius, halfLength / t) : turnRadius;
 }
 
-std::vector<Vec3> chiasmSidePath(double halfLength, double crossingAngle, double turnRadius, bool right, double step)
+std::vector<Vec3> chiasmSidePath(
+  double halfLength, double crossingAngle, double turnRadius, bool right, double step)
 {
   const double mirror = right ? -1.0 : 1.0;
   const double h = 0.5 * crossingAngle;

@@ -8,7 +8,8 @@ std::vector<CrossSectionFiber> makeCrossSection(const BundleOptions& o, std::uin
   const double lambda = effectiveRanvierSpacing(o);
   const double R = o.bundleRadius;
   std::vector<CrossSectionFiber> fibers;
-  auto drawFiber = [&](std::size_t key, const Seed2D* gridSeed) {
+  auto drawFiber = [&](std::size_t key, const Seed2D* gridSeed)
+  {
     CrossSectionFiber f{ {}, 0.0, 0.0, key, RandomStream(o.seed, crossSection, key), crossSection };
     const double u1 = f.rng.uniform();
     const double u2 = f.rng.uniform();
@@ -32,7 +33,8 @@ std::vector<CrossSectionFiber> makeCrossSection(const BundleOptions& o, std::uin
   }
   else
   {
-    const std::vector<Seed2D> grid = triangularGrid(R + o.fiberSpacing, R + o.fiberSpacing, o.fiberSpacing);
+    const std::vector<Seed2D> grid =
+      triangularGrid(R + o.fiberSpacing, R + o.fiberSpacing, o.fiberSpacing);
     for (std::size_t g = 0; g < grid.size(); ++g)
     {
       drawFiber(g, &grid[g]);

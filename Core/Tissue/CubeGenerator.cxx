@@ -107,7 +107,8 @@ double cubeFiberRadius(const CubeOptions& o, int k, int j)
   {
     rng.next();
   }
-  return drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
+  return drawFiberRadius(
+    rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, 0.25 * o.edgeLength);
 }
 
 // The span of fiber j of population k: its end-to-end vector (closed: its lattice vector), one
@@ -121,23 +122,28 @@ Vec3 fiberSpan(const CubeOptions& o, int k, int j)
   if (!o.realism.dispersed())
     return o.edgeLength * axis.lattice;
   const auto group = static_cast<std::uint64_t>(k);
-  const double offset = shapeStream(o.seed, ShapeFeature::Dispersion, group, kGroupStream).uniform();
+  const double offset =
+    shapeStream(o.seed, ShapeFeature::Dispersion, group, kGroupStream).uniform();
   const double u1 = dispersionQuantile(offset, static_cast<std::uint64_t>(j));
-  const double u2 = shapeStream(o.seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j)).uniform();
+  const double u2 =
+    shapeStream(o.seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j)).uniform();
   if (o.periodic)
   {
-    const double kappa = latticeDispersionKappa(axis, o.realism.dispersionC2, o.seed, static_cast<std::uint64_t>(k));
+    const double kappa =
+      latticeDispersionKappa(axis, o.realism.dispersionC2, o.seed, static_cast<std::uint64_t>(k));
     return o.edgeLength * latticeDispersedDirection(axis, *watsonTableForKappa(kappa), u1, u2);
   }
-  return o.edgeLength * watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
-    *watsonTableForC2(o.realism.dispersionC2), u1, u2);
+  return o.edgeLength *
+    watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2),
+      *watsonTableForC2(o.realism.dispersionC2), u1, u2);
 }
 
 // Fiber j of population k is not today's straight fiber of n points: it undulates, is dispersed,
 // or its population runs along a crossing-angle axis.
 bool reshaped(const CubeOptions& o, int k)
 {
-  return o.realism.undulating() || o.realism.dispersed() || !cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard;
+  return o.realism.undulating() || o.realism.dispersed() ||
+    !cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard;
 }
 
 // The point count of a fiber: the straight one's, or with undulation spread ≈ SegmentLength apart
@@ -146,7 +152,8 @@ std::size_t shapedPointCount(const CubeOptions& o, int k, int j)
 {
   if (!reshaped(o, k))
     return static_cast<std::size_t>(pointsPerFiber(o));
-  return undulatedPointCount(norm(fiberSpan(o, k, j)), o.realism.tortuosity, o.segmentLength, o.periodic ? 3 : 2);
+  return undulatedPointCount(
+    norm(fiberSpan(o, k, j)), o.realism.tortuosity, o.segmentLength, o.periodic ? 3 : 2);
 }
 
 // The beading profile of fiber j of population k on the nominal arc positions of its n points
@@ -157,7 +164,8 @@ BeadingProfile cubeBeading(const CubeOptions& o, int k, int j, std::size_t n)
   std::vector<double> arc(n);
   for (std::size_t i = 0; i < n; ++i)
     arc[i] = length * static_cast<double>(i) / static_cast<double>(n - 1);
-  RandomStream rng = shapeStream(o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  RandomStream rng = shapeStream(
+    o.seed, ShapeFeature::Beading, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
   return drawBeading(rng, arc, o.realism.beadingLength, o.realism.beadingCV, o.periodic);
 }
 
@@ -287,7 +295,8 @@ std::vector<int> populationCounts(const CubeOptions& o)
 constexpr double kCountedFibers = 1e6;
 double countedFibers(const CubeOptions& o, bool& atLeast)
 {
-  const double target = o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength * (1.0 - 1e-12);
+  const double target =
+    o.volumeFraction * o.edgeLength * o.edgeLength * o.edgeLength * (1.0 - 1e-12);
   const double bound = std::min(fiberCountEstimate(o), kCountedFibers);
   double volume = 0.0;
   double i = 0.0;
@@ -304,8 +313,8 @@ double countedFibers(const CubeOptions& o, bool& atLeast)
 // Lattice seeding: the sites of every population, shuffled by the stream (seed, 3 + k, 0) (keys
 // 3..5 are not fiber streams: those have key1 = population 0..2). Fiber j of population k takes
 // the j-th site.
-std::vector<std::vector<LatticeSite>> shuffledSites(const CubeOptions& o, const std::vector<int>& counts,
-  double& spacing)
+std::vector<std::vector<LatticeSite>> shuffledSites(
+  const CubeOptions& o, const std::vector<int>& counts, double& spacing)
 {
   const PeriodicLattice lattice = periodicLattice(o.edgeLength, counts);
   spacing = lattice.spacing;
@@ -337,8 +346,9 @@ std::string overlapWarning(const CubeOptions& o, const DiskPacking& p, const std
   if (p.centres.empty() || p.scale >= 1.0)
     return {};
   std::ostringstream w;
-  w << "Seeding Lattice: the radii could not be separated in " << where << " (packing scale " << p.scale
-    << " < 1 reached, RadiusSpread " << o.radiusSpread << ", " << p.centres.size() << " fibers";
+  w << "Seeding Lattice: the radii could not be separated in " << where << " (packing scale "
+    << p.scale << " < 1 reached, RadiusSpread " << o.radiusSpread << ", " << p.centres.size()
+    << " fibers";
   if (o.volumeFraction > 0.0)
     w << ", VolumeFraction " << o.volumeFraction;
   w << "); the solver starts from overlapping fibers";
@@ -354,8 +364,8 @@ std::string overlapWarning(const CubeOptions& o, const DiskPacking& p, const std
 // transverse axis and walled along z, so that no x-fiber crosses a y-fiber closer than their
 // radii. warning: what is left overlapping (empty when every packing separates its disks).
 // Progress over the packings; when it asks to stop, no sites (and aborted).
-std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const std::vector<int>& counts,
-  std::string& warning, const ProgressFn& progress, bool& aborted)
+std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o,
+  const std::vector<int>& counts, std::string& warning, const ProgressFn& progress, bool& aborted)
 {
   const double L = o.edgeLength;
   const double half = 0.5 * L;
@@ -406,7 +416,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
   const double heights[2] = { h0, L - h0 };
   for (int k = 0; k < 2; ++k)
   {
-    const double widest = radii[k].empty() ? 0.0 : 2.0 * *std::max_element(radii[k].begin(), radii[k].end());
+    const double widest =
+      radii[k].empty() ? 0.0 : 2.0 * *std::max_element(radii[k].begin(), radii[k].end());
     if (widest > heights[k])
     {
       std::ostringstream w;
@@ -427,8 +438,8 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o, const st
 // Moves fiber j of population k from its drawn transverse position (the first two draws of its
 // stream) to its site, jittered uniformly in the disc of radius max(0, spacing/2 − r) by the
 // stream (seed, 3 + k, 1 + j).
-void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const LatticeSite& site, double spacing,
-  Fiber& f)
+void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const LatticeSite& site,
+  double spacing, Fiber& f)
 {
   const double half = 0.5 * o.edgeLength;
   const double room = std::max(0.0, 0.5 * spacing - o.fiberRadius);
@@ -451,7 +462,8 @@ void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const Latti
 // Random seeding with Arrangement Interwoven: fiber j of population k (along a coordinate axis) is
 // moved from its drawn transverse position (the first two draws of its stream) into its stratum
 // (Tissue/Stratification.h), the drawn position's fraction of the edge kept inside the stratum.
-void placeInStratum(const CubeOptions& o, std::size_t k, std::size_t j, int stratum, int perSide, Fiber& f)
+void placeInStratum(
+  const CubeOptions& o, std::size_t k, std::size_t j, int stratum, int perSide, Fiber& f)
 {
   const double half = 0.5 * o.edgeLength;
   const int other1 = static_cast<int>(k + 1) % 3;
@@ -472,8 +484,8 @@ void placeInStratum(const CubeOptions& o, std::size_t k, std::size_t j, int stra
 // where fibers stay where drawn):
 // Random seeding with Arrangement Interwoven, populations along a coordinate axis (a crossing-angle
 // population wraps obliquely through the cell and spreads by itself).
-std::vector<std::vector<int>> populationStrata(const CubeOptions& o, const std::vector<int>& counts,
-  std::vector<int>& perSide)
+std::vector<std::vector<int>> populationStrata(
+  const CubeOptions& o, const std::vector<int>& counts, std::vector<int>& perSide)
 {
   std::vector<std::vector<int>> strata(counts.size());
   perSide.assign(counts.size(), 0);
@@ -523,13 +535,15 @@ std::vector<double> sheetHeights(const CubeOptions& o, const std::vector<int>& c
 // Moves fiber j of population k (0 or 1; both axes lie in the x–y plane) along z from its drawn
 // position into its sheet: the drawn z ∈ [−L/2, L/2) maps linearly onto the sheet, less the
 // fiber's radius at both sides.
-void placeInSheet(const CubeOptions& o, std::size_t k, std::size_t j, const std::vector<double>& sheets, Fiber& f)
+void placeInSheet(
+  const CubeOptions& o, std::size_t k, std::size_t j, const std::vector<double>& sheets, Fiber& f)
 {
   const double half = 0.5 * o.edgeLength;
   RandomStream drawn(o.seed, k, j);
   const double t1 = drawn.uniform(-half, half);
   const double t2 = drawn.uniform(-half, half);
-  const double z = k == 0 ? t2 : t1; // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
+  const double z =
+    k == 0 ? t2 : t1; // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
   const double r = std::min(cubeFiberRadius(o, static_cast<int>(k), static_cast<int>(j)),
     0.5 * (sheets[2 * k + 1] - sheets[2 * k]));
   const double lo = sheets[2 * k] + r, hi = sheets[2 * k + 1] - r;
@@ -554,7 +568,8 @@ FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   // k is drawn too (stream Placement), making the start uniform in the cell.
   if (!cubePopulationAxes(o)[static_cast<std::size_t>(k)].standard)
   {
-    RandomStream place = shapeStream(o.seed, ShapeFeature::Placement, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    RandomStream place = shapeStream(o.seed, ShapeFeature::Placement, static_cast<std::uint64_t>(k),
+      static_cast<std::uint64_t>(j));
     start[k] = place.uniform(-half, half);
   }
   const Vec3 span = fiberSpan(o, k, j);
@@ -570,13 +585,17 @@ FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   shape.base = straightBasePath(start, span, o.periodic);
   shape.pointCount = shapedPointCount(o, k, j);
   shape.radius = cubeFiberRadius(o, k, j);
-  RandomStream jitter = shapeStream(o.seed, ShapeFeature::Jitter, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+  RandomStream jitter = shapeStream(
+    o.seed, ShapeFeature::Jitter, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
   shape.jitter = drawJitter(jitter, shape.pointCount, o.displacement, o.periodic);
   if (o.realism.undulating())
   {
-    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-    shape.undulation = drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
-    shape.reached = calibrateUndulation(shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
+    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation,
+      static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+    shape.undulation =
+      drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    shape.reached = calibrateUndulation(
+      shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
   }
   return shape;
 }
@@ -617,7 +636,8 @@ std::string sharesProblem(const CubeOptions& o)
   std::ostringstream msg;
   if (static_cast<int>(o.populationShares.size()) < o.populations)
   {
-    msg << "PopulationShares has " << o.populationShares.size() << " values for " << o.populations << " populations";
+    msg << "PopulationShares has " << o.populationShares.size() << " values for " << o.populations
+        << " populations";
     return msg.str();
   }
   for (int k = 0; k < o.populations; ++k)
@@ -640,7 +660,8 @@ namespace
 std::string independentProblems(const CubeOptions& o)
 {
   std::vector<std::string> problems;
-  const auto add = [&problems](bool bad, const std::function<void(std::ostream&)>& say) {
+  const auto add = [&problems](bool bad, const std::function<void(std::ostream&)>& say)
+  {
     if (bad)
     {
       std::ostringstream m;
@@ -650,26 +671,36 @@ std::string independentProblems(const CubeOptions& o)
   };
   add(o.populations < 1 || o.populations > 3,
     [&](std::ostream& m) { m << "Populations is " << o.populations << ", must be 1, 2 or 3"; });
-  add(o.numberOfFibers < 0, [&](std::ostream& m) { m << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0"; });
+  add(o.numberOfFibers < 0,
+    [&](std::ostream& m) { m << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0"; });
   add(!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0,
     [&](std::ostream& m) { m << "FiberRadius is " << o.fiberRadius << ", must be > 0"; });
   add(!std::isfinite(o.edgeLength) || o.edgeLength <= 0.0,
-    [&](std::ostream& m) { m << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius"; });
+    [&](std::ostream& m)
+    { m << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius"; });
   add(!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0,
     [&](std::ostream& m) { m << "SegmentLength is " << o.segmentLength << ", must be > 0"; });
   add(!std::isfinite(o.displacement) || o.displacement < 0.0,
     [&](std::ostream& m) { m << "Displacement is " << o.displacement << ", must be >= 0"; });
-  add(o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice, [&](std::ostream& m) {
-    m << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
-  });
-  add(!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0, [&](std::ostream& m) {
-    m << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
-  });
+  add(o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice,
+    [&](std::ostream& m) {
+      m << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
+    });
+  add(!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0,
+    [&](std::ostream& m)
+    {
+      m << "VolumeFraction is " << o.volumeFraction
+        << ", must be in (0, 1) (0 = use NumberOfFibers)";
+    });
   add(!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
-    [&](std::ostream& m) { m << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees"; });
-  add(static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2, [&](std::ostream& m) {
-    m << "Arrangement is " << static_cast<int>(o.arrangement) << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
-  });
+    [&](std::ostream& m)
+    { m << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees"; });
+  add(static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2,
+    [&](std::ostream& m)
+    {
+      m << "Arrangement is " << static_cast<int>(o.arrangement)
+        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+    });
   std::string all;
   for (const std::string& p : problems)
   {
@@ -713,8 +744,9 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   else if (o.periodic && o.edgeLength < 4.0 * o.fiberRadius)
   {
     // A fiber would touch its own images across the cell.
-    msg << "EdgeLength is " << o.edgeLength << ", must be >= two fiber diameters (4 * FiberRadius = "
-        << 4.0 * o.fiberRadius << ") for a periodic cell";
+    msg << "EdgeLength is " << o.edgeLength
+        << ", must be >= two fiber diameters (4 * FiberRadius = " << 4.0 * o.fiberRadius
+        << ") for a periodic cell";
   }
   else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
   {
@@ -744,7 +776,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0)
   {
-    msg << "VolumeFraction is " << o.volumeFraction << ", must be in (0, 1) (0 = use NumberOfFibers)";
+    msg << "VolumeFraction is " << o.volumeFraction
+        << ", must be in (0, 1) (0 = use NumberOfFibers)";
   }
   else if (!validateShapeOptions(o.realism).empty())
   {
@@ -756,7 +789,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
   {
-    msg << "CrossingAngle is " << o.crossingAngle << ", which needs Seeding Random (the lattices are built "
+    msg << "CrossingAngle is " << o.crossingAngle
+        << ", which needs Seeding Random (the lattices are built "
            "for perpendicular populations)";
   }
   else if (!sharesProblem(o).empty())
@@ -765,7 +799,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2)
   {
-    msg << "Arrangement is " << static_cast<int>(o.arrangement) << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+    msg << "Arrangement is " << static_cast<int>(o.arrangement)
+        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
   }
   else if (o.arrangement == CubeArrangement::Sheets && o.populations != 2)
   {
@@ -777,7 +812,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     // estimate of fiberCountEstimate assumes the thinnest radius for every fiber, which for a
     // broad spread is orders of magnitude too many); counting stops at kCountedFibers.
     bool atLeast = false;
-    const double fibers = o.volumeFraction > 0.0 ? countedFibers(o, atLeast) : fiberCountEstimate(o);
+    const double fibers =
+      o.volumeFraction > 0.0 ? countedFibers(o, atLeast) : fiberCountEstimate(o);
     // Fibers along a crossing-angle axis span |axis| edges, dispersed periodic ones up to
     // kMaxDispersionPeriods times that; with a volume fraction longer fibers are fewer, so only a
     // fixed count needs the factor.
@@ -788,21 +824,24 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
       span *= kMaxDispersionPeriods;
     if (o.volumeFraction > 0.0)
       span = 1.0;
-    const double points = fibers * (o.realism.tortuosity * span * o.edgeLength / o.segmentLength + 2.0);
+    const double points =
+      fibers * (o.realism.tortuosity * span * o.edgeLength / o.segmentLength + 2.0);
     const double share = 1.0 / std::max(1, pieces);
     std::ostringstream what;
     if (o.volumeFraction > 0.0)
-      what << "VolumeFraction " << o.volumeFraction << " (" << (atLeast ? "at least " : "") << fibers << " fibers)";
+      what << "VolumeFraction " << o.volumeFraction << " (" << (atLeast ? "at least " : "")
+           << fibers << " fibers)";
     else
       what << "NumberOfFibers " << fibers;
-    what << " with EdgeLength " << o.edgeLength << " and SegmentLength " << o.segmentLength << " (" << points
-         << " points";
+    what << " with EdgeLength " << o.edgeLength << " and SegmentLength " << o.segmentLength << " ("
+         << points << " points";
     if (pieces > 1)
     {
       what << ", a share of 1/" << pieces << " per piece";
     }
     what << ")";
-    const std::string problem = checkMemoryBudget(fiberModelBytes(share * fibers, share * points), what.str());
+    const std::string problem =
+      checkMemoryBudget(fiberModelBytes(share * fibers, share * points), what.str());
     if (!problem.empty())
     {
       msg << problem << "; it would need too many points";
@@ -811,8 +850,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     {
       // Every piece packs all fibers' disks.
       std::ostringstream packing;
-      packing << "Seeding Lattice with RadiusSpread " << o.radiusSpread << " (a disk packing of " << fibers
-              << " fibers, ";
+      packing << "Seeding Lattice with RadiusSpread " << o.radiusSpread << " (a disk packing of "
+              << fibers << " fibers, ";
       if (o.volumeFraction > 0.0)
         packing << "VolumeFraction " << o.volumeFraction; // the count above is the real one
       else
@@ -856,9 +895,12 @@ const char* cubeArrangementName(CubeArrangement a)
 {
   switch (a)
   {
-    case CubeArrangement::Auto: return "Auto";
-    case CubeArrangement::Interwoven: return "Interwoven";
-    case CubeArrangement::Sheets: return "Sheets";
+    case CubeArrangement::Auto:
+      return "Auto";
+    case CubeArrangement::Interwoven:
+      return "Interwoven";
+    case CubeArrangement::Sheets:
+      return "Sheets";
   }
   return "Unknown";
 }
@@ -868,7 +910,8 @@ std::vector<PopulationAxis> cubePopulationAxes(const CubeOptions& o)
   return populationAxes(o.populations, o.crossingAngle, o.periodic);
 }
 
-FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string* warning, const ProgressFn& progress)
+FiberModel generateCube(
+  const CubeOptions& o, int piece, int pieces, std::string* warning, const ProgressFn& progress)
 {
   const std::vector<int> counts = populationCounts(o);
   std::size_t total = 0;
@@ -887,9 +930,12 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   const double made = packing ? 0.7 : 0.0;
   const ProgressFn packingProgress = [&](double f) { return reportProgress(progress, made * f); };
   if (o.seeding == CubeSeeding::Lattice)
-    sites = packing ? packedSites(o, counts, packed, packingProgress, aborted) : shuffledSites(o, counts, spacing);
-  const std::vector<double> sheets = o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
-    ? sheetHeights(o, counts) : std::vector<double>{};
+    sites = packing ? packedSites(o, counts, packed, packingProgress, aborted)
+                    : shuffledSites(o, counts, spacing);
+  const std::vector<double> sheets =
+    o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
+    ? sheetHeights(o, counts)
+    : std::vector<double>{};
   std::vector<int> perSide;
   const std::vector<std::vector<int>> strata = populationStrata(o, counts, perSide);
   if (warning)
@@ -911,7 +957,8 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
       // Every 256 fibers: a (100 µm)^3 cell of thousands of fibers takes seconds here.
       const std::size_t done = model.fibers.size();
       if (done % 256 == 0 && done > 0 &&
-        !reportProgress(progress, made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
+        !reportProgress(progress,
+          made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
         return {};
       bool reached = true;
       Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
@@ -938,8 +985,9 @@ FiberModel generateCube(const CubeOptions& o, int piece, int pieces, std::string
   if (warning && unreached > 0)
   {
     std::ostringstream w;
-    w << (warning->empty() ? "" : "; ") << "Tortuosity " << o.realism.tortuosity << ": the Displacement "
-      << o.displacement << " alone makes " << unreached << " fiber(s) of this piece longer than that, left "
+    w << (warning->empty() ? "" : "; ") << "Tortuosity " << o.realism.tortuosity
+      << ": the Displacement " << o.displacement << " alone makes " << unreached
+      << " fiber(s) of this piece longer than that, left "
       << "without undulation (lower Displacement, or raise Tortuosity)";
     *warning += w.str();
   }

@@ -1,16 +1,16 @@
-/// CubeGenerator: the paper's cube benchmark (docs/tissue-models.md §6.1). Straight fibers of 1, 2 or 3
-/// mutually perpendicular populations (x; x+y; x+y+z) placed uniformly at random in a cube of edge
-/// L centred at the origin, n = max(2, round(L/l) + 1) points per fiber, every point displaced by
-/// U[-D, D] per axis, constant radius. bundle = population index (0, 1, 2).
-/// Periodic: the cube is a periodic cell; every fiber spans exactly one period along its axis and
-/// closes through the faces (last point = first point + L along the axis, points unwrapped).
+/// CubeGenerator: the paper's cube benchmark (docs/tissue-models.md §6.1). Straight fibers of 1, 2
+/// or 3 mutually perpendicular populations (x; x+y; x+y+z) placed uniformly at random in a cube of
+/// edge L centred at the origin, n = max(2, round(L/l) + 1) points per fiber, every point displaced
+/// by U[-D, D] per axis, constant radius. bundle = population index (0, 1, 2). Periodic: the cube
+/// is a periodic cell; every fiber spans exactly one period along its axis and closes through the
+/// faces (last point = first point + L along the axis, points unwrapped).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
+#include "Tissue/FiberShape.h"
 #include "Tissue/PopulationAxes.h"
 #include "Tissue/RadiusDistribution.h"
-#include "Tissue/FiberShape.h"
 #include "Tissue/ShapeOptions.h"
 #include "Util/Progress.h"
 
@@ -23,8 +23,10 @@ namespace fiberpli
 /// How the populations share the cell (docs/tissue-models.md §10.5).
 enum class CubeArrangement
 {
-  Auto = 0,       ///< each seeding's own: Random uniform (interwoven), Lattice its lattice or, with varying radii, its slabs
-  Interwoven = 1, ///< populations mixed everywhere (Random: uniform; Lattice, 2 populations: alternating layers)
+  Auto = 0,       ///< each seeding's own: Random uniform (interwoven), Lattice its lattice or, with
+                  ///< varying radii, its slabs
+  Interwoven = 1, ///< populations mixed everywhere (Random: uniform; Lattice, 2 populations:
+                  ///< alternating layers)
   Sheets = 2      ///< 2 populations in two slabs along z, thickness by their cross-section shares
 };
 
@@ -34,18 +36,19 @@ const char* cubeArrangementName(CubeArrangement arrangement);
 /// How the transverse positions of a cube's fibers are chosen.
 enum class CubeSeeding
 {
-  Random = 0,  ///< uniform over the cross-section
-  Lattice = 1, ///< periodic cells only: jittered sites of an ordered lattice (Tissue/LatticeSeeding.h)
+  Random = 0, ///< uniform over the cross-section
+  Lattice =
+    1, ///< periodic cells only: jittered sites of an ordered lattice (Tissue/LatticeSeeding.h)
 };
 
 struct CubeOptions
 {
-  int populations = 1;             ///< 1..3
-  int numberOfFibers = 1000;       ///< split as evenly as possible over the populations
+  int populations = 1;                    ///< 1..3
+  int numberOfFibers = 1000;              ///< split as evenly as possible over the populations
   double edgeLength = 51.961524227066320; ///< √3·30 µm
-  double fiberRadius = 0.8;        ///< µm
-  double segmentLength = 2.0;      ///< µm, point spacing before displacement
-  double displacement = 0.5;       ///< µm, D of U[-D, D]³
+  double fiberRadius = 0.8;               ///< µm
+  double segmentLength = 2.0;             ///< µm, point spacing before displacement
+  double displacement = 0.5;              ///< µm, D of U[-D, D]³
   std::uint64_t seed = 42;
   /// The cube is a periodic cell: fibers are closed through its faces (see above).
   bool periodic = false;
@@ -58,7 +61,8 @@ struct CubeOptions
   RadiusDistribution radiusDistribution = RadiusDistribution::Constant;
   /// Lattice (needs periodic): the fibers of population k take sites of periodicLattice (at least
   /// as many as fibers; the empty ones chosen at random), each jittered uniformly in the disc of
-  /// radius max(0, spacing/2 − fiberRadius); the drawn positions are replaced, the displacements kept.
+  /// radius max(0, spacing/2 − fiberRadius); the drawn positions are replaced, the displacements
+  /// kept.
   CubeSeeding seeding = CubeSeeding::Random;
   /// Realism knobs (Tissue/ShapeOptions.h, docs/tissue-models.md §10); the defaults are off and
   /// leave the cube bit-identical. Undulation (and dispersion) replace the straight fiber of n
@@ -107,19 +111,18 @@ int cubePopulationSize(const CubeOptions& options, int k);
 
 /// Generates the cube. Fiber ids are 0..N-1 in population order. The draws of fiber j of population
 /// k come from the stream (seed, k, j): transverse position (2), displacements point by point, then
-/// (only with radiusSpread > 0) the radius. With volumeFraction > 0, fibers j = 0, 1, … are added to the
-/// populations in turn (0, 1, 2, 0, …) until the fiber volume reaches the target (the smallest
-/// such count).
-/// Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece, pieces) are built, with
-/// their global ids; the counts (and with volumeFraction the radii of all fibers) are drawn by every
-/// piece, the points only for the piece's own fibers, so a piece holds its share of the memory.
-/// Precondition: validateCubeOptions(options, pieces) is empty.
-/// warning (if given): empty, or why the polydisperse Lattice seeding leaves fibers overlapping
+/// (only with radiusSpread > 0) the radius. With volumeFraction > 0, fibers j = 0, 1, … are added
+/// to the populations in turn (0, 1, 2, 0, …) until the fiber volume reaches the target (the
+/// smallest such count). Pieces (docs/tissue-models.md §9): only the fibers of pieceRange(N, piece,
+/// pieces) are built, with their global ids; the counts (and with volumeFraction the radii of all
+/// fibers) are drawn by every piece, the points only for the piece's own fibers, so a piece holds
+/// its share of the memory. Precondition: validateCubeOptions(options, pieces) is empty. warning
+/// (if given): empty, or why the polydisperse Lattice seeding leaves fibers overlapping
 /// (docs/periodic-cells.md, "Polydisperse seeding"); the same on every piece.
 /// progress (Util/Progress.h): over that seeding's disk packing (the first 70 % when there is one)
 /// and over the fibers' points (every 256 fibers); when it returns false the generator stops and
 /// returns an empty model.
-FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1, std::string* warning = nullptr,
-  const ProgressFn& progress = {});
+FiberModel generateCube(const CubeOptions& options, int piece = 0, int pieces = 1,
+  std::string* warning = nullptr, const ProgressFn& progress = {});
 
 } // namespace fiberpli

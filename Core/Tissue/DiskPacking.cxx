@@ -176,7 +176,8 @@ public:
     {
       std::size_t best = i;
       double gain = 1e-12 * rMean_ * rMean_;
-      const auto consider = [&](std::size_t j) {
+      const auto consider = [&](std::size_t j)
+      {
         if (j == i || std::fabs(r_[j] - r_[i]) <= 1e-9 * rMean_)
           return;
         // The pair (i, j) itself keeps its energy.
@@ -191,14 +192,17 @@ public:
           best = j;
         }
       };
-      visit(p_[i], a_[i], 0.0, [&](std::size_t j) {
-        const Vec d = delta(p_[i], p_[j]);
-        const double reach = a_[i] + a_[j];
-        if (d.x * d.x + d.y * d.y < reach * reach)
-          consider(j);
-      });
+      visit(p_[i], a_[i], 0.0,
+        [&](std::size_t j)
+        {
+          const Vec d = delta(p_[i], p_[j]);
+          const double reach = a_[i] + a_[j];
+          if (d.x * d.x + d.y * d.y < reach * reach)
+            consider(j);
+        });
       for (int k = 0; k < kDistantPartners; ++k)
-        consider(std::min(p_.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(p_.size()))));
+        consider(std::min(
+          p_.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(p_.size()))));
       if (best != i)
       {
         exchange(i, best);
@@ -230,12 +234,14 @@ public:
     {
       if (!d_.periodicHeight)
         s = std::min(s, std::min(p_[i].y, d_.height - p_[i].y) / r_[i]);
-      visit(p_[i], kScaleCap * r_[i], (kScaleCap - 1.0) * rMax_, [&](std::size_t j) {
-        if (j <= i)
-          return;
-        const Vec d = delta(p_[i], p_[j]);
-        s = std::min(s, std::sqrt(d.x * d.x + d.y * d.y) / (r_[i] + r_[j]));
-      });
+      visit(p_[i], kScaleCap * r_[i], (kScaleCap - 1.0) * rMax_,
+        [&](std::size_t j)
+        {
+          if (j <= i)
+            return;
+          const Vec d = delta(p_[i], p_[j]);
+          s = std::min(s, std::sqrt(d.x * d.x + d.y * d.y) / (r_[i] + r_[j]));
+        });
     }
     return s;
   }
@@ -286,14 +292,16 @@ private:
       e += lo > 0.0 ? 0.5 * lo * lo : 0.0;
       e += hi > 0.0 ? 0.5 * hi * hi : 0.0;
     }
-    visit(q, a, 0.0, [&](std::size_t k) {
-      if (k == i || k == skip)
-        return;
-      const Vec d = delta(q, p_[k]);
-      const double o = a + a_[k] - std::sqrt(d.x * d.x + d.y * d.y);
-      if (o > 0.0)
-        e += 0.5 * o * o;
-    });
+    visit(q, a, 0.0,
+      [&](std::size_t k)
+      {
+        if (k == i || k == skip)
+          return;
+        const Vec d = delta(q, p_[k]);
+        const double o = a + a_[k] - std::sqrt(d.x * d.x + d.y * d.y);
+        if (o > 0.0)
+          e += 0.5 * o * o;
+      });
     return e;
   }
 
@@ -379,8 +387,10 @@ private:
     for (std::size_t i = 0; i < p_.size(); ++i)
     {
       wrap(p_[i]);
-      const std::size_t c = static_cast<std::size_t>(cellIndex(p_[i].y, d_.height, ny_, d_.periodicHeight)) *
-          static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cellIndex(p_[i].x, d_.width, nx_, true));
+      const std::size_t c =
+        static_cast<std::size_t>(cellIndex(p_[i].y, d_.height, ny_, d_.periodicHeight)) *
+          static_cast<std::size_t>(nx_) +
+        static_cast<std::size_t>(cellIndex(p_[i].x, d_.width, nx_, true));
       cellOf_[i] = c;
       cellMax_[c] = std::max(cellMax_[c], a_[i]);
       slot_[i] = cells_[c].size();
@@ -396,7 +406,8 @@ private:
   {
     const double cx = d_.width / nx_, cy = d_.height / ny_;
     const double reach = a + rMax_ * scale_ + extra;
-    const int rx = static_cast<int>(std::ceil(reach / cx)), ry = static_cast<int>(std::ceil(reach / cy));
+    const int rx = static_cast<int>(std::ceil(reach / cx)),
+              ry = static_cast<int>(std::ceil(reach / cy));
     const int ix = cellIndex(q.x, d_.width, nx_, true);
     const int iy = cellIndex(q.y, d_.height, ny_, d_.periodicHeight);
     const bool allX = 2 * rx + 1 >= nx_;
@@ -414,7 +425,8 @@ private:
       for (int x = x0; x <= x1; ++x)
       {
         const int wx = ((x % nx_) + nx_) % nx_;
-        const std::size_t c = static_cast<std::size_t>(wy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(wx);
+        const std::size_t c = static_cast<std::size_t>(wy) * static_cast<std::size_t>(nx_) +
+          static_cast<std::size_t>(wx);
         const double gx = allX ? 0.0 : std::max({ 0.0, x * cx - qx, qx - (x + 1) * cx });
         const double room = a + cellMax_[c] + extra;
         if (gx * gx + gy * gy > room * room)
@@ -425,7 +437,8 @@ private:
     }
   }
 
-  // The pairs closer than a_i + a_j + skin, for the relaxation until some disk has moved half a skin.
+  // The pairs closer than a_i + a_j + skin, for the relaxation until some disk has moved half a
+  // skin.
   void buildPairs()
   {
     pairs_.clear();
@@ -433,14 +446,16 @@ private:
     const double s = skin();
     for (std::size_t i = 0; i < p_.size(); ++i)
     {
-      visit(p_[i], a_[i], s, [&](std::size_t j) {
-        if (j <= i)
-          return;
-        const Vec d = delta(p_[i], p_[j]);
-        const double reach = a_[i] + a_[j] + s;
-        if (d.x * d.x + d.y * d.y < reach * reach)
-          pairs_.emplace_back(i, j);
-      });
+      visit(p_[i], a_[i], s,
+        [&](std::size_t j)
+        {
+          if (j <= i)
+            return;
+          const Vec d = delta(p_[i], p_[j]);
+          const double reach = a_[i] + a_[j] + s;
+          if (d.x * d.x + d.y * d.y < reach * reach)
+            pairs_.emplace_back(i, j);
+        });
     }
   }
 
@@ -465,12 +480,12 @@ double diskPackingBytes(double disks)
   return perDisk * disks;
 }
 
-DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
-  std::uint64_t key, const ProgressFn& progress)
+DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain,
+  std::uint64_t seed, std::uint64_t key, const ProgressFn& progress)
 {
   DiskPacking out;
-  if (radii.empty() || !(domain.width > 0.0) || !(domain.height > 0.0) || !std::isfinite(domain.width) ||
-    !std::isfinite(domain.height))
+  if (radii.empty() || !(domain.width > 0.0) || !(domain.height > 0.0) ||
+    !std::isfinite(domain.width) || !std::isfinite(domain.height))
     return out;
   for (double r : radii)
     if (!(r > 0.0) || !std::isfinite(r))
@@ -480,11 +495,11 @@ DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain
   packer.randomStart(rng);
   double best = 0.0;
   std::vector<Vec> kept = packer.positions();
-  // Progress after every relaxation and at the end of every cycle: cycle by cycle, 90 % of a cycle for its swap rounds, the rest
-  // for the decompression. It only reads the state, so the packing does not depend on it.
-  const auto goOn = [&](int cycle, double withinCycle) {
-    return reportProgress(progress, (cycle + std::min(1.0, withinCycle)) / kCycles);
-  };
+  // Progress after every relaxation and at the end of every cycle: cycle by cycle, 90 % of a cycle
+  // for its swap rounds, the rest for the decompression. It only reads the state, so the packing
+  // does not depend on it.
+  const auto goOn = [&](int cycle, double withinCycle)
+  { return reportProgress(progress, (cycle + std::min(1.0, withinCycle)) / kCycles); };
   for (int cycle = 0; cycle < kCycles && best < kAmpleScale; ++cycle)
   {
     // Past jamming, swap until no exchange lowers the energy (or the rounds run out) …

@@ -47,8 +47,8 @@ struct DiskPacking
 /// count (docs/periodic-cells.md, "Polydisperse seeding"); the memory is diskPackingBytes.
 /// progress (Util/Progress.h) is called after every relaxation and at the end of every cycle;
 /// false stops the packing (aborted).
-DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain, std::uint64_t seed,
-  std::uint64_t key, const ProgressFn& progress = {});
+DiskPacking packDisks(const std::vector<double>& radii, const DiskDomain& domain,
+  std::uint64_t seed, std::uint64_t key, const ProgressFn& progress = {});
 
 /// An upper estimate of the bytes packDisks allocates for this many disks (for a memory guard).
 double diskPackingBytes(double disks);

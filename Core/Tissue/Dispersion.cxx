@@ -13,9 +13,15 @@ namespace
 constexpr int kTable = 2048;
 
 // The table's range of x = 1 − t: the density exp(κ(x² − 2x)) is below e^−40 beyond 20/κ.
-double tableSpan(double kappa) { return kappa > 20.0 ? 20.0 / kappa : 1.0; }
+double tableSpan(double kappa)
+{
+  return kappa > 20.0 ? 20.0 / kappa : 1.0;
+}
 
-double density(double kappa, double x) { return std::exp(kappa * (x * x - 2.0 * x)); }
+double density(double kappa, double x)
+{
+  return std::exp(kappa * (x * x - 2.0 * x));
+}
 } // namespace
 
 double watsonC2(double kappa)
@@ -54,7 +60,8 @@ WatsonTable::WatsonTable(double kappa)
   {
     const double a = span_ * (i - 1) / kTable, b = span_ * i / kTable;
     // Simpson on each cell: the density varies by up to e^-0.02 over a cell at the largest κ.
-    cdf_[i] = cdf_[i - 1] + (b - a) / 6.0 * (density(kappa, a) + 4.0 * density(kappa, 0.5 * (a + b)) + density(kappa, b));
+    cdf_[i] = cdf_[i - 1] +
+      (b - a) / 6.0 * (density(kappa, a) + 4.0 * density(kappa, 0.5 * (a + b)) + density(kappa, b));
   }
   for (double& c : cdf_)
     c /= cdf_.back();
@@ -63,7 +70,8 @@ WatsonTable::WatsonTable(double kappa)
 double WatsonTable::cosine(double u) const
 {
   const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  const std::size_t i = std::clamp<std::size_t>(static_cast<std::size_t>(it - cdf_.begin()), 1, cdf_.size() - 1);
+  const std::size_t i =
+    std::clamp<std::size_t>(static_cast<std::size_t>(it - cdf_.begin()), 1, cdf_.size() - 1);
   const double c0 = cdf_[i - 1], c1 = cdf_[i];
   const double f = c1 > c0 ? (u - c0) / (c1 - c0) : 0.0;
   const double x = span_ * (static_cast<double>(i - 1) + std::clamp(f, 0.0, 1.0)) / kTable;
@@ -107,7 +115,8 @@ double dispersionQuantile(double offset, std::uint64_t index)
   return x - std::floor(x);
 }
 
-Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2)
+Vec3 watsonDirection(
+  const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2)
 {
   const double t = table.cosine(u1);
   const double s = std::sqrt(std::max(0.0, 1.0 - t * t));

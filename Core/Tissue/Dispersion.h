@@ -35,7 +35,7 @@ public:
 
 private:
   double kappa_ = 0.0;
-  double span_ = 1.0;      // the table covers x = 1 − t ∈ [0, span_]
+  double span_ = 1.0;       // the table covers x = 1 − t ∈ [0, span_]
   std::vector<double> cdf_; // mass of x ∈ [0, x_i], normalised
 };
 
@@ -55,7 +55,8 @@ double dispersionQuantile(double offset, std::uint64_t index);
 
 /// A direction about `axis` (unit) with |cos θ| = table.cosine(u1) and azimuth 2π·u2 around it,
 /// (e1, e2) being the directions across the axis; always in the axis's hemisphere.
-Vec3 watsonDirection(const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2);
+Vec3 watsonDirection(
+  const Vec3& axis, const Vec3& e1, const Vec3& e2, const WatsonTable& table, double u1, double u2);
 
 /// The most periods a dispersed periodic fiber spans along or across its axis.
 constexpr int kMaxDispersionPeriods = 4;

@@ -5,7 +5,8 @@ namespace fiberpli
 
 std::vector<Vec3> FiberShape::points(double fraction) const
 {
-  std::vector<Vec3> p = undulatedPath(base, undulation, fraction * undulation.amplitude, pointCount);
+  std::vector<Vec3> p =
+    undulatedPath(base, undulation, fraction * undulation.amplitude, pointCount);
   for (std::size_t i = 0; i < p.size() && i < jitter.size(); ++i)
     p[i] += jitter[i];
   if (base.closed)

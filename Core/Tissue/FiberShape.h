@@ -33,6 +33,7 @@ struct FiberShape
 
 /// Draws `count` displacements U[−D, D]³ (x, y, z point by point) from rng; closed: count − 1
 /// drawn, the last equal to the first.
-std::vector<Vec3> drawJitter(RandomStream& rng, std::size_t count, double displacement, bool closed);
+std::vector<Vec3> drawJitter(
+  RandomStream& rng, std::size_t count, double displacement, bool closed);
 
 } // namespace fiberpli

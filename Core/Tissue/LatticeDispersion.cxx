@@ -11,13 +11,16 @@
 namespace fiberpli
 {
 
-Vec3 latticeDispersedDirection(const PopulationAxis& axis, const WatsonTable& table, double u1, double u2)
+Vec3 latticeDispersedDirection(
+  const PopulationAxis& axis, const WatsonTable& table, double u1, double u2)
 {
-  const Vec3 d = watsonDirection(axis.direction, normalized(axis.across1), normalized(axis.across2), table, u1, u2);
+  const Vec3 d = watsonDirection(
+    axis.direction, normalized(axis.across1), normalized(axis.across2), table, u1, u2);
   return nearestLatticeDirection(axis, d);
 }
 
-double latticeDispersionKappa(const PopulationAxis& axis, double c2, std::uint64_t seed, std::uint64_t group)
+double latticeDispersionKappa(
+  const PopulationAxis& axis, double c2, std::uint64_t seed, std::uint64_t group)
 {
   using Key = std::tuple<std::uint64_t, std::uint64_t, double, double, double, double>;
   static std::mutex mutex;
@@ -33,11 +36,13 @@ double latticeDispersionKappa(const PopulationAxis& axis, double c2, std::uint64
   const double offset = shapeStream(seed, ShapeFeature::Dispersion, group, kGroupStream).uniform();
   for (int j = 0; j < kLatticeDispersionSample; ++j)
   {
-    RandomStream rng = shapeStream(seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j));
+    RandomStream rng =
+      shapeStream(seed, ShapeFeature::Dispersion, group, static_cast<std::uint64_t>(j));
     u1[static_cast<std::size_t>(j)] = dispersionQuantile(offset, static_cast<std::uint64_t>(j));
     u2[static_cast<std::size_t>(j)] = rng.uniform();
   }
-  const auto achieved = [&](double kappa) {
+  const auto achieved = [&](double kappa)
+  {
     const WatsonTable table(kappa);
     double sum = 0.0;
     for (std::size_t j = 0; j < u1.size(); ++j)

@@ -19,14 +19,16 @@ namespace fiberpli
 constexpr int kLatticeDispersionSample = 1000;
 
 /// The concentration κ for which the mean cos² about axis.direction of the lattice directions
-/// (nearestLatticeDirection of watsonDirection(axis, …, u1, u2)) of fibers j < kLatticeDispersionSample
-/// is c2, u1 = dispersionQuantile(offset, j) (offset the first number of the group's stream
-/// shapeStream(seed, Dispersion, group, kGroupStream)) and u2 the first number of the fiber's stream
-/// shapeStream(seed, Dispersion, group, j); bisection on log κ (the mean grows with κ for fixed draws, in steps). Computed once
-/// per (seed, group, c2, axis) and kept.
-double latticeDispersionKappa(const PopulationAxis& axis, double c2, std::uint64_t seed, std::uint64_t group);
+/// (nearestLatticeDirection of watsonDirection(axis, …, u1, u2)) of fibers j <
+/// kLatticeDispersionSample is c2, u1 = dispersionQuantile(offset, j) (offset the first number of
+/// the group's stream shapeStream(seed, Dispersion, group, kGroupStream)) and u2 the first number
+/// of the fiber's stream shapeStream(seed, Dispersion, group, j); bisection on log κ (the mean
+/// grows with κ for fixed draws, in steps). Computed once per (seed, group, c2, axis) and kept.
+double latticeDispersionKappa(
+  const PopulationAxis& axis, double c2, std::uint64_t seed, std::uint64_t group);
 
 /// The lattice direction (in periods) of the draws (u1, u2) with the table of κ.
-Vec3 latticeDispersedDirection(const PopulationAxis& axis, const WatsonTable& table, double u1, double u2);
+Vec3 latticeDispersedDirection(
+  const PopulationAxis& axis, const WatsonTable& table, double u1, double u2);
 
 } // namespace fiberpli

@@ -65,21 +65,21 @@ PeriodicLattice triangular(double L, int count)
         continue;
       for (const std::int64_t rows : { divisor, n / divisor })
       {
-      const bool all = n <= 20000;
-      const std::int64_t lo = all ? 0 : rows / 2 - 3;
-      const std::int64_t hi = all ? rows - 1 : rows / 2 + 3;
-      for (std::int64_t shift = lo; shift <= hi; ++shift)
-      {
-        const double d = shortestVector({ L * double(rows) / double(n), 0.0 },
-          { L * double(shift) / double(n), L / double(rows) });
-        if (d > best * (1.0 + 1e-12))
+        const bool all = n <= 20000;
+        const std::int64_t lo = all ? 0 : rows / 2 - 3;
+        const std::int64_t hi = all ? rows - 1 : rows / 2 + 3;
+        for (std::int64_t shift = lo; shift <= hi; ++shift)
         {
-          best = d;
-          bestN = n;
-          bestRows = rows;
-          bestShift = shift;
+          const double d = shortestVector({ L * double(rows) / double(n), 0.0 },
+            { L * double(shift) / double(n), L / double(rows) });
+          if (d > best * (1.0 + 1e-12))
+          {
+            best = d;
+            bestN = n;
+            bestRows = rows;
+            bestShift = shift;
+          }
         }
-      }
       }
     }
   }
@@ -90,8 +90,8 @@ PeriodicLattice triangular(double L, int count)
     for (std::int64_t i = 0; i < perRow; ++i)
     {
       const std::int64_t u = (i * bestRows + j * bestShift) % bestN;
-      lattice.sites[0].push_back(
-        { intervalCentre(L, double(u), double(bestN)), intervalCentre(L, double(j), double(bestRows)) });
+      lattice.sites[0].push_back({ intervalCentre(L, double(u), double(bestN)),
+        intervalCentre(L, double(j), double(bestRows)) });
     }
   }
   return lattice;
@@ -179,13 +179,17 @@ std::vector<Block> blocks(double L, double d, int count)
     for (int step = 0; step <= (rows > 1 ? 4 : 0); ++step)
     {
       const double delta = 0.125 * d * step;
-      out.push_back({ m * d + delta, (rows - 1) * std::sqrt(d * d - delta * delta) + d, m, rows, delta, false });
+      out.push_back({ m * d + delta, (rows - 1) * std::sqrt(d * d - delta * delta) + d, m, rows,
+        delta, false });
     }
     if (m >= 2)
     {
       const int pairs = count / (2 * m - 1);
-      const int alternating = count - pairs * (2 * m - 1) > 0 ? 2 * pairs + (count - pairs * (2 * m - 1) > m ? 2 : 1) : 2 * pairs;
-      out.push_back({ m * d, (alternating - 1) * 0.5 * std::sqrt(3.0) * d + d, m, alternating, 0.5 * d, true });
+      const int alternating = count - pairs * (2 * m - 1) > 0
+        ? 2 * pairs + (count - pairs * (2 * m - 1) > m ? 2 : 1)
+        : 2 * pairs;
+      out.push_back(
+        { m * d, (alternating - 1) * 0.5 * std::sqrt(3.0) * d + d, m, alternating, 0.5 * d, true });
     }
   }
   const std::size_t n = out.size();
@@ -196,7 +200,9 @@ std::vector<Block> blocks(double L, double d, int count)
     b.rotated = true;
     out.push_back(b);
   }
-  out.erase(std::remove_if(out.begin(), out.end(), [L](const Block& b) { return b.w > L || b.h > L; }), out.end());
+  out.erase(
+    std::remove_if(out.begin(), out.end(), [L](const Block& b) { return b.w > L || b.h > L; }),
+    out.end());
   return out;
 }
 
@@ -216,11 +222,15 @@ public:
     for (std::size_t k = size_ - 1; k >= 1; --k)
       tree_[k] = std::min(tree_[2 * k], tree_[2 * k + 1]);
   }
-  std::size_t find(std::size_t end, double limit) const { return end == 0 ? 0 : descend(1, 0, size_, end, limit); }
+  std::size_t find(std::size_t end, double limit) const
+  {
+    return end == 0 ? 0 : descend(1, 0, size_, end, limit);
+  }
 
 private:
   // In node k covering [lo, hi): the first index < end with a value <= limit, or `end`.
-  std::size_t descend(std::size_t k, std::size_t lo, std::size_t hi, std::size_t end, double limit) const
+  std::size_t descend(
+    std::size_t k, std::size_t lo, std::size_t hi, std::size_t end, double limit) const
   {
     if (lo >= end || !(tree_[k] <= limit))
       return end;
@@ -253,7 +263,8 @@ bool fitBlocks(double L, double d, int count, Block chosen[3])
   std::vector<double> thirdH(b.size(), HUGE_VAL);
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    const auto end = std::upper_bound(b.begin(), b.end(), L - b[i].h, [](double x, const Block& y) { return x < y.w; });
+    const auto end = std::upper_bound(
+      b.begin(), b.end(), L - b[i].h, [](double x, const Block& y) { return x < y.w; });
     if (end != b.begin())
     {
       third[i] = lowest[static_cast<std::size_t>(end - b.begin()) - 1];
@@ -264,7 +275,8 @@ bool fitBlocks(double L, double d, int count, Block chosen[3])
   for (const Block& b0 : b)
   {
     // b1: h0 + w1 <= L (the same comparison as ever, so the same blocks are chosen), a prefix.
-    const auto prefix = std::partition_point(b.begin(), b.end(), [&b0, L](const Block& y) { return b0.h + y.w <= L; });
+    const auto prefix = std::partition_point(
+      b.begin(), b.end(), [&b0, L](const Block& y) { return b0.h + y.w <= L; });
     const std::size_t end = static_cast<std::size_t>(prefix - b.begin());
     const std::size_t i = firstFit.find(end, L - b0.w);
     if (i < end)
@@ -279,7 +291,8 @@ bool fitBlocks(double L, double d, int count, Block chosen[3])
 }
 
 // The sites of one block with its lower corner at (o1, o2).
-void placeBlock(const Block& b, double d, double o1, double o2, double L, std::vector<LatticeSite>& sites)
+void placeBlock(
+  const Block& b, double d, double o1, double o2, double L, std::vector<LatticeSite>& sites)
 {
   const double pitch = b.shorter ? 0.5 * std::sqrt(3.0) * d : std::sqrt(d * d - b.shift * b.shift);
   for (int j = 0; j < b.rows; ++j)

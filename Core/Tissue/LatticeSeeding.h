@@ -1,7 +1,7 @@
 /// LatticeSeeding: ordered transverse positions for the fibers of a periodic cube
-/// (docs/periodic-cells.md, "Lattice seeding"). Random seeds braid closed fibers and the solver jams below the
-/// dense targets; sites on a lattice commensurate with the cell start the solve near an ordered
-/// packing:
+/// (docs/periodic-cells.md, "Lattice seeding"). Random seeds braid closed fibers and the solver
+/// jams below the dense targets; sites on a lattice commensurate with the cell start the solve near
+/// an ordered packing:
 /// - 1 population: a (slightly anisotropic) triangular lattice in the cross-section;
 /// - 2 populations: alternating layers along z, x-fibers in even layers, y-fibers in odd ones
 ///   (straight-fiber limit π/4 for touching layers);

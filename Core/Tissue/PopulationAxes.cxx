@@ -92,12 +92,14 @@ Vec3 nearestLatticeDirection(const PopulationAxis& axis, const Vec3& direction)
   // Two passes: the smallest angle to d, then the shortest vector within 1° of it. Long vectors
   // (several periods) win only where they are clearly nearer: a fiber along one of them is that
   // many periods long, which costs points and leaves fewer fibers for the same volume.
-  const auto visit = [&](auto&& use) {
+  const auto visit = [&](auto&& use)
+  {
     for (int m = 1; m <= kMaxDispersionPeriods; ++m)
       for (int a = -kMaxDispersionPeriods; a <= kMaxDispersionPeriods; ++a)
         for (int b = -kMaxDispersionPeriods; b <= kMaxDispersionPeriods; ++b)
         {
-          const Vec3 v = double(m) * axis.lattice + double(a) * axis.across1 + double(b) * axis.across2;
+          const Vec3 v =
+            double(m) * axis.lattice + double(a) * axis.across1 + double(b) * axis.across2;
           const double length = norm(v);
           use(v, length, std::acos(std::clamp(dot(v, d) / length, -1.0, 1.0)));
         }
@@ -106,13 +108,15 @@ Vec3 nearestLatticeDirection(const PopulationAxis& axis, const Vec3& direction)
   visit([&](const Vec3&, double, double angle) { bestAngle = std::min(bestAngle, angle); });
   Vec3 best;
   double bestLength = 1e300;
-  visit([&](const Vec3& v, double length, double angle) {
-    if (angle <= bestAngle + 1.0 * kDegree && length < bestLength - 1e-12)
+  visit(
+    [&](const Vec3& v, double length, double angle)
     {
-      best = v;
-      bestLength = length;
-    }
-  });
+      if (angle <= bestAngle + 1.0 * kDegree && length < bestLength - 1e-12)
+      {
+        best = v;
+        bestLength = length;
+      }
+    });
   return best;
 }
 

@@ -61,13 +61,15 @@ std::string validateRadiusDistribution(RadiusDistribution kind, double spread)
   }
   if (kind == RadiusDistribution::Uniform && spread >= 1.0)
   {
-    return "RadiusSpread is " + formatNumber(spread) + ", must be < 1 for RadiusDistribution Uniform";
+    return "RadiusSpread is " + formatNumber(spread) +
+      ", must be < 1 for RadiusDistribution Uniform";
   }
   if (kind == RadiusDistribution::LogNormal && spread > kMaxLogNormalSpread)
   {
     // r·exp(±3s) must stay a usable radius: beyond this the radii span more than e^±6 (a factor
     // 160 000 between the thinnest and the thickest fiber) and, for large s, underflow to 0.
-    return "RadiusSpread is " + formatNumber(spread) + ", must be <= " + formatNumber(kMaxLogNormalSpread) +
+    return "RadiusSpread is " + formatNumber(spread) +
+      ", must be <= " + formatNumber(kMaxLogNormalSpread) +
       " for RadiusDistribution LogNormal (radii r*exp(s*z), |z| <= 3)";
   }
   if (kind == RadiusDistribution::Gamma && spread > 2.0)
@@ -95,8 +97,8 @@ double minimumRadiusFactor(RadiusDistribution kind, double spread)
   }
 }
 
-double drawFiberRadius(RandomStream& rng, double radius, double spread, RadiusDistribution kind,
-  double maxRadius)
+double drawFiberRadius(
+  RandomStream& rng, double radius, double spread, RadiusDistribution kind, double maxRadius)
 {
   double r = radius;
   if (kind == RadiusDistribution::Constant)

@@ -38,10 +38,10 @@ double minimumRadiusFactor(RadiusDistribution kind, double spread);
 
 /// Draws one fiber radius, docs/tissue-models.md §5.3: nominal radius r, spread s >= 0, clamped to
 /// <= maxRadius (the bundle radius). Always consumes the same kind of draws for a given
-/// distribution, also for s = 0 (which returns r exactly; Gamma with s = 0 draws nothing), so that the draws after the radius
-/// (Ranvier phase, displacements; §7) do not depend on the spread. Truncations are done by
-/// rejection inside the fiber's own stream.
-double drawFiberRadius(RandomStream& rng, double radius, double spread, RadiusDistribution kind,
-  double maxRadius);
+/// distribution, also for s = 0 (which returns r exactly; Gamma with s = 0 draws nothing), so that
+/// the draws after the radius (Ranvier phase, displacements; §7) do not depend on the spread.
+/// Truncations are done by rejection inside the fiber's own stream.
+double drawFiberRadius(
+  RandomStream& rng, double radius, double spread, RadiusDistribution kind, double maxRadius);
 
 } // namespace fiberpli

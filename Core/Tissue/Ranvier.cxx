@@ -68,7 +68,8 @@ void applyRanvier(Fiber& f, double baseRadius, double phase, const RanvierOption
         {
           continue;
         }
-        const std::size_t hi = static_cast<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin());
+        const std::size_t hi =
+          static_cast<std::size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin());
         const std::size_t near = (hi < n && arc[hi] - s < s - arc[hi - 1]) ? hi : hi - 1;
         if (std::fabs(arc[near] - s) < tol)
         {
@@ -97,7 +98,9 @@ void applyRanvier(Fiber& f, double baseRadius, double phase, const RanvierOption
       }
       const double len = arc[seg + 1] - arc[seg];
       const double t = len > 0.0 ? std::min(1.0, std::max(0.0, (s - arc[seg]) / len)) : 0.0;
-      points[i] = t == 0.0 ? f.points[seg] : (t == 1.0 ? f.points[seg + 1] : (1.0 - t) * f.points[seg] + t * f.points[seg + 1]);
+      points[i] = t == 0.0
+        ? f.points[seg]
+        : (t == 1.0 ? f.points[seg + 1] : (1.0 - t) * f.points[seg] + t * f.points[seg + 1]);
     }
     f.points.swap(points);
     arc.swap(target);

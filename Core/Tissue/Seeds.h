@@ -1,6 +1,6 @@
-/// Seeds: 2D seed points of a bundle cross-section (docs/tissue-models.md §1). The seed plane is the
-/// local (x, y) plane of the cross-section; §2 lifts a seed to (x, y, 0) and transports it along the
-/// trajectory.
+/// Seeds: 2D seed points of a bundle cross-section (docs/tissue-models.md §1). The seed plane is
+/// the local (x, y) plane of the cross-section; §2 lifts a seed to (x, y, 0) and transports it
+/// along the trajectory.
 #pragma once
 
 #include <vector>
@@ -21,17 +21,18 @@ struct Seed2D
 /// Callers guard the count (about 4·halfWidth·halfHeight / (h·d) points).
 std::vector<Seed2D> triangularGrid(double halfWidth, double halfHeight, double spacing);
 
-/// Circle crop, docs/tissue-models.md §1.2: true when the whole fiber disc of radius seedRadius around s
-/// lies in the circle of radius circleRadius about the origin, |s|² <= (R − r)² with R >= r.
+/// Circle crop, docs/tissue-models.md §1.2: true when the whole fiber disc of radius seedRadius
+/// around s lies in the circle of radius circleRadius about the origin, |s|² <= (R − r)² with R >=
+/// r.
 bool seedInsideCircle(const Seed2D& s, double seedRadius, double circleRadius);
 
 /// docs/tissue-models.md §1.2 `triangular_circle`: the centred grid of size 2(R + d), cropped with
 /// seedInsideCircle for a constant fiber radius.
 std::vector<Seed2D> triangularCircle(double radius, double spacing, double fiberRadius);
 
-/// Random seed uniform in area in the disc of radius effectiveRadius (= R − r_s), docs/tissue-models.md
-/// §1.3: s = R_eff·√u1·(cos 2πu2, sin 2πu2). u1, u2 in [0, 1) are drawn by the caller so that the
-/// caller owns the draw order (§7).
+/// Random seed uniform in area in the disc of radius effectiveRadius (= R − r_s),
+/// docs/tissue-models.md §1.3: s = R_eff·√u1·(cos 2πu2, sin 2πu2). u1, u2 in [0, 1) are drawn by
+/// the caller so that the caller owns the draw order (§7).
 Seed2D randomSeedInDisc(double u1, double u2, double effectiveRadius);
 
 } // namespace fiberpli

@@ -10,8 +10,10 @@ const char* gRatioModelName(GRatioModel model)
 {
   switch (model)
   {
-    case GRatioModel::Constant: return "Constant";
-    case GRatioModel::Lee2019: return "Lee2019";
+    case GRatioModel::Constant:
+      return "Constant";
+    case GRatioModel::Lee2019:
+      return "Lee2019";
   }
   return "Unknown";
 }
@@ -28,13 +30,15 @@ std::string validateShapeOptions(const ShapeOptions& o)
   {
     msg << "Tortuosity is " << o.tortuosity << ", must be at most 3 (white matter is below 1.5)";
   }
-  else if (o.undulating() && (!std::isfinite(o.undulationWavelength) || o.undulationWavelength <= 0.0))
+  else if (o.undulating() &&
+    (!std::isfinite(o.undulationWavelength) || o.undulationWavelength <= 0.0))
   {
     msg << "UndulationWavelength is " << o.undulationWavelength << ", must be > 0";
   }
   else if (!std::isfinite(o.dispersionC2) || o.dispersionC2 <= 1.0 / 3.0 || o.dispersionC2 > 1.0)
   {
-    msg << "DispersionC2 is " << o.dispersionC2 << ", must be in (1/3, 1] (1 = no dispersion, 1/3 = isotropic)";
+    msg << "DispersionC2 is " << o.dispersionC2
+        << ", must be in (1/3, 1] (1 = no dispersion, 1/3 = isotropic)";
   }
   else if (!std::isfinite(o.beadingCV) || o.beadingCV < 0.0 || o.beadingCV > kMaxBeadingCV)
   {

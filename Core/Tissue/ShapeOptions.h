@@ -32,7 +32,8 @@ struct ShapeOptions
   /// Target ⟨cos²⟩ of the fibers' end-to-end directions about their population's axis, in
   /// (1/3, 1]; 1 = every fiber along the axis (off).
   double dispersionC2 = 1.0;
-  /// Coefficient of variation of the radius along each fiber (>= 0, at most kMaxBeadingCV; 0 = off).
+  /// Coefficient of variation of the radius along each fiber (>= 0, at most kMaxBeadingCV; 0 =
+  /// off).
   double beadingCV = 0.0;
   /// µm, the correlation length of the radius variation (> 0).
   double beadingLength = 5.0;
@@ -68,9 +69,11 @@ enum class ShapeFeature : std::uint64_t
   Undulation = 0,
   Dispersion = 1,
   Beading = 2,
-  Jitter = 3, ///< the point displacements of a shaped fiber (its point count differs from the straight one's)
+  Jitter = 3,    ///< the point displacements of a shaped fiber (its point count differs from the
+                 ///< straight one's)
   Placement = 4, ///< the cube: the along-axis start of a fiber of a crossing-angle population
-  Stratum = 5 ///< the cube: the order in which a population's fibers fill the strata (one stream a round)
+  Stratum =
+    5 ///< the cube: the order in which a population's fibers fill the strata (one stream a round)
 };
 
 /// The index of the one stream of a group that is not a fiber's: its draws are shared by the whole
@@ -86,7 +89,8 @@ constexpr std::uint64_t shapeStreamKey(ShapeFeature feature, std::uint64_t group
 }
 
 /// The stream of a shape feature for fiber `index` of `group`: (seed, shapeStreamKey, index).
-inline RandomStream shapeStream(std::uint64_t seed, ShapeFeature feature, std::uint64_t group, std::uint64_t index)
+inline RandomStream shapeStream(
+  std::uint64_t seed, ShapeFeature feature, std::uint64_t group, std::uint64_t index)
 {
   return RandomStream(seed, shapeStreamKey(feature, group), index);
 }

@@ -31,7 +31,8 @@ int strataPerSide(std::size_t fibers)
   return 3 * std::max(1, static_cast<int>(blocks));
 }
 
-std::vector<int> assignStrata(const std::vector<double>& weights, int perSide, std::uint64_t seed, std::uint64_t key)
+std::vector<int> assignStrata(
+  const std::vector<double>& weights, int perSide, std::uint64_t seed, std::uint64_t key)
 {
   if (perSide < 3 || perSide % 3 != 0)
     return {};
@@ -54,8 +55,10 @@ std::vector<int> assignStrata(const std::vector<double>& weights, int perSide, s
     const int block = blockOrder[i % 9];
     int& c = filled[static_cast<std::size_t>(block)];
     if (c % perBlock == 0)
-      roundOrder[static_cast<std::size_t>(block)] = shuffled(perBlock, RandomStream(seed, key, stream++));
-    const int inBlock = roundOrder[static_cast<std::size_t>(block)][static_cast<std::size_t>(c % perBlock)];
+      roundOrder[static_cast<std::size_t>(block)] =
+        shuffled(perBlock, RandomStream(seed, key, stream++));
+    const int inBlock =
+      roundOrder[static_cast<std::size_t>(block)][static_cast<std::size_t>(c % perBlock)];
     ++c;
     const int column = (block % 3) * side + inBlock % side;
     const int row = (block / 3) * side + inBlock / side;

@@ -18,15 +18,16 @@ namespace fiberpli
 /// are at most as many strata as fibers (beyond the first 3 × 3).
 int strataPerSide(std::size_t fibers);
 
-/// The stratum (0 .. perSide² − 1, row-major: cell (stratum mod perSide, stratum / perSide)) of each
-/// fiber, given the fibers' weights (their volumes). The fibers go to the nine blocks of perSide/3 ×
-/// perSide/3 strata from the heaviest down, nine at a time, one to each block in an order drawn
-/// afresh for every nine, so each block gets one fiber of each weight class: its fiber count is
-/// within one of every other block's and its weight close to a ninth of the total. Inside a block
-/// the fibers fill its strata in rounds, each round a random order of all of them (every stratum of
-/// a block holds ⌊c/s⌋ or ⌈c/s⌉ of its c fibers). Deterministic for (seed, key): the draws come from
-/// the streams (seed, key, i). Empty for perSide < 3 or not a multiple of 3.
-std::vector<int> assignStrata(const std::vector<double>& weights, int perSide, std::uint64_t seed, std::uint64_t key);
+/// The stratum (0 .. perSide² − 1, row-major: cell (stratum mod perSide, stratum / perSide)) of
+/// each fiber, given the fibers' weights (their volumes). The fibers go to the nine blocks of
+/// perSide/3 × perSide/3 strata from the heaviest down, nine at a time, one to each block in an
+/// order drawn afresh for every nine, so each block gets one fiber of each weight class: its fiber
+/// count is within one of every other block's and its weight close to a ninth of the total. Inside
+/// a block the fibers fill its strata in rounds, each round a random order of all of them (every
+/// stratum of a block holds ⌊c/s⌋ or ⌈c/s⌉ of its c fibers). Deterministic for (seed, key): the
+/// draws come from the streams (seed, key, i). Empty for perSide < 3 or not a multiple of 3.
+std::vector<int> assignStrata(
+  const std::vector<double>& weights, int perSide, std::uint64_t seed, std::uint64_t key);
 
 /// A coordinate in [−L/2, L/2) placed in cell `cell` (0 .. perSide − 1) of an edge of length L cut
 /// into perSide cells: −L/2 + (cell + u)·L / perSide, where u = (coordinate + L/2) / L keeps the

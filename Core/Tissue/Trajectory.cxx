@@ -22,8 +22,8 @@ std::string pointText(const Vec3& p)
 }
 
 // Barry–Goldman pyramid of the centripetal Catmull–Rom piece between p1 and p2 (knots t0..t3).
-Vec3 catmullRom(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, double t0, double t1,
-  double t2, double t3, double t)
+Vec3 catmullRom(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, double t0,
+  double t1, double t2, double t3, double t)
 {
   const Vec3 a1 = ((t1 - t) * p0 + (t - t0) * p1) / (t1 - t0);
   const Vec3 a2 = ((t2 - t) * p1 + (t - t1) * p2) / (t2 - t1);
@@ -44,7 +44,8 @@ std::string validateTrajectory(const std::vector<Vec3>& points, const std::vecto
   }
   if (points.size() > kMaxTrajectoryPoints)
   {
-    msg << "Trajectory has " << points.size() << " points, more than the limit " << kMaxTrajectoryPoints;
+    msg << "Trajectory has " << points.size() << " points, more than the limit "
+        << kMaxTrajectoryPoints;
     return msg.str();
   }
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -65,14 +66,16 @@ std::string validateTrajectory(const std::vector<Vec3>& points, const std::vecto
   {
     if (scale->size() != points.size())
     {
-      msg << "Trajectory scale has " << scale->size() << " values for " << points.size() << " points";
+      msg << "Trajectory scale has " << scale->size() << " values for " << points.size()
+          << " points";
       return msg.str();
     }
     for (std::size_t i = 0; i < scale->size(); ++i)
     {
       if (!std::isfinite((*scale)[i]) || !((*scale)[i] > 0.0))
       {
-        msg << "Trajectory scale at point " << i << " is " << (*scale)[i] << ", must be finite and > 0";
+        msg << "Trajectory scale at point " << i << " is " << (*scale)[i]
+            << ", must be finite and > 0";
         return msg.str();
       }
     }
@@ -90,8 +93,8 @@ double polylineLength(const std::vector<Vec3>& points)
   return length;
 }
 
-ResampledTrajectory resampleTrajectory(const std::vector<Vec3>& points, const std::vector<double>* scale,
-  double segmentLength)
+ResampledTrajectory resampleTrajectory(
+  const std::vector<Vec3>& points, const std::vector<double>* scale, double segmentLength)
 {
   const std::size_t m = points.size();
   ResampledTrajectory out;
@@ -123,7 +126,8 @@ ResampledTrajectory resampleTrajectory(const std::vector<Vec3>& points, const st
     for (int s = 1; s <= samples; ++s)
     {
       const double f = static_cast<double>(s) / samples;
-      dense.push_back(s == samples ? p2 : catmullRom(p0, p1, p2, p3, t0, t1, t2, t3, t1 + f * (t2 - t1)));
+      dense.push_back(
+        s == samples ? p2 : catmullRom(p0, p1, p2, p3, t0, t1, t2, t3, t1 + f * (t2 - t1)));
       denseScale.push_back((1.0 - f) * sigma(k) + f * sigma(k + 1));
     }
   }
@@ -133,7 +137,8 @@ ResampledTrajectory resampleTrajectory(const std::vector<Vec3>& points, const st
     arc[i] = arc[i - 1] + distance(dense[i], dense[i - 1]);
   }
   const double total = arc.back();
-  const std::size_t n = static_cast<std::size_t>(std::max(2L, std::lround(total / segmentLength) + 1));
+  const std::size_t n =
+    static_cast<std::size_t>(std::max(2L, std::lround(total / segmentLength) + 1));
   out.points.resize(n);
   out.scale.resize(n);
   std::size_t seg = 0;

@@ -17,8 +17,8 @@ std::vector<double> arcLengths(const std::vector<Vec3>& p)
   return cum;
 }
 
-// Index k of the piece [cum[k], cum[k+1]] holding s, searched forward from `from` (s never decreases
-// in the callers) and the fraction within it.
+// Index k of the piece [cum[k], cum[k+1]] holding s, searched forward from `from` (s never
+// decreases in the callers) and the fraction within it.
 std::size_t locate(const std::vector<double>& cum, double s, std::size_t from, double& f)
 {
   std::size_t k = from;
@@ -29,7 +29,10 @@ std::size_t locate(const std::vector<double>& cum, double s, std::size_t from, d
   return k;
 }
 
-Vec3 lerp(const Vec3& a, const Vec3& b, double f) { return a + f * (b - a); }
+Vec3 lerp(const Vec3& a, const Vec3& b, double f)
+{
+  return a + f * (b - a);
+}
 
 // Dense samples per output link: enough that equal-arc-length resampling follows the sine waves
 // (a wave is at least several links long when the wavelength is above a few SegmentLengths).
@@ -81,7 +84,8 @@ Undulation drawUndulation(RandomStream& rng, double baseLength, double wavelengt
 
 void undulationDeviation(const Undulation& und, double t, bool closed, double& du, double& dv)
 {
-  const auto raw = [&](double x, double& a, double& b) {
+  const auto raw = [&](double x, double& a, double& b)
+  {
     a = 0.0;
     b = 0.0;
     for (const UndulationMode& m : und.modes)
@@ -102,7 +106,8 @@ void undulationDeviation(const Undulation& und, double t, bool closed, double& d
   dv -= (1.0 - t) * v0 + t * v1;
 }
 
-std::vector<Vec3> undulatedPath(const BasePath& base, const Undulation& und, double amplitude, std::size_t points)
+std::vector<Vec3> undulatedPath(
+  const BasePath& base, const Undulation& und, double amplitude, std::size_t points)
 {
   points = std::max<std::size_t>(points, 2);
   const std::vector<double> baseCum = arcLengths(base.points);
@@ -156,8 +161,8 @@ double jitteredLength(const std::vector<Vec3>& p, const std::vector<Vec3>* jitte
   return len;
 }
 
-bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosity, std::size_t points,
-  const std::vector<Vec3>* jitter)
+bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosity,
+  std::size_t points, const std::vector<Vec3>* jitter)
 {
   double baseLength = arcLengths(base.points).back();
   // Jittered ends move the end-to-end distance of an open fiber; the target is relative to it
@@ -169,7 +174,8 @@ bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosit
     if (norm(ends) > 0.0)
       baseLength *= moved / norm(ends);
   }
-  const auto ratio = [&](double a) { return jitteredLength(undulatedPath(base, und, a, points), jitter) / baseLength; };
+  const auto ratio = [&](double a)
+  { return jitteredLength(undulatedPath(base, und, a, points), jitter) / baseLength; };
   und.amplitude = 0.0;
   if (!(baseLength > 0.0) || ratio(0.0) >= tortuosity)
     return false;
@@ -197,7 +203,8 @@ bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosit
   return true;
 }
 
-std::size_t undulatedPointCount(double baseLength, double tortuosity, double segmentLength, std::size_t minimum)
+std::size_t undulatedPointCount(
+  double baseLength, double tortuosity, double segmentLength, std::size_t minimum)
 {
   const double n = std::round(tortuosity * baseLength / segmentLength) + 1.0;
   return std::max<std::size_t>(minimum, static_cast<std::size_t>(std::max(2.0, n)));

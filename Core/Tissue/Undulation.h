@@ -69,28 +69,30 @@ Undulation drawUndulation(RandomStream& rng, double baseLength, double wavelengt
 
 /// The transverse deviation (along u, along v) of the modes at the fraction t ∈ [0, 1] of the base
 /// length, for amplitude 1 (open fibers: minus the straight trend, so 0 at both ends).
-void undulationDeviation(const Undulation& undulation, double t, bool closed, double& du, double& dv);
+void undulationDeviation(
+  const Undulation& undulation, double t, bool closed, double& du, double& dv);
 
 /// The undulated fiber with `points` points (>= 2) spaced equally in arc length along the curve
 /// base(s) + amplitude·(du(s)·u(s) + dv(s)·v(s)); the first and last points lie on the base
 /// path's ends (closed: last = first + base.closure, exactly). amplitude 0 gives the base
 /// path resampled.
-std::vector<Vec3> undulatedPath(const BasePath& base, const Undulation& undulation, double amplitude,
-  std::size_t points);
+std::vector<Vec3> undulatedPath(
+  const BasePath& base, const Undulation& undulation, double amplitude, std::size_t points);
 
 /// Polyline length of `points` (+ jitter[i] per point when jitter is given, same size).
 double jitteredLength(const std::vector<Vec3>& points, const std::vector<Vec3>* jitter);
 
 /// Sets undulation.amplitude so that the fiber undulatedPath(base, undulation, amplitude, points)
 /// (+ jitter, when given) is `tortuosity` times as long as the base path (an open fiber's base
-/// length scaled by how much the jitter of its two ends changes its end-to-end distance) (bisection on the
-/// polyline's own length, to 1e-6 of the excess). Returns false, with amplitude 0, when the
+/// length scaled by how much the jitter of its two ends changes its end-to-end distance) (bisection
+/// on the polyline's own length, to 1e-6 of the excess). Returns false, with amplitude 0, when the
 /// jittered straight fiber is already at least that long (the jitter alone exceeds the target).
-bool calibrateUndulation(const BasePath& base, Undulation& undulation, double tortuosity, std::size_t points,
-  const std::vector<Vec3>* jitter = nullptr);
+bool calibrateUndulation(const BasePath& base, Undulation& undulation, double tortuosity,
+  std::size_t points, const std::vector<Vec3>* jitter = nullptr);
 
 /// The point count of a fiber of base length L at tortuosity τ and spacing l along its path:
 /// max(minimum, round(τ·L/l) + 1).
-std::size_t undulatedPointCount(double baseLength, double tortuosity, double segmentLength, std::size_t minimum);
+std::size_t undulatedPointCount(
+  double baseLength, double tortuosity, double segmentLength, std::size_t minimum);
 
 } // namespace fiberpli

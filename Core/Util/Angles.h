@@ -8,7 +8,8 @@
 namespace fiberpli
 {
 
-/// c = cos a, s = sin a (a in radians); exactly 0 or ±1 when a is within 1e-12 of a multiple of π/2.
+/// c = cos a, s = sin a (a in radians); exactly 0 or ±1 when a is within 1e-12 of a multiple of
+/// π/2.
 inline void cosSinQuarterExact(double a, double& c, double& s)
 {
   const double q = a / (M_PI / 2.0);

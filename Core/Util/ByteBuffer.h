@@ -10,7 +10,8 @@ namespace fiberpli
 {
 
 /// Appends n values from v to out as raw bytes.
-template <class T> void appendBytes(std::vector<char>& out, const T* v, std::size_t n)
+template <class T>
+void appendBytes(std::vector<char>& out, const T* v, std::size_t n)
 {
   const std::size_t at = out.size();
   out.resize(at + n * sizeof(T));
@@ -21,10 +22,18 @@ template <class T> void appendBytes(std::vector<char>& out, const T* v, std::siz
 class ByteWriter
 {
 public:
-  explicit ByteWriter(std::vector<char>& out) : out_(&out) {}
-  template <class T> void put(const T& v) { appendBytes(*out_, &v, 1); }
+  explicit ByteWriter(std::vector<char>& out)
+    : out_(&out)
+  {
+  }
+  template <class T>
+  void put(const T& v)
+  {
+    appendBytes(*out_, &v, 1);
+  }
   /// The size, then the values.
-  template <class T> void putVector(const std::vector<T>& v)
+  template <class T>
+  void putVector(const std::vector<T>& v)
   {
     put<std::uint64_t>(v.size());
     appendBytes(*out_, v.data(), v.size());
@@ -37,22 +46,28 @@ private:
 class ByteReader
 {
 public:
-  explicit ByteReader(const std::vector<char>& in) : in_(&in) {}
+  explicit ByteReader(const std::vector<char>& in)
+    : in_(&in)
+  {
+  }
   bool done() const { return at_ >= in_->size(); }
-  template <class T> T get()
+  template <class T>
+  T get()
   {
     T v;
     get(&v);
     return v;
   }
-  template <class T> void get(T* v, std::size_t n = 1)
+  template <class T>
+  void get(T* v, std::size_t n = 1)
   {
     if (n > 0)
       std::memcpy(v, in_->data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
   }
   /// What putVector wrote.
-  template <class T> void getVector(std::vector<T>& v)
+  template <class T>
+  void getVector(std::vector<T>& v)
   {
     v.resize(get<std::uint64_t>());
     get(v.data(), v.size());

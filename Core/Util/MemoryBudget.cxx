@@ -32,11 +32,28 @@ std::uint64_t parseByteCount(const char* text)
   double scale = 1.0;
   switch (*end)
   {
-    case 'k': case 'K': scale = 1024.0; ++end; break;
-    case 'm': case 'M': scale = 1024.0 * 1024.0; ++end; break;
-    case 'g': case 'G': scale = 1024.0 * 1024.0 * 1024.0; ++end; break;
-    case 't': case 'T': scale = 1024.0 * 1024.0 * 1024.0 * 1024.0; ++end; break;
-    default: break;
+    case 'k':
+    case 'K':
+      scale = 1024.0;
+      ++end;
+      break;
+    case 'm':
+    case 'M':
+      scale = 1024.0 * 1024.0;
+      ++end;
+      break;
+    case 'g':
+    case 'G':
+      scale = 1024.0 * 1024.0 * 1024.0;
+      ++end;
+      break;
+    case 't':
+    case 'T':
+      scale = 1024.0 * 1024.0 * 1024.0 * 1024.0;
+      ++end;
+      break;
+    default:
+      break;
   }
   if (*end == 'i' || *end == 'B')
   {
@@ -57,7 +74,8 @@ std::uint64_t parseByteCount(const char* text)
 /// cgroup v2 memory.max, then v1 memory.limit_in_bytes; 0 when absent or "max".
 std::uint64_t cgroupLimitBytes()
 {
-  for (const char* path : { "/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes" })
+  for (const char* path :
+    { "/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes" })
   {
     std::ifstream in(path);
     std::string word;

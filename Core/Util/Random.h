@@ -1,7 +1,7 @@
-/// Random: seedable, counter-keyed random streams (docs/tissue-models.md §7). SplitMix64 derives one
-/// stream per (seed, key...) so that a fiber's draws never depend on other fibers, generation order
-/// or thread count; xoshiro256** is the engine. Distributions are our own code (std:: distributions
-/// differ between standard libraries, which would break bit-identical results).
+/// Random: seedable, counter-keyed random streams (docs/tissue-models.md §7). SplitMix64 derives
+/// one stream per (seed, key...) so that a fiber's draws never depend on other fibers, generation
+/// order or thread count; xoshiro256** is the engine. Distributions are our own code (std::
+/// distributions differ between standard libraries, which would break bit-identical results).
 #pragma once
 
 #include <cmath>
@@ -11,8 +11,8 @@
 namespace fiberpli
 {
 
-/// Empty when `seed` is a usable Seed property (>= 0: it becomes the unsigned stream seed), else the
-/// message naming it. The one Seed rule of every source and filter with randomness.
+/// Empty when `seed` is a usable Seed property (>= 0: it becomes the unsigned stream seed), else
+/// the message naming it. The one Seed rule of every source and filter with randomness.
 inline std::string validateSeed(long long seed)
 {
   return seed < 0 ? "Seed is " + std::to_string(seed) + ", must be >= 0" : std::string();

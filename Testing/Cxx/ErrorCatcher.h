@@ -32,7 +32,8 @@ public:
 
   void Watch(vtkAlgorithm* algorithm)
   {
-    for (vtkObject* o : { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
+    for (vtkObject* o :
+      { static_cast<vtkObject*>(algorithm), static_cast<vtkObject*>(algorithm->GetExecutive()) })
     {
       o->AddObserver(vtkCommand::ErrorEvent, this);
       o->AddObserver(vtkCommand::WarningEvent, this);
@@ -51,7 +52,8 @@ public:
 
 /// The bad-input tests' check: updating `algorithm` reports an error containing `text` and leaves
 /// output 0 without points.
-inline void ExpectUpdateError(vtkAlgorithm* algorithm, ErrorCatcher* catcher, const std::string& text)
+inline void ExpectUpdateError(
+  vtkAlgorithm* algorithm, ErrorCatcher* catcher, const std::string& text)
 {
   catcher->Clear();
   algorithm->Update();

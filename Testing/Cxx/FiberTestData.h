@@ -17,8 +17,8 @@
 
 /// Polydata with one polyline per entry of `fibers` (points x, y, z, r), fiber_id = 100 + index,
 /// bundle_id = index % 2.
-inline vtkSmartPointer<vtkPolyData> MakeFibers(const std::vector<std::vector<std::array<double, 4>>>& fibers,
-  bool withRadius = true)
+inline vtkSmartPointer<vtkPolyData> MakeFibers(
+  const std::vector<std::vector<std::array<double, 4>>>& fibers, bool withRadius = true)
 {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;

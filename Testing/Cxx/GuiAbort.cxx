@@ -81,25 +81,30 @@ void countStart(vtkObject*, unsigned long, void* clientData, void*)
 /// Runs `proxy`'s update, clicks the abort button `afterMs` after the start through Qt's
 /// window-system input path, and checks the abort: the update stops soon, one click suffices, the
 /// next pipeline request runs nothing, the output is empty and the log says why.
-void abortOnce(QMainWindow& window, QToolButton* abortButton, vtkSMSourceProxy* proxy, MessageLog* log,
-  const char* name, int afterMs)
+void abortOnce(QMainWindow& window, QToolButton* abortButton, vtkSMSourceProxy* proxy,
+  MessageLog* log, const char* name, int afterMs)
 {
   bool clicked = false, enabledAtClick = false;
   QElapsedTimer sinceClick;
-  QTimer::singleShot(afterMs, [&]() {
-    enabledAtClick = abortButton->isEnabled();
-    clicked = true;
-    sinceClick.start();
-    const QPoint at = abortButton->mapTo(&window, abortButton->rect().center());
-    QTest::mouseClick(window.windowHandle(), Qt::LeftButton, Qt::NoModifier, at);
-  });
+  QTimer::singleShot(afterMs,
+    [&]()
+    {
+      enabledAtClick = abortButton->isEnabled();
+      clicked = true;
+      sinceClick.start();
+      const QPoint at = abortButton->mapTo(&window, abortButton->rect().center());
+      QTest::mouseClick(window.windowHandle(), Qt::LeftButton, Qt::NoModifier, at);
+    });
   log->Text.clear();
   proxy->UpdatePipeline();
   const qint64 afterClick = clicked ? sinceClick.elapsed() : -1;
-  std::printf("%s: update returned %lld ms after the click\n", name, static_cast<long long>(afterClick));
+  std::printf(
+    "%s: update returned %lld ms after the click\n", name, static_cast<long long>(afterClick));
   const std::string what = name;
-  check(clicked && enabledAtClick, (what + ": the abort button was enabled during the run").c_str());
-  check(clicked && afterClick >= 0 && afterClick < 10000, (what + ": one click stopped the run soon").c_str());
+  check(
+    clicked && enabledAtClick, (what + ": the abort button was enabled during the run").c_str());
+  check(clicked && afterClick >= 0 && afterClick < 10000,
+    (what + ": one click stopped the run soon").c_str());
   auto* algorithm = vtkAlgorithm::SafeDownCast(proxy->GetClientSideObject());
   check(algorithm->GetAbortExecute() == 0, (what + ": no abort request is left").c_str());
   check(log->Text.find("aborted by the user") != std::string::npos,
@@ -116,13 +121,15 @@ void abortOnce(QMainWindow& window, QToolButton* abortButton, vtkSMSourceProxy* 
   algorithm->Update();
   proxy->UpdatePipeline();
   algorithm->RemoveObserver(tag);
-  std::printf("%s: the next requests took %lld ms\n", name, static_cast<long long>(again.elapsed()));
+  std::printf(
+    "%s: the next requests took %lld ms\n", name, static_cast<long long>(again.elapsed()));
   check(starts == 0, (what + ": the next pipeline request started no new run").c_str());
   check(algorithm->GetOutputDataObject(0)->GetNumberOfElements(vtkDataObject::POINT) == 0,
     (what + ": the aborted output is empty").c_str());
 }
 
-vtkSmartPointer<vtkSMSourceProxy> makeProxy(vtkSMSessionProxyManager* pxm, const char* group, const char* name)
+vtkSmartPointer<vtkSMSourceProxy> makeProxy(
+  vtkSMSessionProxyManager* pxm, const char* group, const char* name)
 {
   vtkSmartPointer<vtkSMSourceProxy> proxy;
   proxy.TakeReference(vtkSMSourceProxy::SafeDownCast(pxm->NewProxy(group, name)));
@@ -144,7 +151,8 @@ int main(int argc, char* argv[])
   pqPVApplicationCore core(qtArgc, qtArgv);
 
   QMainWindow window;
-  window.setStatusBar(new pqStatusBar(&window)); // ParaView's status bar: progress widget + abort button
+  window.setStatusBar(
+    new pqStatusBar(&window)); // ParaView's status bar: progress widget + abort button
   window.resize(900, 300);
   window.show();
   if (!QTest::qWaitForWindowExposed(&window))
@@ -156,7 +164,9 @@ int main(int argc, char* argv[])
   vtkOutputWindow::SetInstance(log);
   pqServer* server = core.getObjectBuilder()->createServer(pqServerResource("builtin:"));
   QString error;
-  if (!server || core.getPluginManager()->loadExtension(server, plugin, &error, false) != pqPluginManager::LOADED)
+  if (!server ||
+    core.getPluginManager()->loadExtension(server, plugin, &error, false) !=
+      pqPluginManager::LOADED)
   {
     std::fprintf(stderr, "cannot load %s: %s\n", argv[1], error.toLocal8Bit().data());
     return 1;
@@ -183,10 +193,12 @@ int main(int argc, char* argv[])
   // these only the close can be delivered in this harness: Xvfb without a window manager delivers
   // no shortcut even outside a filter).
   bool windowOpenAfterClose = false;
-  QTimer::singleShot(1000, [&]() {
-    window.close();
-    windowOpenAfterClose = window.isVisible();
-  });
+  QTimer::singleShot(1000,
+    [&]()
+    {
+      window.close();
+      windowOpenAfterClose = window.isVisible();
+    });
 
   // Click after 2 s of solving (the solve would run for minutes with MaxSteps 10^6).
   abortOnce(window, abortButton, solver, log, "FiberCollisionSolver", 2000);
@@ -205,7 +217,8 @@ int main(int argc, char* argv[])
   check(fibers == 1000, "the next update gives all 1000 fibers");
   check(algorithm->GetAbortExecute() == 0, "that update was not aborted");
 
-  // FiberMetrics with a Monte Carlo volume fraction of 2·10^9 samples (minutes): aborted the same way.
+  // FiberMetrics with a Monte Carlo volume fraction of 2·10^9 samples (minutes): aborted the same
+  // way.
   auto metrics = makeProxy(pxm, "filters", "FiberMetrics");
   controller->PreInitializeProxy(metrics);
   vtkSMPropertyHelper(metrics, "Input").Set(solver, 0);

@@ -63,7 +63,9 @@ int main(int argc, char* argv[])
   pqPVApplicationCore core(qtArgc, qtArgv);
   pqServer* server = core.getObjectBuilder()->createServer(pqServerResource("builtin:"));
   QString error;
-  if (!server || core.getPluginManager()->loadExtension(server, plugin, &error, false) != pqPluginManager::LOADED)
+  if (!server ||
+    core.getPluginManager()->loadExtension(server, plugin, &error, false) !=
+      pqPluginManager::LOADED)
   {
     std::fprintf(stderr, "cannot load %s: %s\n", argv[1], error.toLocal8Bit().data());
     return 1;
@@ -74,13 +76,15 @@ int main(int argc, char* argv[])
   // A reader prompt is modal: note and close it, so the test ends either way.
   bool prompted = false;
   QTimer closer;
-  QObject::connect(&closer, &QTimer::timeout, [&]() {
-    if (auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget()))
+  QObject::connect(&closer, &QTimer::timeout,
+    [&]()
     {
-      prompted = true;
-      dialog->reject();
-    }
-  });
+      if (auto* dialog = qobject_cast<QDialog*>(QApplication::activeModalWidget()))
+      {
+        prompted = true;
+        dialog->reject();
+      }
+    });
   closer.start(200);
   QList<QStringList> files;
   files << QStringList(dat);
@@ -102,10 +106,14 @@ int main(int argc, char* argv[])
     vtkSMWriterFactory* writers = vtkSMProxyManager::GetProxyManager()->GetWriterFactory();
     vtkSmartPointer<vtkSMProxy> writer;
     writer.TakeReference(writers->CreateWriter("fibers.vtp", source, 0));
-    const int mode = writer && writer->GetProperty("DataMode") ? vtkSMPropertyHelper(writer, "DataMode").GetAsInt() : -1;
-    check(mode == 1, "Save Data's .vtp writer defaults to Binary (DataMode " + std::to_string(mode) + ")");
+    const int mode = writer && writer->GetProperty("DataMode")
+      ? vtkSMPropertyHelper(writer, "DataMode").GetAsInt()
+      : -1;
+    check(mode == 1,
+      "Save Data's .vtp writer defaults to Binary (DataMode " + std::to_string(mode) + ")");
   }
 
-  std::printf("%s\n", failures == 0 ? "gui file defaults checks passed" : "gui file defaults checks FAILED");
+  std::printf(
+    "%s\n", failures == 0 ? "gui file defaults checks passed" : "gui file defaults checks FAILED");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -8,17 +8,17 @@
 //
 // Usage: FiberPLIGuiUnitLabels <path to FiberPLI.so>   (needs a display: xvfb-run)
 #include <pqApplicationCore.h>
+#include <pqInterfaceTracker.h>
 #include <pqObjectBuilder.h>
 #include <pqPVApplicationCore.h>
 #include <pqPluginManager.h>
 #include <pqProxyWidget.h>
 #include <pqServer.h>
 #include <pqServerResource.h>
-#include <pqInterfaceTracker.h>
 #include <pqStandardPropertyWidgetInterface.h>
 
-#include <vtkSMParaViewPipelineController.h>
 #include <vtkNew.h>
+#include <vtkSMParaViewPipelineController.h>
 #include <vtkSMProperty.h>
 #include <vtkSMPropertyHelper.h>
 #include <vtkSMProxy.h>
@@ -86,7 +86,9 @@ int main(int argc, char* argv[])
   pqPVApplicationCore core(qtArgc, qtArgv);
   pqServer* server = core.getObjectBuilder()->createServer(pqServerResource("builtin:"));
   QString error;
-  if (!server || core.getPluginManager()->loadExtension(server, plugin, &error, false) != pqPluginManager::LOADED)
+  if (!server ||
+    core.getPluginManager()->loadExtension(server, plugin, &error, false) !=
+      pqPluginManager::LOADED)
   {
     std::fprintf(stderr, "cannot load %s: %s\n", argv[1], error.toLocal8Bit().data());
     return 1;
@@ -123,6 +125,7 @@ int main(int argc, char* argv[])
 
   controller->UnRegisterProxy(filter);
   controller->UnRegisterProxy(source);
-  std::printf("%s\n", failures == 0 ? "gui unit label checks passed" : "gui unit label checks FAILED");
+  std::printf(
+    "%s\n", failures == 0 ? "gui unit label checks passed" : "gui unit label checks FAILED");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

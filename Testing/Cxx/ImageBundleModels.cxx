@@ -1,5 +1,5 @@
-// Regression image: the paper's crossing, Y-shape and chiasm-like models (FiberBundleSource, small),
-// solved by FiberCollisionSolver, side by side as tubes coloured by bundle_id.
+// Regression image: the paper's crossing, Y-shape and chiasm-like models (FiberBundleSource,
+// small), solved by FiberCollisionSolver, side by side as tubes coloured by bundle_id.
 #include "ImageTestUtil.h"
 #include "vtkFiberBundleSource.h"
 #include "vtkFiberCollisionSolver.h"
@@ -9,7 +9,8 @@
 int main(int argc, char* argv[])
 {
   vtkNew<vtkRenderer> renderer;
-  const int shapes[3] = { vtkFiberBundleSource::CROSSING, vtkFiberBundleSource::YSHAPE, vtkFiberBundleSource::CHIASM };
+  const int shapes[3] = { vtkFiberBundleSource::CROSSING, vtkFiberBundleSource::YSHAPE,
+    vtkFiberBundleSource::CHIASM };
   for (int i = 0; i < 3; ++i)
   {
     vtkNew<vtkFiberBundleSource> source;

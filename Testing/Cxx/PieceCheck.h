@@ -59,10 +59,12 @@ inline std::string FieldText(vtkPolyData* pd)
   {
     vtkDataArray* array = fd->GetArray(a);
     text += std::string(fd->GetArrayName(a)) + ":";
-    for (vtkIdType t = 0; array && t < array->GetNumberOfTuples() * array->GetNumberOfComponents(); ++t)
+    for (vtkIdType t = 0; array && t < array->GetNumberOfTuples() * array->GetNumberOfComponents();
+         ++t)
     {
-      text += " " + std::to_string(array->GetComponent(t / array->GetNumberOfComponents(),
-                      static_cast<int>(t % array->GetNumberOfComponents())));
+      text += " " +
+        std::to_string(array->GetComponent(t / array->GetNumberOfComponents(),
+          static_cast<int>(t % array->GetNumberOfComponents())));
     }
     text += "; ";
   }
@@ -89,7 +91,8 @@ inline void ExpectPiecesMakeTheWhole(vtkAlgorithm* source, int maxPieces)
       for (const Line& line : mine)
       {
         ASSERT_LT(next, all.size());
-        EXPECT_EQ(line.values, all[next].values) << "fiber " << next << " in piece " << piece << " of " << pieces;
+        EXPECT_EQ(line.values, all[next].values)
+          << "fiber " << next << " in piece " << piece << " of " << pieces;
         ++next;
       }
       EXPECT_EQ(FieldText(part), FieldText(whole)) << "piece " << piece << " of " << pieces;

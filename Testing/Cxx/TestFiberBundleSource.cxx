@@ -26,7 +26,8 @@ namespace
 {
 using P3 = std::array<double, 3>;
 
-vtkSmartPointer<vtkPolyData> Polyline(const std::vector<P3>& points, const std::vector<double>& scale = {})
+vtkSmartPointer<vtkPolyData> Polyline(
+  const std::vector<P3>& points, const std::vector<double>& scale = {})
 {
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> pts;
@@ -106,7 +107,8 @@ void Small(vtkFiberBundleSource* s, int shape)
 }
 
 // The update is an error naming `text` and the source gives no fibers.
-void ExpectErrorAndNoFibers(vtkFiberBundleSource* src, ErrorCatcher* catcher, const std::string& text)
+void ExpectErrorAndNoFibers(
+  vtkFiberBundleSource* src, ErrorCatcher* catcher, const std::string& text)
 {
   ExpectUpdateError(src, catcher, text);
   EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
@@ -149,7 +151,8 @@ TEST(FiberBundleSource, CylinderFibersStayInsideTheBundleOnTheGrid)
     {
       if (i != j)
       {
-        nearest = std::min(nearest, std::hypot(grid[i][0][1] - grid[j][0][1], grid[i][0][2] - grid[j][0][2]));
+        nearest = std::min(
+          nearest, std::hypot(grid[i][0][1] - grid[j][0][1], grid[i][0][2] - grid[j][0][2]));
       }
     }
     EXPECT_NEAR(nearest, 2.5, 1e-9);
@@ -190,7 +193,8 @@ TEST(FiberBundleSource, FollowsTheInputPolylineAndItsScale)
     }
     for (const auto& f : fibers)
     {
-      offsets[sigma == 1.0 ? 0 : 1].push_back(std::hypot(std::hypot(f[0][0], f[0][1]) - 40.0, f[0][2]));
+      offsets[sigma == 1.0 ? 0 : 1].push_back(
+        std::hypot(std::hypot(f[0][0], f[0][1]) - 40.0, f[0][2]));
     }
   }
   // Same seeds, offsets scaled by σ = 1.5.
@@ -269,8 +273,10 @@ TEST(FiberBundleSource, BadInputIsAClearErrorAndRecoverable)
   vtkNew<vtkFiberBundleSource> src;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
-  const auto expectError = [&](const std::string& text) { ExpectErrorAndNoFibers(src, catcher, text); };
-  const auto expectValid = [&]() {
+  const auto expectError = [&](const std::string& text)
+  { ExpectErrorAndNoFibers(src, catcher, text); };
+  const auto expectValid = [&]()
+  {
     catcher->Clear();
     src->Update();
     EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
@@ -329,7 +335,8 @@ TEST(FiberBundleSource, EveryModelIsSolvedWithoutOverlaps)
     Small(src, shape);
     if (shape <= vtkFiberBundleSource::TRAJECTORY || shape == vtkFiberBundleSource::YSHAPE)
     {
-      src->SetFiberSpacing(1.5); // < 2r: bundles that do not cross start with overlapping neighbours
+      src->SetFiberSpacing(
+        1.5); // < 2r: bundles that do not cross start with overlapping neighbours
     }
     if (shape == vtkFiberBundleSource::TRAJECTORY) // the paper's f(t) = (t³, t, 0), scaled
     {
@@ -361,7 +368,8 @@ TEST(FiberBundleSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
   vtkNew<vtkFiberBundleSource> src;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(src);
-  const auto expectError = [&](const std::string& text) { ExpectErrorAndNoFibers(src, catcher, text); };
+  const auto expectError = [&](const std::string& text)
+  { ExpectErrorAndNoFibers(src, catcher, text); };
   src->SetNumberOfFibers(-1);
   expectError("NumberOfFibers is -1");
   src->SetNumberOfFibers(0);
@@ -394,6 +402,7 @@ TEST(FiberBundleSource, ScaleArrayOfTheWrongLengthIsAnError)
   src->SetShape(vtkFiberBundleSource::TRAJECTORY);
   src->SetInputData(trajectory);
   src->Update();
-  EXPECT_NE(catcher->Errors.find("'scale' has 2 values for 3 points"), std::string::npos) << catcher->Errors;
+  EXPECT_NE(catcher->Errors.find("'scale' has 2 values for 3 points"), std::string::npos)
+    << catcher->Errors;
   EXPECT_EQ(src->GetOutput()->GetNumberOfLines(), 0);
 }

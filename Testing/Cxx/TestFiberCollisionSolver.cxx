@@ -59,7 +59,7 @@ TEST(FiberCollisionSolver, CrossingPairEndsTouchingFreeWithArraysKept)
   ASSERT_GT(independent::CountOverlaps(input), 0);
   vtkNew<vtkFloatArray> temperature; // a float point array follows the points
   temperature->SetName("temperature");
-  vtkNew<vtkIntArray> label;           // an int cell array is copied per fiber
+  vtkNew<vtkIntArray> label; // an int cell array is copied per fiber
   label->SetName("label");
   for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
   {
@@ -116,8 +116,10 @@ TEST(FiberCollisionSolver, SmallCubesAreSolvedWithFibersAndIdsKept)
     ASSERT_EQ(out->GetNumberOfLines(), input->GetNumberOfLines());
     for (vtkIdType c = 0; c < input->GetNumberOfLines(); ++c)
     {
-      EXPECT_EQ(out->GetCellData()->GetArray("fiber_id")->GetTuple1(c), input->GetCellData()->GetArray("fiber_id")->GetTuple1(c));
-      EXPECT_EQ(out->GetCellData()->GetArray("bundle_id")->GetTuple1(c), input->GetCellData()->GetArray("bundle_id")->GetTuple1(c));
+      EXPECT_EQ(out->GetCellData()->GetArray("fiber_id")->GetTuple1(c),
+        input->GetCellData()->GetArray("fiber_id")->GetTuple1(c));
+      EXPECT_EQ(out->GetCellData()->GetArray("bundle_id")->GetTuple1(c),
+        input->GetCellData()->GetArray("bundle_id")->GetTuple1(c));
     }
   }
 }
@@ -162,7 +164,8 @@ TEST(FiberCollisionSolver, MaxStepsReachedStillGivesOutputAndWarns)
   EXPECT_EQ(Field(out, "solved"), 0.0);
   EXPECT_EQ(Field(out, "steps"), 2.0);
   EXPECT_GT(Field(out, "collisions"), 0.0);
-  EXPECT_NE(catcher->Warnings.find("capsule pairs still overlap after 2 steps"), std::string::npos) << catcher->Warnings;
+  EXPECT_NE(catcher->Warnings.find("capsule pairs still overlap after 2 steps"), std::string::npos)
+    << catcher->Warnings;
   EXPECT_EQ(out->GetNumberOfLines(), 60);
 }
 
@@ -236,7 +239,8 @@ TEST(FiberCollisionSolver, BadInputIsAClearErrorAndRecoverable)
   catcher->Watch(solver);
   solver->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 1 } } }, false));
   solver->Update();
-  EXPECT_NE(catcher->Errors.find("FiberCollisionSolver: the input has no point array 'radius'"), std::string::npos)
+  EXPECT_NE(catcher->Errors.find("FiberCollisionSolver: the input has no point array 'radius'"),
+    std::string::npos)
     << catcher->Errors;
   EXPECT_EQ(solver->GetOutput()->GetNumberOfPoints(), 0);
   const double nan = std::nan("");

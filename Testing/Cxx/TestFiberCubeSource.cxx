@@ -122,9 +122,7 @@ TEST(FiberCubeSource, NegativeAndOutOfRangePropertiesAreNamedNotClamped)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(cube);
   cube->SetNumberOfFibers(20);
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(cube, catcher, text);
-  };
+  const auto expectError = [&](const std::string& text) { ExpectUpdateError(cube, catcher, text); };
   cube->SetNumberOfFibers(-1);
   expectError("NumberOfFibers is -1");
   cube->SetNumberOfFibers(20);

@@ -42,21 +42,28 @@ public:
 
 protected:
   ThrowingSource() { this->SetNumberOfInputPorts(0); }
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector) override
+  int RequestData(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector) override
   {
-    return fiberpli::GuardRequest(this, outputVector, "ThrowingSource", [&]() -> int {
-      vtkPolyData* out = vtkPolyData::GetData(outputVector);
-      vtkNew<vtkPoints> points;
-      points->InsertNextPoint(1, 2, 3);
-      out->SetPoints(points);
-      switch (this->Throw)
+    return fiberpli::GuardRequest(this, outputVector, "ThrowingSource",
+      [&]() -> int
       {
-        case 1: throw std::bad_alloc();
-        case 2: throw std::length_error("vector::_M_default_append");
-        case 3: throw 42;
-        default: return 1;
-      }
-    });
+        vtkPolyData* out = vtkPolyData::GetData(outputVector);
+        vtkNew<vtkPoints> points;
+        points->InsertNextPoint(1, 2, 3);
+        out->SetPoints(points);
+        switch (this->Throw)
+        {
+          case 1:
+            throw std::bad_alloc();
+          case 2:
+            throw std::length_error("vector::_M_default_append");
+          case 3:
+            throw 42;
+          default:
+            return 1;
+        }
+      });
   }
 };
 vtkStandardNewMacro(ThrowingSource);
@@ -99,7 +106,8 @@ TEST(FiberGuard, AnEscapingExceptionIsAnErrorNamingTheAlgorithm)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(source);
   const char* expected[] = { "", "ThrowingSource: out of memory",
-    "ThrowingSource: internal error: vector::_M_default_append", "ThrowingSource: internal error (unknown exception)" };
+    "ThrowingSource: internal error: vector::_M_default_append",
+    "ThrowingSource: internal error (unknown exception)" };
   for (int kind : { 1, 2, 3, 0 })
   {
     source->Throw = kind;
@@ -109,12 +117,14 @@ TEST(FiberGuard, AnEscapingExceptionIsAnErrorNamingTheAlgorithm)
     if (kind == 0)
     {
       EXPECT_EQ(catcher->Errors, "");
-      EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 1) << "the pipeline runs again after an exception";
+      EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 1)
+        << "the pipeline runs again after an exception";
     }
     else
     {
       EXPECT_NE(catcher->Errors.find(expected[kind]), std::string::npos) << catcher->Errors;
-      EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 0) << "a half-made output after an exception";
+      EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 0)
+        << "a half-made output after an exception";
     }
   }
 }
@@ -145,8 +155,10 @@ TEST(FiberGuard, AnOverflowingPeriodicCellIsRefusedByEveryFilter)
     vtkNew<ErrorCatcher> catcher;
     catcher->Watch(a);
     a->Update();
-    EXPECT_NE(catcher->Errors.find(expected), std::string::npos) << a->GetClassName() << ": " << catcher->Errors;
-    EXPECT_EQ(catcher->Errors.find("no fiber"), std::string::npos) << a->GetClassName() << ": " << catcher->Errors;
+    EXPECT_NE(catcher->Errors.find(expected), std::string::npos)
+      << a->GetClassName() << ": " << catcher->Errors;
+    EXPECT_EQ(catcher->Errors.find("no fiber"), std::string::npos)
+      << a->GetClassName() << ": " << catcher->Errors;
   }
   vtkNew<vtkFiberWriter> writer;
   writer->SetInputConnection(producer->GetOutputPort());

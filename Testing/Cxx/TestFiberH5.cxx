@@ -52,7 +52,10 @@ struct H5File
   {
   }
   ~H5File() { H5Fclose(id); }
-  void group(const char* name) { H5Gclose(H5Gcreate2(id, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)); }
+  void group(const char* name)
+  {
+    H5Gclose(H5Gcreate2(id, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  }
   void fiber(const char* name, hsize_t n)
   {
     std::vector<double> v(4 * n);
@@ -63,12 +66,16 @@ struct H5File
     }
     const hsize_t dims[2] = { n, 4 };
     const hid_t space = H5Screate_simple(2, dims, nullptr);
-    const hid_t data = H5Dcreate2(id, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t data =
+      H5Dcreate2(id, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     H5Dwrite(data, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
     H5Dclose(data);
     H5Sclose(space);
   }
-  void hardLink(const char* target, const char* name) { H5Lcreate_hard(id, target, id, name, H5P_DEFAULT, H5P_DEFAULT); }
+  void hardLink(const char* target, const char* name)
+  {
+    H5Lcreate_hard(id, target, id, name, H5P_DEFAULT, H5P_DEFAULT);
+  }
 };
 
 struct ReadResult
@@ -170,19 +177,22 @@ TEST(FiberH5, HardLinkBombIsRefusedInBoundedMemory)
   struct stat st;
   ASSERT_EQ(stat(path.c_str(), &st), 0);
   ASSERT_LT(st.st_size, 2 << 20); // 3001 x 20000 points declared in well under 2 MB
-  const int status = InChild([&] {
-    const double before = PeakRss();
-    const ReadResult r = Read(path);
-    const bool refused = r.data->GetNumberOfPoints() == 0 && r.errors.find(path) != std::string::npos &&
-      r.errors.find("hard-linked") != std::string::npos;
-    // 60 M points would be 1.9 GB as float64 alone; the refusal needs almost nothing.
-    const bool bounded = PeakRss() - before < 64.0 * 1024 * 1024;
-    if (!refused)
+  const int status = InChild(
+    [&]
     {
-      std::fprintf(stderr, "not refused: %s\n", r.errors.c_str());
-    }
-    return refused && bounded ? 0 : 1;
-  });
+      const double before = PeakRss();
+      const ReadResult r = Read(path);
+      const bool refused = r.data->GetNumberOfPoints() == 0 &&
+        r.errors.find(path) != std::string::npos &&
+        r.errors.find("hard-linked") != std::string::npos;
+      // 60 M points would be 1.9 GB as float64 alone; the refusal needs almost nothing.
+      const bool bounded = PeakRss() - before < 64.0 * 1024 * 1024;
+      if (!refused)
+      {
+        std::fprintf(stderr, "not refused: %s\n", r.errors.c_str());
+      }
+      return refused && bounded ? 0 : 1;
+    });
   EXPECT_EQ(status, 0);
 }
 
@@ -276,7 +286,9 @@ TEST(FiberH5, GroupNamesOutsideTheBundleIdRangeAreRefused)
   ReadResult r = Read(big);
   EXPECT_EQ(r.data->GetNumberOfPoints(), 0);
   EXPECT_NE(r.errors.find(big), std::string::npos) << r.errors;
-  EXPECT_NE(r.errors.find("'/2147483648' is larger than the largest bundle index"), std::string::npos) << r.errors;
+  EXPECT_NE(
+    r.errors.find("'/2147483648' is larger than the largest bundle index"), std::string::npos)
+    << r.errors;
   EXPECT_NE(r.errors.find("2147483647"), std::string::npos) << r.errors;
 
   const std::string largest = kTmp + "/largestgroup.h5";
@@ -315,7 +327,8 @@ TEST(FiberH5, PlantedSymlinkIsNotFollowed)
   std::ofstream(victim) << "precious";
   const std::string path = dir + "/out.h5";
   const std::string pid = std::to_string(getpid());
-  for (const std::string& name : { path + ".tmp-" + pid, path + ".tmp-" + pid + "-0", path + ".tmp-" + pid + "-1" })
+  for (const std::string& name :
+    { path + ".tmp-" + pid, path + ".tmp-" + pid + "-0", path + ".tmp-" + pid + "-1" })
   {
     ASSERT_EQ(symlink(victim.c_str(), name.c_str()), 0);
   }
@@ -342,26 +355,30 @@ TEST(FiberH5, FullFileSystemKeepsTheOldFile)
     }
   }
   auto big = MakeFibers(fibers);
-  const int status = InChild([&] {
-    std::signal(SIGXFSZ, SIG_IGN);
-    const rlimit limit{ static_cast<rlim_t>(before.size() + 4096), static_cast<rlim_t>(before.size() + 4096) };
-    setrlimit(RLIMIT_FSIZE, &limit);
-    const std::string error = Write(big, path);
-    const bool ok = error.find(path) != std::string::npos && error.find("File too large") != std::string::npos;
-    if (!ok)
+  const int status = InChild(
+    [&]
     {
-      std::fprintf(stderr, "unexpected: %s\n", error.c_str());
-    }
-    return ok ? 0 : 1;
-  });
+      std::signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{ static_cast<rlim_t>(before.size() + 4096),
+        static_cast<rlim_t>(before.size() + 4096) };
+      setrlimit(RLIMIT_FSIZE, &limit);
+      const std::string error = Write(big, path);
+      const bool ok =
+        error.find(path) != std::string::npos && error.find("File too large") != std::string::npos;
+      if (!ok)
+      {
+        std::fprintf(stderr, "unexpected: %s\n", error.c_str());
+      }
+      return ok ? 0 : 1;
+    });
   EXPECT_EQ(status, 0);
   EXPECT_EQ(Slurp(path), before);
   EXPECT_EQ(FilesIn(dir).size(), 1u) << "temporary file left behind";
 }
 
 // inner_radius (myelinated fibers) round-trips through .h5 as an attribute of each fiber's dataset,
-// also past HDF5's 64 KiB object-header limit (a 10 000-point fiber), while the (n, 4) datasets that
-// fastPLI reads stay exactly as they were and nothing else is added to the bundle groups.
+// also past HDF5's 64 KiB object-header limit (a 10 000-point fiber), while the (n, 4) datasets
+// that fastPLI reads stay exactly as they were and nothing else is added to the bundle groups.
 TEST(FiberH5, InnerRadiusRoundTripsBesideTheFastPLIDatasets)
 {
   std::vector<std::vector<std::array<double, 4>>> fibers(2);
@@ -437,7 +454,8 @@ TEST(FiberH5, MalformedInnerRadiusAttributeIsNamed)
     const hid_t data = H5Dopen2(f.id, "0/0", H5P_DEFAULT);
     const hsize_t n = 3; // one value short
     const hid_t space = H5Screate_simple(1, &n, nullptr);
-    const hid_t attr = H5Acreate2(data, "inner_radius", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+    const hid_t attr =
+      H5Acreate2(data, "inner_radius", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
     const double v[3] = { 0.5, 0.5, 0.5 };
     H5Awrite(attr, H5T_NATIVE_DOUBLE, v);
     H5Aclose(attr);
@@ -445,6 +463,8 @@ TEST(FiberH5, MalformedInnerRadiusAttributeIsNamed)
     H5Dclose(data);
   }
   const ReadResult r = Read(path);
-  EXPECT_NE(r.errors.find("'/0/0' attribute inner_radius has 3 values for 4 points"), std::string::npos) << r.errors;
+  EXPECT_NE(
+    r.errors.find("'/0/0' attribute inner_radius has 3 values for 4 points"), std::string::npos)
+    << r.errors;
   EXPECT_EQ(r.data->GetNumberOfPoints(), 0);
 }

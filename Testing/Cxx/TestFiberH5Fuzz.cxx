@@ -45,7 +45,8 @@ void RandomFile(const std::string& path, const std::string& other, std::mt19937_
   for (int b = 0; b < bundles; ++b)
   {
     const std::string group = pick(25) == 0 ? odd[pick(7)] : std::to_string(b);
-    if (group.empty() || H5Gclose(H5Gcreate2(f, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0)
+    if (group.empty() ||
+      H5Gclose(H5Gcreate2(f, group.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)) < 0)
     {
       continue;
     }
@@ -91,20 +92,23 @@ void RandomFile(const std::string& path, const std::string& other, std::mt19937_
       case 0: // many hard links to one dataset (counted every time)
         for (int k = 0, n = 1 + pick(3000); k < n && !datasets.empty(); ++k)
         {
-          H5Lcreate_hard(f, datasets.front().c_str(), f, (group + "/" + std::to_string(100 + k)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
+          H5Lcreate_hard(f, datasets.front().c_str(), f,
+            (group + "/" + std::to_string(100 + k)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
         }
         break;
       case 1: // a group hard-linked into itself
         H5Lcreate_hard(f, group.c_str(), f, extra.c_str(), H5P_DEFAULT, H5P_DEFAULT);
         break;
       case 2: // dangling or looping soft links
-        H5Lcreate_soft(pick(2) ? "/nowhere" : ("/" + extra).c_str(), f, extra.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+        H5Lcreate_soft(
+          pick(2) ? "/nowhere" : ("/" + extra).c_str(), f, extra.c_str(), H5P_DEFAULT, H5P_DEFAULT);
         break;
       case 3: // external links: another file, a missing file, this file
       {
         const std::string target = pick(3) == 0 ? path : (pick(2) ? other : kTmp + "/missing.h5");
         H5Lcreate_external(target.c_str(), "/0/0", f, extra.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-        H5Lcreate_external(target.c_str(), "/0", f, std::to_string(bundles + pick(3)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
+        H5Lcreate_external(target.c_str(), "/0", f, std::to_string(bundles + pick(3)).c_str(),
+          H5P_DEFAULT, H5P_DEFAULT);
         break;
       }
       default:
@@ -117,9 +121,15 @@ void RandomFile(const std::string& path, const std::string& other, std::mt19937_
 /// 0 when every mutated file was read safely, else the number of contract violations.
 int FuzzLoop()
 {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // the generator's own failures (e.g. a name twice) are expected
+  H5Eset_auto2(
+    H5E_DEFAULT, nullptr, nullptr); // the generator's own failures (e.g. a name twice) are expected
   setenv("FIBERPLI_MEMORY_LIMIT", "64M", 1);
-  const double before = [] { rusage u{}; getrusage(RUSAGE_SELF, &u); return 1024.0 * u.ru_maxrss; }();
+  const double before = []
+  {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return 1024.0 * u.ru_maxrss;
+  }();
   std::mt19937_64 rng(20261201);
   int violations = 0, reads = 0;
   const std::string other = kTmp + "/fuzz-other.h5", path = kTmp + "/fuzz-case.h5";
@@ -138,7 +148,8 @@ int FuzzLoop()
     {
       if (catcher->Errors.find(path) == std::string::npos || out->GetNumberOfPoints() != 0)
       {
-        std::fprintf(stderr, "file %d: error without the file name or with output: %s\n", m, catcher->Errors.c_str());
+        std::fprintf(stderr, "file %d: error without the file name or with output: %s\n", m,
+          catcher->Errors.c_str());
         ++violations;
       }
       continue;
@@ -146,7 +157,8 @@ int FuzzLoop()
     ++reads;
     vtkDataArray* r = out->GetPointData()->GetArray("radius");
     const bool valid = r && r->GetNumberOfTuples() == out->GetNumberOfPoints() &&
-      (out->GetNumberOfPoints() == 0 || (r->GetRange()[0] > 0.0 && std::isfinite(r->GetRange()[1])));
+      (out->GetNumberOfPoints() == 0 ||
+        (r->GetRange()[0] > 0.0 && std::isfinite(r->GetRange()[1])));
     if (!valid)
     {
       std::fprintf(stderr, "file %d: read without error but invalid fibers\n", m);
@@ -156,8 +168,8 @@ int FuzzLoop()
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   const double grown = 1024.0 * u.ru_maxrss - before;
-  std::fprintf(stderr, "h5 fuzz: %d of 300 files read without error, peak RSS grew by %.0f MB\n", reads,
-    grown / 1048576.0);
+  std::fprintf(stderr, "h5 fuzz: %d of 300 files read without error, peak RSS grew by %.0f MB\n",
+    reads, grown / 1048576.0);
   return violations + (grown > 256.0 * 1024 * 1024 ? 1 : 0);
 }
 } // namespace
@@ -171,6 +183,7 @@ TEST(FiberH5Fuzz, RandomFilesNeverCrashOrExhaustMemory)
   }
   int status = 0;
   waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << "the reader crashed (signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << ")";
+  ASSERT_TRUE(WIFEXITED(status)) << "the reader crashed (signal "
+                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << ")";
   EXPECT_EQ(WEXITSTATUS(status), 0);
 }

@@ -1,6 +1,6 @@
-// The data contract (docs/data-contract.md §3) as every filter sees it through FiberPolyData: each bad input gives a
-// clear error naming the problem and an empty output, and the pipeline works again once the input
-// is fixed.
+// The data contract (docs/data-contract.md §3) as every filter sees it through FiberPolyData: each
+// bad input gives a clear error naming the problem and an empty output, and the pipeline works
+// again once the input is fixed.
 #include "ErrorCatcher.h"
 #include "FiberPolyData.h"
 #include "FiberTestData.h"
@@ -8,10 +8,10 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkObjectFactory.h>
-#include <vtkDataArray.h>
 #include <vtkPointData.h>
 
 #include <gtest/gtest.h>
@@ -31,7 +31,8 @@ void ExpectErrorThenRecovery(vtkPolyData* bad, std::initializer_list<const char*
   tubes->Update();
   for (const char* text : expected)
   {
-    EXPECT_NE(catcher->Errors.find(text), std::string::npos) << "missing '" << text << "' in: " << catcher->Errors;
+    EXPECT_NE(catcher->Errors.find(text), std::string::npos)
+      << "missing '" << text << "' in: " << catcher->Errors;
   }
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 0);
 
@@ -92,7 +93,8 @@ TEST(FiberPolyData, RoundTripKeepsPointsRadiiAndIds)
     EXPECT_EQ(a[0], b[0]);
     EXPECT_EQ(a[1], b[1]);
     EXPECT_EQ(a[2], b[2]);
-    EXPECT_EQ(input->GetPointData()->GetArray("radius")->GetTuple1(i), back->GetPointData()->GetArray("radius")->GetTuple1(i));
+    EXPECT_EQ(input->GetPointData()->GetArray("radius")->GetTuple1(i),
+      back->GetPointData()->GetArray("radius")->GetTuple1(i));
   }
   EXPECT_EQ(back->GetCellData()->GetArray("fiber_id")->GetTuple1(1), 101);
 }
@@ -113,7 +115,8 @@ TEST(FiberPolyData, MultiComponentRadiusIsAnError)
 TEST(FiberPolyData, NonFiniteCoordinateNamesTheFiber)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto bad = MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 1 } }, { { 0, 2, 0, 1 }, { 1, nan, 0, 1 } } });
+  auto bad =
+    MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 1 } }, { { 0, 2, 0, 1 }, { 1, nan, 0, 1 } } });
   ExpectErrorThenRecovery(bad, { "line cell 1", "fiber_id 101", "point 1", "non-finite" });
   const double inf = std::numeric_limits<double>::infinity();
   auto bad2 = MakeFibers({ { { 0, 0, 0, 1 }, { inf, 0, 0, 1 } } });
@@ -124,7 +127,8 @@ TEST(FiberPolyData, ZeroOrNegativeRadiusNamesTheFiber)
 {
   auto zero = MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 0 } } });
   ExpectErrorThenRecovery(zero, { "fiber_id 100", "radius 0" });
-  auto negative = MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 1 } }, { { 0, 0, 0, -2 }, { 1, 0, 0, 1 } } });
+  auto negative =
+    MakeFibers({ { { 0, 0, 0, 1 }, { 1, 0, 0, 1 } }, { { 0, 0, 0, -2 }, { 1, 0, 0, 1 } } });
   ExpectErrorThenRecovery(negative, { "fiber_id 101", "radius -2" });
 }
 
@@ -145,7 +149,8 @@ TEST(FiberPolyData, CellsWithoutLinesAreAnError)
 
 TEST(FiberPolyData, ShortFibersAreDroppedWithOneWarning)
 {
-  auto input = MakeFibers({ { { 0, 0, 0, 1 } }, { { 0, 5, 0, 1 }, { 4, 5, 0, 1 } }, { { 9, 9, 9, 1 } } });
+  auto input =
+    MakeFibers({ { { 0, 0, 0, 1 } }, { { 0, 5, 0, 1 }, { 4, 5, 0, 1 } }, { { 9, 9, 9, 1 } } });
   vtkNew<vtkFiberTubes> tubes;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(tubes);
@@ -153,7 +158,8 @@ TEST(FiberPolyData, ShortFibersAreDroppedWithOneWarning)
   tubes->SetNumberOfSides(6);
   tubes->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
-  EXPECT_NE(catcher->Warnings.find("2 fiber(s) with fewer than 2 points dropped"), std::string::npos)
+  EXPECT_NE(
+    catcher->Warnings.find("2 fiber(s) with fewer than 2 points dropped"), std::string::npos)
     << catcher->Warnings;
   vtkPolyData* out = tubes->GetOutput();
   ASSERT_EQ(out->GetNumberOfCells(), 2 * 6 + 2 * 6);

@@ -32,7 +32,8 @@ hid_t MakeGroup(hid_t file, const std::string& path)
 }
 
 /// Writes bundles[b][f] = n×4 rows as datasets <group>/<b>/<f>.
-void WriteBundles(hid_t file, const std::string& group, const std::vector<std::vector<std::vector<double>>>& bundles)
+void WriteBundles(hid_t file, const std::string& group,
+  const std::vector<std::vector<std::vector<double>>>& bundles)
 {
   for (std::size_t b = 0; b < bundles.size(); ++b)
   {
@@ -41,7 +42,8 @@ void WriteBundles(hid_t file, const std::string& group, const std::vector<std::v
     {
       const hsize_t dims[2] = { bundles[b][f].size() / 4, 4 };
       const hid_t space = H5Screate_simple(2, dims, nullptr);
-      const hid_t d = H5Dcreate2(g, std::to_string(f).c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      const hid_t d = H5Dcreate2(
+        g, std::to_string(f).c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
       H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, bundles[b][f].data());
       H5Dclose(d);
       H5Sclose(space);
@@ -60,13 +62,15 @@ std::string MakeFile(const std::string& name, const std::vector<std::string>& gr
   {
     const double x = 100.0 * k;
     WriteBundles(file, groups[k],
-      { { { x, 0, 0, 1, x + 1, 0, 0, 1 }, { x, 5, 0, 1, x + 1, 5, 0, 1, x + 2, 5, 0, 1 } }, { { x, 0, 9, 2, x, 1, 9, 2 } } });
+      { { { x, 0, 0, 1, x + 1, 0, 0, 1 }, { x, 5, 0, 1, x + 1, 5, 0, 1, x + 2, 5, 0, 1 } },
+        { { x, 0, 9, 2, x, 1, 9, 2 } } });
   }
   const hid_t meta = MakeGroup(file, "/meta");
   const hsize_t one = 1;
   const hid_t space = H5Screate_simple(1, &one, nullptr);
   const double version = 1.0;
-  const hid_t d = H5Dcreate2(meta, "version", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t d =
+    H5Dcreate2(meta, "version", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &version);
   H5Dclose(d);
   H5Sclose(space);
@@ -98,7 +102,8 @@ ReadResult Read(const std::string& path, const char* group)
   if (r.points > 0)
   {
     r.firstX = out->GetPoint(0)[0];
-    r.lastBundle = static_cast<int>(out->GetCellData()->GetArray("bundle_id")->GetTuple1(r.fibers - 1));
+    r.lastBundle =
+      static_cast<int>(out->GetCellData()->GetArray("bundle_id")->GetTuple1(r.fibers - 1));
   }
   r.errors = catcher->Errors;
   return r;
@@ -128,7 +133,8 @@ TEST(FiberReaderH5Groups, SeveralGroupsNeedTheGroupProperty)
   const std::string path = MakeFile("two_groups.h5", { "/before", "/after" });
   const ReadResult automatic = Read(path, "");
   EXPECT_EQ(automatic.fibers, 0);
-  EXPECT_NE(automatic.errors.find("several groups hold fiber bundles (/after, /before); set Group"), std::string::npos)
+  EXPECT_NE(automatic.errors.find("several groups hold fiber bundles (/after, /before); set Group"),
+    std::string::npos)
     << automatic.errors;
   const ReadResult after = Read(path, "after");
   EXPECT_TRUE(after.errors.empty()) << after.errors;
@@ -140,9 +146,12 @@ TEST(FiberReaderH5Groups, BadGroupIsAnErrorNamingIt)
 {
   const std::string path = MakeFile("bad_group.h5", { "/fiber_bundles" });
   const ReadResult missing = Read(path, "nope");
-  EXPECT_NE(missing.errors.find("Group 'nope' is not a group"), std::string::npos) << missing.errors;
+  EXPECT_NE(missing.errors.find("Group 'nope' is not a group"), std::string::npos)
+    << missing.errors;
   const ReadResult notBundles = Read(path, "/meta");
-  EXPECT_NE(notBundles.errors.find("member '/meta/version' is not a bundle index"), std::string::npos) << notBundles.errors;
+  EXPECT_NE(
+    notBundles.errors.find("member '/meta/version' is not a bundle index"), std::string::npos)
+    << notBundles.errors;
   // The reader stays usable.
   EXPECT_EQ(Read(path, "").fibers, 3);
 }
@@ -156,7 +165,8 @@ TEST(FiberReaderH5Groups, SelfLinkedGroupsAreVisitedOnce)
   const hid_t loop = MakeGroup(file, "/loop");
   for (int k = 0; k < 30; ++k)
   {
-    H5Lcreate_hard(file, "/loop", loop, ("self" + std::to_string(k)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
+    H5Lcreate_hard(
+      file, "/loop", loop, ("self" + std::to_string(k)).c_str(), H5P_DEFAULT, H5P_DEFAULT);
   }
   H5Gclose(loop);
   H5Fclose(file);
@@ -176,7 +186,8 @@ TEST(FiberReaderH5Groups, GroupThroughASoftLinkIsRefused)
   H5Fclose(file);
   const ReadResult soft = Read(path, "alias");
   EXPECT_EQ(soft.fibers, 0);
-  EXPECT_NE(soft.errors.find("Group 'alias' is not a group stored in the file (only hard links"), std::string::npos)
+  EXPECT_NE(soft.errors.find("Group 'alias' is not a group stored in the file (only hard links"),
+    std::string::npos)
     << soft.errors;
   EXPECT_EQ(Read(path, "fiber_bundles").fibers, 3);
 }

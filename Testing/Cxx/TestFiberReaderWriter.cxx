@@ -26,7 +26,8 @@ const std::string kData = FIBERPLI_TEST_DATA_DIR;
 vtkSmartPointer<vtkPolyData> Model()
 {
   auto pd = MakeFibers({ { { 0.125, 1, 2, 0.5 }, { 1.5, 1.25, 2, 0.75 }, { 3, 1.5, 2.5, 0.5 } },
-    { { -1, -2, -3, 1.0 }, { -1.5, -2.5, -3.5, 1.5 } }, { { 10, 0, 0, 0.3 }, { 10, 1, 0, 0.3 }, { 10, 2, 1, 0.4 }, { 10, 3, 1, 0.3 } },
+    { { -1, -2, -3, 1.0 }, { -1.5, -2.5, -3.5, 1.5 } },
+    { { 10, 0, 0, 0.3 }, { 10, 1, 0, 0.3 }, { 10, 2, 1, 0.4 }, { 10, 3, 1, 0.3 } },
     { { 5, 5, 5, 2.0 }, { 6, 5, 5, 2.0 } } });
   // bundles 0, 1, 0, 1 from MakeFibers; make the last one a third bundle.
   vtkDataArray* bundle = pd->GetCellData()->GetArray("bundle_id");
@@ -46,7 +47,8 @@ bool Write(vtkPolyData* pd, const std::string& path, ErrorCatcher* catcher = nul
   return writer->Write() == 1 && writer->GetErrorCode() == 0;
 }
 
-vtkSmartPointer<vtkPolyData> Read(const std::string& path, ErrorCatcher* catcher = nullptr, double defaultRadius = 1.0)
+vtkSmartPointer<vtkPolyData> Read(
+  const std::string& path, ErrorCatcher* catcher = nullptr, double defaultRadius = 1.0)
 {
   vtkNew<vtkFiberReader> reader;
   if (catcher)
@@ -62,7 +64,8 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path, ErrorCatcher* catcher
 }
 
 /// Points equal within tol, radii compared when compareRadii, bundle grouping when compareBundles.
-void ExpectSameFibers(vtkPolyData* a, vtkPolyData* b, double tol, bool compareRadii, bool compareBundles)
+void ExpectSameFibers(
+  vtkPolyData* a, vtkPolyData* b, double tol, bool compareRadii, bool compareBundles)
 {
   ASSERT_EQ(a->GetNumberOfLines(), b->GetNumberOfLines());
   ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
@@ -77,14 +80,16 @@ void ExpectSameFibers(vtkPolyData* a, vtkPolyData* b, double tol, bool compareRa
     }
     if (compareRadii)
     {
-      EXPECT_NEAR(a->GetPointData()->GetArray("radius")->GetTuple1(i), b->GetPointData()->GetArray("radius")->GetTuple1(i), tol);
+      EXPECT_NEAR(a->GetPointData()->GetArray("radius")->GetTuple1(i),
+        b->GetPointData()->GetArray("radius")->GetTuple1(i), tol);
     }
   }
   if (compareBundles)
   {
     for (vtkIdType c = 0; c < a->GetNumberOfLines(); ++c)
     {
-      EXPECT_EQ(a->GetCellData()->GetArray("bundle_id")->GetTuple1(c), b->GetCellData()->GetArray("bundle_id")->GetTuple1(c));
+      EXPECT_EQ(a->GetCellData()->GetArray("bundle_id")->GetTuple1(c),
+        b->GetCellData()->GetArray("bundle_id")->GetTuple1(c));
     }
   }
 }
@@ -146,7 +151,9 @@ TEST(FiberReaderWriter, ReadsTheReferenceToolboxAndTrackSamples)
   auto trk = Read(kData + "/tracks/sample.trk", catcher, 0.7);
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   ASSERT_EQ(trk->GetNumberOfLines(), 1); // the second track has a single point: dropped, warned
-  EXPECT_NE(catcher->Warnings.find("1 fiber(s) with fewer than 2 points dropped"), std::string::npos) << catcher->Warnings;
+  EXPECT_NE(
+    catcher->Warnings.find("1 fiber(s) with fewer than 2 points dropped"), std::string::npos)
+    << catcher->Warnings;
   EXPECT_EQ(trk->GetPointData()->GetArray("radius")->GetTuple1(0), 0.7);
   auto tck = Read(kData + "/tracks/sample.tck", catcher, 0.7);
   ASSERT_EQ(tck->GetNumberOfLines(), 2);

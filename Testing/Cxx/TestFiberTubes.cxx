@@ -62,7 +62,9 @@ double SignedVolume(vtkPolyData* mesh)
     mesh->GetPoint(ids[0], a);
     mesh->GetPoint(ids[1], b);
     mesh->GetPoint(ids[2], c);
-    v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+    v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0])) /
+      6.0;
   }
   return v;
 }
@@ -70,7 +72,8 @@ double SignedVolume(vtkPolyData* mesh)
 
 TEST(FiberTubes, StraightFiberVolumeMatchesThePolygonalTube)
 {
-  auto fibers = MakeFibers({ { { -3, 1, 2, 0.8 }, { -1, 1, 2, 0.8 }, { 4, 1, 2, 0.8 }, { 7, 1, 2, 0.8 } } });
+  auto fibers =
+    MakeFibers({ { { -3, 1, 2, 0.8 }, { -1, 1, 2, 0.8 }, { 4, 1, 2, 0.8 }, { 7, 1, 2, 0.8 } } });
   for (int sides : { 6, 12, 20 })
   {
     vtkNew<vtkFiberTubes> tubes;
@@ -142,9 +145,8 @@ TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(tubes);
   tubes->SetInputData(MakeFibers({ { { 0, 0, 0, 1 }, { 10, 0, 0, 1 } } }));
-  const auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(tubes, catcher, text);
-  };
+  const auto expectError = [&](const std::string& text)
+  { ExpectUpdateError(tubes, catcher, text); };
   tubes->SetNumberOfSides(2);
   expectError("NumberOfSides is 2, must be in [3, 64]");
   tubes->SetNumberOfSides(65);
@@ -156,14 +158,16 @@ TEST(FiberTubes, NumberOfSidesOutOfRangeIsNamedNotClamped)
   tubes->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(tubes->GetOutput()->GetNumberOfPoints(), 2 * 8 + 2); // two rings and two cap centres
-  EXPECT_EQ(tubes->GetOutput()->GetNumberOfCells(), 2 * 8 + 2 * 8); // side quads as triangles, two fans
+  EXPECT_EQ(
+    tubes->GetOutput()->GetNumberOfCells(), 2 * 8 + 2 * 8); // side quads as triangles, two fans
 }
 
 TEST(FiberTubes, InnerTubesOnRequestAreWatertightOutwardAndLabelled)
 {
   // A myelinated cube (GRatio 0.6): with InnerTubes every fiber gets a second closed, outward tube
-  // at its inner radius, the tubes' volumes in the ratio g² (straight fibers of constant radius), and
-  // tube_surface tells them apart. Off (the default) is the mesh of before, without tube_surface.
+  // at its inner radius, the tubes' volumes in the ratio g² (straight fibers of constant radius),
+  // and tube_surface tells them apart. Off (the default) is the mesh of before, without
+  // tube_surface.
   vtkNew<vtkFiberCubeSource> cube;
   cube->SetPopulations(2);
   cube->SetNumberOfFibers(12);
@@ -205,8 +209,8 @@ TEST(FiberTubes, InnerTubesOnRequestAreWatertightOutwardAndLabelled)
   ExpectWatertight(outer);
   const double vOuter = SignedVolume(outer), vInner = SignedVolume(inner);
   EXPECT_NEAR(vOuter, SignedVolume(plain->GetOutput()), 1e-9 * vOuter); // the outer tubes unchanged
-  EXPECT_GT(vInner, 0.0);                                                 // outward
-  EXPECT_NEAR(vInner / vOuter, 0.36, 1e-9);                              // g² for a constant g
+  EXPECT_GT(vInner, 0.0);                                               // outward
+  EXPECT_NEAR(vInner / vOuter, 0.36, 1e-9);                             // g² for a constant g
   // A bad inner_radius is an error naming it.
   auto fibers = MakeFibers({ { { 0, 0, 0, 1.0 }, { 5, 0, 0, 1.0 } } });
   vtkNew<vtkDoubleArray> bad;

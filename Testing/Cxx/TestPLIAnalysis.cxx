@@ -1,6 +1,6 @@
 // PLIAnalysis, FiberOrientationMap and FiberOrientationGroundTruth against closed forms
-// (docs/pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)), independent of
-// the simulator; tilted views from the rotation of docs/pli-simulation.md §4.3.
+// (docs/pli-analysis.md §6): stacks are built here from I(ρ) = I_T·(1 + r·sin 2(ρ − φ)),
+// independent of the simulator; tilted views from the rotation of docs/pli-simulation.md §4.3.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
 #include "vtkFiberOrientationGroundTruth.h"
@@ -9,8 +9,8 @@
 #include "vtkPLISimulation.h"
 
 #include <vtkDoubleArray.h>
-#include <vtkFloatArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -37,8 +37,8 @@ struct Pixel
 
 /// One-row image of the given pixels; `angles` in degrees, written to polarizer_angles unless
 /// `writeAngles` is false.
-vtkSmartPointer<vtkImageData> MakeStack(const std::vector<double>& angles, const std::vector<Pixel>& pixels,
-  bool writeAngles = true, const char* name = "intensity")
+vtkSmartPointer<vtkImageData> MakeStack(const std::vector<double>& angles,
+  const std::vector<Pixel>& pixels, bool writeAngles = true, const char* name = "intensity")
 {
   auto img = vtkSmartPointer<vtkImageData>::New();
   img->SetExtent(0, static_cast<int>(pixels.size()) - 1, 0, 0, 0, 0);
@@ -51,7 +51,8 @@ vtkSmartPointer<vtkImageData> MakeStack(const std::vector<double>& angles, const
   {
     for (std::size_t k = 0; k < angles.size(); ++k)
     {
-      const double v = pixels[p].it * (1.0 + pixels[p].r * std::sin(2.0 * (angles[k] - pixels[p].dirDeg) * kDeg));
+      const double v =
+        pixels[p].it * (1.0 + pixels[p].r * std::sin(2.0 * (angles[k] - pixels[p].dirDeg) * kDeg));
       I->SetComponent(static_cast<vtkIdType>(p), static_cast<int>(k), v);
     }
   }
@@ -105,8 +106,8 @@ void SetField(vtkImageData* img, const char* name, double v)
 TEST(PLIAnalysis, EquidistantSinusoids)
 {
   // A-2 (as closed forms): T = 2·I_T, direction φ, retardation r; r > 1 is clamped to 1.
-  const std::vector<Pixel> px = { { 1000, 26.565051177, 0.5 }, { 1000, 90, 0.3 }, { 1000, 135, 0.4 }, { 1000, 45, 0.4 },
-    { 100, 0, 1.5 }, { 500, 0, 0.0 }, { 3250, 179.5, 0.2 } };
+  const std::vector<Pixel> px = { { 1000, 26.565051177, 0.5 }, { 1000, 90, 0.3 },
+    { 1000, 135, 0.4 }, { 1000, 45, 0.4 }, { 100, 0, 1.5 }, { 500, 0, 0.0 }, { 3250, 179.5, 0.2 } };
   vtkNew<vtkPLIAnalysis> f;
   f->SetInputData(MakeStack(Equidistant(9), px));
   f->SetInclinationMethod(vtkPLIAnalysis::RETARDATION);
@@ -196,22 +197,24 @@ TEST(PLIAnalysis, InclinationFromRetardation)
   for (int p = 0; p < 4; ++p)
   {
     // 90°: the EPA's rounding of r ≈ 0 enters through a square root (1e-5° then).
-    EXPECT_NEAR(Value(f->GetOutput(), "inclination", p), alphas[p], alphas[p] == 90 ? 1e-5 : 1e-6) << p;
+    EXPECT_NEAR(Value(f->GetOutput(), "inclination", p), alphas[p], alphas[p] == 90 ? 1e-5 : 1e-6)
+      << p;
   }
   EXPECT_NEAR(Value(f->GetOutput(), "inclination", 4), 0.0, 1e-6);
-  EXPECT_NEAR(f->GetOutput()->GetFieldData()->GetArray("reference_retardation")->GetComponent(0, 0), 0.6579387259, 1e-12);
+  EXPECT_NEAR(f->GetOutput()->GetFieldData()->GetArray("reference_retardation")->GetComponent(0, 0),
+    0.6579387259, 1e-12);
 }
 
 namespace
 {
 /// closed-form views of a uniform column (t_rel, axis (dir, incl)) under the Physical
 /// convention v_b = Rᵀ(τ, ψ)·v; returns the image with intensity and intensity_tilt_0..3.
-vtkSmartPointer<vtkImageData> TiltStack(double dirDeg, double inclDeg, double tRel, double tauDeg, int n,
-  std::vector<std::pair<double, double>>* views = nullptr)
+vtkSmartPointer<vtkImageData> TiltStack(double dirDeg, double inclDeg, double tRel, double tauDeg,
+  int n, std::vector<std::pair<double, double>>* views = nullptr)
 {
   const std::vector<double> rho = Equidistant(n);
-  const double v[3] = { std::cos(inclDeg * kDeg) * std::cos(dirDeg * kDeg), std::cos(inclDeg * kDeg) * std::sin(dirDeg * kDeg),
-    std::sin(inclDeg * kDeg) };
+  const double v[3] = { std::cos(inclDeg * kDeg) * std::cos(dirDeg * kDeg),
+    std::cos(inclDeg * kDeg) * std::sin(dirDeg * kDeg), std::sin(inclDeg * kDeg) };
   vtkSmartPointer<vtkImageData> img;
   for (int j = 0; j < 5; ++j)
   {
@@ -221,8 +224,8 @@ vtkSmartPointer<vtkImageData> TiltStack(double dirDeg, double inclDeg, double tR
     {
       const double c = std::cos(tauDeg * kDeg), s = std::sin(tauDeg * kDeg);
       const double cp = std::cos((j - 1) * kPi / 2), sp = std::sin((j - 1) * kPi / 2);
-      const double R[3][3] = { { c * cp * cp + sp * sp, (c - 1) * sp * cp, s * cp }, { (c - 1) * sp * cp, c * sp * sp + cp * cp, s * sp },
-        { -s * cp, -s * sp, c } };
+      const double R[3][3] = { { c * cp * cp + sp * sp, (c - 1) * sp * cp, s * cp },
+        { (c - 1) * sp * cp, c * sp * sp + cp * cp, s * sp }, { -s * cp, -s * sp, c } };
       for (int a = 0; a < 3; ++a)
       {
         vb[a] = R[0][a] * v[0] + R[1][a] * v[1] + R[2][a] * v[2]; // Rᵀ·v
@@ -262,8 +265,8 @@ TEST(PLIAnalysis, TiltFitSignedInclination)
   // The closed-form views reproduce the A-4 table (this checks the test's own rotation).
   std::vector<std::pair<double, double>> views;
   TiltStack(30, 20, 0.4571428571, 5.5, 18, &views);
-  const double table[5][2] = { { 30.0, 0.592436 }, { 31.1522, 0.560579 }, { 28.1205, 0.576308 }, { 29.1380, 0.622326 },
-    { 31.5904, 0.611887 } };
+  const double table[5][2] = { { 30.0, 0.592436 }, { 31.1522, 0.560579 }, { 28.1205, 0.576308 },
+    { 29.1380, 0.622326 }, { 31.5904, 0.611887 } };
   for (int j = 0; j < 5; ++j)
   {
     EXPECT_NEAR(views[j].first, table[j][0], 1e-4) << j;
@@ -407,8 +410,10 @@ TEST(PLIAnalysis, BadInputAndRecovery)
   auto mismatch = MakeStack(Equidistant(6), { { 1, 0, 0.1 } });
   mismatch->GetFieldData()->RemoveArray("polarizer_angles");
   SetField(mismatch, "polarizer_angles", 0.0);
-  vtkDoubleArray::SafeDownCast(mismatch->GetFieldData()->GetArray("polarizer_angles"))->InsertNextValue(30);
-  vtkDoubleArray::SafeDownCast(mismatch->GetFieldData()->GetArray("polarizer_angles"))->InsertNextValue(60);
+  vtkDoubleArray::SafeDownCast(mismatch->GetFieldData()->GetArray("polarizer_angles"))
+    ->InsertNextValue(30);
+  vtkDoubleArray::SafeDownCast(mismatch->GetFieldData()->GetArray("polarizer_angles"))
+    ->InsertNextValue(60);
   f->SetInputData(mismatch);
   f->Update();
   EXPECT_NE(catcher->Errors.find("6 components"), std::string::npos) << catcher->Errors;
@@ -456,14 +461,16 @@ vtkSmartPointer<vtkImageData> AngleImage(const std::vector<std::pair<double, dou
 TEST(FiberOrientationMap, ColoursOfKnownAngles)
 {
   //
-  const std::vector<std::pair<double, double>> in = { { 0, 0 }, { 15, 0 }, { 30, 0 }, { 45, 0 }, { 60, 0 }, { 90, 0 },
-    { 120, 0 }, { 150, 0 }, { 179, 0 }, { 0, 45 }, { 90, 30 }, { 30, 60 }, { 77, 90 }, { 30, -60 }, { NAN, 0 } };
-  const int hsv[][3] = { { 255, 0, 0 }, { 255, 127, 0 }, { 255, 255, 0 }, { 127, 255, 0 }, { 0, 255, 0 }, { 0, 255, 255 },
-    { 0, 0, 255 }, { 255, 0, 255 }, { 255, 0, 8 }, { 127, 0, 0 }, { 0, 170, 170 }, { 85, 85, 0 }, { 0, 0, 0 }, { 85, 85, 0 },
+  const std::vector<std::pair<double, double>> in = { { 0, 0 }, { 15, 0 }, { 30, 0 }, { 45, 0 },
+    { 60, 0 }, { 90, 0 }, { 120, 0 }, { 150, 0 }, { 179, 0 }, { 0, 45 }, { 90, 30 }, { 30, 60 },
+    { 77, 90 }, { 30, -60 }, { NAN, 0 } };
+  const int hsv[][3] = { { 255, 0, 0 }, { 255, 127, 0 }, { 255, 255, 0 }, { 127, 255, 0 },
+    { 0, 255, 0 }, { 0, 255, 255 }, { 0, 0, 255 }, { 255, 0, 255 }, { 255, 0, 8 }, { 127, 0, 0 },
+    { 0, 170, 170 }, { 85, 85, 0 }, { 0, 0, 0 }, { 85, 85, 0 }, { 0, 0, 0 } };
+  const int rgb[][3] = { { 255, 0, 0 }, { 246, 65, 0 }, { 220, 127, 0 }, { 180, 180, 0 },
+    { 127, 220, 0 }, { 0, 255, 0 }, { 127, 220, 0 }, { 220, 127, 0 }, { 254, 4, 0 },
+    { 180, 0, 180 }, { 0, 220, 127 }, { 110, 63, 220 }, { 0, 0, 255 }, { 110, 63, 220 },
     { 0, 0, 0 } };
-  const int rgb[][3] = { { 255, 0, 0 }, { 246, 65, 0 }, { 220, 127, 0 }, { 180, 180, 0 }, { 127, 220, 0 }, { 0, 255, 0 },
-    { 127, 220, 0 }, { 220, 127, 0 }, { 254, 4, 0 }, { 180, 0, 180 }, { 0, 220, 127 }, { 110, 63, 220 }, { 0, 0, 255 },
-    { 110, 63, 220 }, { 0, 0, 0 } };
   for (int scheme : { vtkFiberOrientationMap::HSV_BLACK, vtkFiberOrientationMap::RGB })
   {
     vtkNew<vtkFiberOrientationMap> f;
@@ -478,7 +485,8 @@ TEST(FiberOrientationMap, ColoursOfKnownAngles)
     {
       for (int c = 0; c < 3; ++c)
       {
-        EXPECT_EQ(fom->GetComponent(p, c), (scheme == 0 ? hsv : rgb)[p][c]) << "scheme " << scheme << " pixel " << p;
+        EXPECT_EQ(fom->GetComponent(p, c), (scheme == 0 ? hsv : rgb)[p][c])
+          << "scheme " << scheme << " pixel " << p;
       }
     }
     EXPECT_NE(f->GetOutput()->GetPointData()->GetArray("direction"), nullptr); // input arrays kept
@@ -530,11 +538,13 @@ TEST(FiberOrientationMap, LegendPortAndBadInput)
 // give the same colours as the default direction/inclination doubles.
 TEST(FiberOrientationMap, InputArraysAreSelectedByName)
 {
-  const std::vector<std::pair<double, double>> in = { { 0, 0 }, { 30, 0 }, { 90, 30 }, { 30, 60 }, { 150, -45 } };
+  const std::vector<std::pair<double, double>> in = { { 0, 0 }, { 30, 0 }, { 90, 30 }, { 30, 60 },
+    { 150, -45 } };
   vtkNew<vtkFiberOrientationMap> reference;
   reference->SetInputData(AngleImage(in));
   reference->Update();
-  auto* expected = vtkUnsignedCharArray::SafeDownCast(reference->GetOutput()->GetPointData()->GetArray("fom"));
+  auto* expected =
+    vtkUnsignedCharArray::SafeDownCast(reference->GetOutput()->GetPointData()->GetArray("fom"));
   ASSERT_NE(expected, nullptr);
 
   auto img = AngleImage({ { 45, 45 } }); // decoy arrays under the default names
@@ -587,10 +597,11 @@ TEST(FiberOrientationGroundTruth, StraightFibers)
   };
   for (Case c : { Case{ 30, 20 }, Case{ 120, -60 } })
   {
-    const double u[3] = { std::cos(c.incl * kDeg) * std::cos(c.dir * kDeg), std::cos(c.incl * kDeg) * std::sin(c.dir * kDeg),
-      std::sin(c.incl * kDeg) };
+    const double u[3] = { std::cos(c.incl * kDeg) * std::cos(c.dir * kDeg),
+      std::cos(c.incl * kDeg) * std::sin(c.dir * kDeg), std::sin(c.incl * kDeg) };
     // One thick straight fiber through the origin covering the whole VOI.
-    auto fibers = MakeFibers({ { { -40 * u[0], -40 * u[1], -40 * u[2], 10 }, { 40 * u[0], 40 * u[1], 40 * u[2], 10 } } });
+    auto fibers = MakeFibers(
+      { { { -40 * u[0], -40 * u[1], -40 * u[2], 10 }, { 40 * u[0], 40 * u[1], 40 * u[2], 10 } } });
     vtkNew<vtkFiberOrientationGroundTruth> f;
     f->SetInputData(fibers);
     f->SetVolumeOfInterest(-3, 3, -3, 3, -1, 1);
@@ -644,7 +655,8 @@ void SetUpFiberAlongX(vtkFiberOrientationGroundTruth* f)
 
 TEST(FiberOrientationGroundTruth, InputBoundsEmptyAndBadInput)
 {
-  // Sentinel VOI = bounds with radii: fiber along x from 0 to 10, r 1 → [−1, 11] × [−1, 1] × [−1, 1].
+  // Sentinel VOI = bounds with radii: fiber along x from 0 to 10, r 1 → [−1, 11] × [−1, 1] × [−1,
+  // 1].
   vtkNew<vtkFiberOrientationGroundTruth> f;
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(f);
@@ -695,7 +707,8 @@ TEST(PLIAnalysis, OutOfRangePropertiesAreNamedNotClamped)
   catcher->Watch(f);
   f->SetInputData(MakeStack(Equidistant(6), { { 1, 0, 0.1 } }));
   const auto expectError = [&](const std::string& text) { ExpectUpdateError(f, catcher, text); };
-  const auto expectGood = [&]() {
+  const auto expectGood = [&]()
+  {
     ExpectUpdateClean(f, catcher);
     ASSERT_EQ(f->GetOutput()->GetNumberOfPoints(), 1);
     EXPECT_NEAR(Value(f->GetOutput(), "transmittance", 0), 2.0, 1e-12);
@@ -731,7 +744,8 @@ TEST(FiberOrientationGroundTruth, BadSizesAreNamedNotClamped)
   catcher->Watch(f);
   SetUpFiberAlongX(f);
   const auto expectError = [&](const std::string& text) { ExpectUpdateError(f, catcher, text); };
-  const auto expectGood = [&]() {
+  const auto expectGood = [&]()
+  {
     ExpectUpdateClean(f, catcher);
     EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), 24); // 12 × 2 pixels of [−1, 11] × [−1, 1]
   };

@@ -1,6 +1,6 @@
-// PLISimulation and FiberOrientationGroundTruth keep the plan of RequestInformation between requests
-// (docs/pli-simulation.md §7.3): whatever changes — the input's fibers, a property, the input's
-// bounds under the VolumeOfInterest sentinel — the output equals that of a fresh filter.
+// PLISimulation and FiberOrientationGroundTruth keep the plan of RequestInformation between
+// requests (docs/pli-simulation.md §7.3): whatever changes — the input's fibers, a property, the
+// input's bounds under the VolumeOfInterest sentinel — the output equals that of a fresh filter.
 #include "ErrorCatcher.h"
 #include "FiberTestData.h"
 #include "vtkFiberOrientationGroundTruth.h"
@@ -25,14 +25,16 @@ std::vector<double> Values(vtkImageData* img, const char* name)
   vtkDataArray* a = img->GetPointData()->GetArray(name);
   for (vtkIdType k = 0; a && k < a->GetNumberOfValues(); ++k)
   {
-    v.push_back(a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
+    v.push_back(a->GetComponent(
+      k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents())));
   }
   return v;
 }
 
 bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
 {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  return a.size() == b.size() &&
+    (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 void Configure(vtkPLISimulation* sim, bool sentinel)
@@ -51,7 +53,8 @@ void Configure(vtkPLISimulation* sim, bool sentinel)
 /// Two crossing fibers; `shift` moves the second one along y.
 vtkSmartPointer<vtkPolyData> Fibers(double shift)
 {
-  return MakeFibers({ { { -8, -2, -1.5, 1.2 }, { 8, 2, -1.5, 1.2 } }, { { -3, -8 + shift, 1.5, 1.2 }, { 3, 8 + shift, 1.5, 1.2 } } });
+  return MakeFibers({ { { -8, -2, -1.5, 1.2 }, { 8, 2, -1.5, 1.2 } },
+    { { -3, -8 + shift, 1.5, 1.2 }, { 3, 8 + shift, 1.5, 1.2 } } });
 }
 
 /// The image (intensity) of a fresh filter with the same set-up on `input`.
@@ -145,7 +148,8 @@ TEST(PLICache, GroundTruthFollowsEveryChangeOfInputAndProperties)
   truth->SetInputData(input);
   truth->Update();
   const std::vector<double> first = Values(truth->GetOutput(), "direction");
-  auto fresh = [&](double pixel) {
+  auto fresh = [&](double pixel)
+  {
     vtkNew<vtkFiberOrientationGroundTruth> t;
     t->SetVolumeOfInterest(-8, 8, -8, 8, -4, 4);
     t->SetVoxelSize(0.5);

@@ -1,5 +1,6 @@
-// PLISimulation through VTK: closed-form intensities of a uniform slab (docs/pli-simulation.md §4.2,
-// S-6), extents and field data, sub-extent = crop, thread and seed reproducibility, bad input.
+// PLISimulation through VTK: closed-form intensities of a uniform slab (docs/pli-simulation.md
+// §4.2, S-6), extents and field data, sub-extent = crop, thread and seed reproducibility, bad
+// input.
 #include "ErrorCatcher.h"
 #include "FiberPolyData.h"
 #include "FiberTestData.h"
@@ -219,7 +220,8 @@ TEST(PLISimulation, TiltedSlabMatchesS6TableAndAbsorption)
 TEST(PLISimulation, SubExtentEqualsCropOfTheWholeImage)
 {
   auto fibers = SmallModel();
-  auto configure = [&](vtkPLISimulation* s) {
+  auto configure = [&](vtkPLISimulation* s)
+  {
     SetUpSmallSection(s, fibers);
     s->SetTiltAngle(5.5);
     s->SetNoiseGain(3.0);
@@ -270,7 +272,8 @@ TEST(PLISimulation, SubExtentEqualsCropOfTheWholeImage)
 TEST(PLISimulation, ThreadCountAndSeed)
 {
   auto fibers = SmallModel();
-  auto run = [&](int threads, int seed) {
+  auto run = [&](int threads, int seed)
+  {
     vtkNew<vtkPLISimulation> s;
     s->SetInputData(fibers);
     s->SetVolumeOfInterest(-10, 10, -10, 10, -5, 5);
@@ -296,13 +299,15 @@ TEST(PLISimulation, ThreadCountAndSeed)
   std::size_t differ = 0;
   for (vtkIdType t = 0; t < x->GetNumberOfTuples(); ++t)
     differ += x->GetComponent(t, 0) != y->GetComponent(t, 0);
-  EXPECT_GT(differ, static_cast<std::size_t>(x->GetNumberOfTuples() / 2)) << "another Seed must change the noise";
+  EXPECT_GT(differ, static_cast<std::size_t>(x->GetNumberOfTuples() / 2))
+    << "another Seed must change the noise";
 }
 
 TEST(PLISimulation, NoiseHasTheCameraStatistics)
 {
   // Uniform slab, no blur: noiseless I(ρ) is known, noisy counts have mean I and variance g·I.
-  auto run = [](double gain) {
+  auto run = [](double gain)
+  {
     vtkNew<vtkPLISimulation> s;
     s->SetInputData(Slab(30.0, 20.0));
     SetUpS6(s);
@@ -342,10 +347,9 @@ TEST(PLISimulation, BadInputIsReportedAndRecovers)
   catcher->Watch(sim);
   sim->SetInputData(Slab(30.0, 20.0));
   SetUpS6(sim);
-  auto expectError = [&](const char* what) {
-    ExpectUpdateError(sim, catcher, what);
-  };
-  auto expectGood = [&]() {
+  auto expectError = [&](const char* what) { ExpectUpdateError(sim, catcher, what); };
+  auto expectGood = [&]()
+  {
     catcher->Clear();
     sim->Update();
     EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
@@ -382,12 +386,14 @@ TEST(PLISimulation, BadInputIsReportedAndRecovers)
   // A list count far beyond the Core maximum: an error at once (no 16 GB resize) and at run time.
   catcher->Clear();
   sim->SetNumberOfRotationAngles(2147483647);
-  EXPECT_NE(catcher->Errors.find("RotationAngles has 2147483647 values, at most 3600"), std::string::npos)
+  EXPECT_NE(
+    catcher->Errors.find("RotationAngles has 2147483647 values, at most 3600"), std::string::npos)
     << catcher->Errors;
   EXPECT_EQ(sim->GetNumberOfRotationAngles(), 3601);
   expectError("RotationAngles");
   sim->SetNumberOfTiltAzimuths(-1);
-  EXPECT_NE(catcher->Errors.find("TiltAzimuths has -1 values"), std::string::npos) << catcher->Errors;
+  EXPECT_NE(catcher->Errors.find("TiltAzimuths has -1 values"), std::string::npos)
+    << catcher->Errors;
   sim->SetNumberOfTiltAzimuths(0);
   sim->SetNumberOfRotationAngles(0);
   expectGood();
@@ -425,7 +431,8 @@ TEST(PLISimulation, EmptySectionAndEmptyInput)
   sim->SetTiltAngle(5.5);
   sim->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
-  EXPECT_NE(catcher->Warnings.find("no fiber in the section"), std::string::npos) << catcher->Warnings;
+  EXPECT_NE(catcher->Warnings.find("no fiber in the section"), std::string::npos)
+    << catcher->Warnings;
   vtkImageData* out = sim->GetOutput();
   EXPECT_EQ(Field(out, "empty_section"), 1.0);
   // No tissue: every intensity is I0/4 (polarizer, λ/4 plate, crossed analyser; §4.2).
@@ -460,8 +467,8 @@ TEST(PLISimulation, OverlapWarnsOnlyForAModelThatClaimsToBeSolved)
   vtkNew<ErrorCatcher> catcher;
   catcher->Watch(sim);
   // Two fibers of radius 2 crossing at the origin: they share the voxels around it.
-  vtkSmartPointer<vtkPolyData> crossing = MakeFibers({ { { -8, 0, 0, 2 }, { 8, 0, 0, 2 } },
-    { { 0, -8, 0, 2 }, { 0, 8, 0, 2 } } });
+  vtkSmartPointer<vtkPolyData> crossing =
+    MakeFibers({ { { -8, 0, 0, 2 }, { 8, 0, 0, 2 } }, { { 0, -8, 0, 2 }, { 0, 8, 0, 2 } } });
   sim->SetInputData(crossing);
   sim->SetVolumeOfInterest(-6, 6, -6, 6, -3, 3);
   sim->SetVoxelSize(0.5);
@@ -477,7 +484,8 @@ TEST(PLISimulation, OverlapWarnsOnlyForAModelThatClaimsToBeSolved)
   crossing->Modified();
   sim->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
-  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"), std::string::npos)
+  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"),
+    std::string::npos)
     << catcher->Warnings;
   // A solver's record of collisions left (it warned itself) does not repeat the warning.
   catcher->Clear();
@@ -493,7 +501,8 @@ TEST(PLISimulation, OverlapWarnsOnlyForAModelThatClaimsToBeSolved)
 TEST(PLISimulation, TissuePortIsTheCoreVoxelisationAndLeavesTheImageAlone)
 {
   auto fibers = SmallModel();
-  auto configure = [&](vtkPLISimulation* s) {
+  auto configure = [&](vtkPLISimulation* s)
+  {
     SetUpSmallSection(s, fibers);
     s->SetLayers("0.6 -0.004 5 p; 1 0.004 1 r");
     s->SetExportTissue(1);
@@ -580,7 +589,8 @@ TEST(PLISimulation, TissuePortIsTheCoreVoxelisationAndLeavesTheImageAlone)
       for (int i = sub[0]; i <= sub[1]; ++i)
       {
         int ijk[3] = { i, j, k };
-        cropDiffer += piece->GetPointData()->GetArray("label")->GetComponent(piece->ComputePointId(ijk), 0) !=
+        cropDiffer +=
+          piece->GetPointData()->GetArray("label")->GetComponent(piece->ComputePointId(ijk), 0) !=
           label->GetComponent(tissue->ComputePointId(ijk), 0);
       }
   EXPECT_EQ(cropDiffer, 0u);
@@ -600,7 +610,8 @@ TEST(PLISimulation, PeriodicCellTilesAVolumeOfInterestLargerThanTheCell)
   cube->SetVolumeFraction(0.3);
   cube->SetSeed(3);
   cube->Update();
-  auto run = [&](vtkPolyData* fibers) {
+  auto run = [&](vtkPolyData* fibers)
+  {
     vtkNew<vtkPLISimulation> s;
     s->SetInputData(fibers);
     s->SetVolumeOfInterest(-6, 18, -6, 6, -6, 6); // two cells along x
@@ -621,12 +632,14 @@ TEST(PLISimulation, PeriodicCellTilesAVolumeOfInterestLargerThanTheCell)
   ASSERT_EQ(dims[0], 24);
   vtkDataArray* I = tiled->GetPointData()->GetArray("intensity");
   ASSERT_NE(I, nullptr);
-  auto differing = [&](vtkDataArray* a) {
+  auto differing = [&](vtkDataArray* a)
+  {
     int n = 0;
     for (int j = 0; j < dims[1]; ++j)
       for (int i = 0; i < 12; ++i)
         for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-          n += std::fabs(a->GetComponent(j * dims[0] + i, c) - a->GetComponent(j * dims[0] + i + 12, c)) > 1e-6 * kI0;
+          n += std::fabs(a->GetComponent(j * dims[0] + i, c) -
+                 a->GetComponent(j * dims[0] + i + 12, c)) > 1e-6 * kI0;
     return n;
   };
   EXPECT_EQ(differing(I), 0);
@@ -650,10 +663,9 @@ TEST(PLISimulation, EnumerationsSwitchesAndSeedOutOfRangeAreNamedNotClamped)
   SetUpS6(sim);
   sim->SetVoxelSize(1.0);
   sim->SetVolumeOfInterest(-10, 10, -10, 10, -30, 30);
-  auto expectError = [&](const std::string& text) {
-    ExpectUpdateError(sim, catcher, text);
-  };
-  auto expectGood = [&]() {
+  auto expectError = [&](const std::string& text) { ExpectUpdateError(sim, catcher, text); };
+  auto expectGood = [&]()
+  {
     catcher->Clear();
     sim->Update();
     EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
@@ -694,9 +706,11 @@ TEST(PLISimulation, EnumerationsSwitchesAndSeedOutOfRangeAreNamedNotClamped)
 TEST(PLISimulation, SolvedPeriodicCellWithClosedFibersDoesNotWarnOverlap)
 {
   // Two closed fibers along x (last = first + (12, 0, 0)) and z, 6 µm apart, radius 2.
-  vtkSmartPointer<vtkPolyData> cell = MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
-    { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } } });
-  auto mark = [](vtkPolyData* pd) {
+  vtkSmartPointer<vtkPolyData> cell =
+    MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
+      { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } } });
+  auto mark = [](vtkPolyData* pd)
+  {
     vtkNew<vtkDoubleArray> box;
     box->SetName("periodic_cell");
     for (double v : { 0.0, 12.0, 0.0, 12.0, 0.0, 12.0 })
@@ -720,12 +734,15 @@ TEST(PLISimulation, SolvedPeriodicCellWithClosedFibersDoesNotWarnOverlap)
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
   EXPECT_EQ(catcher->Warnings.find("fibers overlap"), std::string::npos) << catcher->Warnings;
   // A third closed fiber along y through the first: a real overlap, warned.
-  vtkSmartPointer<vtkPolyData> crossed = MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
-    { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } }, { { 3, 0, 6, 2 }, { 3, 6, 6, 2 }, { 3, 12, 6, 2 } } });
+  vtkSmartPointer<vtkPolyData> crossed =
+    MakeFibers({ { { 0, 3, 6, 2 }, { 6, 3, 6, 2 }, { 12, 3, 6, 2 } },
+      { { 6, 9, 0, 2 }, { 6, 9, 6, 2 }, { 6, 9, 12, 2 } },
+      { { 3, 0, 6, 2 }, { 3, 6, 6, 2 }, { 3, 12, 6, 2 } } });
   mark(crossed);
   sim->SetInputData(crossed);
   sim->Update();
   EXPECT_TRUE(catcher->Errors.empty()) << catcher->Errors;
-  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"), std::string::npos)
+  EXPECT_NE(catcher->Warnings.find("fibers overlap although the input is collision-free"),
+    std::string::npos)
     << catcher->Warnings;
 }

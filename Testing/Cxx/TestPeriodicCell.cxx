@@ -134,7 +134,8 @@ TEST(PeriodicCell, BadInputIsAClearError)
   solverErrors->Watch(solver);
   solver->SetInputData(fibers);
   solver->Update();
-  EXPECT_NE(solverErrors->Errors.find("periodic_cell has 5 values"), std::string::npos) << solverErrors->Errors;
+  EXPECT_NE(solverErrors->Errors.find("periodic_cell has 5 values"), std::string::npos)
+    << solverErrors->Errors;
   EXPECT_EQ(solver->GetOutput()->GetNumberOfPoints(), 0);
   solverErrors->Clear();
   bad->InsertNextValue(7.0);

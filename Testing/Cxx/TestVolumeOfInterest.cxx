@@ -31,16 +31,20 @@ Outcome RunWithVolume(const double voi[6])
   filter->SetPixelSize(1.0);
   filter->SetNumberOfThreads(1);
   filter->Update();
-  return { catcher->Errors, vtkImageData::SafeDownCast(filter->GetOutputDataObject(0))->GetNumberOfPoints() };
+  return { catcher->Errors,
+    vtkImageData::SafeDownCast(filter->GetOutputDataObject(0))->GetNumberOfPoints() };
 }
 } // namespace
 
 TEST(VolumeOfInterest, InvertedOnOneAxisIsRefusedByBoth)
 {
   const double inverted[6] = { 12, -2, -2, 2, -2, 2 };
-  for (const Outcome& o : { RunWithVolume<vtkPLISimulation>(inverted), RunWithVolume<vtkFiberOrientationGroundTruth>(inverted) })
+  for (const Outcome& o : { RunWithVolume<vtkPLISimulation>(inverted),
+         RunWithVolume<vtkFiberOrientationGroundTruth>(inverted) })
   {
-    EXPECT_NE(o.errors.find("VolumeOfInterest x range [12, -2] must have min < max"), std::string::npos) << o.errors;
+    EXPECT_NE(
+      o.errors.find("VolumeOfInterest x range [12, -2] must have min < max"), std::string::npos)
+      << o.errors;
     EXPECT_EQ(o.points, 0);
   }
 }
