@@ -242,7 +242,8 @@ def main(argv):
     voi = section(args.half_width)
 
     model1 = known_model(args.bundle_radius, args.seed)
-    true_maps = fetch(truth(model1, voi))
+    true_orientation = truth(model1, voi)
+    true_maps = fetch(true_orientation)
     analysis1 = measure(model1, voi, seed=1)
     maps1 = fetch(analysis1)
 
@@ -299,7 +300,7 @@ def main(argv):
 
     producer = TrivialProducer()
     producer.GetClientSideObject().SetOutput(image)
-    panels = [(FiberOrientationMap(Input=truth(model1, voi)), "fom", "truth", True),
+    panels = [(FiberOrientationMap(Input=true_orientation), "fom", "truth", True),
               (FiberOrientationMap(Input=analysis1, Mask="Retardation", MaskThreshold=0.15), "fom",
                "measurement 1", True),
               (FiberOrientationMap(Input=analysis2, Mask="Retardation", MaskThreshold=0.15), "fom",
