@@ -3,10 +3,10 @@
 #include "FiberAdapter.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
-#include "FiberProgress.h"
 #include "FiberH5Format.h"
 #include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
+#include "FiberProgress.h"
 #include "IO/FiberFile.h"
 
 #include <vtkInformationVector.h>
@@ -28,7 +28,8 @@ bool HasH5Extension(const std::string& path)
     return false;
   }
   std::string ext = path.substr(path.size() - 3);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext == ".h5";
 }
 } // namespace
@@ -63,78 +64,83 @@ int vtkFiberReader::CanReadFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkFiberReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   // Any exception escaping the work becomes a VTK error (FiberGuard.h), never an abort.
-  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this), [&]() -> int {
-    const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
-    vtkPolyData* output = vtkPolyData::GetData(outputVector);
-    output->Initialize();
-    if (this->FileName == nullptr || this->FileName[0] == '\0')
+  return fiberpli::GuardRequest(this, outputVector, fiberpli::ProxyName(this),
+    [&]() -> int
     {
-      fiberpliErrorMacro(<< "no FileName set");
-      return 0;
-    }
-    const std::string path(this->FileName);
-    this->SetProgressText("Reading fibers");
-    this->UpdateProgress(0.0);
+      const fiberpli::AbortScope abortScope(this); // an abort applies to this execution only
+      vtkPolyData* output = vtkPolyData::GetData(outputVector);
+      output->Initialize();
+      if (this->FileName == nullptr || this->FileName[0] == '\0')
+      {
+        fiberpliErrorMacro(<< "no FileName set");
+        return 0;
+      }
+      const std::string path(this->FileName);
+      this->SetProgressText("Reading fibers");
+      this->UpdateProgress(0.0);
 
-    fiberpli::FiberReadResult result;
-    fiberpli::PeriodicCell cell;
-    // The readers check sizes before allocating; this is the last line against a crash.
-    const bool inMemory = fiberpli::TryInMemory([&] {
-      if (HasH5Extension(path))
-      {
-        result.error = fiberpli::FiberH5Format::Read(path, this->Group ? this->Group : "", result.model, &cell);
-        if (result.ok())
+      fiberpli::FiberReadResult result;
+      fiberpli::PeriodicCell cell;
+      // The readers check sizes before allocating; this is the last line against a crash.
+      const bool inMemory = fiberpli::TryInMemory(
+        [&]
         {
-          // .h5 files hold all points; validate like the text formats do.
-          result.error = fiberpli::validateModel(result.model);
-          if (!result.ok())
+          if (HasH5Extension(path))
           {
-            result.error = path + ": " + result.error;
+            result.error = fiberpli::FiberH5Format::Read(
+              path, this->Group ? this->Group : "", result.model, &cell);
+            if (result.ok())
+            {
+              // .h5 files hold all points; validate like the text formats do.
+              result.error = fiberpli::validateModel(result.model);
+              if (!result.ok())
+              {
+                result.error = path + ": " + result.error;
+              }
+            }
           }
-        }
-      }
-      else
+          else
+          {
+            result = fiberpli::readFiberFile(path, this->DefaultRadius);
+          }
+        });
+      if (!inMemory)
       {
-        result = fiberpli::readFiberFile(path, this->DefaultRadius);
+        result = fiberpli::FiberReadResult{};
+        result.error = path + ": not enough memory to read the file";
       }
+      if (!result.ok())
+      {
+        fiberpliErrorMacro(<< result.error);
+        return 0;
+      }
+      if (result.droppedFibers > 0)
+      {
+        fiberpliWarningMacro(<< path << ": " << result.droppedFibers
+                             << " fiber(s) with fewer than 2 points dropped");
+      }
+      for (const std::string& warning : result.warnings)
+      {
+        fiberpliWarningMacro(<< warning);
+      }
+      this->UpdateProgress(0.8);
+      fiberpli::FiberPolyData::FromModel(result.model, output);
+      fiberpli::AddInnerRadii(result.model, output); // .h5 and CATERPillar files can hold them
+      if (cell.enabled())
+      {
+        fiberpli::AddPeriodicCell(output, cell);
+      }
+      if (result.boxSize != -1.0) // a CACTUS box (not a periodic cell); -1 is CACTUS's "none"
+      {
+        fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kBoxSize, { result.boxSize });
+      }
+      this->UpdateProgress(1.0);
+      return 1;
     });
-    if (!inMemory)
-    {
-      result = fiberpli::FiberReadResult{};
-      result.error = path + ": not enough memory to read the file";
-    }
-    if (!result.ok())
-    {
-      fiberpliErrorMacro(<< result.error);
-      return 0;
-    }
-    if (result.droppedFibers > 0)
-    {
-      fiberpliWarningMacro(<< path << ": " << result.droppedFibers
-                      << " fiber(s) with fewer than 2 points dropped");
-    }
-    for (const std::string& warning : result.warnings)
-    {
-      fiberpliWarningMacro(<< warning);
-    }
-    // CATERPillar axons with myelin: their inner radii ride with the fibers like those of .h5.
-    for (std::size_t f = 0; f < result.innerRadii.size() && f < result.model.fibers.size(); ++f)
-    {
-      result.model.fibers[f].innerRadii = result.innerRadii[f];
-    }
-    this->UpdateProgress(0.8);
-    fiberpli::FiberPolyData::FromModel(result.model, output);
-    fiberpli::AddInnerRadii(result.model, output); // .h5 and CATERPillar files can hold them
-    if (cell.enabled())
-    {
-      fiberpli::AddPeriodicCell(output, cell);
-    }
-    this->UpdateProgress(1.0);
-    return 1;
-  });
 }
 
 //------------------------------------------------------------------------------

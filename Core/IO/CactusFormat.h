@@ -18,9 +18,9 @@
 namespace fiberpli
 {
 
+/// boxSize (FiberReadResult) holds line 1 of the file.
 struct CactusReadResult : FiberReadResult
 {
-  double boxSize = -1.0; ///< line 1 of the file
 };
 
 /// Reads a strand file of fileBytes bytes (the file's size: counts are checked against it before
@@ -28,7 +28,8 @@ struct CactusReadResult : FiberReadResult
 /// file and line: a count that is no integer or needs more bytes than the file holds, a strand
 /// whose points run past the end of the file (a count that lies), lines after the last strand, a
 /// point line that is not 4 finite numbers, a radius <= 0.
-CactusReadResult readCactusStrands(std::istream& in, const std::string& fileName, std::uintmax_t fileBytes);
+CactusReadResult readCactusStrands(
+  std::istream& in, const std::string& fileName, std::uintmax_t fileBytes);
 
 /// Writes the model in the layout above with boxSize on line 1, numbers in the shortest form that
 /// reads back bit-exactly. Returns "" on success, else the reason.

@@ -2,6 +2,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Model/InnerRadii.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,8 @@
 namespace fiberpli
 {
 
-const char* const kCaterpillarHeader = "cell_type cell_id component component_id X Y Z inner_radius outer_radius";
+const char* const kCaterpillarHeader =
+  "cell_type cell_id component component_id X Y Z inner_radius outer_radius";
 
 namespace
 {
@@ -49,7 +51,8 @@ bool isBlank(std::string_view line)
 
 std::string parseInteger(std::string_view token, long long& value)
 {
-  const std::from_chars_result r = std::from_chars(token.data(), token.data() + token.size(), value);
+  const std::from_chars_result r =
+    std::from_chars(token.data(), token.data() + token.size(), value);
   if (r.ec != std::errc() || r.ptr != token.data() + token.size())
   {
     return "'" + std::string(token.substr(0, 40)) + "' is not an integer id";
@@ -74,12 +77,14 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
   std::string chainKey; // cell_type, cell_id, component, component_id of the open chain
   bool chainOpen = false;
 
-  auto fail = [&](std::size_t line, const std::string& what) {
+  auto fail = [&](std::size_t line, const std::string& what)
+  {
     FiberReadResult failed;
     failed.error = lineError(fileName, line, what);
     return failed;
   };
-  auto closeChain = [&]() {
+  auto closeChain = [&]()
+  {
     if (chainOpen && chainIsAxon)
     {
       if (fiber.points.size() >= 2)
@@ -87,8 +92,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
         fiber.points.shrink_to_fit();
         fiber.radii.shrink_to_fit();
         inner.shrink_to_fit();
+        fiber.innerRadii = std::move(inner);
         result.model.fibers.push_back(std::move(fiber));
-        result.innerRadii.push_back(std::move(inner));
       }
       else
       {
@@ -111,7 +116,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     if (status == LineReader::Status::TooLong)
     {
       return fail(reader.lineNumber(),
-        "line is longer than " + std::to_string(maxLineLength) + " characters (not a CATERPillar sphere line)");
+        "line is longer than " + std::to_string(maxLineLength) +
+          " characters (not a CATERPillar sphere line)");
     }
     if (status == LineReader::Status::Failed)
     {
@@ -125,7 +131,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     {
       if (!isHeader(line))
       {
-        return fail(reader.lineNumber(), std::string("expected the CATERPillar header '") + kCaterpillarHeader + "'");
+        return fail(reader.lineNumber(),
+          std::string("expected the CATERPillar header '") + kCaterpillarHeader + "'");
       }
       headerSeen = true;
       continue;
@@ -157,7 +164,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     if (!(v[3] > 0.0) || !(v[4] > 0.0))
     {
       std::ostringstream msg;
-      msg << (v[3] > 0.0 ? "outer_radius " : "inner_radius ") << (v[3] > 0.0 ? v[4] : v[3]) << " must be > 0";
+      msg << (v[3] > 0.0 ? "outer_radius " : "inner_radius ") << (v[3] > 0.0 ? v[4] : v[3])
+          << " must be > 0";
       return fail(reader.lineNumber(), msg.str());
     }
     if (v[3] > v[4])
@@ -167,7 +175,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
       return fail(reader.lineNumber(), msg.str());
     }
     std::string key;
-    key.append(t[0]).append(1, ' ').append(t[1]).append(1, ' ').append(t[2]).append(1, ' ').append(t[3]);
+    key.append(t[0]).append(1, ' ').append(t[1]).append(1, ' ').append(t[2]).append(1, ' ').append(
+      t[3]);
     if (!chainOpen || key != chainKey)
     {
       closeChain();
@@ -176,13 +185,16 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
       chainIsAxon = t[0] == "axon";
       if (chainIsAxon)
       {
-        if (componentId < std::numeric_limits<int>::min() || componentId > std::numeric_limits<int>::max())
+        if (componentId < std::numeric_limits<int>::min() ||
+          componentId > std::numeric_limits<int>::max())
         {
-          return fail(reader.lineNumber(), "component_id " + std::string(t[3]) + " does not fit bundle_id (int)");
+          return fail(reader.lineNumber(),
+            "component_id " + std::string(t[3]) + " does not fit bundle_id (int)");
         }
         if (!axonIds.insert(cellId).second)
         {
-          return fail(reader.lineNumber(), "axon " + std::string(t[1]) +
+          return fail(reader.lineNumber(),
+            "axon " + std::string(t[1]) +
               " starts a second sphere chain (its spheres must be consecutive lines)");
         }
         fiber.id = cellId;
@@ -201,17 +213,23 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
   }
   if (!headerSeen)
   {
-    return fail(reader.lineNumber() + 1, std::string("no CATERPillar header '") + kCaterpillarHeader + "'");
+    return fail(
+      reader.lineNumber() + 1, std::string("no CATERPillar header '") + kCaterpillarHeader + "'");
   }
   closeChain();
   if (!anyInnerDiffers)
   {
-    result.innerRadii.clear();
+    for (Fiber& f : result.model.fibers)
+    {
+      f.innerRadii.clear(); // no myelin anywhere: no inner_radius, as the other readers
+      f.innerRadii.shrink_to_fit();
+    }
   }
   if (skippedSpheres > 0)
   {
     result.warnings.push_back(fileName + ": " + std::to_string(skippedSpheres) +
-      " spheres of cells other than axons (glial cells, vessels) were skipped: they are not fibers");
+      " spheres of cells other than axons (glial cells, vessels) were skipped: they are not "
+      "fibers");
   }
   return result;
 }
@@ -225,8 +243,7 @@ double caterpillarSphereSpacing(double radius, double tolerance)
   return 2.0 * std::sqrt(2.0 * radius * tolerance - tolerance * tolerance);
 }
 
-std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
-  const std::vector<std::vector<double>>* innerRadii, double tolerance)
+std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model, double tolerance)
 {
   const std::string invalid = validateModel(model);
   if (!invalid.empty())
@@ -236,43 +253,26 @@ std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
   if (!std::isfinite(tolerance) || !(tolerance > 0.0))
   {
     std::ostringstream msg;
-    msg << "cannot write CATERPillar .csv: sphere tolerance " << tolerance << " µm must be finite and > 0";
+    msg << "cannot write CATERPillar .csv: sphere tolerance " << tolerance
+        << " µm must be finite and > 0";
     return msg.str();
   }
-  const bool hasInner = innerRadii != nullptr && !innerRadii->empty();
-  if (hasInner)
+  // The one rule of Model/InnerRadii.h: per fiber none, or one value per point in (0, radius].
+  const std::string badInner = validateInnerRadii(model);
+  if (!badInner.empty())
   {
-    if (innerRadii->size() != model.fibers.size())
-    {
-      return "cannot write CATERPillar .csv: inner radii for " + std::to_string(innerRadii->size()) +
-        " fibers, the model has " + std::to_string(model.fibers.size());
-    }
-    for (std::size_t f = 0; f < model.fibers.size(); ++f)
-    {
-      const std::vector<double>& in = (*innerRadii)[f];
-      if (in.size() != model.fibers[f].size())
-      {
-        return "cannot write CATERPillar .csv: fiber " + std::to_string(f) + " has " +
-          std::to_string(model.fibers[f].size()) + " points but " + std::to_string(in.size()) + " inner radii";
-      }
-      for (std::size_t i = 0; i < in.size(); ++i)
-      {
-        if (!std::isfinite(in[i]) || !(in[i] > 0.0) || in[i] > model.fibers[f].radii[i])
-        {
-          std::ostringstream msg;
-          msg << "cannot write CATERPillar .csv: inner radius " << in[i] << " of fiber " << f << " point " << i
-              << " must be > 0 and <= the radius " << model.fibers[f].radii[i];
-          return msg.str();
-        }
-      }
-    }
+    return "cannot write CATERPillar .csv: " + badInner;
   }
-  auto innerAt = [&](std::size_t f, std::size_t i) {
-    return hasInner ? (*innerRadii)[f][i] : model.fibers[f].radii[i];
-  };
-  auto spheresOfLink = [&](std::size_t f, std::size_t k) {
+  auto innerAt = [&](std::size_t f, std::size_t i)
+  {
     const Fiber& fiber = model.fibers[f];
-    const double r = std::min({ fiber.radii[k], fiber.radii[k + 1], innerAt(f, k), innerAt(f, k + 1) });
+    return fiber.innerRadii.empty() ? fiber.radii[i] : fiber.innerRadii[i];
+  };
+  auto spheresOfLink = [&](std::size_t f, std::size_t k)
+  {
+    const Fiber& fiber = model.fibers[f];
+    const double r =
+      std::min({ fiber.radii[k], fiber.radii[k + 1], innerAt(f, k), innerAt(f, k + 1) });
     const double length = norm(fiber.points[k + 1] - fiber.points[k]);
     return std::max(1.0, std::ceil(length / caterpillarSphereSpacing(r, tolerance)));
   };
@@ -295,7 +295,8 @@ std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
 
   out << kCaterpillarHeader << '\n';
   std::string line;
-  auto sphere = [&](const Fiber& fiber, const Vec3& c, double innerR, double outerR) {
+  auto sphere = [&](const Fiber& fiber, const Vec3& c, double innerR, double outerR)
+  {
     line.clear();
     line += "axon ";
     line += std::to_string(fiber.id);

@@ -30,8 +30,8 @@ namespace
 
 /// Replaces the default radii of a .tck read (tck) with the values of its radius file (tsf) after
 /// checking that both describe the same streamlines (FiberFile.h, readFiberFile).
-FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampValue, const std::string& tckPath,
-  const TsfReadResult& tsf, const std::string& tsfPath)
+FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampValue,
+  const std::string& tckPath, const TsfReadResult& tsf, const std::string& tsfPath)
 {
   if (!tsf.ok())
   {
@@ -39,14 +39,16 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
   }
   if (!tsf.timestamp.empty() && !tckTimestampValue.empty() && tsf.timestamp != tckTimestampValue)
   {
-    return readFailure(tsfPath + ": timestamp '" + printableText(tsf.timestamp) + "' differs from timestamp '" + printableText(tckTimestampValue) +
-      "' of " + tckPath + " (the radii belong to other tracks; rewrite or remove the .tsf)");
+    return readFailure(tsfPath + ": timestamp '" + printableText(tsf.timestamp) +
+      "' differs from timestamp '" + printableText(tckTimestampValue) + "' of " + tckPath +
+      " (the radii belong to other tracks; rewrite or remove the .tsf)");
   }
   const std::size_t streamlines = tck.model.fibers.size() + tck.droppedFibers;
   if (tsf.values.size() != streamlines)
   {
     std::ostringstream msg;
-    msg << tsfPath << ": holds " << tsf.values.size() << " streamlines but " << tckPath << " holds " << streamlines;
+    msg << tsfPath << ": holds " << tsf.values.size() << " streamlines but " << tckPath << " holds "
+        << streamlines;
     return readFailure(msg.str());
   }
   // Streamlines readTck dropped (fewer than 2 points) have no fiber: they must be short here too.
@@ -60,7 +62,8 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
     if (!kept[s] && tsf.values[s].size() >= 2)
     {
       std::ostringstream msg;
-      msg << "streamline " << s << " has " << tsf.values[s].size() << " values but fewer than 2 points in " << tckPath;
+      msg << "streamline " << s << " has " << tsf.values[s].size()
+          << " values but fewer than 2 points in " << tckPath;
       return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
     }
   }
@@ -71,8 +74,8 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
     if (values.size() != f.points.size())
     {
       std::ostringstream msg;
-      msg << "streamline " << s << " has " << values.size() << " values but " << f.points.size() << " points in "
-          << tckPath;
+      msg << "streamline " << s << " has " << values.size() << " values but " << f.points.size()
+          << " points in " << tckPath;
       return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.firstValueOffsets[s], msg.str()));
     }
     for (std::size_t i = 0; i < values.size(); ++i)
@@ -80,7 +83,8 @@ FiberReadResult applyRadii(FiberReadResult tck, const std::string& tckTimestampV
       if (!std::isfinite(values[i]) || values[i] <= 0.0)
       {
         std::ostringstream msg;
-        msg << "radius " << values[i] << " of streamline " << s << " point " << i << " must be finite and > 0";
+        msg << "radius " << values[i] << " of streamline " << s << " point " << i
+            << " must be finite and > 0";
         return readFailure(mrtrixErrorAt(tsfPath, "byte", tsf.byteOffset(s, i), msg.str()));
       }
     }
@@ -111,7 +115,8 @@ FiberReadResult readTckWithRadii(std::istream& in, const std::string& path, doub
   std::ifstream tsfIn(tsfPath, std::ios::binary);
   if (!tsfIn)
   {
-    return readFailure("cannot open " + tsfPath + " (radii of " + path + "): " + std::strerror(errno));
+    return readFailure(
+      "cannot open " + tsfPath + " (radii of " + path + "): " + std::strerror(errno));
   }
   return applyRadii(std::move(tck), timestamp, path, readTsf(tsfIn, tsfPath), tsfPath);
 }
@@ -132,8 +137,9 @@ std::string writeTckWithRadii(const std::string& path, const FiberModel& model)
         if (!std::isfinite(stored) || stored <= 0.0f)
         {
           std::ostringstream msg;
-          msg << tsfPath << ": cannot write .tsf: fiber " << fi << " (fiber_id " << f.id << ") point " << i
-              << " has radius " << f.radii[i] << ", which float32 stores as " << stored;
+          msg << tsfPath << ": cannot write .tsf: fiber " << fi << " (fiber_id " << f.id
+              << ") point " << i << " has radius " << f.radii[i] << ", which float32 stores as "
+              << stored;
           return msg.str();
         }
       }
@@ -144,12 +150,14 @@ std::string writeTckWithRadii(const std::string& path, const FiberModel& model)
   // failure (a full disk) leaves the old pair, which still reads (AtomicFile.h).
   return writeFilesAtomically({
     AtomicPart{ path,
-      [&](std::ostream& out) {
+      [&](std::ostream& out)
+      {
         const std::string error = writeTck(out, model);
         return error.empty() ? error : path + ": " + error;
       } },
     AtomicPart{ tsfPath,
-      [&](std::ostream& out) {
+      [&](std::ostream& out)
+      {
         const std::string error = writeTsf(out, radii, tckTimestamp(model));
         return error.empty() ? error : tsfPath + ": " + error;
       } },
@@ -167,7 +175,8 @@ FiberFileFormat fiberFileFormatFromPath(const std::string& path)
     return FiberFileFormat::Unknown;
   }
   std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == "dat")
   {
     return FiberFileFormat::FastPliDat;
@@ -217,12 +226,18 @@ bool canReadFiberFile(const std::string& path)
   }
   switch (format)
   {
-    case FiberFileFormat::FastPliDat: return looksLikeFastPliDat(in);
-    case FiberFileFormat::Tck: return looksLikeTck(in);
-    case FiberFileFormat::Trk: return looksLikeTrk(in);
-    case FiberFileFormat::Caterpillar: return looksLikeCaterpillarCsv(in);
-    case FiberFileFormat::Cactus: return looksLikeCactusStrands(in);
-    case FiberFileFormat::Unknown: break;
+    case FiberFileFormat::FastPliDat:
+      return looksLikeFastPliDat(in);
+    case FiberFileFormat::Tck:
+      return looksLikeTck(in);
+    case FiberFileFormat::Trk:
+      return looksLikeTrk(in);
+    case FiberFileFormat::Caterpillar:
+      return looksLikeCaterpillarCsv(in);
+    case FiberFileFormat::Cactus:
+      return looksLikeCactusStrands(in);
+    case FiberFileFormat::Unknown:
+      break;
   }
   return false;
 }
@@ -232,7 +247,8 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Unknown)
   {
-    return readFailure(path + ": unknown fiber file extension (expected .dat, .tck, .trk, .csv or .txt)");
+    return readFailure(
+      path + ": unknown fiber file extension (expected .dat, .tck, .trk, .csv or .txt)");
   }
   const std::string special = checkRegularFile(path); // a FIFO would block the read forever
   if (!special.empty())
@@ -246,10 +262,14 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
   }
   switch (format)
   {
-    case FiberFileFormat::FastPliDat: return readFastPliDat(in, path);
-    case FiberFileFormat::Tck: return readTckWithRadii(in, path, defaultRadius);
-    case FiberFileFormat::Trk: return readTrk(in, path, defaultRadius);
-    case FiberFileFormat::Caterpillar: return readCaterpillarCsv(in, path);
+    case FiberFileFormat::FastPliDat:
+      return readFastPliDat(in, path);
+    case FiberFileFormat::Tck:
+      return readTckWithRadii(in, path, defaultRadius);
+    case FiberFileFormat::Trk:
+      return readTrk(in, path, defaultRadius);
+    case FiberFileFormat::Caterpillar:
+      return readCaterpillarCsv(in, path);
     case FiberFileFormat::Cactus:
     {
       struct stat info;
@@ -257,14 +277,26 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
       {
         return readFailure("cannot stat " + path + ": " + std::strerror(errno));
       }
-      return readCactusStrands(in, path, static_cast<std::uintmax_t>(info.st_size));
+      return readCactusStrands(in, path, static_cast<std::uintmax_t>(info.st_size)); // boxSize kept
     }
-    case FiberFileFormat::Unknown: break;
+    case FiberFileFormat::Unknown:
+      break;
   }
   return {};
 }
 
-std::string writeFiberFile(const std::string& path, const FiberModel& model, const FiberFileExtras* extras)
+double cactusBoxSize(const FiberFileExtras& extras)
+{
+  if (extras.cell.enabled())
+  {
+    const Vec3 e = extras.cell.edge();
+    return std::max({ e.x, e.y, e.z });
+  }
+  return extras.boxSize;
+}
+
+std::string writeFiberFile(
+  const std::string& path, const FiberModel& model, const FiberFileExtras* extras)
 {
   const FiberFileFormat format = fiberFileFormatFromPath(path);
   if (format == FiberFileFormat::Tck)
@@ -275,32 +307,34 @@ std::string writeFiberFile(const std::string& path, const FiberModel& model, con
   const FiberFileExtras& more = extras != nullptr ? *extras : none;
   if (format == FiberFileFormat::Caterpillar)
   {
-    return writeFileAtomically(path, [&](std::ostream& out) {
-      const std::string error = writeCaterpillarCsv(out, model, &more.innerRadii, more.sphereTolerance);
-      return error.empty() ? error : path + ": " + error;
-    });
+    return writeFileAtomically(path,
+      [&](std::ostream& out)
+      {
+        const std::string error = writeCaterpillarCsv(out, model, more.sphereTolerance);
+        return error.empty() ? error : path + ": " + error;
+      });
   }
   if (format == FiberFileFormat::Cactus)
   {
-    double box = -1.0;
-    if (more.cell.enabled())
-    {
-      const Vec3 e = more.cell.edge();
-      box = std::max({ e.x, e.y, e.z });
-    }
-    return writeFileAtomically(path, [&](std::ostream& out) {
-      const std::string error = writeCactusStrands(out, model, box);
-      return error.empty() ? error : path + ": " + error;
-    });
+    const double box = cactusBoxSize(more);
+    return writeFileAtomically(path,
+      [&](std::ostream& out)
+      {
+        const std::string error = writeCactusStrands(out, model, box);
+        return error.empty() ? error : path + ": " + error;
+      });
   }
   if (format != FiberFileFormat::FastPliDat)
   {
-    return path + ": cannot write this extension (FiberWriter writes .dat, .tck, .csv and .txt here)";
+    return path +
+      ": cannot write this extension (FiberWriter writes .dat, .tck, .csv and .txt here)";
   }
-  return writeFileAtomically(path, [&](std::ostream& out) {
-    const std::string error = writeFastPliDat(out, model);
-    return error.empty() ? error : path + ": " + error;
-  });
+  return writeFileAtomically(path,
+    [&](std::ostream& out)
+    {
+      const std::string error = writeFastPliDat(out, model);
+      return error.empty() ? error : path + ": " + error;
+    });
 }
 
 } // namespace fiberpli

@@ -26,7 +26,8 @@ FiberModel curvedModel()
     for (int i = 0; i < 6; ++i)
     {
       const double t = 0.7 * i;
-      fiber.points.push_back({ 3.0 * f + 0.4 * std::sin(t + f), 0.1 * std::cos(1.3 * t), 1.9 * i + 0.123456789 * f });
+      fiber.points.push_back(
+        { 3.0 * f + 0.4 * std::sin(t + f), 0.1 * std::cos(1.3 * t), 1.9 * i + 0.123456789 * f });
       fiber.radii.push_back(0.5 + 0.05 * i + 0.01 * f);
     }
     m.fibers.push_back(fiber);
@@ -61,29 +62,26 @@ TEST(CaterpillarFormat, SpacingKeepsTheGrooveWithinTheTolerance)
 
 TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
 {
-  const FiberModel m = curvedModel();
-  std::vector<std::vector<double>> inner;
-  for (const Fiber& f : m.fibers)
+  FiberModel m = curvedModel();
+  for (Fiber& f : m.fibers)
   {
-    std::vector<double> in;
     for (double r : f.radii)
     {
-      in.push_back(0.7 * r);
+      f.innerRadii.push_back(0.7 * r);
     }
-    inner.push_back(in);
   }
   const double tol = 0.02;
   std::stringstream file;
-  ASSERT_EQ(writeCaterpillarCsv(file, m, &inner, tol), "");
+  ASSERT_EQ(writeCaterpillarCsv(file, m, tol), "");
   EXPECT_TRUE(looksLikeCaterpillarCsv(file));
   const FiberReadResult back = readCaterpillarCsv(file, "voxel.csv");
   ASSERT_TRUE(back.ok()) << back.error;
   ASSERT_EQ(back.model.fibers.size(), m.fibers.size());
-  ASSERT_EQ(back.innerRadii.size(), m.fibers.size());
   for (std::size_t f = 0; f < m.fibers.size(); ++f)
   {
     const Fiber& a = m.fibers[f];
     const Fiber& b = back.model.fibers[f];
+    ASSERT_EQ(b.innerRadii.size(), b.size());
     EXPECT_EQ(b.id, a.id);
     EXPECT_EQ(b.bundle, a.bundle);
     // Walk the read chain: every original point appears, bit for bit, in order; the spheres between
@@ -91,8 +89,9 @@ TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
     std::size_t j = 0;
     for (std::size_t i = 0; i < a.size(); ++i)
     {
-      while (j < b.size() && !(b.points[j].x == a.points[i].x && b.points[j].y == a.points[i].y &&
-                                b.points[j].z == a.points[i].z))
+      while (j < b.size() &&
+        !(b.points[j].x == a.points[i].x && b.points[j].y == a.points[i].y &&
+          b.points[j].z == a.points[i].z))
       {
         ASSERT_GT(i, 0u) << "the first sphere is the first point";
         EXPECT_LT(segmentDistance(b.points[j], a.points[i - 1], a.points[i]), 1e-12);
@@ -100,14 +99,15 @@ TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
       }
       ASSERT_LT(j, b.size()) << "point " << i << " of fiber " << f << " is missing";
       EXPECT_EQ(b.radii[j], a.radii[i]);
-      EXPECT_EQ(back.innerRadii[f][j], inner[f][i]);
+      EXPECT_EQ(b.innerRadii[j], a.innerRadii[i]);
       ++j;
     }
     EXPECT_EQ(j, b.size());
     for (std::size_t k = 0; k + 1 < b.size(); ++k)
     {
-      const double rMin = std::min(back.innerRadii[f][k], back.innerRadii[f][k + 1]);
-      EXPECT_LE(norm(b.points[k + 1] - b.points[k]), caterpillarSphereSpacing(rMin, tol) * (1 + 1e-9));
+      const double rMin = std::min(b.innerRadii[k], b.innerRadii[k + 1]);
+      EXPECT_LE(
+        norm(b.points[k + 1] - b.points[k]), caterpillarSphereSpacing(rMin, tol) * (1 + 1e-9));
     }
   }
 }
@@ -128,7 +128,7 @@ TEST(CaterpillarFormat, ReadsCaterpillarOwnLayoutAndSkipsGlia)
   EXPECT_EQ(r.model.fibers[0].id, 4);
   EXPECT_EQ(r.model.fibers[0].size(), 3u);
   EXPECT_EQ(r.model.fibers[0].radii[2], 0.9);
-  EXPECT_EQ(r.innerRadii[0][2], 0.6);
+  EXPECT_EQ(r.model.fibers[0].innerRadii[2], 0.6);
   EXPECT_EQ(r.droppedFibers, 1u); // axon 7: one sphere
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("3 spheres"), std::string::npos);
@@ -144,14 +144,20 @@ TEST(CaterpillarFormat, MalformedFilesNameTheLine)
   };
   const Case cases[] = {
     { "x,y,z\n1,2,3\n", "voxel.csv line 1: expected the CATERPillar header" },
-    { header + "axon 1 axon 0 1 2 3 0.5 0.8\naxon 1 axon 0 1 2\n", "voxel.csv line 3: expected 9 fields" },
-    { header + "axon 1 axon 0 1 nan 3 0.5 0.8\n", "voxel.csv line 2: 'nan' is not a finite number" },
-    { header + "axon 1 axon 0 1 2 3 0.5 -0.8\n", "voxel.csv line 2: outer_radius -0.8 must be > 0" },
-    { header + "axon 1 axon 0 1 2 3 -0.5 0.8\n", "voxel.csv line 2: inner_radius -0.5 must be > 0" },
-    { header + "axon 1 axon 0 1 2 3 0.9 0.8\n", "voxel.csv line 2: inner_radius 0.9 exceeds outer_radius 0.8" },
+    { header + "axon 1 axon 0 1 2 3 0.5 0.8\naxon 1 axon 0 1 2\n",
+      "voxel.csv line 3: expected 9 fields" },
+    { header + "axon 1 axon 0 1 nan 3 0.5 0.8\n",
+      "voxel.csv line 2: 'nan' is not a finite number" },
+    { header + "axon 1 axon 0 1 2 3 0.5 -0.8\n",
+      "voxel.csv line 2: outer_radius -0.8 must be > 0" },
+    { header + "axon 1 axon 0 1 2 3 -0.5 0.8\n",
+      "voxel.csv line 2: inner_radius -0.5 must be > 0" },
+    { header + "axon 1 axon 0 1 2 3 0.9 0.8\n",
+      "voxel.csv line 2: inner_radius 0.9 exceeds outer_radius 0.8" },
     { header + "axon 1.5 axon 0 1 2 3 0.5 0.8\n", "voxel.csv line 2: '1.5' is not an integer id" },
-    { header + "axon 1 axon 0 1 2 3 1 1\naxon 1 axon 0 1 2 4 1 1\naxon 2 axon 0 0 0 0 1 1\n"
-               "axon 1 axon 0 1 2 9 1 1\n",
+    { header +
+        "axon 1 axon 0 1 2 3 1 1\naxon 1 axon 0 1 2 4 1 1\naxon 2 axon 0 0 0 0 1 1\n"
+        "axon 1 axon 0 1 2 9 1 1\n",
       "voxel.csv line 5: axon 1 starts a second sphere chain" },
     { "", "voxel.csv line 1: no CATERPillar header" },
   };
@@ -207,11 +213,15 @@ TEST(CactusFormat, MalformedFilesNameTheLineWithoutReadingPastTheFile)
     std::string expected;
   };
   const Case cases[] = {
-    { "40\n10000000000\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 2: strand count 10000000000 needs at least" },
+    { "40\n10000000000\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 2: strand count 10000000000 needs at least" },
     { "40\n1\n10000000000\n0 0 0 1\n", "s.txt line 3: point count 10000000000 of strand 0 needs" },
-    { "40\n2\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 6: strand 1 of 2: file ends where a point count is expected" },
-    { "40\n1\n3\n0.000 0 0 1\n0.000 0 1 1\n", "s.txt line 6: file ends after 2 of the 3 points of strand 0" },
-    { "40\n1\n2\n0 0 0 1\n0 0 1 1\n2\n0 0 0 1\n0 0 1 1\n", "s.txt line 6: content after the last of the 1 strands" },
+    { "40\n2\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 6: strand 1 of 2: file ends where a point count is expected" },
+    { "40\n1\n3\n0.000 0 0 1\n0.000 0 1 1\n",
+      "s.txt line 6: file ends after 2 of the 3 points of strand 0" },
+    { "40\n1\n2\n0 0 0 1\n0 0 1 1\n2\n0 0 0 1\n0 0 1 1\n",
+      "s.txt line 6: content after the last of the 1 strands" },
     { "40\n1\n2\n0 0 0 1\n0 nan 1 1\n", "s.txt line 5: 'nan' is not a finite number" },
     { "40\n1\n2\n0 0 0 1\n0 0 1 -1\n", "s.txt line 5: radius -1 must be > 0" },
     { "40\n1\n2\n0 0 0 1.000\n0 0 1.000\n", "s.txt line 5: expected 4 numbers" },
