@@ -7,7 +7,9 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "IO/AtomicFile.h"
+#include "IO/McdcCylinders.h"
 #include "Mesh/SubstrateMesher.h"
+#include "Util/NumberFormat.h"
 
 #include <vtkDataArray.h>
 #include <vtkErrorCode.h>
@@ -23,6 +25,19 @@
 #include <sys/stat.h>
 
 vtkStandardNewMacro(vtkFiberMeshWriter);
+
+namespace
+{
+/// The path without its extension: "dir/cell.ply" -> "dir/cell" (the name of the files beside it).
+std::string Stem(const std::string& path)
+{
+  const std::size_t dot = path.find_last_of('.');
+  const std::size_t slash = path.find_last_of('/');
+  return dot != std::string::npos && (slash == std::string::npos || dot > slash)
+    ? path.substr(0, dot)
+    : path;
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 vtkFiberMeshWriter::~vtkFiberMeshWriter()
@@ -71,6 +86,26 @@ void vtkFiberMeshWriter::WriteMesh()
     m << "FiberMeshWriter: Tolerance is " << this->Tolerance
       << " µm, must be finite and >= 0 (0: use NumberOfSides)";
     this->Fail(vtkErrorCode::UserError, m.str());
+    return;
+  }
+  fiberpli::McdcCylinderList listKind = fiberpli::McdcCylinderList::ZAligned;
+  int kind = CYLINDERS_NONE;
+  const std::string badKind = fiberpli::enumFromCode(this->CylinderList, CYLINDERS_ORIENTED,
+    "CylinderList", "0 (None), 1 (cylinders_list) or 2 (oriented_cylinders_list)", kind);
+  if (!badKind.empty())
+  {
+    this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, badKind));
+    return;
+  }
+  listKind = kind == CYLINDERS_ORIENTED ? fiberpli::McdcCylinderList::Oriented
+                                        : fiberpli::McdcCylinderList::ZAligned;
+  if (kind != CYLINDERS_NONE &&
+    (!(this->StraightnessTolerance >= 0.0) || !std::isfinite(this->StraightnessTolerance)))
+  {
+    this->Fail(vtkErrorCode::UserError,
+      fiberpli::ProxyMessage(this,
+        "StraightnessTolerance is " + fiberpli::formatNumber(this->StraightnessTolerance) +
+          " µm, must be finite and >= 0"));
     return;
   }
   vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());
@@ -123,6 +158,22 @@ void vtkFiberMeshWriter::WriteMesh()
     this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, bad));
     return;
   }
+  // The cylinder list is made (one line per fiber) before any file is touched: a fiber that is not
+  // straight refuses the whole write, naming it, and leaves existing files as they are.
+  std::string cylinders;
+  if (kind != CYLINDERS_NONE)
+  {
+    std::ostringstream list;
+    const std::string listError =
+      fiberpli::writeMcdcCylinders(list, in.model, listKind, this->StraightnessTolerance);
+    if (!listError.empty())
+    {
+      this->Fail(
+        vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "CylinderList: " + listError));
+      return;
+    }
+    cylinders = list.str();
+  }
   this->SetProgressText("Writing the substrate mesh");
   fiberpli::SubstrateMeshCounts counts;
   fiberpli::Status status;
@@ -166,6 +217,23 @@ void vtkFiberMeshWriter::WriteMesh()
     static_cast<unsigned long long>(counts.triangles), static_cast<long long>(bytes),
     options.sides);
 
+  if (kind != CYLINDERS_NONE)
+  {
+    const std::string listPath = Stem(path) + ".cylinders.txt";
+    const std::string listError = fiberpli::writeFileAtomically(listPath,
+      [&](std::ostream& out) -> std::string
+      {
+        out << cylinders;
+        return out ? std::string() : listPath + ": write failed";
+      });
+    if (!listError.empty())
+    {
+      this->Fail(vtkErrorCode::CannotOpenFileError,
+        fiberpli::ProxyMessage(
+          this, path + " was written, its cylinder list was not: " + listError));
+      return;
+    }
+  }
   if (this->WriteMCDCConfig)
   {
     fiberpli::Vec3 lo = cell.lo;
@@ -174,12 +242,8 @@ void vtkFiberMeshWriter::WriteMesh()
     {
       lo = hi = fiberpli::Vec3{};
     }
-    const std::size_t dot = path.find_last_of('.');
     const std::size_t slash = path.find_last_of('/');
-    const std::string stem = dot != std::string::npos && (slash == std::string::npos || dot > slash)
-      ? path.substr(0, dot)
-      : path;
-    const std::string confPath = stem + ".mcdc.conf";
+    const std::string confPath = Stem(path) + ".mcdc.conf";
     const std::string plyName = slash == std::string::npos ? path : path.substr(slash + 1);
     const std::string confError = fiberpli::writeFileAtomically(confPath,
       [&](std::ostream& out) -> std::string
@@ -213,4 +277,6 @@ void vtkFiberMeshWriter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RingSpacing: " << this->RingSpacing << "\n";
   os << indent << "InnerSurfaces: " << this->InnerSurfaces << "\n";
   os << indent << "WriteMCDCConfig: " << this->WriteMCDCConfig << "\n";
+  os << indent << "CylinderList: " << this->CylinderList << "\n";
+  os << indent << "StraightnessTolerance: " << this->StraightnessTolerance << "\n";
 }

@@ -10,7 +10,10 @@
  * modulo the cell); otherwise they are capped (Core/Mesh/SubstrateMesher.h,
  * docs/diffusion-export.md §1). The mesh is counted first, then streamed to a temporary file that
  * replaces FileName when complete; the counts are reported. With WriteMCDCConfig an MC/DC
- * configuration snippet is written beside the mesh (`<name>.mcdc.conf`).
+ * configuration snippet is written beside the mesh (`<name>.mcdc.conf`). With CylinderList the
+ * fibers are also written as an MC/DC cylinder list (`<name>.cylinders.txt`,
+ * Core/IO/McdcCylinders.h) when every fiber is straight within StraightnessTolerance; otherwise
+ * nothing is written and the error names the fiber that deviates most.
  */
 #ifndef vtkFiberMeshWriter_h
 #define vtkFiberMeshWriter_h
@@ -79,6 +82,33 @@ public:
   vtkGetMacro(WriteMCDCConfig, bool);
   ///@}
 
+  /// What CylinderList writes beside the mesh.
+  enum CylinderListKinds
+  {
+    CYLINDERS_NONE = 0,      ///< no list (the default)
+    CYLINDERS_Z_ALIGNED = 1, ///< MC/DC cylinders_list: `x y z r`, axes parallel to z
+    CYLINDERS_ORIENTED = 2   ///< MC/DC oriented_cylinders_list: `x y z ox oy oz r`
+  };
+
+  ///@{
+  /**
+   * Also write the fibers as an MC/DC cylinder list `<name>.cylinders.txt` beside the mesh (one
+   * cylinder per fiber: its first point, or first and last point, and its largest radius; line 1
+   * the scale 0.001 from µm to mm). Default is CYLINDERS_NONE.
+   */
+  vtkSetMacro(CylinderList, int);
+  vtkGetMacro(CylinderList, int);
+  ///@}
+
+  ///@{
+  /**
+   * Largest distance in µm a fiber's points may have from its cylinder axis for CylinderList.
+   * Default is 0.01.
+   */
+  vtkSetMacro(StraightnessTolerance, double);
+  vtkGetMacro(StraightnessTolerance, double);
+  ///@}
+
   ///@{
   /**
    * What the last Write() produced (counted before writing): vertices, triangles, bytes.
@@ -107,6 +137,8 @@ private:
   double RingSpacing = 0.0;
   bool InnerSurfaces = true;
   bool WriteMCDCConfig = false;
+  int CylinderList = CYLINDERS_NONE;
+  double StraightnessTolerance = 0.01; // kMcdcDefaultStraightness
   double VerticesWritten = 0.0;
   double TrianglesWritten = 0.0;
   double BytesWritten = 0.0;

@@ -127,17 +127,16 @@ int vtkFiberReader::RequestData(
       {
         fiberpliWarningMacro(<< warning);
       }
-      // CATERPillar axons with myelin: their inner radii ride with the fibers like those of .h5.
-      for (std::size_t f = 0; f < result.innerRadii.size() && f < result.model.fibers.size(); ++f)
-      {
-        result.model.fibers[f].innerRadii = result.innerRadii[f];
-      }
       this->UpdateProgress(0.8);
       fiberpli::FiberPolyData::FromModel(result.model, output);
       fiberpli::AddInnerRadii(result.model, output); // .h5 and CATERPillar files can hold them
       if (cell.enabled())
       {
         fiberpli::AddPeriodicCell(output, cell);
+      }
+      if (result.boxSize != -1.0) // a CACTUS box (not a periodic cell); -1 is CACTUS's "none"
+      {
+        fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kBoxSize, { result.boxSize });
       }
       this->UpdateProgress(1.0);
       return 1;

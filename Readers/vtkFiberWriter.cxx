@@ -16,8 +16,38 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <sstream>
+#include <vector>
 
 vtkStandardNewMacro(vtkFiberWriter);
+
+namespace
+{
+/// The field data box_size (one finite number, µm) into boxSize; absent: boxSize unchanged.
+std::string ReadBoxSize(vtkPolyData* input, double& boxSize)
+{
+  vtkDataArray* box = fiberpli::FieldArray(input, fiberpli::fiberfield::kBoxSize);
+  if (box == nullptr)
+  {
+    return {};
+  }
+  const std::vector<double> values = fiberpli::FieldValues(input, fiberpli::fiberfield::kBoxSize);
+  if (values.size() != 1 || !std::isfinite(values[0]))
+  {
+    std::ostringstream msg;
+    msg << "input field data " << fiberpli::fiberfield::kBoxSize
+        << " must be one finite number (um), found " << values.size() << " value(s)";
+    if (!values.empty())
+    {
+      msg << " starting with " << fiberpli::formatNumber(values[0]);
+    }
+    return msg.str();
+  }
+  boxSize = values[0];
+  return {};
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 vtkFiberWriter::~vtkFiberWriter()
@@ -84,20 +114,15 @@ void vtkFiberWriter::WriteData()
           vtkErrorCode::UserError, fiberpli::ProxyMessage(this, "input field data " + cellError));
         return 0;
       }
-      // CATERPillar .csv keeps the axon radius inside the outer one; CACTUS .txt the cell's edge.
+      // CATERPillar .csv keeps the axon radii (Fiber::innerRadii); CACTUS .txt the cell's largest
+      // edge or, without a cell, the box size a strand list was read with.
       fiberpli::FiberFileExtras extras;
       extras.cell = cell;
-      for (const fiberpli::Fiber& fiber : in.model.fibers)
+      const std::string boxError = ReadBoxSize(input, extras.boxSize);
+      if (!boxError.empty())
       {
-        if (!fiber.innerRadii.empty())
-        {
-          extras.innerRadii.resize(in.model.fibers.size());
-          break;
-        }
-      }
-      for (std::size_t f = 0; f < extras.innerRadii.size(); ++f)
-      {
-        extras.innerRadii[f] = in.model.fibers[f].innerRadii;
+        this->Fail(vtkErrorCode::UserError, fiberpli::ProxyMessage(this, boxError));
+        return 0;
       }
       const std::string error = ext == ".h5" ? fiberpli::FiberH5Format::Write(path, in.model, cell)
                                              : fiberpli::writeFiberFile(path, in.model, &extras);

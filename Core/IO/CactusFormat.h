@@ -18,9 +18,9 @@
 namespace fiberpli
 {
 
+/// boxSize (FiberReadResult) holds line 1 of the file.
 struct CactusReadResult : FiberReadResult
 {
-  double boxSize = -1.0; ///< line 1 of the file
 };
 
 /// Reads a strand file of fileBytes bytes (the file's size: counts are checked against it before

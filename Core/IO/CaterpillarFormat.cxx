@@ -2,6 +2,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Model/InnerRadii.h"
 
 #include <algorithm>
 #include <cmath>
@@ -91,8 +92,8 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
         fiber.points.shrink_to_fit();
         fiber.radii.shrink_to_fit();
         inner.shrink_to_fit();
+        fiber.innerRadii = std::move(inner);
         result.model.fibers.push_back(std::move(fiber));
-        result.innerRadii.push_back(std::move(inner));
       }
       else
       {
@@ -218,7 +219,11 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
   closeChain();
   if (!anyInnerDiffers)
   {
-    result.innerRadii.clear();
+    for (Fiber& f : result.model.fibers)
+    {
+      f.innerRadii.clear(); // no myelin anywhere: no inner_radius, as the other readers
+      f.innerRadii.shrink_to_fit();
+    }
   }
   if (skippedSpheres > 0)
   {
@@ -238,8 +243,7 @@ double caterpillarSphereSpacing(double radius, double tolerance)
   return 2.0 * std::sqrt(2.0 * radius * tolerance - tolerance * tolerance);
 }
 
-std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
-  const std::vector<std::vector<double>>* innerRadii, double tolerance)
+std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model, double tolerance)
 {
   const std::string invalid = validateModel(model);
   if (!invalid.empty())
@@ -253,38 +257,17 @@ std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
         << " µm must be finite and > 0";
     return msg.str();
   }
-  const bool hasInner = innerRadii != nullptr && !innerRadii->empty();
-  if (hasInner)
+  // The one rule of Model/InnerRadii.h: per fiber none, or one value per point in (0, radius].
+  const std::string badInner = validateInnerRadii(model);
+  if (!badInner.empty())
   {
-    if (innerRadii->size() != model.fibers.size())
-    {
-      return "cannot write CATERPillar .csv: inner radii for " +
-        std::to_string(innerRadii->size()) + " fibers, the model has " +
-        std::to_string(model.fibers.size());
-    }
-    for (std::size_t f = 0; f < model.fibers.size(); ++f)
-    {
-      const std::vector<double>& in = (*innerRadii)[f];
-      if (in.size() != model.fibers[f].size())
-      {
-        return "cannot write CATERPillar .csv: fiber " + std::to_string(f) + " has " +
-          std::to_string(model.fibers[f].size()) + " points but " + std::to_string(in.size()) +
-          " inner radii";
-      }
-      for (std::size_t i = 0; i < in.size(); ++i)
-      {
-        if (!std::isfinite(in[i]) || !(in[i] > 0.0) || in[i] > model.fibers[f].radii[i])
-        {
-          std::ostringstream msg;
-          msg << "cannot write CATERPillar .csv: inner radius " << in[i] << " of fiber " << f
-              << " point " << i << " must be > 0 and <= the radius " << model.fibers[f].radii[i];
-          return msg.str();
-        }
-      }
-    }
+    return "cannot write CATERPillar .csv: " + badInner;
   }
   auto innerAt = [&](std::size_t f, std::size_t i)
-  { return hasInner ? (*innerRadii)[f][i] : model.fibers[f].radii[i]; };
+  {
+    const Fiber& fiber = model.fibers[f];
+    return fiber.innerRadii.empty() ? fiber.radii[i] : fiber.innerRadii[i];
+  };
   auto spheresOfLink = [&](std::size_t f, std::size_t k)
   {
     const Fiber& fiber = model.fibers[f];

@@ -42,20 +42,20 @@ constexpr double kCaterpillarDefaultTolerance = 0.05;
 /// Reads a voxel.csv stream; fileName is only used in messages. Errors name the file and line: a
 /// missing header, a line without 9 fields, a non-integer id, a non-finite number, a radius <= 0,
 /// an inner radius above the outer one, a line longer than 4096 characters, two chains of one
-/// axon id. result.innerRadii is filled when any inner radius differs from its outer one.
+/// axon id. Every fiber's innerRadii is filled when any inner radius of the file differs from its
+/// outer one (else no fiber has them).
 FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName);
 
 /// Largest centre spacing (µm) whose sphere chain of radius r stays within tolerance t of the
 /// capsule surface: 2√(2 r t − t²), or 2 r when t >= r.
 double caterpillarSphereSpacing(double radius, double tolerance);
 
-/// Writes the model as CATERPillar axons (see above). innerRadii (may be null or empty) holds one
-/// vector per fiber with one value per point. tolerance (µm) must be finite and > 0. Returns "" on
-/// success, else the reason (invalid model, bad tolerance or inner radii, more than 10^9 spheres,
-/// stream failure); use AtomicFile to protect the target file.
-std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model,
-  const std::vector<std::vector<double>>* innerRadii,
-  double tolerance = kCaterpillarDefaultTolerance);
+/// Writes the model as CATERPillar axons (see above); a fiber's inner radius is its innerRadii
+/// (checked by validateInnerRadii, Model/InnerRadii.h) or, without them, its radius. tolerance (µm)
+/// must be finite and > 0. Returns "" on success, else the reason (invalid model, bad tolerance or
+/// inner radii, more than 10^9 spheres, stream failure); use AtomicFile to protect the target file.
+std::string writeCaterpillarCsv(
+  std::ostream& out, const FiberModel& model, double tolerance = kCaterpillarDefaultTolerance);
 
 /// Content check for CanReadFile: true when the first non-blank line is the CATERPillar header
 /// (so ordinary CSV files stay with ParaView's own CSV reader). Restores the stream position.

@@ -277,12 +277,22 @@ FiberReadResult readFiberFile(const std::string& path, double defaultRadius)
       {
         return readFailure("cannot stat " + path + ": " + std::strerror(errno));
       }
-      return readCactusStrands(in, path, static_cast<std::uintmax_t>(info.st_size));
+      return readCactusStrands(in, path, static_cast<std::uintmax_t>(info.st_size)); // boxSize kept
     }
     case FiberFileFormat::Unknown:
       break;
   }
   return {};
+}
+
+double cactusBoxSize(const FiberFileExtras& extras)
+{
+  if (extras.cell.enabled())
+  {
+    const Vec3 e = extras.cell.edge();
+    return std::max({ e.x, e.y, e.z });
+  }
+  return extras.boxSize;
 }
 
 std::string writeFiberFile(
@@ -300,19 +310,13 @@ std::string writeFiberFile(
     return writeFileAtomically(path,
       [&](std::ostream& out)
       {
-        const std::string error =
-          writeCaterpillarCsv(out, model, &more.innerRadii, more.sphereTolerance);
+        const std::string error = writeCaterpillarCsv(out, model, more.sphereTolerance);
         return error.empty() ? error : path + ": " + error;
       });
   }
   if (format == FiberFileFormat::Cactus)
   {
-    double box = -1.0;
-    if (more.cell.enabled())
-    {
-      const Vec3 e = more.cell.edge();
-      box = std::max({ e.x, e.y, e.z });
-    }
+    const double box = cactusBoxSize(more);
     return writeFileAtomically(path,
       [&](std::ostream& out)
       {

@@ -46,16 +46,19 @@ std::string tckRadiusPath(const std::string& tckPath);
 /// defaultRadius as before.
 FiberReadResult readFiberFile(const std::string& path, double defaultRadius);
 
-/// What some formats store beside the model: the axon radii inside the outer radii (one vector per
-/// fiber, one value per point; written by .csv) and the periodic cell (its largest edge is the box
-/// size of a .txt strand list; without a cell the box size is -1, as CACTUS writes when it has
-/// none).
+/// What some formats store beside the model (the axon radii inside the outer radii travel in
+/// Fiber::innerRadii; .csv writes them): the periodic cell and the box size of a .txt strand list.
+/// The box size written is the cell's largest edge when there is a cell, else boxSize (a box size
+/// read from a strand list), else -1, as CACTUS writes when it has none.
 struct FiberFileExtras
 {
-  std::vector<std::vector<double>> innerRadii;
   PeriodicCell cell;
+  double boxSize = -1.0;         ///< .txt without a cell: µm, finite; -1 = none
   double sphereTolerance = 0.05; ///< .csv: µm, see CaterpillarFormat.h
 };
+
+/// The box size a .txt strand list gets for these extras (see FiberFileExtras).
+double cactusBoxSize(const FiberFileExtras& extras);
 
 /// Writes .dat, .tck, .csv (CATERPillar) or .txt (CACTUS) (by extension) atomically: on failure an
 /// existing file is unchanged.

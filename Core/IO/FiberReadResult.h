@@ -24,10 +24,10 @@ struct FiberReadResult : Status
   /// contract needs >= 2 points) but keep their place in the fiber id numbering; the VTK side
   /// reports the count as one warning.
   std::size_t droppedFibers = 0;
-  /// Formats that store an axon radius inside the outer one (CATERPillar): one vector per fiber of
-  /// the model, one value per point (µm, > 0, <= the outer radius), for the point array
-  /// `inner_radius`. Empty when the file gives no inner radius that differs from the outer one.
-  std::vector<std::vector<double>> innerRadii;
+  /// The box size of formats that hold one (line 1 of a CACTUS strand list, µm; CACTUS writes -1
+  /// when it has none, and -1 here means the same). Axon radii inside the outer ones (CATERPillar)
+  /// travel with the fibers, in Fiber::innerRadii, as for every other format.
+  double boxSize = -1.0;
 };
 
 /// A failed read: empty model, the given message.

@@ -27,6 +27,8 @@ constexpr const char* kSeed = "seed";                      ///< int
 constexpr const char* kPeriodicCell = "periodic_cell";     ///< xmin xmax ymin ymax zmin zmax
 constexpr const char* kPopulationAxes = "population_axes"; ///< 3 values per population
 constexpr const char* kDispersionC2 = "dispersion_c2";     ///< achieved ⟨cos²⟩ per population
+constexpr const char* kBoxSize =
+  "box_size"; ///< µm, a CACTUS strand list's box (FiberReader, FiberWriter)
 
 // Field data of FiberCollisionSolver (docs/solver.md §9, §13).
 constexpr const char* kSteps = "steps";            ///< int, moves run

@@ -62,29 +62,26 @@ TEST(CaterpillarFormat, SpacingKeepsTheGrooveWithinTheTolerance)
 
 TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
 {
-  const FiberModel m = curvedModel();
-  std::vector<std::vector<double>> inner;
-  for (const Fiber& f : m.fibers)
+  FiberModel m = curvedModel();
+  for (Fiber& f : m.fibers)
   {
-    std::vector<double> in;
     for (double r : f.radii)
     {
-      in.push_back(0.7 * r);
+      f.innerRadii.push_back(0.7 * r);
     }
-    inner.push_back(in);
   }
   const double tol = 0.02;
   std::stringstream file;
-  ASSERT_EQ(writeCaterpillarCsv(file, m, &inner, tol), "");
+  ASSERT_EQ(writeCaterpillarCsv(file, m, tol), "");
   EXPECT_TRUE(looksLikeCaterpillarCsv(file));
   const FiberReadResult back = readCaterpillarCsv(file, "voxel.csv");
   ASSERT_TRUE(back.ok()) << back.error;
   ASSERT_EQ(back.model.fibers.size(), m.fibers.size());
-  ASSERT_EQ(back.innerRadii.size(), m.fibers.size());
   for (std::size_t f = 0; f < m.fibers.size(); ++f)
   {
     const Fiber& a = m.fibers[f];
     const Fiber& b = back.model.fibers[f];
+    ASSERT_EQ(b.innerRadii.size(), b.size());
     EXPECT_EQ(b.id, a.id);
     EXPECT_EQ(b.bundle, a.bundle);
     // Walk the read chain: every original point appears, bit for bit, in order; the spheres between
@@ -102,13 +99,13 @@ TEST(CaterpillarFormat, RoundTripKeepsEveryPointAndFillsLinksWithinTolerance)
       }
       ASSERT_LT(j, b.size()) << "point " << i << " of fiber " << f << " is missing";
       EXPECT_EQ(b.radii[j], a.radii[i]);
-      EXPECT_EQ(back.innerRadii[f][j], inner[f][i]);
+      EXPECT_EQ(b.innerRadii[j], a.innerRadii[i]);
       ++j;
     }
     EXPECT_EQ(j, b.size());
     for (std::size_t k = 0; k + 1 < b.size(); ++k)
     {
-      const double rMin = std::min(back.innerRadii[f][k], back.innerRadii[f][k + 1]);
+      const double rMin = std::min(b.innerRadii[k], b.innerRadii[k + 1]);
       EXPECT_LE(
         norm(b.points[k + 1] - b.points[k]), caterpillarSphereSpacing(rMin, tol) * (1 + 1e-9));
     }
@@ -131,7 +128,7 @@ TEST(CaterpillarFormat, ReadsCaterpillarOwnLayoutAndSkipsGlia)
   EXPECT_EQ(r.model.fibers[0].id, 4);
   EXPECT_EQ(r.model.fibers[0].size(), 3u);
   EXPECT_EQ(r.model.fibers[0].radii[2], 0.9);
-  EXPECT_EQ(r.innerRadii[0][2], 0.6);
+  EXPECT_EQ(r.model.fibers[0].innerRadii[2], 0.6);
   EXPECT_EQ(r.droppedFibers, 1u); // axon 7: one sphere
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("3 spheres"), std::string::npos);
