@@ -1,7 +1,7 @@
 #include "IO/TrkFormat.h"
 #include "Util/PrintableText.h"
 
-#include "IO/BinaryIO.h"
+#include "Util/BinaryIO.h"
 
 #include <cctype>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "Solver/Decomposition.h"
 
+#include "Model/FiberWire.h"
 #include "Util/ByteBuffer.h"
 
 #include <algorithm>
@@ -12,20 +13,17 @@ namespace fiberpli
 
 namespace
 {
-// One fiber with its point state.
+// One fiber: the solver's per-fiber state, the fiber's own record (Model/FiberWire.h), then the
+// solver's point state.
 void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
 {
   const CollisionSolverState& st = r.state;
-  const Fiber& fib = r.model.fibers[f];
   w.put<std::int64_t>(st.global[f]);
   w.put<std::int32_t>(st.home[f]);
-  w.put<std::int64_t>(fib.id);
-  w.put<std::int32_t>(fib.bundle);
   w.put<char>(st.active[f]);
   w.put<char>(st.closed[f]);
   w.put<Vec3>(st.closure[f]);
-  w.putVector(fib.points);
-  w.putVector(fib.radii);
+  putFiber(w, r.model.fibers[f]);
   w.putVector(st.points[f].velocity);
   w.putVector(st.points[f].source);
   w.putVector(st.points[f].inputRadii);
@@ -34,16 +32,12 @@ void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
 void readFiber(ByteReader& rd, RankFibers& r)
 {
   CollisionSolverState& st = r.state;
-  Fiber fib;
   st.global.push_back(rd.get<std::int64_t>());
   st.home.push_back(rd.get<std::int32_t>());
-  fib.id = rd.get<std::int64_t>();
-  fib.bundle = rd.get<std::int32_t>();
   st.active.push_back(rd.get<char>());
   st.closed.push_back(rd.get<char>());
   st.closure.push_back(rd.get<Vec3>());
-  rd.getVector(fib.points);
-  rd.getVector(fib.radii);
+  Fiber fib = getFiber(rd);
   FiberPointState ps;
   rd.getVector(ps.velocity);
   rd.getVector(ps.source);
