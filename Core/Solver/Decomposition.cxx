@@ -325,15 +325,16 @@ TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverCom
   return send(r, to, keep, comm);
 }
 
-std::string agreeOnError(SolverComm& comm, const std::string& localError)
+RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError)
 {
   std::vector<std::int64_t> failed(static_cast<std::size_t>(comm.size()), 0);
   failed[static_cast<std::size_t>(comm.rank())] = localError.empty() ? 0 : 1;
   comm.sum(failed);
   const auto first = std::find(failed.begin(), failed.end(), 1);
+  RankFailure agreed;
   if (first == failed.end())
   {
-    return {};
+    return agreed;
   }
   const std::size_t who = static_cast<std::size_t>(first - failed.begin());
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
@@ -343,12 +344,24 @@ std::string agreeOnError(SolverComm& comm, const std::string& localError)
       b.assign(localError.begin(), localError.end());
   }
   const std::vector<std::vector<char>> in = comm.exchange(out);
-  const std::string message(in[who].begin(), in[who].end());
+  agreed.rank = static_cast<int>(who);
+  agreed.message.assign(in[who].begin(), in[who].end());
+  agreed.all =
+    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
+  return agreed;
+}
+
+std::string agreeOnError(SolverComm& comm, const std::string& localError)
+{
+  const RankFailure agreed = agreeOnFailure(comm, localError);
+  if (!agreed.failed())
+  {
+    return {};
+  }
   // When only some ranks failed, say which one (the same text on every rank); when all failed
   // (a bad option, the same everywhere) the message stands alone.
-  const bool all =
-    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
-  return all ? message : "rank " + std::to_string(who) + ": " + message;
+  return agreed.all ? agreed.message
+                    : "rank " + std::to_string(agreed.rank) + ": " + agreed.message;
 }
 
 bool anyRank(SolverComm& comm, bool value)
