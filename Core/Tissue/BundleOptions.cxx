@@ -79,10 +79,11 @@ std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3
   std::ostringstream msg;
   const double ranvier = effectiveRanvierSpacing(o);
   const bool usesLength = o.shape != BundleShape::Trajectory;
-  const int shape = static_cast<int>(o.shape);
-  if (shape < 0 || shape > static_cast<int>(BundleShape::Chiasm))
+  BundleShape known;
+  const std::string shape = bundleShapeFromCode(static_cast<int>(o.shape), known);
+  if (!shape.empty())
   {
-    msg << "Shape is " << shape << ", must be 0 (Cylinder) to 4 (Chiasm)";
+    msg << shape;
   }
   else if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
   {

@@ -657,6 +657,19 @@ namespace
 {
 // The values that are wrong on their own, whatever the others are, all of them: a user who typed
 // several bad values learns of all at once instead of one per Apply.
+// The messages for a seeding or arrangement outside its enum (a Core caller may cast any int).
+std::string seedingProblem(const CubeOptions& o)
+{
+  CubeSeeding known;
+  return cubeSeedingFromCode(static_cast<int>(o.seeding), known);
+}
+
+std::string arrangementProblem(const CubeOptions& o)
+{
+  CubeArrangement known;
+  return cubeArrangementFromCode(static_cast<int>(o.arrangement), known);
+}
+
 std::string independentProblems(const CubeOptions& o)
 {
   std::vector<std::string> problems;
@@ -682,10 +695,8 @@ std::string independentProblems(const CubeOptions& o)
     [&](std::ostream& m) { m << "SegmentLength is " << o.segmentLength << ", must be > 0"; });
   add(!std::isfinite(o.displacement) || o.displacement < 0.0,
     [&](std::ostream& m) { m << "Displacement is " << o.displacement << ", must be >= 0"; });
-  add(o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice,
-    [&](std::ostream& m) {
-      m << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
-    });
+  const std::string seedingCode = seedingProblem(o);
+  add(!seedingCode.empty(), [&](std::ostream& m) { m << seedingCode; });
   add(!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0,
     [&](std::ostream& m)
     {
@@ -695,12 +706,8 @@ std::string independentProblems(const CubeOptions& o)
   add(!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
     [&](std::ostream& m)
     { m << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees"; });
-  add(static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2,
-    [&](std::ostream& m)
-    {
-      m << "Arrangement is " << static_cast<int>(o.arrangement)
-        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
-    });
+  const std::string arrangementCode = arrangementProblem(o);
+  add(!arrangementCode.empty(), [&](std::ostream& m) { m << arrangementCode; });
   std::string all;
   for (const std::string& p : problems)
   {
@@ -719,6 +726,8 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     return independent;
   }
+  const std::string seedingCode = seedingProblem(o);
+  const std::string arrangementCode = arrangementProblem(o);
   std::ostringstream msg;
   const std::string radius = validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
   if (o.populations < 1 || o.populations > 3)
@@ -770,9 +779,9 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
     msg << "Seeding is Lattice, which needs Periodic on (a lattice must be commensurate with a "
            "periodic cell)";
   }
-  else if (o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice)
+  else if (!seedingCode.empty())
   {
-    msg << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
+    msg << seedingCode;
   }
   else if (!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0)
   {
@@ -797,10 +806,9 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << sharesProblem(o);
   }
-  else if (static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2)
+  else if (!arrangementCode.empty())
   {
-    msg << "Arrangement is " << static_cast<int>(o.arrangement)
-        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+    msg << arrangementCode;
   }
   else if (o.arrangement == CubeArrangement::Sheets && o.populations != 2)
   {

@@ -50,10 +50,11 @@ const char* radiusDistributionName(RadiusDistribution kind)
 
 std::string validateRadiusDistribution(RadiusDistribution kind, double spread)
 {
-  const int k = static_cast<int>(kind);
-  if (k < 0 || k > static_cast<int>(RadiusDistribution::Constant))
+  RadiusDistribution known;
+  const std::string code = radiusDistributionFromCode(static_cast<int>(kind), known);
+  if (!code.empty())
   {
-    return "RadiusDistribution is " + formatNumber(k) + ", must be 0 (LogNormal) to 3 (Constant)";
+    return code;
   }
   if (!std::isfinite(spread) || spread < 0.0)
   {

@@ -22,6 +22,7 @@ std::string validateShapeOptions(const ShapeOptions& o)
 {
   std::ostringstream msg;
   const int model = static_cast<int>(o.gRatioModel);
+  GRatioModel known;
   if (!std::isfinite(o.tortuosity) || o.tortuosity < 1.0)
   {
     msg << "Tortuosity is " << o.tortuosity << ", must be >= 1 (1 = straight fibers)";
@@ -52,9 +53,9 @@ std::string validateShapeOptions(const ShapeOptions& o)
   {
     msg << "GRatio is " << o.gRatio << ", must be in (0, 1) (0 = no myelin)";
   }
-  else if (model < 0 || model > static_cast<int>(GRatioModel::Lee2019))
+  else if (!gRatioModelFromCode(model, known).empty())
   {
-    msg << "GRatioModel is " << model << ", must be 0 (Constant) or 1 (Lee2019)";
+    msg << gRatioModelFromCode(model, known);
   }
   return msg.str();
 }
