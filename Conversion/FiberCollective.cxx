@@ -1,7 +1,9 @@
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
 #include "FiberGuard.h"
+#include "FiberSolverComm.h"
 
+#include "Solver/Decomposition.h"
 #include "Util/NumberFormat.h"
 
 #include <vtkAlgorithm.h>
@@ -12,13 +14,11 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiProcessController.h>
-#include <vtkMultiProcessStream.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
-#include <climits>
 #include <vector>
 
 namespace fiberpli
@@ -77,28 +77,20 @@ std::string FiberCollective::AgreeOnError(
   {
     return localError;
   }
-  const int rank = c->GetLocalProcessId();
-  const int mine = localError.empty() ? INT_MAX : rank;
-  int first = INT_MAX;
-  c->AllReduce(&mine, &first, 1, vtkCommunicator::MIN_OP);
-  if (first == INT_MAX)
+  // Who failed and whose message wins is the Core's one rule; the text is the pipeline's: a
+  // failing rank keeps its own error, the others name the rank that failed.
+  FiberSolverComm comm(c);
+  const RankFailure agreed = agreeOnFailure(comm, localError);
+  if (!agreed.failed())
   {
     return {};
   }
-  vtkMultiProcessStream message;
-  if (rank == first)
-  {
-    message << localError;
-  }
-  c->Broadcast(message, first);
   if (!localError.empty())
   {
     return localError;
   }
-  std::string text;
-  message >> text;
-  return who + ": rank " + fiberpli::formatNumber(first) +
-    " failed, so no rank gives output: " + text;
+  return who + ": rank " + fiberpli::formatNumber(agreed.rank) +
+    " failed, so no rank gives output: " + agreed.message;
 }
 
 double FiberCollective::GlobalMax(vtkInformation* info, double local)

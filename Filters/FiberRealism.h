@@ -14,19 +14,18 @@
 namespace fiberpli
 {
 
-/// The realism knobs of a source (anything with the knobs' getters) as Core options.
+/// The realism knobs of a source (anything with the knobs' getters) as Core options: "" or the
+/// message naming a GRatioModel code outside the enum.
 template <typename Source>
-ShapeOptions RealismKnobs(Source* source)
+std::string RealismKnobs(Source* source, ShapeOptions& realism)
 {
-  ShapeOptions realism;
   realism.tortuosity = source->GetTortuosity();
   realism.undulationWavelength = source->GetUndulationWavelength();
   realism.dispersionC2 = source->GetDispersionC2();
   realism.beadingCV = source->GetBeadingCV();
   realism.beadingLength = source->GetBeadingLength();
   realism.gRatio = source->GetGRatio();
-  realism.gRatioModel = static_cast<GRatioModel>(source->GetGRatioModel());
-  return realism;
+  return gRatioModelFromCode(source->GetGRatioModel(), realism.gRatioModel);
 }
 
 } // namespace fiberpli

@@ -89,12 +89,10 @@ int vtkFiberBundleSource::ExecutePiece(
     return 0;
   }
   fiberpli::BundleOptions options;
-  options.shape = static_cast<fiberpli::BundleShape>(this->Shape);
   options.bundleRadius = this->BundleRadius;
   options.length = this->Length;
   options.fiberRadius = this->FiberRadius;
   options.radiusSpread = this->RadiusSpread;
-  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
   options.fiberSpacing = this->FiberSpacing;
   options.numberOfFibers = this->NumberOfFibers;
   options.segmentLength = this->SegmentLength;
@@ -105,7 +103,22 @@ int vtkFiberBundleSource::ExecutePiece(
   options.ranvierDepth = this->RanvierDepth;
   options.ranvierLength = this->RanvierLength;
   options.seed = static_cast<std::uint64_t>(this->Seed);
-  options.realism = fiberpli::RealismKnobs(this);
+  // The enumerated properties in the order validateBundleOptions names them.
+  std::string code = fiberpli::bundleShapeFromCode(this->Shape, options.shape);
+  if (code.empty())
+  {
+    code =
+      fiberpli::radiusDistributionFromCode(this->RadiusDistribution, options.radiusDistribution);
+  }
+  if (code.empty())
+  {
+    code = fiberpli::RealismKnobs(this, options.realism);
+  }
+  if (!code.empty())
+  {
+    fiberpliErrorMacro(<< code);
+    return 0;
+  }
 
   std::vector<fiberpli::Vec3> trajectory;
   std::vector<double> scale;

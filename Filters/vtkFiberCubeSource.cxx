@@ -112,16 +112,30 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   options.segmentLength = this->SegmentLength;
   options.displacement = this->Displacement;
   options.seed = static_cast<std::uint64_t>(this->Seed);
-  options.realism = fiberpli::RealismKnobs(this);
   options.crossingAngle = this->CrossingAngle;
   options.populationShares.assign(this->PopulationShares, this->PopulationShares + 3);
-  options.arrangement = static_cast<fiberpli::CubeArrangement>(this->Arrangement);
   options.radiusSpread = this->RadiusSpread;
-  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
   options.periodic = this->Periodic;
   options.volumeFraction = this->VolumeFraction;
-  options.seeding = static_cast<fiberpli::CubeSeeding>(this->Seeding);
-  const std::string invalid = fiberpli::validateCubeOptions(options, pieces);
+  // The enumerated properties in the order validateCubeOptions names them.
+  std::string invalid =
+    fiberpli::radiusDistributionFromCode(this->RadiusDistribution, options.radiusDistribution);
+  if (invalid.empty())
+  {
+    invalid = fiberpli::cubeSeedingFromCode(this->Seeding, options.seeding);
+  }
+  if (invalid.empty())
+  {
+    invalid = fiberpli::RealismKnobs(this, options.realism);
+  }
+  if (invalid.empty())
+  {
+    invalid = fiberpli::cubeArrangementFromCode(this->Arrangement, options.arrangement);
+  }
+  if (invalid.empty())
+  {
+    invalid = fiberpli::validateCubeOptions(options, pieces);
+  }
   if (!invalid.empty())
   {
     fiberpliErrorMacro(<< invalid);

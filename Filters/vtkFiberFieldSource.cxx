@@ -158,7 +158,6 @@ int vtkFiberFieldSource::Execute(
   options.numberOfFibers = this->NumberOfFibers;
   options.fiberRadius = this->FiberRadius;
   options.radiusSpread = this->RadiusSpread;
-  options.radiusDistribution = static_cast<fiberpli::RadiusDistribution>(this->RadiusDistribution);
   options.trace.segmentLength = this->SegmentLength;
   options.trace.scheme = static_cast<fiberpli::TraceScheme>(this->IntegrationScheme);
   options.trace.maxLength = this->MaxFiberLength;
@@ -167,7 +166,17 @@ int vtkFiberFieldSource::Execute(
   options.realism.beadingCV = this->BeadingCV;
   options.realism.beadingLength = this->BeadingLength;
   options.realism.gRatio = this->GRatio;
-  options.realism.gRatioModel = static_cast<fiberpli::GRatioModel>(this->GRatioModel);
+  std::string code =
+    fiberpli::radiusDistributionFromCode(this->RadiusDistribution, options.radiusDistribution);
+  if (code.empty())
+  {
+    code = fiberpli::gRatioModelFromCode(this->GRatioModel, options.realism.gRatioModel);
+  }
+  if (!code.empty())
+  {
+    vtkErrorMacro(<< "FiberFieldSource: " << code);
+    return 0;
+  }
   std::vector<const fiberpli::OrientationField*> pointers;
   for (const fiberpli::OrientationField& f : fields)
   {

@@ -3,8 +3,8 @@
 #include "Checkpoint/CheckpointState.h"
 
 #include "IO/AtomicFile.h"
-#include "IO/BinaryIO.h"
 #include "IO/RegularFile.h"
+#include "Util/BinaryIO.h"
 #include "Util/Fnv1a.h"
 #include "Util/NumberFormat.h"
 

@@ -4,8 +4,8 @@
 /// Internal helper, not part of the public API.
 #pragma once
 
-#include "IO/BinaryIO.h"
 #include "IO/MrtrixHeader.h"
+#include "Util/BinaryIO.h"
 
 #include <algorithm>
 #include <cmath>

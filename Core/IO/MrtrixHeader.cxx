@@ -1,7 +1,7 @@
 #include "IO/MrtrixHeader.h"
 #include "Util/PrintableText.h"
 
-#include "IO/BinaryIO.h"
+#include "Util/BinaryIO.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,8 +1,8 @@
 #include "IO/TckFormat.h"
 
-#include "IO/BinaryIO.h"
 #include "IO/MrtrixData.h"
 #include "IO/MrtrixHeader.h"
+#include "Util/BinaryIO.h"
 #include "Util/Fnv1a.h"
 
 #include <cmath>

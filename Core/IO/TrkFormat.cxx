@@ -1,7 +1,8 @@
 #include "IO/TrkFormat.h"
 #include "Util/PrintableText.h"
 
-#include "IO/BinaryIO.h"
+#include "Util/BinaryIO.h"
+#include "Util/ValueCheck.h"
 
 #include <cctype>
 #include <cmath>
@@ -99,9 +100,7 @@ FiberReadResult readTrk(std::istream& in, const std::string& fileName, double de
   }
   else
   {
-    std::ostringstream msg;
-    msg << "hdr_size is " << binary::loadInt32(h + 996, true) << ", must be 1000";
-    return fail(at(fileName, 996, msg.str()));
+    return fail(at(fileName, 996, mustBe("hdr_size", binary::loadInt32(h + 996, true), "1000")));
   }
   const std::int32_t version = binary::loadInt32(h + 992, little);
   if (version != 1 && version != 2)

@@ -1,8 +1,8 @@
 #include "Parallel/TileExchange.h"
 
+#include "Model/FiberWire.h"
 #include "Model/InnerRadii.h"
 #include "Model/PeriodicCellRule.h"
-#include "Parallel/FiberWire.h"
 #include "Util/ByteBuffer.h"
 #include "Util/MemoryBudget.h"
 #include "Util/NumberFormat.h"

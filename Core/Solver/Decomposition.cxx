@@ -1,5 +1,6 @@
 #include "Solver/Decomposition.h"
 
+#include "Model/FiberWire.h"
 #include "Util/ByteBuffer.h"
 
 #include <algorithm>
@@ -12,20 +13,17 @@ namespace fiberpli
 
 namespace
 {
-// One fiber with its point state.
+// One fiber: the solver's per-fiber state, the fiber's own record (Model/FiberWire.h), then the
+// solver's point state.
 void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
 {
   const CollisionSolverState& st = r.state;
-  const Fiber& fib = r.model.fibers[f];
   w.put<std::int64_t>(st.global[f]);
   w.put<std::int32_t>(st.home[f]);
-  w.put<std::int64_t>(fib.id);
-  w.put<std::int32_t>(fib.bundle);
   w.put<char>(st.active[f]);
   w.put<char>(st.closed[f]);
   w.put<Vec3>(st.closure[f]);
-  w.putVector(fib.points);
-  w.putVector(fib.radii);
+  putFiber(w, r.model.fibers[f]);
   w.putVector(st.points[f].velocity);
   w.putVector(st.points[f].source);
   w.putVector(st.points[f].inputRadii);
@@ -34,16 +32,12 @@ void writeFiber(ByteWriter& w, const RankFibers& r, std::size_t f)
 void readFiber(ByteReader& rd, RankFibers& r)
 {
   CollisionSolverState& st = r.state;
-  Fiber fib;
   st.global.push_back(rd.get<std::int64_t>());
   st.home.push_back(rd.get<std::int32_t>());
-  fib.id = rd.get<std::int64_t>();
-  fib.bundle = rd.get<std::int32_t>();
   st.active.push_back(rd.get<char>());
   st.closed.push_back(rd.get<char>());
   st.closure.push_back(rd.get<Vec3>());
-  rd.getVector(fib.points);
-  rd.getVector(fib.radii);
+  Fiber fib = getFiber(rd);
   FiberPointState ps;
   rd.getVector(ps.velocity);
   rd.getVector(ps.source);
@@ -331,15 +325,16 @@ TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverCom
   return send(r, to, keep, comm);
 }
 
-std::string agreeOnError(SolverComm& comm, const std::string& localError)
+RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError)
 {
   std::vector<std::int64_t> failed(static_cast<std::size_t>(comm.size()), 0);
   failed[static_cast<std::size_t>(comm.rank())] = localError.empty() ? 0 : 1;
   comm.sum(failed);
   const auto first = std::find(failed.begin(), failed.end(), 1);
+  RankFailure agreed;
   if (first == failed.end())
   {
-    return {};
+    return agreed;
   }
   const std::size_t who = static_cast<std::size_t>(first - failed.begin());
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
@@ -349,12 +344,24 @@ std::string agreeOnError(SolverComm& comm, const std::string& localError)
       b.assign(localError.begin(), localError.end());
   }
   const std::vector<std::vector<char>> in = comm.exchange(out);
-  const std::string message(in[who].begin(), in[who].end());
+  agreed.rank = static_cast<int>(who);
+  agreed.message.assign(in[who].begin(), in[who].end());
+  agreed.all =
+    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
+  return agreed;
+}
+
+std::string agreeOnError(SolverComm& comm, const std::string& localError)
+{
+  const RankFailure agreed = agreeOnFailure(comm, localError);
+  if (!agreed.failed())
+  {
+    return {};
+  }
   // When only some ranks failed, say which one (the same text on every rank); when all failed
   // (a bad option, the same everywhere) the message stands alone.
-  const bool all =
-    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
-  return all ? message : "rank " + std::to_string(who) + ": " + message;
+  return agreed.all ? agreed.message
+                    : "rank " + std::to_string(agreed.rank) + ": " + agreed.message;
 }
 
 bool anyRank(SolverComm& comm, bool value)

@@ -90,9 +90,21 @@ struct TrafficCount
 /// fibers others send here, keeps global order. Collective.
 TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
 
-/// "" when no rank failed, else the message of the lowest failing rank R, on every rank: as it is
-/// when every rank failed, else as "rank R: <message>" (so that the other ranks' reports name the
-/// rank whose piece failed). Collective.
+/// What the ranks agree on when some failed (the one rule, docs/data-contract.md §5): which rank's
+/// message wins (the lowest failing rank) and whether every rank failed. The same on every rank.
+struct RankFailure
+{
+  int rank = -1;       ///< the lowest failing rank; -1: no rank failed
+  std::string message; ///< that rank's error
+  bool all = false;    ///< every rank failed
+  bool failed() const { return rank >= 0; }
+};
+/// Every rank passes its own error ("" = success). Collective.
+RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError);
+
+/// The solver's text of agreeOnFailure, on every rank: "" when no rank failed, else the winning
+/// message as it is when every rank failed, else as "rank R: <message>" (so that the other ranks'
+/// reports name the rank whose piece failed). Collective.
 std::string agreeOnError(SolverComm& comm, const std::string& localError);
 /// Logical or / exact minimum and maximum over all ranks. Collective.
 bool anyRank(SolverComm& comm, bool value);

@@ -5,6 +5,7 @@
 #include "Util/MemoryBudget.h"
 #include "Util/NumberFormat.h"
 #include "Util/Threads.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 #include <cstring>
@@ -77,70 +78,37 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
 
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
 {
-  std::ostringstream msg;
-  if (!std::isfinite(o.segmentLength))
-  {
-    msg << "SegmentLength is " << o.segmentLength << ", must be finite (0 = auto, < 0 = off)";
-  }
-  else if (!std::isfinite(o.minCurvatureRadius) || o.minCurvatureRadius < 0.0)
-  {
-    msg << "MinCurvatureRadius is " << o.minCurvatureRadius << ", must be >= 0 (0 = off)";
-  }
-  else if (o.maxSteps < 0)
-  {
-    msg << "MaxSteps is " << o.maxSteps << ", must be >= 0";
-  }
-  else if (!std::isfinite(o.separationSpeed) || o.separationSpeed <= 0.0 || o.separationSpeed > 1.0)
-  {
-    msg << "SeparationSpeed is " << o.separationSpeed << ", must be in (0, 1]";
-  }
-  else if (!std::isfinite(o.overlapPush) || o.overlapPush < 0.0 || o.overlapPush > 1.0)
-  {
-    msg << "OverlapPush is " << o.overlapPush << ", must be in [0, 1]";
-  }
-  else if (!std::isfinite(o.pushSpread) || o.pushSpread < 0.0 || o.pushSpread > 1.0)
-  {
-    msg << "PushSpread is " << o.pushSpread << ", must be in [0, 1]";
-  }
-  else if (!std::isfinite(o.maxDisplacement) || o.maxDisplacement <= 0.0)
-  {
-    msg << "MaxDisplacement is " << o.maxDisplacement << ", must be > 0";
-  }
-  else if (!std::isfinite(o.pushBoost) || o.pushBoost < 1.0 || o.pushBoost > 4.0)
-  {
-    msg << "PushBoost is " << o.pushBoost << ", must be in [1, 4] (1 = off)";
-  }
-  else if (!std::isfinite(o.drag) || o.drag < 0.0 || o.drag >= 1.0)
-  {
-    msg << "Drag is " << o.drag << ", must be in [0, 1)";
-  }
-  else if (!validateThreadCount(o.numberOfThreads).empty())
-  {
-    msg << validateThreadCount(o.numberOfThreads);
-  }
-  else if (!std::isfinite(o.minimumGap) || o.minimumGap < 0.0)
-  {
-    msg << "MinimumGap is " << o.minimumGap << ", must be >= 0";
-  }
-  else if (o.stallSteps < 0)
-  {
-    msg << "StallSteps is " << o.stallSteps << ", must be >= 0 (0 = off)";
-  }
-  else if (!std::isfinite(o.initialRadiusScale) || o.initialRadiusScale < 0.0 ||
-    o.initialRadiusScale > 1.0)
-  {
-    msg << "InitialRadiusScale is " << o.initialRadiusScale
-        << ", must be in [0, 1] (0 = automatic, 1 = off)";
-  }
-  else if (!std::isfinite(o.tortuosity) || o.tortuosity < 0.0 || o.tortuosity > 3.0)
-  {
-    msg << "Tortuosity is " << o.tortuosity << ", must be in [0, 3] (0 or 1 = off)";
-  }
-  else if (o.periodicCell.enabled() || !isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi))
-  {
-    msg << validatePeriodicCell(o.periodicCell); // Model/PeriodicCellRule.h: "" when usable
-  }
-  return msg.str();
+  const auto finite = [](double v) { return std::isfinite(v); };
+  const bool checkCell =
+    o.periodicCell.enabled() || !isFinite(o.periodicCell.lo) || !isFinite(o.periodicCell.hi);
+  return ValueChecks()
+    .require(
+      finite(o.segmentLength), "SegmentLength", o.segmentLength, "finite (0 = auto, < 0 = off)")
+    .require(finite(o.minCurvatureRadius) && o.minCurvatureRadius >= 0.0, "MinCurvatureRadius",
+      o.minCurvatureRadius, ">= 0 (0 = off)")
+    .require(o.maxSteps >= 0, "MaxSteps", o.maxSteps, ">= 0")
+    .require(finite(o.separationSpeed) && o.separationSpeed > 0.0 && o.separationSpeed <= 1.0,
+      "SeparationSpeed", o.separationSpeed, "in (0, 1]")
+    .require(finite(o.overlapPush) && o.overlapPush >= 0.0 && o.overlapPush <= 1.0, "OverlapPush",
+      o.overlapPush, "in [0, 1]")
+    .require(finite(o.pushSpread) && o.pushSpread >= 0.0 && o.pushSpread <= 1.0, "PushSpread",
+      o.pushSpread, "in [0, 1]")
+    .require(finite(o.maxDisplacement) && o.maxDisplacement > 0.0, "MaxDisplacement",
+      o.maxDisplacement, "> 0")
+    .require(finite(o.pushBoost) && o.pushBoost >= 1.0 && o.pushBoost <= 4.0, "PushBoost",
+      o.pushBoost, "in [1, 4] (1 = off)")
+    .require(finite(o.drag) && o.drag >= 0.0 && o.drag < 1.0, "Drag", o.drag, "in [0, 1)")
+    .then(validateThreadCount(o.numberOfThreads))
+    .require(finite(o.minimumGap) && o.minimumGap >= 0.0, "MinimumGap", o.minimumGap, ">= 0")
+    .require(o.stallSteps >= 0, "StallSteps", o.stallSteps, ">= 0 (0 = off)")
+    .require(
+      finite(o.initialRadiusScale) && o.initialRadiusScale >= 0.0 && o.initialRadiusScale <= 1.0,
+      "InitialRadiusScale", o.initialRadiusScale, "in [0, 1] (0 = automatic, 1 = off)")
+    .require(finite(o.tortuosity) && o.tortuosity >= 0.0 && o.tortuosity <= 3.0, "Tortuosity",
+      o.tortuosity, "in [0, 3] (0 or 1 = off)")
+    // Model/PeriodicCellRule.h: "" when usable
+    .then(checkCell ? validatePeriodicCell(o.periodicCell) : std::string())
+    .error();
 }
 
 // validateModel (short fibers allowed: they are copied through), the fiber named by its global

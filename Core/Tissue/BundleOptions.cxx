@@ -3,6 +3,8 @@
 #include "Model/FiberModel.h"
 #include "Tissue/Trajectory.h"
 #include "Util/MemoryBudget.h"
+#include "Util/NumberFormat.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,86 +78,58 @@ double effectiveRanvierSpacing(const BundleOptions& o)
 std::string validateBundleOptions(const BundleOptions& o, const std::vector<Vec3>* trajectory,
   const std::vector<double>* trajectoryScale, int pieces)
 {
-  std::ostringstream msg;
   const double ranvier = effectiveRanvierSpacing(o);
   const bool usesLength = o.shape != BundleShape::Trajectory;
-  const int shape = static_cast<int>(o.shape);
-  if (shape < 0 || shape > static_cast<int>(BundleShape::Chiasm))
+  const auto finite = [](double v) { return std::isfinite(v); };
+  const bool crossing = o.shape == BundleShape::Crossing;
+  const bool branching = o.shape == BundleShape::YShape || o.shape == BundleShape::Chiasm;
+  BundleShape known;
+  std::string bundleRadius;
+  if (!finite(o.bundleRadius) || o.bundleRadius < o.fiberRadius)
   {
-    msg << "Shape is " << shape << ", must be 0 (Cylinder) to 4 (Chiasm)";
+    bundleRadius = "BundleRadius " + formatNumber(o.bundleRadius) +
+      " is smaller than FiberRadius " + formatNumber(o.fiberRadius) + " (or not finite)";
   }
-  else if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
+  const std::string checked =
+    ValueChecks()
+      .then(bundleShapeFromCode(static_cast<int>(o.shape), known))
+      .require(finite(o.fiberRadius) && o.fiberRadius > 0.0, "FiberRadius", o.fiberRadius, "> 0")
+      .then(bundleRadius)
+      .require(!usesLength || (finite(o.length) && o.length > 0.0), "Length", o.length, "> 0")
+      .then(validateRadiusDistribution(o.radiusDistribution, o.radiusSpread))
+      .require(
+        o.numberOfFibers >= 0, "NumberOfFibers", o.numberOfFibers, ">= 0 (0 = triangular grid)")
+      .require(o.numberOfFibers != 0 || (finite(o.fiberSpacing) && o.fiberSpacing > 0.0),
+        "FiberSpacing", o.fiberSpacing, "> 0 when NumberOfFibers is 0")
+      .require(
+        finite(o.segmentLength) && o.segmentLength > 0.0, "SegmentLength", o.segmentLength, "> 0")
+      .require(
+        finite(o.displacement) && o.displacement >= 0.0, "Displacement", o.displacement, ">= 0")
+      .require(
+        !crossing || (finite(o.crossingAngle) && o.crossingAngle > 0.0 && o.crossingAngle <= 180.0),
+        "CrossingAngle", o.crossingAngle, "in (0, 180] for Shape Crossing")
+      .require(
+        !branching || (finite(o.crossingAngle) && o.crossingAngle > 0.0 && o.crossingAngle < 180.0),
+        "CrossingAngle", o.crossingAngle,
+        std::string("in (0, 180) for Shape ") + bundleShapeName(o.shape))
+      .require(o.shape != BundleShape::Chiasm ||
+          (finite(o.uncrossedFraction) && o.uncrossedFraction >= 0.0 && o.uncrossedFraction <= 1.0),
+        "UncrossedFraction", o.uncrossedFraction, "in [0, 1]")
+      .then(validateShapeOptions(o.realism))
+      .require(finite(o.ranvierSpacing), "RanvierSpacing", o.ranvierSpacing, "finite")
+      .require(!(ranvier > 0.0) ||
+          (finite(o.ranvierDepth) && o.ranvierDepth >= 0.0 && o.ranvierDepth < 1.0),
+        "RanvierDepth", o.ranvierDepth, "in [0, 1)")
+      .require(!(ranvier > 0.0) ||
+          (finite(o.ranvierLength) && o.ranvierLength > 0.0 && 2.0 * o.ranvierLength <= ranvier),
+        "RanvierLength", o.ranvierLength,
+        "> 0 and at most RanvierSpacing/2 = " + formatNumber(0.5 * ranvier))
+      .error();
+  if (!checked.empty())
   {
-    msg << "FiberRadius is " << o.fiberRadius << ", must be > 0";
+    return checked;
   }
-  else if (!std::isfinite(o.bundleRadius) || o.bundleRadius < o.fiberRadius)
-  {
-    msg << "BundleRadius " << o.bundleRadius << " is smaller than FiberRadius " << o.fiberRadius
-        << " (or not finite)";
-  }
-  else if (usesLength && (!std::isfinite(o.length) || o.length <= 0.0))
-  {
-    msg << "Length is " << o.length << ", must be > 0";
-  }
-  else if (!validateRadiusDistribution(o.radiusDistribution, o.radiusSpread).empty())
-  {
-    msg << validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
-  }
-  else if (o.numberOfFibers < 0)
-  {
-    msg << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0 (0 = triangular grid)";
-  }
-  else if (o.numberOfFibers == 0 && (!std::isfinite(o.fiberSpacing) || o.fiberSpacing <= 0.0))
-  {
-    msg << "FiberSpacing is " << o.fiberSpacing << ", must be > 0 when NumberOfFibers is 0";
-  }
-  else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
-  {
-    msg << "SegmentLength is " << o.segmentLength << ", must be > 0";
-  }
-  else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
-  {
-    msg << "Displacement is " << o.displacement << ", must be >= 0";
-  }
-  else if (o.shape == BundleShape::Crossing &&
-    (!std::isfinite(o.crossingAngle) || o.crossingAngle <= 0.0 || o.crossingAngle > 180.0))
-  {
-    msg << "CrossingAngle is " << o.crossingAngle << ", must be in (0, 180] for Shape Crossing";
-  }
-  else if ((o.shape == BundleShape::YShape || o.shape == BundleShape::Chiasm) &&
-    (!std::isfinite(o.crossingAngle) || o.crossingAngle <= 0.0 || o.crossingAngle >= 180.0))
-  {
-    msg << "CrossingAngle is " << o.crossingAngle << ", must be in (0, 180) for Shape "
-        << bundleShapeName(o.shape);
-  }
-  else if (o.shape == BundleShape::Chiasm &&
-    (!std::isfinite(o.uncrossedFraction) || o.uncrossedFraction < 0.0 || o.uncrossedFraction > 1.0))
-  {
-    msg << "UncrossedFraction is " << o.uncrossedFraction << ", must be in [0, 1]";
-  }
-  else if (!validateShapeOptions(o.realism).empty())
-  {
-    msg << validateShapeOptions(o.realism);
-  }
-  else if (!std::isfinite(o.ranvierSpacing))
-  {
-    msg << "RanvierSpacing is " << o.ranvierSpacing << ", must be finite";
-  }
-  else if (ranvier > 0.0 &&
-    (!std::isfinite(o.ranvierDepth) || o.ranvierDepth < 0.0 || o.ranvierDepth >= 1.0))
-  {
-    msg << "RanvierDepth is " << o.ranvierDepth << ", must be in [0, 1)";
-  }
-  else if (ranvier > 0.0 &&
-    (!std::isfinite(o.ranvierLength) || o.ranvierLength <= 0.0 || 2.0 * o.ranvierLength > ranvier))
-  {
-    msg << "RanvierLength is " << o.ranvierLength
-        << ", must be > 0 and at most RanvierSpacing/2 = " << 0.5 * ranvier;
-  }
-  if (!msg.str().empty())
-  {
-    return msg.str();
-  }
+  std::ostringstream msg;
 
   double pathLength = o.length;
   if (o.shape == BundleShape::Trajectory)

@@ -5,6 +5,7 @@
 #include "Geometry/Vec3.h"
 #include "Tissue/RadiusDistribution.h"
 #include "Tissue/ShapeOptions.h"
+#include "Util/EnumCode.h"
 
 #include <cstdint>
 #include <string>
@@ -27,6 +28,12 @@ enum class BundleShape
 const char* bundleShapeName(BundleShape shape);
 /// Parses a shape string (docs/api.md §1) (exact spelling); false if unknown.
 bool parseBundleShape(const std::string& text, BundleShape& shape);
+/// The `Shape` code as the enum (Util/EnumCode.h): "" or the message naming the code.
+inline std::string bundleShapeFromCode(int code, BundleShape& shape)
+{
+  return enumFromCode(
+    code, static_cast<int>(BundleShape::Chiasm), "Shape", "0 (Cylinder) to 4 (Chiasm)", shape);
+}
 
 /// FiberBundleSource properties, docs/tissue-models.md §8, units µm and degrees.
 struct BundleOptions

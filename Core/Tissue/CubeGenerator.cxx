@@ -10,10 +10,10 @@
 #include "Tissue/Stratification.h"
 #include "Util/MemoryBudget.h"
 #include "Util/Random.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <sstream>
 
 namespace fiberpli
@@ -645,8 +645,7 @@ std::string sharesProblem(const CubeOptions& o)
     const double w = o.populationShares[static_cast<std::size_t>(k)];
     if (!std::isfinite(w) || w <= 0.0)
     {
-      msg << "PopulationShares value " << k << " is " << w << ", must be > 0";
-      return msg.str();
+      return mustBe("PopulationShares value " + formatNumber(k), w, "> 0");
     }
   }
   return {};
@@ -655,52 +654,49 @@ std::string sharesProblem(const CubeOptions& o)
 
 namespace
 {
+// The messages for a seeding or arrangement outside its enum (a Core caller may cast any int).
+std::string seedingProblem(const CubeOptions& o)
+{
+  CubeSeeding known;
+  return cubeSeedingFromCode(static_cast<int>(o.seeding), known);
+}
+
+std::string arrangementProblem(const CubeOptions& o)
+{
+  CubeArrangement known;
+  return cubeArrangementFromCode(static_cast<int>(o.arrangement), known);
+}
+
 // The values that are wrong on their own, whatever the others are, all of them: a user who typed
 // several bad values learns of all at once instead of one per Apply.
 std::string independentProblems(const CubeOptions& o)
 {
   std::vector<std::string> problems;
-  const auto add = [&problems](bool bad, const std::function<void(std::ostream&)>& say)
+  const auto add = [&problems](bool bad, const std::string& problem)
   {
     if (bad)
     {
-      std::ostringstream m;
-      say(m);
-      problems.push_back(m.str());
+      problems.push_back(problem);
     }
   };
-  add(o.populations < 1 || o.populations > 3,
-    [&](std::ostream& m) { m << "Populations is " << o.populations << ", must be 1, 2 or 3"; });
-  add(o.numberOfFibers < 0,
-    [&](std::ostream& m) { m << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0"; });
-  add(!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0,
-    [&](std::ostream& m) { m << "FiberRadius is " << o.fiberRadius << ", must be > 0"; });
-  add(!std::isfinite(o.edgeLength) || o.edgeLength <= 0.0,
-    [&](std::ostream& m)
-    { m << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius"; });
-  add(!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0,
-    [&](std::ostream& m) { m << "SegmentLength is " << o.segmentLength << ", must be > 0"; });
-  add(!std::isfinite(o.displacement) || o.displacement < 0.0,
-    [&](std::ostream& m) { m << "Displacement is " << o.displacement << ", must be >= 0"; });
-  add(o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice,
-    [&](std::ostream& m) {
-      m << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
-    });
-  add(!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0,
-    [&](std::ostream& m)
-    {
-      m << "VolumeFraction is " << o.volumeFraction
-        << ", must be in (0, 1) (0 = use NumberOfFibers)";
-    });
-  add(!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
-    [&](std::ostream& m)
-    { m << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees"; });
-  add(static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2,
-    [&](std::ostream& m)
-    {
-      m << "Arrangement is " << static_cast<int>(o.arrangement)
-        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
-    });
+  const auto finite = [](double v) { return std::isfinite(v); };
+  add(o.populations < 1 || o.populations > 3, mustBe("Populations", o.populations, "1, 2 or 3"));
+  add(o.numberOfFibers < 0, mustBe("NumberOfFibers", o.numberOfFibers, ">= 0"));
+  add(!finite(o.fiberRadius) || o.fiberRadius <= 0.0, mustBe("FiberRadius", o.fiberRadius, "> 0"));
+  add(!finite(o.edgeLength) || o.edgeLength <= 0.0,
+    mustBe("EdgeLength", o.edgeLength, "> 2 * FiberRadius"));
+  add(!finite(o.segmentLength) || o.segmentLength <= 0.0,
+    mustBe("SegmentLength", o.segmentLength, "> 0"));
+  add(!finite(o.displacement) || o.displacement < 0.0,
+    mustBe("Displacement", o.displacement, ">= 0"));
+  const std::string seedingCode = seedingProblem(o);
+  add(!seedingCode.empty(), seedingCode);
+  add(!finite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0,
+    mustBe("VolumeFraction", o.volumeFraction, "in (0, 1) (0 = use NumberOfFibers)"));
+  add(!finite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
+    mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees"));
+  const std::string arrangementCode = arrangementProblem(o);
+  add(!arrangementCode.empty(), arrangementCode);
   std::string all;
   for (const std::string& p : problems)
   {
@@ -719,19 +715,21 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     return independent;
   }
+  const std::string seedingCode = seedingProblem(o);
+  const std::string arrangementCode = arrangementProblem(o);
   std::ostringstream msg;
   const std::string radius = validateRadiusDistribution(o.radiusDistribution, o.radiusSpread);
   if (o.populations < 1 || o.populations > 3)
   {
-    msg << "Populations is " << o.populations << ", must be 1, 2 or 3";
+    msg << mustBe("Populations", o.populations, "1, 2 or 3");
   }
   else if (o.numberOfFibers < 0)
   {
-    msg << "NumberOfFibers is " << o.numberOfFibers << ", must be >= 0";
+    msg << mustBe("NumberOfFibers", o.numberOfFibers, ">= 0");
   }
   else if (!std::isfinite(o.fiberRadius) || o.fiberRadius <= 0.0)
   {
-    msg << "FiberRadius is " << o.fiberRadius << ", must be > 0";
+    msg << mustBe("FiberRadius", o.fiberRadius, "> 0");
   }
   else if (!radius.empty())
   {
@@ -739,18 +737,18 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (!std::isfinite(o.edgeLength) || o.edgeLength <= 2.0 * o.fiberRadius)
   {
-    msg << "EdgeLength is " << o.edgeLength << ", must be > 2 * FiberRadius";
+    msg << mustBe("EdgeLength", o.edgeLength, "> 2 * FiberRadius");
   }
   else if (o.periodic && o.edgeLength < 4.0 * o.fiberRadius)
   {
     // A fiber would touch its own images across the cell.
-    msg << "EdgeLength is " << o.edgeLength
-        << ", must be >= two fiber diameters (4 * FiberRadius = " << 4.0 * o.fiberRadius
-        << ") for a periodic cell";
+    msg << mustBe("EdgeLength", o.edgeLength,
+      ">= two fiber diameters (4 * FiberRadius = " + formatNumber(4.0 * o.fiberRadius) +
+        ") for a periodic cell");
   }
   else if (!std::isfinite(o.segmentLength) || o.segmentLength <= 0.0)
   {
-    msg << "SegmentLength is " << o.segmentLength << ", must be > 0";
+    msg << mustBe("SegmentLength", o.segmentLength, "> 0");
   }
   else if (o.periodic && std::isfinite(o.displacement) &&
     !periodicReachProblem(cubeCell(o), solverLinkReach(o)).empty())
@@ -763,21 +761,20 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (!std::isfinite(o.displacement) || o.displacement < 0.0)
   {
-    msg << "Displacement is " << o.displacement << ", must be >= 0";
+    msg << mustBe("Displacement", o.displacement, ">= 0");
   }
   else if (o.seeding == CubeSeeding::Lattice && !o.periodic)
   {
     msg << "Seeding is Lattice, which needs Periodic on (a lattice must be commensurate with a "
            "periodic cell)";
   }
-  else if (o.seeding != CubeSeeding::Random && o.seeding != CubeSeeding::Lattice)
+  else if (!seedingCode.empty())
   {
-    msg << "Seeding is " << static_cast<int>(o.seeding) << ", must be 0 (Random) or 1 (Lattice)";
+    msg << seedingCode;
   }
   else if (!std::isfinite(o.volumeFraction) || o.volumeFraction < 0.0 || o.volumeFraction >= 1.0)
   {
-    msg << "VolumeFraction is " << o.volumeFraction
-        << ", must be in (0, 1) (0 = use NumberOfFibers)";
+    msg << mustBe("VolumeFraction", o.volumeFraction, "in (0, 1) (0 = use NumberOfFibers)");
   }
   else if (!validateShapeOptions(o.realism).empty())
   {
@@ -785,7 +782,7 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   }
   else if (!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0)
   {
-    msg << "CrossingAngle is " << o.crossingAngle << ", must be in [0, 90] degrees";
+    msg << mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees");
   }
   else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
   {
@@ -797,10 +794,9 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   {
     msg << sharesProblem(o);
   }
-  else if (static_cast<int>(o.arrangement) < 0 || static_cast<int>(o.arrangement) > 2)
+  else if (!arrangementCode.empty())
   {
-    msg << "Arrangement is " << static_cast<int>(o.arrangement)
-        << ", must be 0 (Auto), 1 (Interwoven) or 2 (Sheets)";
+    msg << arrangementCode;
   }
   else if (o.arrangement == CubeArrangement::Sheets && o.populations != 2)
   {

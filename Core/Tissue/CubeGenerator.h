@@ -12,6 +12,7 @@
 #include "Tissue/PopulationAxes.h"
 #include "Tissue/RadiusDistribution.h"
 #include "Tissue/ShapeOptions.h"
+#include "Util/EnumCode.h"
 #include "Util/Progress.h"
 
 #include <cstdint>
@@ -33,6 +34,13 @@ enum class CubeArrangement
 /// The api string of an arrangement ("Auto", "Interwoven", "Sheets").
 const char* cubeArrangementName(CubeArrangement arrangement);
 
+/// The `Arrangement` code as the enum (Util/EnumCode.h): "" or the message naming the code.
+inline std::string cubeArrangementFromCode(int code, CubeArrangement& arrangement)
+{
+  return enumFromCode(
+    code, 2, "Arrangement", "0 (Auto), 1 (Interwoven) or 2 (Sheets)", arrangement);
+}
+
 /// How the transverse positions of a cube's fibers are chosen.
 enum class CubeSeeding
 {
@@ -40,6 +48,12 @@ enum class CubeSeeding
   Lattice =
     1, ///< periodic cells only: jittered sites of an ordered lattice (Tissue/LatticeSeeding.h)
 };
+
+/// The `Seeding` code as the enum (Util/EnumCode.h): "" or the message naming the code.
+inline std::string cubeSeedingFromCode(int code, CubeSeeding& seeding)
+{
+  return enumFromCode(code, 1, "Seeding", "0 (Random) or 1 (Lattice)", seeding);
+}
 
 struct CubeOptions
 {

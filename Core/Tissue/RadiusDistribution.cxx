@@ -1,6 +1,7 @@
 #include "Tissue/RadiusDistribution.h"
 
 #include "Util/NumberFormat.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 
@@ -50,34 +51,22 @@ const char* radiusDistributionName(RadiusDistribution kind)
 
 std::string validateRadiusDistribution(RadiusDistribution kind, double spread)
 {
-  const int k = static_cast<int>(kind);
-  if (k < 0 || k > static_cast<int>(RadiusDistribution::Constant))
-  {
-    return "RadiusDistribution is " + formatNumber(k) + ", must be 0 (LogNormal) to 3 (Constant)";
-  }
-  if (!std::isfinite(spread) || spread < 0.0)
-  {
-    return "RadiusSpread is " + formatNumber(spread) + ", must be >= 0";
-  }
-  if (kind == RadiusDistribution::Uniform && spread >= 1.0)
-  {
-    return "RadiusSpread is " + formatNumber(spread) +
-      ", must be < 1 for RadiusDistribution Uniform";
-  }
-  if (kind == RadiusDistribution::LogNormal && spread > kMaxLogNormalSpread)
-  {
-    // r·exp(±3s) must stay a usable radius: beyond this the radii span more than e^±6 (a factor
-    // 160 000 between the thinnest and the thickest fiber) and, for large s, underflow to 0.
-    return "RadiusSpread is " + formatNumber(spread) +
-      ", must be <= " + formatNumber(kMaxLogNormalSpread) +
-      " for RadiusDistribution LogNormal (radii r*exp(s*z), |z| <= 3)";
-  }
-  if (kind == RadiusDistribution::Gamma && spread > 2.0)
-  {
-    return "RadiusSpread is " + formatNumber(spread) +
-      ", must be <= 2 for RadiusDistribution Gamma (shape 1/s^2 >= 0.25)";
-  }
-  return {};
+  RadiusDistribution known;
+  // r·exp(±3s) must stay a usable radius: beyond kMaxLogNormalSpread the radii span more than
+  // e^±6 (a factor 160 000 between the thinnest and the thickest fiber) and, for large s,
+  // underflow to 0.
+  return ValueChecks()
+    .then(radiusDistributionFromCode(static_cast<int>(kind), known))
+    .require(std::isfinite(spread) && spread >= 0.0, "RadiusSpread", spread, ">= 0")
+    .require(kind != RadiusDistribution::Uniform || spread < 1.0, "RadiusSpread", spread,
+      "< 1 for RadiusDistribution Uniform")
+    .require(kind != RadiusDistribution::LogNormal || spread <= kMaxLogNormalSpread, "RadiusSpread",
+      spread,
+      "<= " + formatNumber(kMaxLogNormalSpread) +
+        " for RadiusDistribution LogNormal (radii r*exp(s*z), |z| <= 3)")
+    .require(kind != RadiusDistribution::Gamma || spread <= 2.0, "RadiusSpread", spread,
+      "<= 2 for RadiusDistribution Gamma (shape 1/s^2 >= 0.25)")
+    .error();
 }
 
 double minimumRadiusFactor(RadiusDistribution kind, double spread)

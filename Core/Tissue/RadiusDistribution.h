@@ -1,6 +1,7 @@
 /// RadiusDistribution: per-fiber radii of a bundle or cube (docs/tissue-models.md §5.3 [ours]).
 #pragma once
 
+#include "Util/EnumCode.h"
 #include "Util/Random.h"
 
 #include <string>
@@ -25,6 +26,13 @@ enum class RadiusDistribution
 
 /// The api string of a radius distribution ("LogNormal", "Uniform", "Gamma", "Constant").
 const char* radiusDistributionName(RadiusDistribution kind);
+
+/// The `RadiusDistribution` code as the enum (Util/EnumCode.h): "" or the message naming the code.
+inline std::string radiusDistributionFromCode(int code, RadiusDistribution& kind)
+{
+  return enumFromCode(code, static_cast<int>(RadiusDistribution::Constant), "RadiusDistribution",
+    "0 (LogNormal) to 3 (Constant)", kind);
+}
 
 /// Largest RadiusSpread of LogNormal: its radii r·exp(s·z), |z| <= 3, then span e^±6.
 constexpr double kMaxLogNormalSpread = 2.0;

@@ -1,5 +1,7 @@
 #include "Tissue/ShapeOptions.h"
 
+#include "Util/ValueCheck.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -20,43 +22,25 @@ const char* gRatioModelName(GRatioModel model)
 
 std::string validateShapeOptions(const ShapeOptions& o)
 {
-  std::ostringstream msg;
-  const int model = static_cast<int>(o.gRatioModel);
-  if (!std::isfinite(o.tortuosity) || o.tortuosity < 1.0)
-  {
-    msg << "Tortuosity is " << o.tortuosity << ", must be >= 1 (1 = straight fibers)";
-  }
-  else if (o.tortuosity > 3.0)
-  {
-    msg << "Tortuosity is " << o.tortuosity << ", must be at most 3 (white matter is below 1.5)";
-  }
-  else if (o.undulating() &&
-    (!std::isfinite(o.undulationWavelength) || o.undulationWavelength <= 0.0))
-  {
-    msg << "UndulationWavelength is " << o.undulationWavelength << ", must be > 0";
-  }
-  else if (!std::isfinite(o.dispersionC2) || o.dispersionC2 <= 1.0 / 3.0 || o.dispersionC2 > 1.0)
-  {
-    msg << "DispersionC2 is " << o.dispersionC2
-        << ", must be in (1/3, 1] (1 = no dispersion, 1/3 = isotropic)";
-  }
-  else if (!std::isfinite(o.beadingCV) || o.beadingCV < 0.0 || o.beadingCV > kMaxBeadingCV)
-  {
-    msg << "BeadingCV is " << o.beadingCV << ", must be in [0, " << kMaxBeadingCV << "] (0 = off)";
-  }
-  else if (o.beaded() && (!std::isfinite(o.beadingLength) || o.beadingLength <= 0.0))
-  {
-    msg << "BeadingLength is " << o.beadingLength << ", must be > 0";
-  }
-  else if (!std::isfinite(o.gRatio) || o.gRatio < 0.0 || o.gRatio >= 1.0)
-  {
-    msg << "GRatio is " << o.gRatio << ", must be in (0, 1) (0 = no myelin)";
-  }
-  else if (model < 0 || model > static_cast<int>(GRatioModel::Lee2019))
-  {
-    msg << "GRatioModel is " << model << ", must be 0 (Constant) or 1 (Lee2019)";
-  }
-  return msg.str();
+  const auto finite = [](double v) { return std::isfinite(v); };
+  GRatioModel known;
+  return ValueChecks()
+    .require(finite(o.tortuosity) && o.tortuosity >= 1.0, "Tortuosity", o.tortuosity,
+      ">= 1 (1 = straight fibers)")
+    .require(
+      o.tortuosity <= 3.0, "Tortuosity", o.tortuosity, "at most 3 (white matter is below 1.5)")
+    .require(!o.undulating() || (finite(o.undulationWavelength) && o.undulationWavelength > 0.0),
+      "UndulationWavelength", o.undulationWavelength, "> 0")
+    .require(finite(o.dispersionC2) && o.dispersionC2 > 1.0 / 3.0 && o.dispersionC2 <= 1.0,
+      "DispersionC2", o.dispersionC2, "in (1/3, 1] (1 = no dispersion, 1/3 = isotropic)")
+    .require(finite(o.beadingCV) && o.beadingCV >= 0.0 && o.beadingCV <= kMaxBeadingCV, "BeadingCV",
+      o.beadingCV, "in [0, " + formatNumber(kMaxBeadingCV) + "] (0 = off)")
+    .require(!o.beaded() || (finite(o.beadingLength) && o.beadingLength > 0.0), "BeadingLength",
+      o.beadingLength, "> 0")
+    .require(finite(o.gRatio) && o.gRatio >= 0.0 && o.gRatio < 1.0, "GRatio", o.gRatio,
+      "in (0, 1) (0 = no myelin)")
+    .then(gRatioModelFromCode(static_cast<int>(o.gRatioModel), known))
+    .error();
 }
 
 std::string shapeWarnings(const ShapeOptions& o, double segmentLength)

@@ -5,6 +5,7 @@
 /// from their own streams (shapeStream), never from a fiber's main stream.
 #pragma once
 
+#include "Util/EnumCode.h"
 #include "Util/Random.h"
 
 #include <cstdint>
@@ -22,6 +23,13 @@ enum class GRatioModel
 
 /// The api string of a g-ratio model.
 const char* gRatioModelName(GRatioModel model);
+
+/// The `GRatioModel` code as the enum (Util/EnumCode.h): "" or the message naming the code.
+inline std::string gRatioModelFromCode(int code, GRatioModel& model)
+{
+  return enumFromCode(code, static_cast<int>(GRatioModel::Lee2019), "GRatioModel",
+    "0 (Constant) or 1 (Lee2019)", model);
+}
 
 struct ShapeOptions
 {

@@ -1,5 +1,8 @@
 #include "Tissue/Trajectory.h"
 
+#include "Util/NumberFormat.h"
+#include "Util/ValueCheck.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -74,9 +77,8 @@ std::string validateTrajectory(const std::vector<Vec3>& points, const std::vecto
     {
       if (!std::isfinite((*scale)[i]) || !((*scale)[i] > 0.0))
       {
-        msg << "Trajectory scale at point " << i << " is " << (*scale)[i]
-            << ", must be finite and > 0";
-        return msg.str();
+        return mustBe(
+          "Trajectory scale at point " + formatNumber(i), (*scale)[i], "finite and > 0");
       }
     }
   }

@@ -1,5 +1,7 @@
-// Byte records for the rank exchanges (Solver/Decomposition, Solver/LinkExchange): plain copies of
-// trivially copyable values, read back in the order written. One definition for both.
+// Byte records for the rank exchanges (the fiber record Model/FiberWire, Solver/Decomposition,
+// Solver/LinkExchange, Parallel/TileExchange): plain copies of trivially copyable values in the
+// host's byte order, read back in the order written. Files, whose byte order is fixed by their
+// format, use Util/BinaryIO.h instead.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +32,12 @@ public:
   void put(const T& v)
   {
     appendBytes(*out_, &v, 1);
+  }
+  /// n values, without their count.
+  template <class T>
+  void put(const T* v, std::size_t n)
+  {
+    appendBytes(*out_, v, n);
   }
   /// The size, then the values.
   template <class T>

@@ -1,7 +1,7 @@
 /// BinaryIO: byte-order-explicit decoding/encoding and stream sizing for the binary files FiberPLI
 /// reads and writes (.tck, .trk, solver checkpoints). Values are assembled byte by byte, so the
-/// result never depends on the host's byte order or alignment. Internal helper, not part of the
-/// public API.
+/// result never depends on the host's byte order or alignment. Messages between the ranks of one
+/// job stay in the host's order (Util/ByteBuffer.h). Internal helper, not part of the public API.
 #pragma once
 
 #include <cstdint>
