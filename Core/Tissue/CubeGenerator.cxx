@@ -435,44 +435,24 @@ std::vector<std::vector<LatticeSite>> packedSites(const CubeOptions& o,
   return sites;
 }
 
-// Moves fiber j of population k from its drawn transverse position (the first two draws of its
-// stream) to its site, jittered uniformly in the disc of radius max(0, spacing/2 − r) by the
-// stream (seed, 3 + k, 1 + j).
-void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const LatticeSite& site,
-  double spacing, Fiber& f)
+// The transverse position fiber j of population k was drawn at: the first two numbers of its
+// stream, along the axes (k + 1) mod 3 and (k + 2) mod 3 (Seed2D x, y).
+Seed2D drawnTransverse(const CubeOptions& o, std::size_t k, std::size_t j)
 {
   const double half = 0.5 * o.edgeLength;
-  const double room = std::max(0.0, 0.5 * spacing - o.fiberRadius);
-  const int other1 = static_cast<int>(k + 1) % 3;
-  const int other2 = static_cast<int>(k + 2) % 3;
   RandomStream drawn(o.seed, k, j);
   const double t1 = drawn.uniform(-half, half);
-  const double t2 = drawn.uniform(-half, half);
-  RandomStream jitter(o.seed, 3 + k, 1 + j);
-  const double u1 = jitter.uniform();
-  const Seed2D offset = randomSeedInDisc(u1, jitter.uniform(), room);
-  const double shift1 = site.t1 + offset.x - t1;
-  const double shift2 = site.t2 + offset.y - t2;
-  for (Vec3& p : f.points)
-  {
-    p[other1] += shift1;
-    p[other2] += shift2;
-  }
+  return { t1, drawn.uniform(-half, half) };
 }
-// Random seeding with Arrangement Interwoven: fiber j of population k (along a coordinate axis) is
-// moved from its drawn transverse position (the first two draws of its stream) into its stratum
-// (Tissue/Stratification.h), the drawn position's fraction of the edge kept inside the stratum.
-void placeInStratum(
-  const CubeOptions& o, std::size_t k, std::size_t j, int stratum, int perSide, Fiber& f)
+
+// Moves fiber f of population k rigidly across its axis from `from` to `to` (transverse
+// coordinates along the axes (k + 1) mod 3 and (k + 2) mod 3).
+void moveAcross(std::size_t k, const Seed2D& from, const Seed2D& to, Fiber& f)
 {
-  const double half = 0.5 * o.edgeLength;
   const int other1 = static_cast<int>(k + 1) % 3;
   const int other2 = static_cast<int>(k + 2) % 3;
-  RandomStream drawn(o.seed, k, j);
-  const double t1 = drawn.uniform(-half, half);
-  const double t2 = drawn.uniform(-half, half);
-  const double shift1 = intoStratum(t1, stratum % perSide, perSide, o.edgeLength) - t1;
-  const double shift2 = intoStratum(t2, stratum / perSide, perSide, o.edgeLength) - t2;
+  const double shift1 = to.x - from.x;
+  const double shift2 = to.y - from.y;
   for (Vec3& p : f.points)
   {
     p[other1] += shift1;
@@ -480,26 +460,50 @@ void placeInStratum(
   }
 }
 
+// Moves fiber j of population k from its drawn transverse position to its site, jittered
+// uniformly in the disc of radius max(0, spacing/2 − r) by the stream (seed, 3 + k, 1 + j).
+void placeOnSite(const CubeOptions& o, std::size_t k, std::size_t j, const LatticeSite& site,
+  double spacing, Fiber& f)
+{
+  const double room = std::max(0.0, 0.5 * spacing - o.fiberRadius);
+  RandomStream jitter(o.seed, 3 + k, 1 + j);
+  const double u1 = jitter.uniform();
+  const Seed2D offset = randomSeedInDisc(u1, jitter.uniform(), room);
+  moveAcross(k, drawnTransverse(o, k, j), { site.t1 + offset.x, site.t2 + offset.y }, f);
+}
+
+// Random seeding with Arrangement Interwoven: fiber j of population k (along a coordinate axis) is
+// moved from its drawn transverse position into its stratum (Tissue/Stratification.h), the drawn
+// position's fraction of the edge kept inside the stratum.
+void placeInStratum(
+  const CubeOptions& o, std::size_t k, std::size_t j, int stratum, int perSide, Fiber& f)
+{
+  const Seed2D drawn = drawnTransverse(o, k, j);
+  moveAcross(k, drawn,
+    { intoStratum(drawn.x, stratum % perSide, perSide, o.edgeLength),
+      intoStratum(drawn.y, stratum / perSide, perSide, o.edgeLength) },
+    f);
+}
+
 // The strata of every population for placeInStratum, balanced by the fibers' volumes (empty lists
 // where fibers stay where drawn):
 // Random seeding with Arrangement Interwoven, populations along a coordinate axis (a crossing-angle
 // population wraps obliquely through the cell and spreads by itself).
-std::vector<std::vector<int>> populationStrata(
-  const CubeOptions& o, const std::vector<int>& counts, std::vector<int>& perSide)
+std::vector<std::vector<int>> populationStrata(const CubeOptions& o, const std::vector<int>& counts)
 {
   std::vector<std::vector<int>> strata(counts.size());
-  perSide.assign(counts.size(), 0);
   if (o.seeding != CubeSeeding::Random || o.arrangement != CubeArrangement::Interwoven)
     return strata;
+  const std::vector<PopulationAxis> axes = cubePopulationAxes(o);
   for (std::size_t k = 0; k < counts.size(); ++k)
   {
-    if (!cubePopulationAxes(o)[k].standard)
+    if (!axes[k].standard)
       continue;
     std::vector<double> volumes(static_cast<std::size_t>(counts[k]));
     for (std::size_t j = 0; j < volumes.size(); ++j)
       volumes[j] = fiberVolume(o, static_cast<int>(k), static_cast<int>(j));
-    perSide[k] = strataPerSide(volumes.size());
-    strata[k] = assignStrata(volumes, perSide[k], o.seed, shapeStreamKey(ShapeFeature::Stratum, k));
+    strata[k] = assignStrata(
+      volumes, strataPerSide(volumes.size()), o.seed, shapeStreamKey(ShapeFeature::Stratum, k));
   }
   return strata;
 }
@@ -539,11 +543,9 @@ void placeInSheet(
   const CubeOptions& o, std::size_t k, std::size_t j, const std::vector<double>& sheets, Fiber& f)
 {
   const double half = 0.5 * o.edgeLength;
-  RandomStream drawn(o.seed, k, j);
-  const double t1 = drawn.uniform(-half, half);
-  const double t2 = drawn.uniform(-half, half);
-  const double z =
-    k == 0 ? t2 : t1; // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
+  const Seed2D drawn = drawnTransverse(o, k, j);
+  // population 0: (y, z) = (t1, t2); population 1: (z, x) = (t1, t2)
+  const double z = k == 0 ? drawn.y : drawn.x;
   const double r = std::min(cubeFiberRadius(o, static_cast<int>(k), static_cast<int>(j)),
     0.5 * (sheets[2 * k + 1] - sheets[2 * k]));
   const double lo = sheets[2 * k] + r, hi = sheets[2 * k + 1] - r;
@@ -932,8 +934,7 @@ FiberModel generateCube(
     o.seeding == CubeSeeding::Random && o.arrangement == CubeArrangement::Sheets
     ? sheetHeights(o, counts)
     : std::vector<double>{};
-  std::vector<int> perSide;
-  const std::vector<std::vector<int>> strata = populationStrata(o, counts, perSide);
+  const std::vector<std::vector<int>> strata = populationStrata(o, counts);
   if (warning)
     *warning = packed;
   if (aborted)
@@ -969,7 +970,7 @@ FiberModel generateCube(
       }
       if (!strata[k].empty())
       {
-        placeInStratum(o, k, j, strata[k][j], perSide[k], f);
+        placeInStratum(o, k, j, strata[k][j], strataPerSide(count), f);
       }
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));
