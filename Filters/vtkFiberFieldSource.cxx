@@ -6,6 +6,7 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Field/FieldFibers.h"
+#include "Model/DataNames.h"
 #include "Model/FiberPieces.h"
 #include "OrientationFieldData.h"
 #include "Util/Random.h"
@@ -209,7 +210,8 @@ int vtkFiberFieldSource::Execute(
   fiberpli::FiberPolyData::FromModel(mine, output);
   fiberpli::AddInnerRadii(mine, output);
   fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
-  fiberpli::AddFieldDoubles(output, "traced_volume_fraction", { result.volumeFraction });
+  fiberpli::AddFieldDoubles(
+    output, fiberpli::fiberfield::kTracedVolumeFraction, { result.volumeFraction });
   this->UpdateProgress(1.0);
   return 1;
 }

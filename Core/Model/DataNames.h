@@ -29,6 +29,8 @@ constexpr const char* kPopulationAxes = "population_axes"; ///< 3 values per pop
 constexpr const char* kDispersionC2 = "dispersion_c2";     ///< achieved ⟨cos²⟩ per population
 constexpr const char* kBoxSize =
   "box_size"; ///< µm, a CACTUS strand list's box (FiberReader, FiberWriter)
+/// FiberFieldSource: Σ π r² · length of the traced fibers over the field's non-empty volume.
+constexpr const char* kTracedVolumeFraction = "traced_volume_fraction";
 
 // Field data of FiberCollisionSolver (docs/solver.md §9, §13).
 constexpr const char* kSteps = "steps";            ///< int, moves run
