@@ -106,10 +106,12 @@ int vtkFiberFieldSource::Execute(
       << "FiberFieldSource: the input image has no points (an orientation field needs a 3-D grid)");
     return 0;
   }
-  // The arrays: the first is required, the second optional ("None").
+  // The arrays: the first is required, the second optional ("None"); a 6-component first array
+  // holds both populations.
   std::vector<fiberpli::OrientationField> fields;
   std::size_t notFinite = 0;
   int firstAssociation = -1;
+  std::string firstName;
   for (int idx = 0; idx < 2; ++idx)
   {
     const std::string name = SelectedName(this, idx);
@@ -122,12 +124,28 @@ int vtkFiberFieldSource::Execute(
     }
     if (!vectors)
     {
-      vtkErrorMacro(
-        << "FiberFieldSource: " << property << " '" << name
-        << "': the input has no such array (a 3-component point or cell array is needed)");
+      vtkErrorMacro(<< "FiberFieldSource: " << property << " '" << name
+                    << "': the input has no such array (a point or cell array of 3 components, or "
+                       "6 for two axes per point, is needed)");
       return 0;
     }
     const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    if (idx == 1 && fields.size() == 2)
+    {
+      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name
+                    << "' is set, but OrientationArray '" << firstName
+                    << "' has 6 components and already holds two populations (at most two): set "
+                       "SecondOrientationArray to None");
+      return 0;
+    }
+    if (idx == 1 && vectors->GetNumberOfComponents() != 3)
+    {
+      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' has "
+                    << vectors->GetNumberOfComponents()
+                    << " components, must have 3 (two axes per point go into OrientationArray as "
+                       "one 6-component array)");
+      return 0;
+    }
     if (idx == 1 && association != firstAssociation)
     {
       vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a "
@@ -136,13 +154,12 @@ int vtkFiberFieldSource::Execute(
       return 0;
     }
     firstAssociation = association;
-    fields.emplace_back();
+    firstName = name;
     std::size_t bad = 0;
-    const std::string problem =
-      fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
+    const std::string problem = fiberpli::ToOrientationFields(image, vectors, cells, fields, bad);
     if (!problem.empty())
     {
-      vtkErrorMacro(<< "FiberFieldSource: " << property << ": " << problem);
+      vtkErrorMacro(<< "FiberFieldSource: " << property << " '" << name << "': " << problem);
       return 0;
     }
     notFinite += bad;

@@ -6,17 +6,19 @@
  * cell array, the axis at every cell centre (its sign does not matter; a zero vector marks an empty
  * point where no fiber goes; NaN vectors count as empty, with a warning). It is input array 0
  * (SetInputArrayToProcess; in ParaView the property OrientationArray). An optional second array
- * (input array 1, SecondOrientationArray) is a second, crossing population. Output: fiber polydata
- * (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm; with GRatio > 0
- * also `inner_radius`), cell arrays `fiber_id` and `bundle_id` (the index of the field the fiber
- * follows), field data `segment_length`, `seed` and `traced_volume_fraction` (the Σ π r² · length
- * reached over the non-empty volume). Seeds are uniform over the non-empty part of the region,
- * every fiber is traced both ways with RK2 or RK4 steps of SegmentLength and ends on the region's
- * boundary or the mask's edge (docs/field-source.md). Fibers are added until VolumeFraction is
- * reached, or NumberOfFibers when that is > 0. Identical input and properties give identical
- * output. Invalid properties or input give an error naming them and an empty output. Pieces: piece
- * p of P holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers (every piece traces all of
- * them from the whole field, so the pieces in order are the serial output).
+ * (input array 1, SecondOrientationArray) is a second, crossing population; a 6-component
+ * OrientationArray holds both populations in one array (components 0-2 and 3-5, a zero triple =
+ * that population absent there), exactly as the two halves given as two arrays. Output: fiber
+ * polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm; with
+ * GRatio > 0 also `inner_radius`), cell arrays `fiber_id` and `bundle_id` (the index of the field
+ * the fiber follows), field data `segment_length`, `seed` and `traced_volume_fraction` (the Σ π r²
+ * · length reached over the non-empty volume). Seeds are uniform over the non-empty part of the
+ * region, every fiber is traced both ways with RK2 or RK4 steps of SegmentLength and ends on the
+ * region's boundary or the mask's edge (docs/field-source.md). Fibers are added until
+ * VolumeFraction is reached, or NumberOfFibers when that is > 0. Identical input and properties
+ * give identical output. Invalid properties or input give an error naming them and an empty output.
+ * Pieces: piece p of P holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers (every piece
+ * traces all of them from the whole field, so the pieces in order are the serial output).
  */
 #ifndef vtkFiberFieldSource_h
 #define vtkFiberFieldSource_h
