@@ -215,7 +215,8 @@ check(inner is not None and np.allclose(vtk_to_numpy(inner), 0.6 * radius, rtol=
 check(radius.std() > 0.05 and abs(radius.mean() - 0.5) < 0.05, "beaded radii mean %g std %g" % (radius.mean(), radius.std()))
 
 # The GUI enables the filter (Filters > FiberPLI) for what its Input domains accept, checked as the
-# filters menu does: any image with a 3-component point or cell array, nothing else.
+# filters menu does: any image with a 3- or 6-component point or cell array, and polydata (guide
+# lines, test_guide_source.py), nothing else.
 def accepts(source):
     proto = servermanager.ProxyManager().SMProxyManager.GetPrototypeProxy("filters", "FiberFieldSource")
     prop = proto.GetProperty("Input")
@@ -229,7 +230,8 @@ def accepts(source):
 check(accepts(field) and accepts(producer(cells)), "an image with a vector array is not accepted")
 check(accepts(pairs), "an image with a 6-component array is not accepted")
 check(not accepts(Wavelet()), "an image without a 3-component array is accepted")
-check(not accepts(FiberCubeSource(NumberOfFibers=2)), "fiber polydata is accepted")
+check(accepts(FiberCubeSource(NumberOfFibers=2)), "fiber polydata (guide lines) is not accepted")
+check(not accepts(producer(cells.NewInstance())), "an empty image is accepted")
 
 # 4. Bad input: errors name the property and value; the pipeline recovers.
 bad = FiberFieldSource(Input=field, VolumeFraction=0.95, FiberRadius=0.5, SegmentLength=1.0)
