@@ -172,6 +172,30 @@ int vtkFiberFieldSource::Execute(
     vtkErrorMacro(<< "FiberFieldSource: " << badSeed);
     return 0;
   }
+  fiberpli::FieldFiberOptions options;
+  options.volumeFraction = this->VolumeFraction;
+  options.numberOfFibers = this->NumberOfFibers;
+  options.fiberRadius = this->FiberRadius;
+  options.radiusSpread = this->RadiusSpread;
+  options.trace.segmentLength = this->SegmentLength;
+  options.trace.scheme = static_cast<fiberpli::TraceScheme>(this->IntegrationScheme);
+  options.trace.maxLength = this->MaxFiberLength;
+  options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.populationShares.assign(this->PopulationShares, this->PopulationShares + 2);
+  options.realism.beadingCV = this->BeadingCV;
+  options.realism.beadingLength = this->BeadingLength;
+  options.realism.gRatio = this->GRatio;
+  std::string code =
+    fiberpli::radiusDistributionFromCode(this->RadiusDistribution, options.radiusDistribution);
+  if (code.empty())
+  {
+    code = fiberpli::gRatioModelFromCode(this->GRatioModel, options.realism.gRatioModel);
+  }
+  if (!code.empty())
+  {
+    vtkErrorMacro(<< "FiberFieldSource: " << code);
+    return 0;
+  }
   // The fields: from the image's arrays, or rasterised from guide lines.
   std::vector<fiberpli::OrientationField> fields;
   double traceBegin = 0.0;
@@ -233,37 +257,13 @@ int vtkFiberFieldSource::Execute(
         << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
     }
   }
-  fiberpli::FieldFiberOptions options;
-  options.volumeFraction = this->VolumeFraction;
-  options.numberOfFibers = this->NumberOfFibers;
-  options.fiberRadius = this->FiberRadius;
-  options.radiusSpread = this->RadiusSpread;
-  options.trace.segmentLength = this->SegmentLength;
-  options.trace.scheme = static_cast<fiberpli::TraceScheme>(this->IntegrationScheme);
-  options.trace.maxLength = this->MaxFiberLength;
-  options.seed = static_cast<std::uint64_t>(this->Seed);
-  options.populationShares.assign(this->PopulationShares, this->PopulationShares + 2);
-  options.realism.beadingCV = this->BeadingCV;
-  options.realism.beadingLength = this->BeadingLength;
-  options.realism.gRatio = this->GRatio;
-  std::string code =
-    fiberpli::radiusDistributionFromCode(this->RadiusDistribution, options.radiusDistribution);
-  if (code.empty())
-  {
-    code = fiberpli::gRatioModelFromCode(this->GRatioModel, options.realism.gRatioModel);
-  }
-  if (!code.empty())
-  {
-    vtkErrorMacro(<< "FiberFieldSource: " << code);
-    return 0;
-  }
   std::vector<const fiberpli::OrientationField*> pointers;
   for (const fiberpli::OrientationField& f : fields)
   {
     pointers.push_back(&f);
   }
 
-  this->UpdateProgress(0.0);
+  this->UpdateProgress(traceBegin);
   fiberpli::FieldFiberResult result =
     fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, traceBegin, 0.9));
   if (result.aborted)
