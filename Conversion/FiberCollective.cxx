@@ -3,7 +3,7 @@
 #include "FiberGuard.h"
 #include "FiberSolverComm.h"
 
-#include "Solver/Decomposition.h"
+#include "Parallel/Collectives.h"
 #include "Util/NumberFormat.h"
 
 #include <vtkAlgorithm.h>

@@ -1,6 +1,6 @@
 /**
  * @class   FiberSolverComm
- * @brief   the distributed collision solver's communicator (Core/Solver/SolverComm.h) over a
+ * @brief   the distributed collision solver's communicator (Core/Parallel/Comm.h) over a
  *          vtkMultiProcessController
  *
  * Reductions are the controller's AllReduce (long long sums, double maxima: exact, the same on
@@ -14,14 +14,14 @@
 #define FiberSolverComm_h
 
 #include "FiberPLIConversionModule.h" // for export macro
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 class vtkMultiProcessController;
 
 namespace fiberpli
 {
 
-class FIBERPLICONVERSION_EXPORT FiberSolverComm final : public SolverComm
+class FIBERPLICONVERSION_EXPORT FiberSolverComm final : public Comm
 {
 public:
   explicit FiberSolverComm(vtkMultiProcessController* controller);

@@ -8,8 +8,8 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "FiberSolverComm.h"
+#include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
-#include "Solver/Decomposition.h"
 #include "Solver/SolverSnapshots.h"
 #include "Util/MemoryBudget.h"
 
@@ -127,7 +127,7 @@ int vtkFiberCollisionSolver::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* comm)
+int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::Comm* comm)
 {
   bool stale = !this->Cache || this->Cache->inputTime != input->GetMTime() ||
     this->Cache->filterTime != this->GetMTime();
@@ -158,7 +158,7 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* com
 
 //------------------------------------------------------------------------------
 std::string vtkFiberCollisionSolver::SolveInto(
-  vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm)
+  vtkPolyData* input, Snapshots& cache, fiberpli::Comm* comm)
 {
   fiberpli::CollisionSolverOptions options;
   std::string error = this->CheckInput(input, cache, options);
@@ -266,7 +266,7 @@ std::string vtkFiberCollisionSolver::CheckInput(
 
 //------------------------------------------------------------------------------
 std::string vtkFiberCollisionSolver::RunSolve(
-  Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm)
+  Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::Comm* comm)
 {
   fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;

@@ -3,18 +3,17 @@
 /// run, the one with room for the most fiber-and-halo widths) holds the fiber's reference point,
 /// the middle of its extent along that axis (in a periodic cell wrapped into the cell). Every rank
 /// keeps its owned fibers, in global fiber order; fibers travel between ranks as byte records
-/// through SolverComm::exchange. The pair work goes by region (links, not fibers:
+/// through Comm::exchange. The pair work goes by region (links, not fibers:
 /// Solver/LinkExchange.h).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 #include "Solver/SolverState.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace fiberpli
@@ -39,7 +38,7 @@ public:
   /// extent along a; reach: 2·ρmax), equal counts to the axis of least summed fiber extent, then
   /// the lower axis; cutting the cell, or else the global bounds of all points. In an equal-sided
   /// cell, the axis of the shortest fibers.
-  static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
+  static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, Comm& comm);
   /// Rank that owns the fiber (0 for a fiber without points).
   int owner(const Fiber& f) const;
   /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
@@ -55,7 +54,7 @@ public:
   /// (a histogram of all ranks' link centres), so the slabs of costly links get narrower. Who
   /// tests a pair never changes a result, only the balance; the cuts stay when a slab with links
   /// reported no work.
-  void balanceTesterSlabs(const FiberModel& local, std::int64_t work, SolverComm& comm);
+  void balanceTesterSlabs(const FiberModel& local, std::int64_t work, Comm& comm);
   /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
   double testerLo(int q) const;
   /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a
@@ -76,7 +75,7 @@ private:
   double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
   // every rank) or its slab's measured work per link (every rank passes its work >= 0).
-  void cutTesterSlabs(const FiberModel& local, SolverComm& comm, std::int64_t work);
+  void cutTesterSlabs(const FiberModel& local, Comm& comm, std::int64_t work);
 };
 
 /// What a redistribution moved (this rank's share).
@@ -88,48 +87,6 @@ struct TrafficCount
 
 /// Sends every fiber whose destination (dest(index), a rank) is another rank there, receives the
 /// fibers others send here, keeps global order. Collective.
-TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
-
-/// What the ranks agree on when some failed (the one rule, docs/data-contract.md §5): which rank's
-/// message wins (the lowest failing rank) and whether every rank failed. The same on every rank.
-struct RankFailure
-{
-  int rank = -1;       ///< the lowest failing rank; -1: no rank failed
-  std::string message; ///< that rank's error
-  bool all = false;    ///< every rank failed
-  bool failed() const { return rank >= 0; }
-};
-/// Every rank passes its own error ("" = success). Collective.
-RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError);
-
-/// The solver's text of agreeOnFailure, on every rank: "" when no rank failed, else the winning
-/// message as it is when every rank failed, else as "rank R: <message>" (so that the other ranks'
-/// reports name the rank whose piece failed). Collective.
-std::string agreeOnError(SolverComm& comm, const std::string& localError);
-/// Logical or / exact minimum and maximum over all ranks. Collective.
-bool anyRank(SolverComm& comm, bool value);
-double minOverRanks(SolverComm& comm, double value);
-double maxOverRanks(SolverComm& comm, double value);
-
-/// Deterministic sum of non-negative terms: the same bits on every rank, independent of the terms'
-/// order and of how they are split over ranks. Each term is rounded to a multiple of 2^-32 (terms
-/// below 2^64) and the multiples are summed exactly as integers; only the final conversion of that
-/// integer to a double rounds (up to three roundings of its 32-bit digits, so within a few ulp of
-/// the exact sum of the rounded terms, not necessarily the nearest double).
-class ExactSum
-{
-public:
-  void add(double term);
-  /// Collective: the sum over all ranks (same bits on every rank); comm null = this rank only.
-  double total(SolverComm* comm) const;
-
-private:
-  std::uint64_t limbs_[3] = { 0, 0, 0 }; // the fixed-point sum in 32-bit digits (with carries)
-};
-
-/// Value of rank k (0-based, ascending) of all ranks' values (as std::nth_element on the union),
-/// exactly, by bisection on the bit patterns of non-negative doubles; 0 when there are none.
-/// Collective (64 integer sums).
-double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverComm& comm);
+TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, Comm& comm);
 
 } // namespace fiberpli

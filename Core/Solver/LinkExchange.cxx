@@ -35,7 +35,7 @@ using Reader = ByteReader;
 // The all-to-all of the buffers for other ranks (this rank's own links and pushes never go
 // into a buffer: out[me] stays empty).
 std::vector<std::vector<char>> exchangeAll(
-  const std::vector<std::vector<char>>& out, SolverComm& comm, TrafficCount& sent)
+  const std::vector<std::vector<char>>& out, Comm& comm, TrafficCount& sent)
 {
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
@@ -138,7 +138,7 @@ double capsuleRadius(double r0, double r1, double scale)
 
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
   const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
-  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info)
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info)
 {
   const int axis = layout.axis();
   const std::size_t nr = static_cast<std::size_t>(comm.size());
@@ -334,7 +334,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
 }
 
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  SolverComm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received)
+  Comm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();

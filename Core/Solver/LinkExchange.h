@@ -11,8 +11,8 @@
 
 #include "Index/CollisionGrid.h"
 #include "Model/FiberModel.h"
+#include "Parallel/Comm.h"
 #include "Solver/Decomposition.h"
-#include "Solver/SolverComm.h"
 
 #include <cstdint>
 #include <utility>
@@ -68,7 +68,7 @@ double capsuleRadius(double r0, double r1, double scale);
 /// values, one exchange); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
   const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
-  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info);
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).
@@ -93,7 +93,7 @@ struct ReceivedPush
 /// order (a side not received is zero). `tested` must be in pair order; global: this rank's
 /// fibers' global indices, ascending. Collective; `sent` counts what went to other ranks.
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  SolverComm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received);
+  Comm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received);
 
 /// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):
 /// take(push, fa, fb) with the model indices of its links' fibers (kNotOwned: another rank's).

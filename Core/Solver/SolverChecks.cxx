@@ -165,8 +165,7 @@ std::string checkMemory(const SolverEngine& s)
 // Checks that need the fibers and no pairs: exact copies (duplicate streamlines) beyond
 // kMaxExactCopies and a MinimumGap beyond kMaxGapRadii × the largest radius. Both would make
 // the colliding pairs grow with the square of the copies or the gap.
-std::string checkStacksAndGap(
-  const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm)
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, Comm* comm)
 {
   std::ostringstream msg;
   const DuplicateStacks d = findDuplicateStacks(model);

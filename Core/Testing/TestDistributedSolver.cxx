@@ -5,6 +5,7 @@
 // bounds); with ranks whose region is empty, fibers longer than a rank's region, fibers moving
 // between ranks, a flat model, a flat strip (cut along its long axis), tester slabs re-cut during
 // the run (also across a resume), and an error or a stop on one rank only.
+#include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 
@@ -54,7 +55,7 @@ std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolver
       runs[r].model.fibers.push_back(whole.fibers[at++]);
   }
   runRanks(ranks,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
       run.result =
@@ -176,7 +177,7 @@ TEST(DistributedSolver, AnOpenModelsHaloIsOneSided)
     // the pieces: here rank 0 passes the whole model).
     std::vector<std::size_t> perSlab(static_cast<std::size_t>(ranks), 0);
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         const SlabLayout layout =
           SlabLayout::make(comm.rank() == 0 ? in : FiberModel{}, PeriodicCell{}, comm);
@@ -245,8 +246,7 @@ TEST(DistributedSolver, AFlatModelIsSharedByTheRanks)
   }
   CollisionSolverOptions o;
   o.maxSteps = 30;
-  runRanks(
-    1, [&](SolverComm& comm) { EXPECT_NE(SlabLayout::make(m, o.periodicCell, comm).axis(), 2); });
+  runRanks(1, [&](Comm& comm) { EXPECT_NE(SlabLayout::make(m, o.periodicCell, comm).axis(), 2); });
   expectAnyRanksAnyThreads(m, o, { 2, 3 });
 }
 
@@ -401,7 +401,7 @@ TEST(DistributedSolver, TesterSlabsHoldEqualLinkCounts)
   {
     std::vector<std::vector<int>> testers(static_cast<std::size_t>(ranks));
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         FiberModel piece;
         for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size();
@@ -439,7 +439,7 @@ TEST(DistributedSolver, TesterSlabsRecutAtEqualWork)
   {
     std::vector<std::vector<int>> counts(2);
     runRanks(2,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         FiberModel piece;
         for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += 2)
@@ -542,7 +542,7 @@ TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
     }
     std::vector<int> recutsBefore(static_cast<std::size_t>(ranks), -1);
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
         FiberModel model;
@@ -621,7 +621,7 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   std::vector<std::string> errors(2);
   std::vector<FiberModel> after = pieces;
   runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const std::size_t p = static_cast<std::size_t>(comm.rank());
       CollisionSolverRun run(after[p], o, {}, {}, &comm);
@@ -638,7 +638,7 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   // One rank takes it (0..n-1 are then the global indices).
   FiberModel whole = pieces[0];
   runRanks(1,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       CollisionSolverRun run(whole, o, {}, {}, &comm);
       EXPECT_EQ(run.resume(states[0]), "");
@@ -753,7 +753,7 @@ TEST(DistributedSolver, ThreePopulationsHoldOnlyTheLinksNearTheirSlab)
     }
   }
   int axis = -1; // the axis the slabs cut (the layout's own choice, from the whole model)
-  runRanks(1, [&](SolverComm& comm) { axis = SlabLayout::make(in, o.periodicCell, comm).axis(); });
+  runRanks(1, [&](Comm& comm) { axis = SlabLayout::make(in, o.periodicCell, comm).axis(); });
   for (int steps : { 4, 40 })
   {
     o.maxSteps = steps;
@@ -830,7 +830,7 @@ TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestFibers)
       const FiberModel in = generateCube(c);
       const int expected = shortestFiberAxis(in);
       runRanks(2,
-        [&](SolverComm& comm)
+        [&](Comm& comm)
         {
           FiberModel piece;
           for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < in.fibers.size(); f += 2)
@@ -874,7 +874,7 @@ TEST(DistributedSolver, AStripIsCutAlongItsLongAxis)
   for (int ranks : { 2, 3, 4 })
   {
     std::vector<double> cuts(static_cast<std::size_t>(ranks) + 1);
-    runRanks(ranks, [&](SolverComm& comm) { // the pieces solveOnRanks gives
+    runRanks(ranks, [&](Comm& comm) { // the pieces solveOnRanks gives
       FiberModel piece;
       const std::size_t n = in.fibers.size(), r = static_cast<std::size_t>(comm.rank());
       for (std::size_t f = n * r / ranks; f < n * (r + 1) / ranks; ++f)

@@ -423,7 +423,7 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
   FiberModel model;              // straight along x and y: the slabs cut z
   model.fibers.push_back(fiberpli_test::line({ -5, 0.25, 10.2 }, { 4, 1, 0 }, 4, 0.1, 0));
   runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const SlabLayout layout = SlabLayout::make(model, cell, comm);
       ASSERT_EQ(layout.axis(), 2);

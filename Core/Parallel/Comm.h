@@ -1,7 +1,9 @@
-/// SolverComm: what the distributed collision solver needs from its ranks (docs/solver.md §13):
-/// exact reductions and an all-to-all of byte buffers. Pure C++; the VTK build implements it over
-/// vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests with threads as ranks. Every
-/// call is collective: all ranks make the same calls in the same order.
+/// Comm: what FiberPLI's parallel code needs from its ranks: exact reductions and an all-to-all of
+/// byte buffers. The distributed collision solver (docs/solver.md §13), its checkpoints and the
+/// tile exchange (Parallel/TileExchange.h) run over it; the rank collectives they share are in
+/// Parallel/Collectives.h. Pure C++; the VTK build implements it over vtkMultiProcessController
+/// (Conversion/FiberSolverComm.h), the tests with threads as ranks (Core/Testing/ThreadComm.h).
+/// Every call is collective: all ranks make the same calls in the same order.
 #pragma once
 
 #include <cstdint>
@@ -10,10 +12,10 @@
 namespace fiberpli
 {
 
-class SolverComm
+class Comm
 {
 public:
-  virtual ~SolverComm() = default;
+  virtual ~Comm() = default;
   virtual int rank() const = 0;
   virtual int size() const = 0;
   /// Element-wise sum over all ranks, in place (integers: exact, the same on every rank).
@@ -25,7 +27,7 @@ public:
 };
 
 /// One rank: the reductions return their input, exchange returns send.
-class SerialComm final : public SolverComm
+class SerialComm final : public Comm
 {
 public:
   int rank() const override { return 0; }
