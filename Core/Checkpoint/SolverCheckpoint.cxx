@@ -45,13 +45,6 @@ std::uint64_t bitsOf(double v)
   return u;
 }
 
-double doubleOf(std::uint64_t u)
-{
-  double v;
-  std::memcpy(&v, &u, sizeof v);
-  return v;
-}
-
 // The options that decide the result, by the name the user knows them (the pvpython property
 // where there is one). numberOfThreads is not among them: the result does not depend on it.
 std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOptions& o)
@@ -87,7 +80,12 @@ public:
     binary::store64LE(b, v);
     bytes(b, 8);
   }
-  void f64(double v) { u64(bitsOf(v)); }
+  void f64(double v)
+  {
+    unsigned char b[8];
+    binary::storeFloat64LE(b, v);
+    bytes(b, 8);
+  }
   void vec(const Vec3& v)
   {
     f64(v.x);
@@ -139,7 +137,12 @@ public:
     bytes(b, 8);
     return binary::load64(b, true);
   }
-  double f64() { return doubleOf(u64()); }
+  double f64()
+  {
+    unsigned char b[8];
+    bytes(b, 8);
+    return binary::loadFloat64(b, true);
+  }
   Vec3 vec()
   {
     const double x = f64();

@@ -338,7 +338,7 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
-  // Sizes first, so that every buffer is written once into its final place.
+  // Sizes first, so that every buffer is written once into its final place (no regrowth).
   std::vector<std::size_t> size(nr, 0);
   const auto bytes = [](std::uint32_t sides)
   {
@@ -365,29 +365,24 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
       p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
   std::vector<std::vector<char>> out(nr);
   for (std::size_t q = 0; q < nr; ++q)
-    out[q].resize(size[q]);
-  std::fill(size.begin(), size.end(), 0); // now: bytes written
+    out[q].reserve(size[q]);
   for (const LinkPairPush& p : tested)
   {
     route(p,
       [&](int to, std::uint32_t sides)
       {
-        char* at = out[static_cast<std::size_t>(to)].data() + size[static_cast<std::size_t>(to)];
-        const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
-        std::memcpy(at, &h, sizeof h);
-        at += sizeof h;
+        ByteWriter w(out[static_cast<std::size_t>(to)]);
+        w.put(PushHeader{ p.fiberA, p.kA, p.fiberB, p.kB, sides });
         if (sides & 1)
         {
-          std::memcpy(at, &p.a0, sizeof(Vec3));
-          std::memcpy(at + sizeof(Vec3), &p.a1, sizeof(Vec3));
-          at += 2 * sizeof(Vec3);
+          w.put(p.a0);
+          w.put(p.a1);
         }
         if (sides & 2)
         {
-          std::memcpy(at, &p.b0, sizeof(Vec3));
-          std::memcpy(at + sizeof(Vec3), &p.b1, sizeof(Vec3));
+          w.put(p.b0);
+          w.put(p.b1);
         }
-        size[static_cast<std::size_t>(to)] += bytes(sides);
       });
   }
   const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);

@@ -2,6 +2,7 @@
 
 #include "Model/PeriodicCellRule.h"
 #include "Solver/SolverEngine.h"
+#include "Util/Fnv1a.h"
 #include "Util/MemoryBudget.h"
 #include "Util/NumberFormat.h"
 #include "Util/Threads.h"
@@ -39,15 +40,10 @@ DuplicateStacks findDuplicateStacks(const FiberModel& model)
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
     const Fiber& fib = model.fibers[f];
-    std::size_t h = fib.points.size();
-    const auto mix = [&h](const void* data, std::size_t bytes)
-    {
-      const auto* c = static_cast<const unsigned char*>(data);
-      for (std::size_t i = 0; i < bytes; ++i)
-        h = h * 1099511628211ull + c[i];
-    };
-    mix(fib.points.data(), fib.points.size() * sizeof(Vec3));
-    mix(fib.radii.data(), fib.radii.size() * sizeof(double));
+    // The hash only buckets the fibers: a copy is confirmed byte by byte below.
+    std::uint64_t hash = fnv1a(fib.points.data(), fib.points.size() * sizeof(Vec3));
+    fnv1aAdd(hash, fib.radii.data(), fib.radii.size() * sizeof(double));
+    const std::size_t h = static_cast<std::size_t>(hash);
     bool copy = false;
     const auto range = seen.equal_range(h);
     for (auto it = range.first; it != range.second && !copy; ++it)
