@@ -62,7 +62,7 @@ CactusReadResult readCactusStrands(
     const LineReader::Status s = lines.next(line);
     if (s == LineReader::Status::TooLong)
     {
-      why = "line is longer than " + std::to_string(maxLineLength) + " characters";
+      why = lines.reader.tooLongMessage();
       return false;
     }
     if (s != LineReader::Status::Line)
@@ -142,8 +142,7 @@ CactusReadResult readCactusStrands(
       const LineReader::Status st = lines.next(line);
       if (st == LineReader::Status::TooLong)
       {
-        return fail(lines.reader.lineNumber(),
-          "line is longer than " + std::to_string(maxLineLength) + " characters");
+        return fail(lines.reader.lineNumber(), lines.reader.tooLongMessage());
       }
       if (st != LineReader::Status::Line)
       {

@@ -106,23 +106,9 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
   };
 
   std::string_view line;
-  for (;;)
+  LineReader::Stop stop;
+  while (reader.nextLine(line, stop, " (not a CATERPillar sphere line)"))
   {
-    const LineReader::Status status = reader.next(line);
-    if (status == LineReader::Status::End)
-    {
-      break;
-    }
-    if (status == LineReader::Status::TooLong)
-    {
-      return fail(reader.lineNumber(),
-        "line is longer than " + std::to_string(maxLineLength) +
-          " characters (not a CATERPillar sphere line)");
-    }
-    if (status == LineReader::Status::Failed)
-    {
-      return fail(reader.lineNumber() + 1, "read error");
-    }
     if (isBlank(line))
     {
       continue;
@@ -210,6 +196,10 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     fiber.radii.push_back(v[4]);
     inner.push_back(v[3]);
     anyInnerDiffers = anyInnerDiffers || v[3] != v[4];
+  }
+  if (stop.failed())
+  {
+    return fail(stop.line, stop.what);
   }
   if (!headerSeen)
   {
