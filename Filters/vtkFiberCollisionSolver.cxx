@@ -12,6 +12,7 @@
 #include "Solver/CollisionSolver.h"
 #include "Solver/SolverSnapshots.h"
 #include "Util/MemoryBudget.h"
+#include "Util/ValueCheck.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -214,11 +215,16 @@ std::string vtkFiberCollisionSolver::CheckInput(
   {
     fiberpliWarningMacro(<< threadWarning);
   }
-  if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
+  if (this->IterationsAsTime)
   {
-    return fiberpli::ProxyMessage(this,
-      "TimeStepInterval is " + std::to_string(this->TimeStepInterval) + " and MaximumSnapshots " +
-        std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
+    const std::string badSnapshots = fiberpli::ValueChecks()
+                                       .atLeast("TimeStepInterval", this->TimeStepInterval, 1)
+                                       .atLeast("MaximumSnapshots", this->MaximumSnapshots, 2)
+                                       .error();
+    if (!badSnapshots.empty())
+    {
+      return fiberpli::ProxyMessage(this, badSnapshots);
+    }
   }
   cache.input = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!cache.input.ok())

@@ -2,6 +2,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <sstream>
@@ -170,9 +171,7 @@ CactusReadResult readCactusStrands(
       }
       if (!(v[3] > 0.0))
       {
-        std::ostringstream msg;
-        msg << "radius " << v[3] << " must be > 0";
-        return fail(lines.reader.lineNumber(), msg.str());
+        return fail(lines.reader.lineNumber(), valueMustBe("radius", v[3], "> 0"));
       }
       fiber.points.push_back({ v[0], v[1], v[2] });
       fiber.radii.push_back(v[3]);

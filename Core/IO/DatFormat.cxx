@@ -3,6 +3,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cctype>
@@ -118,7 +119,7 @@ std::string describePointError(
       msg << "'" << printableText(badToken) << "' is not a finite number";
       break;
     case PointParse::BadRadius:
-      msg << "radius " << v[3] << " must be > 0";
+      msg << valueMustBe("radius", v[3], "> 0");
       break;
     case PointParse::Ok:
       break;
