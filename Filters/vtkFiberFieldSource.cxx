@@ -3,7 +3,6 @@
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
-#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Field/FieldFibers.h"
@@ -286,9 +285,7 @@ int vtkFiberFieldSource::Execute(
   mine.fibers.assign(
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.end)));
-  fiberpli::FiberPolyData::FromModel(mine, output);
-  fiberpli::AddInnerRadii(mine, output);
-  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  fiberpli::FiberPolyData::FromSourceModel(mine, output, this->SegmentLength, this->Seed);
   fiberpli::AddFieldDoubles(
     output, fiberpli::fiberfield::kTracedVolumeFraction, { result.volumeFraction });
   this->UpdateProgress(1.0);
