@@ -6,6 +6,7 @@
 #include "Index/PeriodicPairs.h"
 #include "PeriodicReference.h"
 #include "Solver/CollisionSolver.h"
+#include "Solver/QuietLinks.h"
 #include "Solver/SolverLinks.h"
 #include "SolverTestModels.h"
 #include "Tissue/CubeGenerator.h"
@@ -156,6 +157,59 @@ TEST(QuietLinks, GridFindsExactlyThePairsWithALoudLink)
           EXPECT_EQ(found[i].direction, expected[i].direction);
         }
       }
+    }
+  }
+}
+
+// The same-fiber rule (§3.1): two links of a hairpin that did not move, whose pair the rule
+// skipped because the bend between them was short, become loud once the bend is pulled out far
+// enough for the rule to test them (then they collide); links that did not move beside an
+// unchanged bend stay quiet. Lengths are integers, so every arc length is exact.
+TEST(QuietLinks, LinksWhosePairTheSameFiberRuleNoLongerSkipsAreLoud)
+{
+  const auto hairpin = [](Vec3 bend)
+  {
+    Fiber f;
+    f.points = { { 0, 0, 0 }, { 10, 0, 0 }, bend, { 10, 8, 0 }, { 0, 8, 0 } };
+    f.radii.assign(5, 5.0);
+    FiberModel m;
+    m.fibers.push_back(f);
+    return m;
+  };
+  // Legs 8 apart (< 2·5: the capsules overlap); the arc between them is 5 + 5 = 10 < 2·(5 + 5)
+  // with the bend at (13, 4, 0), 13 + 13 = 26 with it at (22, 4, 3).
+  const FiberModel before = hairpin({ 13, 4, 0 });
+  for (const Vec3& bend : { Vec3{ 13, 4, 0 }, Vec3{ 22, 4, 3 } })
+  {
+    const bool pulled = bend.x == 22;
+    QuietLinks quiet;
+    std::vector<CapsuleLink> links;
+    quiet.keep(links);
+    buildLinks(before, nullptr, 1, links, nullptr);
+    EXPECT_EQ(quiet.mark(links, 1), nullptr); // nothing to compare with: all loud
+    CollisionGrid grid;
+    std::vector<CapsulePair> pairs;
+    ASSERT_TRUE(grid.findPairs(links, 0.0, 1, pairs));
+    EXPECT_TRUE(pairs.empty()); // the rule skips the legs
+    quiet.remember(links.size(), pairs);
+    quiet.keep(links);
+    buildLinks(hairpin(bend), nullptr, 1, links, nullptr);
+    const std::vector<char>* loud = quiet.mark(links, 1);
+    ASSERT_NE(loud, nullptr);
+    const std::vector<char> expected =
+      pulled ? std::vector<char>{ 1, 1, 1, 1 } : std::vector<char>{ 0, 0, 0, 0 };
+    EXPECT_EQ(*loud, expected);
+    EXPECT_EQ(quiet.loudLinks(), pulled ? 4u : 0u);
+    std::vector<CapsulePair> all, skipping;
+    ASSERT_TRUE(grid.findPairs(links, 0.0, 1, all));
+    ASSERT_TRUE(grid.findPairs(links, 0.0, 1, skipping, static_cast<std::size_t>(-1), nullptr,
+      TestedPairs::LowerLink, loud));
+    ASSERT_EQ(all.size(), pulled ? 1u : 0u); // the legs, links 0 and 3
+    ASSERT_EQ(skipping.size(), all.size());
+    if (pulled)
+    {
+      EXPECT_EQ(skipping[0].a, 0u);
+      EXPECT_EQ(skipping[0].b, 3u);
     }
   }
 }
