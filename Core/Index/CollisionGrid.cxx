@@ -86,14 +86,18 @@ inline void testOrderedPair(const CapsuleLink& la, const CapsuleLink& lb, std::u
   }
 }
 
-// The same for links i, j of `links` in either order; tested, rule: see findPairs.
+// The same for links i, j of `links` in either order; tested, rule, loud: see findPairs.
 inline void testPair(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
-  std::uint32_t i, std::uint32_t j, double gap, std::vector<CapsulePair>& out,
+  const char* loud, std::uint32_t i, std::uint32_t j, double gap, std::vector<CapsulePair>& out,
   std::uint64_t& exactTests)
 {
   const std::uint32_t a = i < j ? i : j;
   const std::uint32_t b = i < j ? j : i;
   if (tested && !tested[a] && (rule == TestedPairs::LowerLink || !tested[b]))
+  {
+    return;
+  }
+  if (loud && !loud[a] && !loud[b])
   {
     return;
   }
@@ -116,11 +120,11 @@ double packingPartnerBound(const CapsuleLink& a, const PackingScale& scale)
 double CollisionGrid::bytesPerLink()
 {
   // boxes_, edges_, order_ and its reordering by flags, the six float bound arrays, the sorted
-  // copy of the link and its tested flag, 3 words for the sort: the keys (2) and last order
-  // of a sparse grid, or the cells and counters (at most 2 per link) of a dense one, and the
+  // copy of the link and its tested and loud flags, 3 words for the sort: the keys (2) and last
+  // order of a sparse grid, or the cells and counters (at most 2 per link) of a dense one, and the
   // end of its pairs (mergePairs).
   return static_cast<double>(sizeof(Box) + sizeof(double) + sizeof(std::uint64_t) +
-    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + sizeof(char) +
+    3 * sizeof(std::uint32_t) + 6 * sizeof(float) + sizeof(CapsuleLink) + 2 * sizeof(char) +
     sizeof(std::size_t));
 }
 
@@ -131,7 +135,7 @@ double CollisionGrid::bytesPerPair()
 
 bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
   std::vector<CapsulePair>& pairs, std::size_t maxPairs, const std::vector<char>* tested,
-  TestedPairs rule)
+  TestedPairs rule, const std::vector<char>* loud)
 {
   pairs.clear();
   work_ = 0;
@@ -144,9 +148,12 @@ bool CollisionGrid::findPairs(const std::vector<CapsuleLink>& links, double mini
   collectOversize(grid);
   sortByCell(grid, nThreads);
   const char* flags = tested ? tested->data() : nullptr;
-  flaggedFirst(flags);
-  buildCellArrays(links, flags, nThreads);
-  if (!collectPairs(links, flags, rule, minimumGap, grid, nThreads, maxPairs))
+  const char* loudFlags = loud ? loud->data() : nullptr;
+  // A pair to test has a loud link (if loud is given) and a tested one: the cells put the loud
+  // links first when there are loud flags (the tested rule is then checked per candidate).
+  flaggedFirst(loudFlags ? loudFlags : flags);
+  buildCellArrays(links, flags, loudFlags, nThreads);
+  if (!collectPairs(links, flags, rule, loudFlags, minimumGap, grid, nThreads, maxPairs))
   {
     return false;
   }
@@ -454,7 +461,8 @@ void CollisionGrid::sortKeysByCell(const Layout& grid, int nThreads)
 }
 
 // Phase 5: in each cell the flagged links first (each part in id order), and where its unflagged
-// ones begin (all flagged, or no flags: the cell's end).
+// ones begin (all flagged, or no flags: the cell's end). A pair of two unflagged links is never
+// tested.
 void CollisionGrid::flaggedFirst(const char* tested)
 {
   const std::size_t nCells = cellKeys_.size();
@@ -485,7 +493,7 @@ void CollisionGrid::flaggedFirst(const char* tested)
 
 // Phase 6: the boxes as float SoA, the links and their tested flags in order_'s order.
 void CollisionGrid::buildCellArrays(
-  const std::vector<CapsuleLink>& links, const char* tested, int nThreads)
+  const std::vector<CapsuleLink>& links, const char* tested, const char* loud, int nThreads)
 {
   const std::size_t nRegular = order_.size();
   for (int d = 0; d < 3; ++d)
@@ -495,6 +503,7 @@ void CollisionGrid::buildCellArrays(
   }
   sorted_.resize(nRegular);
   sortedTested_.resize(tested ? nRegular : 0);
+  sortedLoud_.resize(loud ? nRegular : 0);
   const std::int64_t nr = static_cast<std::int64_t>(nRegular);
 #pragma omp parallel for num_threads(nThreads) schedule(static)
   for (std::int64_t rr = 0; rr < nr; ++rr)
@@ -511,13 +520,18 @@ void CollisionGrid::buildCellArrays(
     {
       sortedTested_[r] = tested[id];
     }
+    if (loud)
+    {
+      sortedLoud_[r] = loud[id];
+    }
   }
 }
 
 // Phase 6: broad and narrow phase over the cells and the oversize links, into perThread_; false
 // (lists emptied) as soon as more than maxPairs pairs exist.
 bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const char* tested,
-  TestedPairs rule, double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs)
+  TestedPairs rule, const char* loud, double minimumGap, const Layout& grid, int nThreads,
+  std::size_t maxPairs)
 {
   const std::size_t nRegular = order_.size();
   const std::int64_t nCells = static_cast<std::int64_t>(cellKeys_.size());
@@ -615,13 +629,18 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       const std::uint32_t ir = order_[r];
       const CapsuleLink& lr = sorted_[r];
       const bool rTested = !tested || sortedTested_[r];
+      const bool rLoud = !loud || sortedLoud_[r];
       const bool either = rule == TestedPairs::EitherLink;
       for (std::size_t i = 0; i < nc; ++i)
       {
         const std::uint32_t q = cp[i];
         const std::uint32_t iq = order_[q];
         const bool qTested = !tested || sortedTested_[q];
-        if (ir < iq)
+        if (!rLoud && !sortedLoud_[q])
+        {
+          // two quiet links: known not to collide
+        }
+        else if (ir < iq)
         {
           if (rTested || (either && qTested))
             testOrderedPair(lr, sorted_[q], ir, iq, minimumGap, out, exactTests);
@@ -674,6 +693,10 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t b2 = cellStart_[cj];
         const std::uint32_t e2 = cellStart_[cj + 1];
         const std::uint32_t split2 = cellUnflagged_[cj];
+        if (split == begin && split2 == b2)
+        {
+          continue; // no flagged link in either cell: no pair to test
+        }
         for (std::uint32_t r = begin; r < end && !publish(false); ++r)
         {
           scan(r, b2, r < split ? e2 : split2, cand);
@@ -697,7 +720,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
         if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
         {
-          testPair(links, tested, rule, o, order_[r], minimumGap, out, exactTests);
+          testPair(links, tested, rule, loud, o, order_[r], minimumGap, out, exactTests);
         }
       }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
@@ -705,7 +728,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];
         if (boxesOverlap(bo.lo, bo.hi, boxes_[p].lo, boxes_[p].hi))
         {
-          testPair(links, tested, rule, o, p, minimumGap, out, exactTests);
+          testPair(links, tested, rule, loud, o, p, minimumGap, out, exactTests);
         }
       }
     }

@@ -88,9 +88,13 @@ public:
   /// tested, kept and counted (a rank of the distributed solver finds only the pairs it tests,
   /// docs/solver.md §13); a pair of two unflagged links is not even box-tested, the others are
   /// skipped before the exact test.
+  /// loud (one entry per link, or null = all): a pair of two links without the flag is neither
+  /// box- nor exact-tested (the caller knows it does not collide: Solver/QuietLinks.h), and a
+  /// pair of cells holding no flagged link is not visited; applied on top of `tested`.
   bool findPairs(const std::vector<CapsuleLink>& links, double minimumGap, int threads,
     std::vector<CapsulePair>& pairs, std::size_t maxPairs = static_cast<std::size_t>(-1),
-    const std::vector<char>* tested = nullptr, TestedPairs rule = TestedPairs::LowerLink);
+    const std::vector<char>* tested = nullptr, TestedPairs rule = TestedPairs::LowerLink,
+    const std::vector<char>* loud = nullptr);
 
   /// The work of the last findPairs (broad-phase box tests + kExactTestWork × exact segment
   /// tests; the same for any thread count): what the distributed solver balances its ranks by.
@@ -127,14 +131,16 @@ private:
   void countByCell(const Layout& grid, std::size_t nCells, int nThreads);
   void sortKeysByCell(const Layout& grid, int nThreads);
   static std::uint32_t cellOf(const Box& bx, const Layout& grid);
-  void flaggedFirst(const char* tested);
-  void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, int nThreads);
+  void flaggedFirst(const char* head);
+  void buildCellArrays(
+    const std::vector<CapsuleLink>& links, const char* tested, const char* loud, int nThreads);
   bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
-    double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs);
+    const char* loud, double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs);
 
-  std::vector<Box> boxes_;             // per link, grown by rho + gap/2
-  std::vector<std::uint32_t> order_;   // regular link ids sorted by (cell, flagged first, id)
+  std::vector<Box> boxes_; // per link, grown by rho + gap/2
+  std::vector<std::uint32_t>
+    order_; // regular link ids sorted by (cell, flagged first, id); flagged: loud, else tested
   std::vector<std::uint32_t> scratch_; // flaggedFirst's reordering
   // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
   std::vector<std::uint32_t> cellOf_;
@@ -151,6 +157,7 @@ private:
   std::vector<CapsuleLink>
     sorted_; // the regular links in 'order_' order (the exact tests read them)
   std::vector<char> sortedTested_;       // the tested flags in 'order_' order
+  std::vector<char> sortedLoud_;         // the loud flags in 'order_' order
   std::vector<std::uint64_t> cellKeys_;  // occupied cells, ascending
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t>

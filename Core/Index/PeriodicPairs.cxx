@@ -49,7 +49,8 @@ std::string PeriodicPairs::cellTooSmall(
 
 std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links,
   const PeriodicCell& cell, double minimumGap, int threads, std::vector<CapsulePair>& pairs,
-  std::size_t maxPairs, bool* overflow, const std::vector<char>* tested)
+  std::size_t maxPairs, bool* overflow, const std::vector<char>* tested,
+  const std::vector<char>* loud)
 {
   pairs.clear();
   work_ = 0;
@@ -158,7 +159,16 @@ std::string PeriodicPairs::findPairs(const std::vector<CapsuleLink>& links,
     imageTested_.assign(n, 1);
   }
   imageTested_.resize(images_.size(), 0);
-  const bool within = grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, &imageTested_);
+  if (loud)
+  {
+    // A pair of images is skipped when both links are quiet: then no image of the pair collides.
+    imageLoud_.assign(loud->begin(), loud->end());
+    imageLoud_.resize(images_.size());
+    for (std::size_t g = n; g < images_.size(); ++g)
+      imageLoud_[g] = (*loud)[source_[g - n]];
+  }
+  const bool within = grid_.findPairs(images_, minimumGap, threads, raw_, rawLimit, &imageTested_,
+    TestedPairs::LowerLink, loud ? &imageLoud_ : nullptr);
   work_ = grid_.work();
   if (!within)
   {

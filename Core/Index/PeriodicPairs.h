@@ -23,11 +23,12 @@ public:
   /// count) with distances by minimum image. Returns an error (pairs empty) when the cell is too
   /// small for the links. More than maxPairs pairs: *overflow (if given) is set, pairs empty.
   /// tested: CollisionGrid::findPairs' `tested` with TestedPairs::LowerLink (per real link; a
-  /// pair's lower link is its smaller real id).
+  /// pair's lower link is its smaller real id). loud: CollisionGrid::findPairs' `loud` per real
+  /// link (a ghost is as loud as its link).
   std::string findPairs(const std::vector<CapsuleLink>& links, const PeriodicCell& cell,
     double minimumGap, int threads, std::vector<CapsulePair>& pairs,
     std::size_t maxPairs = static_cast<std::size_t>(-1), bool* overflow = nullptr,
-    const std::vector<char>* tested = nullptr);
+    const std::vector<char>* tested = nullptr, const std::vector<char>* loud = nullptr);
 
   /// The work of the last findPairs (CollisionGrid::work of its grid over the images; 0 when it
   /// returned before searching).
@@ -48,6 +49,7 @@ private:
   std::vector<std::size_t> ghostStart_; // per real link, where its ghosts start in images_
   std::vector<std::uint32_t> source_;   // real id of every ghost
   std::vector<char> imageTested_; // the grid's tested: the real links' (1 serially), 0 for ghosts
+  std::vector<char> imageLoud_;   // the grid's loud: every image's link's
   std::vector<CapsulePair> raw_;
 };
 

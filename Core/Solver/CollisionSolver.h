@@ -12,6 +12,7 @@
 #include "Util/Status.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -81,6 +82,11 @@ struct CollisionSolverOptions
   /// tortuosity falls 5 % of the excess below it. Straight fibers stay straight. 0 = off (any
   /// value <= 1), else in (1, 3]. Default 0.
   double tortuosity = 0.0;
+  /// [ours] Skip the pairs of two links that are unchanged and collision-free since the last
+  /// detection (docs/solver.md §3.4): detection then costs about the links still moving. Never
+  /// changes the result (tests compare it on and off); distributed runs test every link. Core
+  /// only. Default true.
+  bool quietLinks = true;
 };
 
 /// Outcome of solveCollisions (field data of §9). error non-empty: nothing was done and the model
@@ -120,6 +126,10 @@ struct CollisionSolverResult : Status
     0; ///< re-cuts at equal pair work that moved a tester slab cut (same on all ranks) ...
   double testerCutMove =
     0.0; ///< ... and the largest move of a cut, as a fraction of the slab axis' span
+  /// [ours] Links of all detections of the run (this rank's held links) and, of them, the loud
+  /// ones whose pairs were tested (docs/solver.md §3.4; all of them with quietLinks off).
+  std::uint64_t detectedLinks = 0;
+  std::uint64_t loudLinks = 0;
 };
 
 /// Called after every move step with the step number (1, 2, …) and the current model (in a
@@ -159,6 +169,9 @@ public:
   CollisionSolverResult finish();
   /// The state after the last step (valid after start() or resume()).
   const CollisionSolverState& state() const;
+  /// Links of the last detection, and of them the loud ones whose pairs it tested (§3.4).
+  std::size_t detectedLinks() const;
+  std::size_t loudLinks() const;
 
 private:
   struct Impl;

@@ -33,8 +33,29 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
   {
     migrate();
   }
+  // [ours] §3.4: serially, the pairs of two links that are quiet since the last detection are
+  // skipped (the same pairs are found). Distributed runs test every link.
+  const bool quiet = o_.quietLinks && !comm_;
+  if (quiet)
+  {
+    quiet_.keep(links_);
+  }
   gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
+  loud_ = quiet ? quiet_.mark(links_, threads_) : nullptr;
   const bool found = findBoundedPairs(boundFirst);
+  loud_ = nullptr;
+  lastDetectedLinks_ = links_.size();
+  lastLoudLinks_ = quiet ? quiet_.loudLinks() : links_.size();
+  detectedLinks_ += lastDetectedLinks_;
+  loudLinks_ += lastLoudLinks_;
+  if (quiet && found)
+  {
+    quiet_.remember(links_.size(), pairs_);
+  }
+  else if (quiet)
+  {
+    quiet_.forget();
+  }
   if (!comm_)
   {
     if (counts)
@@ -165,12 +186,12 @@ bool SolverEngine::searchPairs(double limit, bool& overflow)
   if (periodic())
   {
     detectError_ = periodic_.findPairs(
-      links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, tested);
+      links_, o_.periodicCell, o_.minimumGap, threads_, pairs_, maxPairs, &overflow, tested, loud_);
     pairWork_ += periodic_.work();
     return detectError_.empty();
   }
   overflow = !grid_.findPairs(
-    links_, o_.minimumGap, threads_, pairs_, maxPairs, tested, testedPairs(layout_));
+    links_, o_.minimumGap, threads_, pairs_, maxPairs, tested, testedPairs(layout_), loud_);
   pairWork_ += grid_.work();
   return true;
 }

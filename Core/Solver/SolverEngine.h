@@ -13,6 +13,7 @@
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
 #include "Solver/PairBound.h"
+#include "Solver/QuietLinks.h"
 #include "Solver/SolverLinks.h"
 
 #include <cstddef>
@@ -51,6 +52,11 @@ public:
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
+  // [ours] The links whose pairs a detection tests (§3.4); serial runs with quietLinks only.
+  QuietLinks quiet_;
+  const std::vector<char>* loud_ = nullptr;               // this detection's loud flags (null: all)
+  std::uint64_t detectedLinks_ = 0, loudLinks_ = 0;       // summed over the detections of the run
+  std::size_t lastDetectedLinks_ = 0, lastLoudLinks_ = 0; // of the last detection
   // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
   // fibers this rank owns; the pairs are found among the links near its slab (LinkExchange.h).
   Comm* comm_ = nullptr;

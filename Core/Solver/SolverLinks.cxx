@@ -114,9 +114,10 @@ double capsuleVolume(const FiberModel& model, Comm* comm)
 namespace
 {
 // What the solver keeps per point (model point and radius, velocity and source index, force) and
-// per link (its capsule and the grid's buffers); links ≈ points.
-constexpr double kBytesPerPoint =
-  2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) + sizeof(CapsuleLink);
+// per link (its capsule, the last detection's copy with its colliding and loud flags (QuietLinks)
+// and the grid's buffers); links ≈ points.
+constexpr double kBytesPerPoint = 2.0 * sizeof(Vec3) + 2.0 * sizeof(double) + sizeof(Vec3) +
+  2.0 * sizeof(CapsuleLink) + 2.0 * sizeof(char);
 } // namespace
 
 double bytesPerPoint()

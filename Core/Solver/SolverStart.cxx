@@ -23,6 +23,16 @@ const CollisionSolverState& CollisionSolverRun::state() const
   return impl_->s.st_;
 }
 
+std::size_t CollisionSolverRun::detectedLinks() const
+{
+  return impl_->s.lastDetectedLinks_;
+}
+
+std::size_t CollisionSolverRun::loudLinks() const
+{
+  return impl_->s.lastLoudLinks_;
+}
+
 bool CollisionSolverRun::start()
 {
   Impl& r = *impl_;

@@ -198,6 +198,8 @@ CollisionSolverResult CollisionSolverRun::finish()
   }
   r.takeState();
   result.collisions = s.globalCounts(false).pairs;
+  result.detectedLinks = s.detectedLinks_;
+  result.loudLinks = s.loudLinks_;
   result.solved = result.collisions == 0;
   result.shapeOk = !st.changed;
   result.maxOverlap = s.maxOverlap();

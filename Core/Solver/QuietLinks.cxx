@@ -1,0 +1,177 @@
+// QuietLinks: the loud flags of a detection (docs/solver.md §3.4).
+//
+// Why skipping a pair of two quiet links never changes the pair list. The grid reports exactly
+// the pairs (a, b) for which P(a, b) = ¬skipSameFiberPair(a, b) ∧ sphere(a, b) ∧ exact(a, b)
+// holds (§3.3: the candidate search is complete, the float boxes are rounded outwards). The
+// inputs of P are, per link, its points p0, p1, its radius ρ and its computed length
+// arc1 − arc0 (the bounding-sphere test), the gap g; for two links of one fiber also their link
+// indices k, arc lengths and the closure length (§3.1). In a periodic cell P is that of the
+// nearest images, a function of the same inputs and the cell (at most one image can touch,
+// §11), whichever ghosts the grid makes.
+//
+// Link i (fiber f, index k) is quiet when f has as many links as at the last detection, whose
+// link (f, k) had bitwise the same p0, p1, ρ and arc1 − arc0 and was in no colliding pair. By
+// induction the last detection reported every colliding pair (the first detection, and any
+// detection after one whose pairs were not recorded, tests everything). For quiet a, b of
+// different fibers, P(a, b) = P(a', b') at the last detection (a', b' their links then), false.
+// For one fiber, sphere and exact are unchanged; if the same-fiber rule did not skip (a', b'),
+// P(a', b') = sphere ∧ exact was false, so P(a, b) is false. If it skipped (a', b') and does not
+// skip (a, b), the arc lengths between them changed (the pair became testable, e.g. the middle
+// of a hairpin straightened): both links are made loud. These pairs are found per fiber: the
+// rule skips only pairs closer along the fiber than 2·(ρa + ρb) ≤ 2·(ρa + ρmax of the fiber),
+// and the arc gap to a later link only grows (prefix sums of non-negative lengths are monotone
+// in floating point too), so a walk from each link forward (and through the closure backward)
+// until that bound meets every pair the rule skipped before. A radius-scale change changes ρ:
+// every link is loud. Loud links are tested against everything, so marking more links loud is
+// always safe.
+
+#include "Solver/QuietLinks.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+namespace fiberpli
+{
+
+namespace
+{
+bool sameBits(double x, double y)
+{
+  std::uint64_t a = 0, b = 0;
+  std::memcpy(&a, &x, sizeof a);
+  std::memcpy(&b, &y, sizeof b);
+  return a == b;
+}
+
+// Everything of a link that the pair predicate reads besides the same-fiber rule's arc lengths.
+bool sameCapsule(const CapsuleLink& x, const CapsuleLink& y)
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    if (!sameBits(x.p0[d], y.p0[d]) || !sameBits(x.p1[d], y.p1[d]))
+      return false;
+  }
+  return sameBits(x.rho, y.rho) && sameBits(x.arc1 - x.arc0, y.arc1 - y.arc0);
+}
+
+// start[f] = first link of fiber f (links come fiber by fiber, fibers ascending), start[f + 1]
+// its end, for f < fibers.
+void fiberStarts(
+  const std::vector<CapsuleLink>& links, std::size_t fibers, std::vector<std::size_t>& start)
+{
+  start.assign(fibers + 1, 0);
+  for (const CapsuleLink& l : links)
+    ++start[static_cast<std::size_t>(l.fiber) + 1];
+  for (std::size_t f = 0; f < fibers; ++f)
+    start[f + 1] += start[f];
+}
+
+std::size_t fiberCount(const std::vector<CapsuleLink>& links)
+{
+  return links.empty() ? 0 : static_cast<std::size_t>(links.back().fiber) + 1;
+}
+} // namespace
+
+void QuietLinks::keep(std::vector<CapsuleLink>& links)
+{
+  havePrev_ = recorded_;
+  recorded_ = false;
+  if (havePrev_)
+  {
+    prev_.swap(links); // links is rebuilt next, whatever it holds
+  }
+}
+
+void QuietLinks::forget()
+{
+  havePrev_ = recorded_ = false;
+}
+
+void QuietLinks::remember(std::size_t links, const std::vector<CapsulePair>& pairs)
+{
+  prevColliding_.assign(links, 0);
+  for (const CapsulePair& p : pairs)
+  {
+    prevColliding_[p.a] = 1;
+    prevColliding_[p.b] = 1;
+  }
+  recorded_ = true;
+}
+
+const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links, int threads)
+{
+  const std::size_t n = links.size();
+  if (!havePrev_ || prevColliding_.size() != prev_.size())
+  {
+    loudCount_ = n;
+    return nullptr;
+  }
+  const std::size_t nf = std::max(fiberCount(links), fiberCount(prev_));
+  fiberStarts(prev_, nf, prevStart_);
+  fiberStarts(links, nf, curStart_);
+  loud_.resize(n);
+  const std::int64_t nff = static_cast<std::int64_t>(nf);
+  std::int64_t loudTotal = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 64) reduction(+ : loudTotal)
+  for (std::int64_t ff = 0; ff < nff; ++ff)
+  {
+    const std::size_t f = static_cast<std::size_t>(ff);
+    const std::size_t cb = curStart_[f], ce = curStart_[f + 1];
+    const std::size_t pb = prevStart_[f];
+    if (ce == cb)
+    {
+      continue;
+    }
+    if (prevStart_[f + 1] - pb != ce - cb) // split, merge, or a fiber new to the links
+    {
+      std::fill(loud_.begin() + static_cast<std::ptrdiff_t>(cb),
+        loud_.begin() + static_cast<std::ptrdiff_t>(ce), 1);
+      loudTotal += static_cast<std::int64_t>(ce - cb);
+      continue;
+    }
+    double rhoMax = 0.0; // of the fiber at the last detection
+    for (std::size_t i = cb; i < ce; ++i)
+    {
+      const CapsuleLink& was = prev_[pb + (i - cb)];
+      rhoMax = std::max(rhoMax, was.rho);
+      loud_[i] = prevColliding_[pb + (i - cb)] || !sameCapsule(links[i], was) ? 1 : 0;
+    }
+    // Pairs of two quiet links of this fiber that the same-fiber rule skipped and skips no more.
+    const auto check = [&](std::size_t a, std::size_t b)
+    {
+      if (!loud_[b] && skipSameFiberPair(prev_[pb + (a - cb)], prev_[pb + (b - cb)]) &&
+        !skipSameFiberPair(links[a], links[b]))
+      {
+        loud_[a] = loud_[b] = 1;
+      }
+    };
+    for (std::size_t a = cb; a < ce; ++a)
+    {
+      if (loud_[a])
+      {
+        continue;
+      }
+      const CapsuleLink& pa = prev_[pb + (a - cb)];
+      const double reach = 2.0 * (pa.rho + rhoMax);
+      for (std::size_t b = a + 2; b < ce && prev_[pb + (b - cb)].arc0 - pa.arc1 < reach; ++b)
+      {
+        check(a, b);
+      }
+      if (pa.closedLength > 0.0) // the other way round, through the closure
+      {
+        for (std::size_t b = ce - 1;
+             b >= a + 2 && pa.closedLength - prev_[pb + (b - cb)].arc1 + pa.arc0 < reach; --b)
+        {
+          check(a, b);
+        }
+      }
+    }
+    for (std::size_t i = cb; i < ce; ++i)
+      loudTotal += loud_[i];
+  }
+  loudCount_ = static_cast<std::size_t>(loudTotal);
+  return &loud_;
+}
+
+} // namespace fiberpli

@@ -1,0 +1,45 @@
+/// QuietLinks: which links a detection of the collision solver must test (docs/solver.md §3.4).
+/// A link is *quiet* when nothing that decides whether one of its pairs collides has changed since
+/// the last detection and it was in no colliding pair then; a pair of two quiet links cannot
+/// collide now, so the grid skips it. The other links are *loud*. Skipping never changes the pair
+/// list: the proof is in QuietLinks.cxx and docs/solver.md §3.4.
+#pragma once
+
+#include "Index/CollisionGrid.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace fiberpli
+{
+
+class QuietLinks
+{
+public:
+  /// Before a detection whose links are about to be rebuilt into `links`: keeps the last
+  /// detection's links (swapped out of `links`, no copy) when their colliding pairs were recorded
+  /// (remember()); otherwise everything will be loud.
+  void keep(std::vector<CapsuleLink>& links);
+  /// The loud flag of every link of `links` (1 = test its pairs), null when every link is loud
+  /// (no usable last detection). Call once per detection, after keep() and the rebuild.
+  const std::vector<char>* mark(const std::vector<CapsuleLink>& links, int threads);
+  /// After a detection that found every colliding pair among `links`: which links collided, for
+  /// the next detection. Without it (a failed detection, a partial search) the next one is loud.
+  void remember(std::size_t links, const std::vector<CapsulePair>& pairs);
+  /// The next detection tests everything.
+  void forget();
+
+  /// Loud links of the last mark() (all links when it returned null).
+  std::size_t loudLinks() const { return loudCount_; }
+
+private:
+  std::vector<CapsuleLink> prev_;   // the last detection's links
+  std::vector<char> prevColliding_; // per link of prev_: in a colliding pair
+  bool havePrev_ = false;           // prev_ and prevColliding_ describe the last detection
+  bool recorded_ = false;           // remember() followed the last mark()
+  std::vector<char> loud_;
+  std::vector<std::size_t> prevStart_, curStart_; // per fiber index, its first link (+ end)
+  std::size_t loudCount_ = 0;
+};
+
+} // namespace fiberpli
