@@ -1,7 +1,8 @@
 /// SolverComm: what the distributed collision solver needs from its ranks (docs/solver.md §13):
-/// exact reductions and an all-to-all of byte buffers. Pure C++; the VTK build implements it over
-/// vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests with threads as ranks. Every
-/// call is collective: all ranks make the same calls in the same order.
+/// exact reductions, an all-to-all of byte buffers and its neighbours-only form. Pure C++; the VTK
+/// build implements it over vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests
+/// with threads as ranks. Every call is collective: all ranks make the same calls in the same
+/// order.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +23,16 @@ public:
   virtual void max(std::vector<double>& values) = 0;
   /// send[r] (size() buffers) goes to rank r; returns what every rank sent to this one, by rank.
   virtual std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) = 0;
+  /// exchange among partners only: send[r] is empty for every rank r not in `partners`
+  /// (ascending, without this rank), nothing comes from them, and the relation is symmetric (r
+  /// lists this rank when this rank lists r), so a transport needs no all-to-all of sizes. The
+  /// default is exchange().
+  virtual std::vector<std::vector<char>> exchangeWith(
+    const std::vector<int>& partners, const std::vector<std::vector<char>>& send)
+  {
+    (void)partners;
+    return exchange(send);
+  }
 };
 
 /// One rank: the reductions return their input, exchange returns send.
