@@ -16,6 +16,7 @@
 #include "Solver/Decomposition.h"
 #include "Solver/SolverComm.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -116,12 +117,18 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
   const auto key = [](const LinkPairPush& x)
   { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
   // Each record's key is computed once: the senders' next ones are kept, as is the next own one.
+  // Only the senders with records left are searched (a rank hears from its partners only, a few
+  // of R).
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
   std::vector<Key> next(received.size());          // its key
+  std::vector<std::size_t> live;                   // the senders with records left
   for (std::size_t q = 0; q < received.size(); ++q)
   {
     if (!received[q].empty())
+    {
       next[q] = key(received[q][0].push);
+      live.push_back(q);
+    }
   }
   std::size_t i = 0;            // next pair tested here
   std::size_t keyed = SIZE_MAX; // the pair whose key mine holds
@@ -131,10 +138,14 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
     while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
       ++i;                       // neither link is this rank's
     std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
-    for (std::size_t q = 0; q < received.size(); ++q)
+    std::size_t where = 0;       // its place in live
+    for (std::size_t j = 0; j < live.size(); ++j)
     {
-      if (at[q] < received[q].size() && (from == SIZE_MAX || next[q] < next[from]))
-        from = q;
+      if (from == SIZE_MAX || next[live[j]] < next[from])
+      {
+        from = live[j];
+        where = j;
+      }
     }
     if (i < tested.size() && keyed != i)
     {
@@ -151,6 +162,8 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
       const ReceivedPush& r = received[from][at[from]++];
       if (at[from] < received[from].size())
         next[from] = key(received[from][at[from]].push);
+      else
+        live.erase(live.begin() + static_cast<std::ptrdiff_t>(where));
       take(r.push, r.localA, r.localB);
     }
     else
