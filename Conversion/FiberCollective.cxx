@@ -3,12 +3,12 @@
 #include "FiberGuard.h"
 #include "FiberSolverComm.h"
 
-#include "Solver/Decomposition.h"
+#include "Parallel/Collectives.h"
+#include "Util/ByteBuffer.h"
 #include "Util/NumberFormat.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
-#include <vtkCommunicator.h>
 #include <vtkDataObject.h>
 #include <vtkExecutive.h>
 #include <vtkInformation.h>
@@ -100,9 +100,8 @@ double FiberCollective::GlobalMax(vtkInformation* info, double local)
   {
     return local;
   }
-  double global = local;
-  c->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
-  return global;
+  FiberSolverComm comm(c);
+  return maxOverRanks(comm, local);
 }
 
 std::string FiberCollective::AgreeOnPeriodicCell(
@@ -114,23 +113,25 @@ std::string FiberCollective::AgreeOnPeriodicCell(
   std::vector<RankCell> all{ mine };
   if (vtkMultiProcessController* c = ControllerFor(info))
   {
-    // Per rank: present, value count, then up to 6 values (a longer field is malformed anyway:
-    // its count alone says so).
-    constexpr int kSlot = 8;
-    double sent[kSlot] = { mine.present ? 1.0 : 0.0, static_cast<double>(mine.values.size()), 0, 0,
-      0, 0, 0, 0 };
-    std::copy_n(mine.values.begin(), std::min<std::size_t>(6, mine.values.size()), sent + 2);
-    const int ranks = c->GetNumberOfProcesses();
-    std::vector<double> got(static_cast<std::size_t>(kSlot * ranks));
-    c->AllGather(sent, got.data(), kSlot);
-    all.assign(static_cast<std::size_t>(ranks), RankCell{});
-    for (int r = 0; r < ranks; ++r)
+    // Every rank sends its cell to every rank: present, value count, then up to 6 values (a longer
+    // field is malformed anyway: its count alone says so).
+    std::vector<char> record;
+    ByteWriter w(record);
+    w.put<char>(mine.present ? 1 : 0);
+    w.put<std::uint64_t>(mine.count);
+    w.putVector(std::vector<double>(
+      mine.values.begin(), mine.values.begin() + std::min<std::size_t>(6, mine.count)));
+    FiberSolverComm comm(c);
+    const std::vector<std::vector<char>> got =
+      comm.exchange(std::vector<std::vector<char>>(static_cast<std::size_t>(comm.size()), record));
+    all.assign(got.size(), RankCell{});
+    for (std::size_t r = 0; r < got.size(); ++r)
     {
-      const double* slot = &got[static_cast<std::size_t>(kSlot * r)];
-      RankCell& cell = all[static_cast<std::size_t>(r)];
-      cell.present = slot[0] != 0.0;
-      cell.count = static_cast<std::size_t>(slot[1]);
-      cell.values.assign(slot + 2, slot + 2 + std::min<std::size_t>(6, cell.count));
+      ByteReader rd(got[r]);
+      RankCell& cell = all[r];
+      cell.present = rd.get<char>() != 0;
+      cell.count = static_cast<std::size_t>(rd.get<std::uint64_t>());
+      rd.getVector(cell.values);
     }
   }
   const std::string error = compareRankCells(all);

@@ -44,7 +44,7 @@ public:
   /// its own error on a failing rank and "<who>: rank R failed, so no rank gives output: <error of
   /// R>" (R = the lowest failing rank) on the others.
   /// Who failed and whose message wins follow the Core's one rule (agreeOnFailure,
-  /// Solver/Decomposition.h, docs/data-contract.md §5).
+  /// Parallel/Collectives.h, docs/data-contract.md §5).
   static std::string AgreeOnError(
     vtkInformation* info, const std::string& who, const std::string& localError);
 

@@ -108,6 +108,14 @@ void FiberPolyData::AddSourceFieldData(vtkPolyData* output, double segmentLength
   AddFieldInt(output, fiberfield::kSeed, seed);
 }
 
+void FiberPolyData::FromSourceModel(
+  const FiberModel& model, vtkPolyData* output, double segmentLength, int seed)
+{
+  FromModel(model, output);
+  AddInnerRadii(model, output);
+  AddSourceFieldData(output, segmentLength, seed);
+}
+
 bool FiberPolyData::IsEmpty(vtkPolyData* input)
 {
   return input == nullptr || (input->GetNumberOfPoints() == 0 && input->GetNumberOfCells() == 0);

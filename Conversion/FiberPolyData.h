@@ -75,6 +75,12 @@ public:
   /// Field data of the fiber sources: `segment_length` (µm) and `seed`.
   static void AddSourceFieldData(vtkPolyData* output, double segmentLength, int seed);
 
+  /// The output of a fiber source from its model: FromModel, the fibers' inner radii
+  /// (AddInnerRadii, FiberInnerRadii.h) and AddSourceFieldData, which every piece carries, also an
+  /// empty one.
+  static void FromSourceModel(
+    const FiberModel& model, vtkPolyData* output, double segmentLength, int seed);
+
   /// True when the polydata holds neither points nor cells (an empty piece, never an error).
   static bool IsEmpty(vtkPolyData* input);
 };

@@ -1,8 +1,10 @@
 /**
  * @class   FiberSolverComm
- * @brief   the distributed collision solver's communicator (Core/Solver/SolverComm.h) over a
- *          vtkMultiProcessController
+ * @brief   the Core's communicator (Core/Parallel/Comm.h) over a vtkMultiProcessController
  *
+ * The one place FiberPLI's reductions and exchanges between ranks reach the controller: the
+ * distributed collision solver, the tile exchange (FiberTileExchange) and the error agreement,
+ * largest values and periodic-cell comparison of FiberCollective all go through it.
  * Reductions are the controller's AllReduce (long long sums, double maxima: exact, the same on
  * every rank). The all-to-all under MPI: MPI_Alltoall of the sizes (a rank learns only the R sizes
  * addressed to it), then non-blocking receives and sends of the non-empty buffers and one wait on
@@ -15,14 +17,14 @@
 #define FiberSolverComm_h
 
 #include "FiberPLIConversionModule.h" // for export macro
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 class vtkMultiProcessController;
 
 namespace fiberpli
 {
 
-class FIBERPLICONVERSION_EXPORT FiberSolverComm final : public SolverComm
+class FIBERPLICONVERSION_EXPORT FiberSolverComm final : public Comm
 {
 public:
   explicit FiberSolverComm(vtkMultiProcessController* controller);

@@ -8,7 +8,6 @@
 
 #include <vtkAlgorithm.h>
 #include <vtkAlgorithmOutput.h>
-#include <vtkCommunicator.h>
 #include <vtkExecutive.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -74,8 +73,8 @@ std::string FiberTileExchange::UpdateBounds(vtkAlgorithm* algorithm, vtkInformat
   vtkPolyData* input =
     inInfo ? vtkPolyData::SafeDownCast(inInfo->Get(vtkDataObject::DATA_OBJECT())) : nullptr;
   std::string error;
-  // MIN over (lo, −hi): one reduction gives both corners.
-  double local[6] = { HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL };
+  // The largest (−lo, hi) over the ranks: one reduction gives both corners.
+  std::vector<double> corners(6, -HUGE_VAL); // -inf: no fibers
   if (!FiberPolyData::IsEmpty(input))
   {
     FiberConversion uncached;
@@ -85,21 +84,19 @@ std::string FiberTileExchange::UpdateBounds(vtkAlgorithm* algorithm, vtkInformat
     error = in.error;
     if (in.ok() && modelBounds(in.model, true, lo, hi))
     {
-      const double v[6] = { lo.x, lo.y, lo.z, -hi.x, -hi.y, -hi.z };
-      std::copy(v, v + 6, local);
+      corners = { -lo.x, -lo.y, -lo.z, hi.x, hi.y, hi.z };
     }
   }
-  double global[6];
-  std::copy(local, local + 6, global);
   if (c)
   {
-    c->AllReduce(local, global, 6, vtkCommunicator::MIN_OP);
+    FiberSolverComm comm(c);
+    comm.max(corners);
   }
-  for (int d = 0; d < 3; ++d)
+  for (std::size_t d = 0; d < 3; ++d)
   {
-    const bool none = global[d] == HUGE_VAL;
-    bounds[2 * d] = none ? 1.0 : global[d];
-    bounds[2 * d + 1] = none ? -1.0 : -global[3 + d];
+    const bool none = corners[d] == -HUGE_VAL;
+    bounds[2 * d] = none ? 1.0 : -corners[d];
+    bounds[2 * d + 1] = none ? -1.0 : corners[3 + d];
   }
   return error;
 }

@@ -2,7 +2,6 @@
 
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
-#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "FiberRealism.h"
@@ -204,11 +203,7 @@ int vtkFiberBundleSource::ExecutePiece(
     return 1; // aborted: no partial model is passed on
   }
   fiberpli::addMyelin(model, options.realism); // inner radii with myelin on
-  fiberpli::FiberPolyData::FromModel(model, output);
-  fiberpli::AddInnerRadii(model, output);
-
-  // The same field data on every piece, also on an empty one.
-  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  fiberpli::FiberPolyData::FromSourceModel(model, output, this->SegmentLength, this->Seed);
   this->UpdateProgress(1.0);
   return 1;
 }

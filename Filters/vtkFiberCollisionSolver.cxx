@@ -8,10 +8,11 @@
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "FiberSolverComm.h"
+#include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
-#include "Solver/Decomposition.h"
 #include "Solver/SolverSnapshots.h"
 #include "Util/MemoryBudget.h"
+#include "Util/ValueCheck.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -127,7 +128,7 @@ int vtkFiberCollisionSolver::RequestUpdateExtent(
 }
 
 //------------------------------------------------------------------------------
-int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* comm)
+int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::Comm* comm)
 {
   bool stale = !this->Cache || this->Cache->inputTime != input->GetMTime() ||
     this->Cache->filterTime != this->GetMTime();
@@ -158,7 +159,7 @@ int vtkFiberCollisionSolver::Solve(vtkPolyData* input, fiberpli::SolverComm* com
 
 //------------------------------------------------------------------------------
 std::string vtkFiberCollisionSolver::SolveInto(
-  vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm)
+  vtkPolyData* input, Snapshots& cache, fiberpli::Comm* comm)
 {
   fiberpli::CollisionSolverOptions options;
   std::string error = this->CheckInput(input, cache, options);
@@ -214,11 +215,16 @@ std::string vtkFiberCollisionSolver::CheckInput(
   {
     fiberpliWarningMacro(<< threadWarning);
   }
-  if (this->IterationsAsTime && (this->TimeStepInterval < 1 || this->MaximumSnapshots < 2))
+  if (this->IterationsAsTime)
   {
-    return fiberpli::ProxyMessage(this,
-      "TimeStepInterval is " + std::to_string(this->TimeStepInterval) + " and MaximumSnapshots " +
-        std::to_string(this->MaximumSnapshots) + ", must be >= 1 and >= 2");
+    const std::string badSnapshots = fiberpli::ValueChecks()
+                                       .atLeast("TimeStepInterval", this->TimeStepInterval, 1)
+                                       .atLeast("MaximumSnapshots", this->MaximumSnapshots, 2)
+                                       .error();
+    if (!badSnapshots.empty())
+    {
+      return fiberpli::ProxyMessage(this, badSnapshots);
+    }
   }
   cache.input = fiberpli::FiberPolyData::ToModel(input, fiberpli::ProxyName(this));
   if (!cache.input.ok())
@@ -266,7 +272,7 @@ std::string vtkFiberCollisionSolver::CheckInput(
 
 //------------------------------------------------------------------------------
 std::string vtkFiberCollisionSolver::RunSolve(
-  Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm)
+  Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::Comm* comm)
 {
   fiberpli::FiberModel model = cache.input.model;
   fiberpli::StepObserver observer;

@@ -35,7 +35,7 @@
 class vtkMultiProcessController;
 namespace fiberpli
 {
-class SolverComm;
+class Comm;
 struct CollisionSolverOptions;
 }
 #include <string>
@@ -215,7 +215,7 @@ protected:
   /// Solves `input` unless the cache holds its solve or its failure: 1 solved, 0 error
   /// (reported on every call, computed once), -1 aborted (never cached). comm: `input` is this
   /// rank's piece of a distributed solve (collective; docs/solver.md §13).
-  int Solve(vtkPolyData* input, fiberpli::SolverComm* comm = nullptr);
+  int Solve(vtkPolyData* input, fiberpli::Comm* comm = nullptr);
 
 private:
   vtkFiberCollisionSolver(const vtkFiberCollisionSolver&) = delete;
@@ -240,14 +240,14 @@ private:
 
   struct Snapshots; // solved states per time step, cached for IterationsAsTime
   /// One solve into `cache`: "" or the error message (cache.result.aborted on an abort).
-  std::string SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::SolverComm* comm);
+  std::string SolveInto(vtkPolyData* input, Snapshots& cache, fiberpli::Comm* comm);
   /// The checks of this rank's input and properties: "" or the error; fills cache.input and
   /// options.
   std::string CheckInput(
     vtkPolyData* input, Snapshots& cache, fiberpli::CollisionSolverOptions& options);
   /// The solve itself (after every rank passed CheckInput): "" or the error.
   std::string RunSolve(
-    Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::SolverComm* comm);
+    Snapshots& cache, const fiberpli::CollisionSolverOptions& options, fiberpli::Comm* comm);
   /// The controller of a distributed solve of this request (every rank one piece, IterationsAsTime
   /// off), else nullptr.
   vtkMultiProcessController* Distributed(vtkInformation* outInfo) const;

@@ -3,7 +3,6 @@
 #include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
-#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "FiberRealism.h"
@@ -163,11 +162,7 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   }
   this->UpdateProgress(0.8);
   fiberpli::addMyelin(model, options.realism); // inner radii with myelin on
-  fiberpli::FiberPolyData::FromModel(model, output);
-  fiberpli::AddInnerRadii(model, output);
-
-  // The same field data on every piece, also on an empty one.
-  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  fiberpli::FiberPolyData::FromSourceModel(model, output, this->SegmentLength, this->Seed);
   if (this->Periodic)
   {
     fiberpli::AddPeriodicCell(output, fiberpli::cubeCell(options));

@@ -1,11 +1,13 @@
 #include "vtkFiberFieldSource.h"
 
+#include "FiberAdapter.h"
 #include "FiberCollective.h"
 #include "FiberFieldData.h"
-#include "FiberInnerRadii.h"
 #include "FiberPolyData.h"
 #include "FiberProgress.h"
 #include "Field/FieldFibers.h"
+#include "Field/GuideField.h"
+#include "GuideLinesData.h"
 #include "Model/DataNames.h"
 #include "Model/FiberPieces.h"
 #include "OrientationFieldData.h"
@@ -38,6 +40,75 @@ bool IsNone(const std::string& name)
 {
   return name.empty() || name == "None";
 }
+
+/// The input arrays OrientationArray and SecondOrientationArray selected: array, association.
+struct SelectedArray
+{
+  vtkDataArray* array = nullptr;
+  int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
+};
+
+/// The field(s) of the image's OrientationArray and SecondOrientationArray: "" or the message.
+/// `notFinite` receives how many axes were NaN or infinite.
+std::string ImageFields(vtkAlgorithm* self, vtkImageData* image, const SelectedArray selected[2],
+  std::vector<fiberpli::OrientationField>& fields, std::size_t& notFinite)
+{
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    return "the input image has no points (an orientation field needs a 3-D grid; or give guide "
+           "lines as a vtkPolyData)";
+  }
+  // The arrays: the first is required, the second optional ("None"); a 6-component first array
+  // holds both populations.
+  notFinite = 0;
+  int firstAssociation = -1;
+  std::string firstName;
+  for (int idx = 0; idx < 2; ++idx)
+  {
+    const std::string name = SelectedName(self, idx);
+    const std::string property = idx == 0 ? "OrientationArray '" : "SecondOrientationArray '";
+    const int association = selected[idx].association;
+    vtkDataArray* vectors = selected[idx].array;
+    if (!vectors && idx == 1 && IsNone(name))
+    {
+      break;
+    }
+    if (!vectors)
+    {
+      return property + name +
+        "': the input has no such array (a point or cell array of 3 components, or 6 for two axes "
+        "per point, is needed)";
+    }
+    const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    if (idx == 1 && fields.size() == 2)
+    {
+      return property + name + "' is set, but OrientationArray '" + firstName +
+        "' has 6 components and already holds two populations (at most two): set "
+        "SecondOrientationArray to None";
+    }
+    if (idx == 1 && vectors->GetNumberOfComponents() != 3)
+    {
+      return property + name + "' has " + std::to_string(vectors->GetNumberOfComponents()) +
+        " components, must have 3 (two axes per point go into OrientationArray as one "
+        "6-component array)";
+    }
+    if (idx == 1 && association != firstAssociation)
+    {
+      return property + name + "' is a " + (cells ? "cell" : "point") +
+        " array and OrientationArray is not: both fields must be on the same grid";
+    }
+    firstAssociation = association;
+    firstName = name;
+    std::size_t bad = 0;
+    const std::string problem = fiberpli::ToOrientationFields(image, vectors, cells, fields, bad);
+    if (!problem.empty())
+    {
+      return property + name + "': " + problem;
+    }
+    notFinite += bad;
+  }
+  return {};
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -54,11 +125,12 @@ vtkFiberFieldSource::vtkFiberFieldSource()
 int vtkFiberFieldSource::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData"); // guide lines
   return 1;
 }
 
 //------------------------------------------------------------------------------
-// Every piece traces from the whole field (a fiber crosses the whole region).
+// Every piece traces from the whole field or all guides (a fiber crosses the whole region).
 int vtkFiberFieldSource::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
@@ -99,61 +171,6 @@ int vtkFiberFieldSource::Execute(
     vtkErrorMacro(<< "FiberFieldSource: " << badSeed);
     return 0;
   }
-  vtkImageData* image = vtkImageData::GetData(inputVector[0]);
-  if (!image || image->GetNumberOfPoints() == 0)
-  {
-    vtkErrorMacro(
-      << "FiberFieldSource: the input image has no points (an orientation field needs a 3-D grid)");
-    return 0;
-  }
-  // The arrays: the first is required, the second optional ("None").
-  std::vector<fiberpli::OrientationField> fields;
-  std::size_t notFinite = 0;
-  int firstAssociation = -1;
-  for (int idx = 0; idx < 2; ++idx)
-  {
-    const std::string name = SelectedName(this, idx);
-    const char* property = idx == 0 ? "OrientationArray" : "SecondOrientationArray";
-    int association = vtkDataObject::FIELD_ASSOCIATION_POINTS;
-    vtkDataArray* vectors = this->GetInputArrayToProcess(idx, image, association);
-    if (!vectors && idx == 1 && IsNone(name))
-    {
-      break;
-    }
-    if (!vectors)
-    {
-      vtkErrorMacro(
-        << "FiberFieldSource: " << property << " '" << name
-        << "': the input has no such array (a 3-component point or cell array is needed)");
-      return 0;
-    }
-    const bool cells = association == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-    if (idx == 1 && association != firstAssociation)
-    {
-      vtkErrorMacro(<< "FiberFieldSource: SecondOrientationArray '" << name << "' is a "
-                    << (cells ? "cell" : "point")
-                    << " array and OrientationArray is not: both fields must be on the same grid");
-      return 0;
-    }
-    firstAssociation = association;
-    fields.emplace_back();
-    std::size_t bad = 0;
-    const std::string problem =
-      fiberpli::ToOrientationField(image, vectors, cells, fields.back(), bad);
-    if (!problem.empty())
-    {
-      vtkErrorMacro(<< "FiberFieldSource: " << property << ": " << problem);
-      return 0;
-    }
-    notFinite += bad;
-  }
-  if (notFinite > 0)
-  {
-    vtkWarningMacro(
-      << "FiberFieldSource: " << notFinite
-      << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
-  }
-
   fiberpli::FieldFiberOptions options;
   options.volumeFraction = this->VolumeFraction;
   options.numberOfFibers = this->NumberOfFibers;
@@ -178,15 +195,76 @@ int vtkFiberFieldSource::Execute(
     vtkErrorMacro(<< "FiberFieldSource: " << code);
     return 0;
   }
+  // The fields: from the image's arrays, or rasterised from guide lines.
+  std::vector<fiberpli::OrientationField> fields;
+  double traceBegin = 0.0;
+  if (vtkPolyData* guides = vtkPolyData::GetData(inputVector[0]))
+  {
+    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
+    {
+      return 0;
+    }
+    fiberpli::GuideFieldOptions guideOptions;
+    guideOptions.radius = this->GuideRadius;
+    guideOptions.spacing = this->GuideSpacing;
+    guideOptions.threads = this->NumberOfThreads;
+    if (!fiberpli::CheckEnum(this, this->GuidePopulations, 1, "GuidePopulations",
+          "0 (One) or 1 (ByBundle)", guideOptions.populations))
+    {
+      return 0;
+    }
+    std::vector<fiberpli::GuideLine> lines;
+    std::string problem = fiberpli::ToGuideLines(guides, lines);
+    fiberpli::GuideFieldResult guideField;
+    if (problem.empty())
+    {
+      traceBegin = 0.2;
+      guideField = fiberpli::guideOrientationFields(
+        lines, guideOptions, fiberpli::MakeProgress(this, 0.0, traceBegin));
+      if (guideField.aborted)
+      {
+        return 1; // an aborted source passes nothing on (AbortScope empties the output)
+      }
+      problem = guideField.error;
+    }
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "FiberFieldSource: " << problem);
+      return 0;
+    }
+    fields = std::move(guideField.fields);
+  }
+  else
+  {
+    vtkImageData* image = vtkImageData::GetData(inputVector[0]);
+    SelectedArray selected[2];
+    for (int idx = 0; idx < 2 && image; ++idx)
+    {
+      selected[idx].array = this->GetInputArrayToProcess(idx, image, selected[idx].association);
+    }
+    std::size_t notFinite = 0;
+    const std::string problem = ImageFields(this, image, selected, fields, notFinite);
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "FiberFieldSource: " << problem);
+      return 0;
+    }
+    if (notFinite > 0)
+    {
+      vtkWarningMacro(
+        << "FiberFieldSource: " << notFinite
+        << " orientation vector(s) are NaN or infinite; they count as empty (no fibers there)");
+    }
+  }
   std::vector<const fiberpli::OrientationField*> pointers;
   for (const fiberpli::OrientationField& f : fields)
   {
     pointers.push_back(&f);
   }
 
-  this->UpdateProgress(0.0);
+  this->UpdateProgress(traceBegin);
   fiberpli::FieldFiberResult result =
-    fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, 0.0, 0.9));
+    fiberpli::generateFieldFibers(pointers, options, fiberpli::MakeProgress(this, traceBegin, 0.9));
   if (result.aborted)
   {
     return 1; // an aborted source passes nothing on (AbortScope empties the output)
@@ -207,9 +285,7 @@ int vtkFiberFieldSource::Execute(
   mine.fibers.assign(
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.begin)),
     std::make_move_iterator(result.model.fibers.begin() + static_cast<std::ptrdiff_t>(range.end)));
-  fiberpli::FiberPolyData::FromModel(mine, output);
-  fiberpli::AddInnerRadii(mine, output);
-  fiberpli::FiberPolyData::AddSourceFieldData(output, this->SegmentLength, this->Seed);
+  fiberpli::FiberPolyData::FromSourceModel(mine, output, this->SegmentLength, this->Seed);
   fiberpli::AddFieldDoubles(
     output, fiberpli::fiberfield::kTracedVolumeFraction, { result.volumeFraction });
   this->UpdateProgress(1.0);
@@ -235,4 +311,8 @@ void vtkFiberFieldSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GRatio: " << this->GRatio << "\n";
   os << indent << "GRatioModel: " << this->GRatioModel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "GuideRadius: " << this->GuideRadius << "\n";
+  os << indent << "GuideSpacing: " << this->GuideSpacing << "\n";
+  os << indent << "GuidePopulations: " << this->GuidePopulations << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

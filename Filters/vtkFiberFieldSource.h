@@ -1,22 +1,29 @@
 /**
  * @class   vtkFiberFieldSource
- * @brief   fills the region of a 3-D orientation field with fibers that follow it
+ * @brief   fills the region of a 3-D orientation field, or around guide lines, with fibers that
+ * follow it
  *
  * Input: a vtkImageData with a 3-component point array, the fiber axis at every grid point, or a
  * cell array, the axis at every cell centre (its sign does not matter; a zero vector marks an empty
  * point where no fiber goes; NaN vectors count as empty, with a warning). It is input array 0
  * (SetInputArrayToProcess; in ParaView the property OrientationArray). An optional second array
- * (input array 1, SecondOrientationArray) is a second, crossing population. Output: fiber polydata
- * (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm; with GRatio > 0
- * also `inner_radius`), cell arrays `fiber_id` and `bundle_id` (the index of the field the fiber
- * follows), field data `segment_length`, `seed` and `traced_volume_fraction` (the Σ π r² · length
- * reached over the non-empty volume). Seeds are uniform over the non-empty part of the region,
- * every fiber is traced both ways with RK2 or RK4 steps of SegmentLength and ends on the region's
- * boundary or the mask's edge (docs/field-source.md). Fibers are added until VolumeFraction is
- * reached, or NumberOfFibers when that is > 0. Identical input and properties give identical
- * output. Invalid properties or input give an error naming them and an empty output. Pieces: piece
- * p of P holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers (every piece traces all of
- * them from the whole field, so the pieces in order are the serial output).
+ * (input array 1, SecondOrientationArray) is a second, crossing population; a 6-component
+ * OrientationArray holds both populations in one array (components 0-2 and 3-5, a zero triple =
+ * that population absent there), exactly as the two halves given as two arrays. Or: a vtkPolyData
+ * of guide lines (e.g. tractography streamlines read from a .tck file): its line cells are
+ * rasterised into the field on a grid of GuideSpacing covering the guides padded by GuideRadius
+ * (docs/field-source.md §7; one population, or one per bundle_id value with GuidePopulations
+ * ByBundle); the array selections are then not used. Output: fiber
+ * polydata (docs/data-contract.md §1): one polyline per fiber, point array `radius` (µm; with
+ * GRatio > 0 also `inner_radius`), cell arrays `fiber_id` and `bundle_id` (the index of the field
+ * the fiber follows), field data `segment_length`, `seed` and `traced_volume_fraction` (the Σ π r²
+ * · length reached over the non-empty volume). Seeds are uniform over the non-empty part of the
+ * region, every fiber is traced both ways with RK2 or RK4 steps of SegmentLength and ends on the
+ * region's boundary or the mask's edge (docs/field-source.md). Fibers are added until
+ * VolumeFraction is reached, or NumberOfFibers when that is > 0. Identical input and properties
+ * give identical output. Invalid properties or input give an error naming them and an empty output.
+ * Pieces: piece p of P holds the contiguous range [N·p/P, N·(p+1)/P) of the N fibers (every piece
+ * traces all of them from the whole field, so the pieces in order are the serial output).
  */
 #ifndef vtkFiberFieldSource_h
 #define vtkFiberFieldSource_h
@@ -151,6 +158,44 @@ public:
   vtkGetMacro(Seed, int);
   ///@}
 
+  ///@{
+  /**
+   * Guide lines (a vtkPolyData input): how far a guide reaches, in µm, > 0. A grid point within
+   * GuideRadius of a guide segment takes the principal axis of the length-weighted orientation
+   * tensor of the segments within that distance; farther points are empty. Default is 5.
+   */
+  vtkSetMacro(GuideRadius, double);
+  vtkGetMacro(GuideRadius, double);
+  ///@}
+
+  ///@{
+  /**
+   * Guide lines: the spacing in µm of the grid the guides are rasterised on, in (0, GuideRadius].
+   * The grid covers the guides' bounds padded by GuideRadius. Default is 1.
+   */
+  vtkSetMacro(GuideSpacing, double);
+  vtkGetMacro(GuideSpacing, double);
+  ///@}
+
+  ///@{
+  /**
+   * Guide lines: 0 One (all guides one population, bundle_id 0) or 1 ByBundle (the guides of each
+   * value of their bundle_id cell array make one population, at most two; the smaller value gets
+   * bundle_id 0). Default is 0.
+   */
+  vtkSetMacro(GuidePopulations, int);
+  vtkGetMacro(GuidePopulations, int);
+  ///@}
+
+  ///@{
+  /**
+   * Threads for rasterising guide lines, 0 = all cores; the result does not depend on it.
+   * Default is 0.
+   */
+  vtkSetMacro(NumberOfThreads, int);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
 protected:
   vtkFiberFieldSource();
   ~vtkFiberFieldSource() override = default;
@@ -178,6 +223,10 @@ private:
   double GRatio = 0.0;
   int GRatioModel = 0;
   int Seed = 42;
+  double GuideRadius = 5.0;
+  double GuideSpacing = 1.0;
+  int GuidePopulations = 0;
+  int NumberOfThreads = 0;
 };
 
 #endif

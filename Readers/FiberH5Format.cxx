@@ -5,6 +5,7 @@
 #include "Model/PeriodicCellRule.h"
 #include "Util/MemoryBudget.h"
 #include "Util/PrintableText.h"
+#include "Util/ValueCheck.h"
 
 #include "vtk_hdf5.h"
 
@@ -190,11 +191,10 @@ std::string readInnerRadiusAttribute(hid_t data, Fiber& f)
   {
     if (!std::isfinite(f.innerRadii[i]) || f.innerRadii[i] <= 0.0 || f.innerRadii[i] > f.radii[i])
     {
-      std::ostringstream msg;
-      msg << "attribute inner_radius of point " << i << " is " << f.innerRadii[i]
-          << " (must be finite, > 0 and <= radius " << f.radii[i] << ")";
+      const std::string message = mustBe("attribute inner_radius of point " + formatNumber(i),
+        f.innerRadii[i], "finite, > 0 and <= radius " + formatNumber(f.radii[i]));
       f.innerRadii.clear();
-      return msg.str();
+      return message;
     }
   }
   return {};

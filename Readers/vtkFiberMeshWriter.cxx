@@ -10,6 +10,7 @@
 #include "IO/McdcCylinders.h"
 #include "Mesh/SubstrateMesher.h"
 #include "Util/NumberFormat.h"
+#include "Util/ValueCheck.h"
 
 #include <vtkDataArray.h>
 #include <vtkErrorCode.h>
@@ -82,10 +83,10 @@ void vtkFiberMeshWriter::WriteMesh()
   const std::string path(this->FileName);
   if (!(this->Tolerance >= 0.0) || !std::isfinite(this->Tolerance))
   {
-    std::ostringstream m;
-    m << "FiberMeshWriter: Tolerance is " << this->Tolerance
-      << " µm, must be finite and >= 0 (0: use NumberOfSides)";
-    this->Fail(vtkErrorCode::UserError, m.str());
+    this->Fail(vtkErrorCode::UserError,
+      fiberpli::ProxyMessage(this,
+        fiberpli::mustBe(
+          "Tolerance", this->Tolerance, "finite and >= 0 (0: use NumberOfSides)", "µm")));
     return;
   }
   fiberpli::McdcCylinderList listKind = fiberpli::McdcCylinderList::ZAligned;
@@ -104,8 +105,8 @@ void vtkFiberMeshWriter::WriteMesh()
   {
     this->Fail(vtkErrorCode::UserError,
       fiberpli::ProxyMessage(this,
-        "StraightnessTolerance is " + fiberpli::formatNumber(this->StraightnessTolerance) +
-          " µm, must be finite and >= 0"));
+        fiberpli::mustBe(
+          "StraightnessTolerance", this->StraightnessTolerance, "finite and >= 0", "µm")));
     return;
   }
   vtkPolyData* input = vtkPolyData::SafeDownCast(this->GetInput());

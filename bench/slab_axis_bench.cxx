@@ -86,7 +86,7 @@ int main(int argc, char** argv)
         pieces[r].fibers.push_back(model.fibers[f]);
     }
     fiberpli_test::runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         const std::size_t r = static_cast<std::size_t>(comm.rank());
         const BoxLayout layout =

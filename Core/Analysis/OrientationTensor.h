@@ -3,6 +3,7 @@
 /// direction × |inclination| histogram; the mean axis is the principal eigenvector of M (Jacobi).
 #pragma once
 
+#include "Geometry/SymmetricEigen.h" // symmetricEigen3
 #include "Geometry/Vec3.h"
 
 #include <cstdint>
@@ -10,10 +11,6 @@
 
 namespace fiberpli
 {
-
-/// Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations: eigenvalues in
-/// descending order, vectors[k] the unit eigenvector of values[k].
-void symmetricEigen3(const double m[3][3], double values[3], Vec3 vectors[3]);
 
 /// Ground truth of one pixel (§5); angles in radians.
 struct PixelTruth

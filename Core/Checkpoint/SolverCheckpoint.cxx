@@ -45,13 +45,6 @@ std::uint64_t bitsOf(double v)
   return u;
 }
 
-double doubleOf(std::uint64_t u)
-{
-  double v;
-  std::memcpy(&v, &u, sizeof v);
-  return v;
-}
-
 // The options that decide the result, by the name the user knows them (the pvpython property
 // where there is one). numberOfThreads is not among them: the result does not depend on it.
 std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOptions& o)
@@ -87,7 +80,12 @@ public:
     binary::store64LE(b, v);
     bytes(b, 8);
   }
-  void f64(double v) { u64(bitsOf(v)); }
+  void f64(double v)
+  {
+    unsigned char b[8];
+    binary::storeFloat64LE(b, v);
+    bytes(b, 8);
+  }
   void vec(const Vec3& v)
   {
     f64(v.x);
@@ -139,7 +137,12 @@ public:
     bytes(b, 8);
     return binary::load64(b, true);
   }
-  double f64() { return doubleOf(u64()); }
+  double f64()
+  {
+    unsigned char b[8];
+    bytes(b, 8);
+    return binary::loadFloat64(b, true);
+  }
   Vec3 vec()
   {
     const double x = f64();
@@ -414,7 +417,7 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   return {};
 }
 
-std::string checkpointPath(const std::string& path, const SolverComm* comm)
+std::string checkpointPath(const std::string& path, const Comm* comm)
 {
   if (!comm || comm->size() < 2)
   {
@@ -432,7 +435,7 @@ namespace
 {
 // Collective: "" when no rank failed, else (on every rank) its own error, or the lowest failing
 // rank's error named as such.
-std::string agree(SolverComm* comm, const std::string& local)
+std::string agree(Comm* comm, const std::string& local)
 {
   if (!comm || comm->size() < 2)
   {
@@ -571,8 +574,7 @@ std::string describe(const std::vector<Generation>& gens)
 
 // Collective: the index in gens of the newest step every rank holds, or -1 and (the same on
 // every rank) a message naming each rank's files and their steps.
-int newestCommonGeneration(
-  SolverComm* comm, const std::vector<Generation>& gens, std::string& error)
+int newestCommonGeneration(Comm* comm, const std::vector<Generation>& gens, std::string& error)
 {
   if (!comm || comm->size() < 2)
   {
@@ -637,7 +639,7 @@ std::int64_t indexHash(std::int64_t i)
 // Collective: "" when the ranks' pieces hold every fiber of the model exactly once (their global
 // indices cover 0..N-1, N the total fiber count: the same count, sum and hash sum), else (on
 // every rank) a message naming this rank's file and step.
-std::string checkFiberSet(SolverComm* comm, const Generation& g)
+std::string checkFiberSet(Comm* comm, const Generation& g)
 {
   const std::vector<std::int64_t>& global = g.state.global;
   std::vector<std::int64_t> sums{ static_cast<std::int64_t>(global.size()), 0, 0 };
@@ -678,7 +680,7 @@ std::string checkFiberSet(SolverComm* comm, const Generation& g)
 
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
   const CheckpointOptions& checkpoint, const ProgressFn& progress, const StepObserver& observer,
-  SolverComm* comm)
+  Comm* comm)
 {
   // Every rank decides these alike (same properties everywhere), so none waits in agree() alone.
   CollisionSolverResult failed;

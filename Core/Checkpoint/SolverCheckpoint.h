@@ -5,8 +5,8 @@
 #pragma once
 
 #include "Model/FiberModel.h"
+#include "Parallel/Comm.h"
 #include "Solver/CollisionSolver.h"
-#include "Solver/SolverComm.h"
 
 #include <cstdint>
 #include <string>
@@ -41,7 +41,7 @@ struct CheckpointOptions
 
 /// The file a rank writes: `path` itself without comm (or with one rank), else
 /// "<path>.<rank>-of-<ranks>", one file per rank (its owned fibers and their state).
-std::string checkpointPath(const std::string& path, const SolverComm* comm);
+std::string checkpointPath(const std::string& path, const Comm* comm);
 
 /// "<file>.prev": the generation before `file` (solveWithCheckpoints keeps it when it writes).
 std::string previousCheckpointPath(const std::string& file);
@@ -58,6 +58,6 @@ std::string previousCheckpointPath(const std::string& file);
 /// fails, naming the files and their steps.
 CollisionSolverResult solveWithCheckpoints(FiberModel& model, const CollisionSolverOptions& options,
   const CheckpointOptions& checkpoint, const ProgressFn& progress = {},
-  const StepObserver& observer = {}, SolverComm* comm = nullptr);
+  const StepObserver& observer = {}, Comm* comm = nullptr);
 
 } // namespace fiberpli

@@ -1,5 +1,7 @@
 #include "Field/FieldAgreement.h"
 
+#include "Geometry/SymmetricEigen.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,66 +12,13 @@ namespace fiberpli
 
 Vec3 principalAxis(const double m[9])
 {
-  // Cyclic Jacobi rotations: a handful of sweeps diagonalise a 3×3 symmetric matrix to rounding.
-  double a[3][3];
-  double v[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      a[i][j] = m[3 * i + j];
-    }
-  }
-  for (int sweep = 0; sweep < 50; ++sweep)
-  {
-    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-    if (off <= 1e-30 * (a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2]) || off == 0.0)
-    {
-      break;
-    }
-    for (int p = 0; p < 2; ++p)
-    {
-      for (int q = p + 1; q < 3; ++q)
-      {
-        if (a[p][q] == 0.0)
-        {
-          continue;
-        }
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t =
-          (theta >= 0.0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
-        const double c = 1.0 / std::sqrt(t * t + 1.0);
-        const double s = t * c;
-        for (int k = 0; k < 3; ++k) // A ← A·J
-        {
-          const double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < 3; ++k) // A ← Jᵀ·A
-        {
-          const double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
-        for (int k = 0; k < 3; ++k) // V ← V·J
-        {
-          const double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - s * vkq;
-          v[k][q] = s * vkp + c * vkq;
-        }
-      }
-    }
-  }
-  int best = 0;
-  for (int i = 1; i < 3; ++i)
-  {
-    if (a[i][i] > a[best][best])
-    {
-      best = i;
-    }
-  }
-  return normalized(Vec3{ v[0][best], v[1][best], v[2][best] });
+  const double a[3][3] = { { m[0], m[1], m[2] }, { m[3], m[4], m[5] }, { m[6], m[7], m[8] } };
+  double values[3];
+  Vec3 vectors[3];
+  // Sweeps stop once the off-diagonal part is negligible against the diagonal (1e-30 of its
+  // squares): a handful diagonalise the matrix to rounding.
+  symmetricEigen3(a, values, vectors, 1e-30);
+  return vectors[0];
 }
 
 FieldAgreement fieldAgreement(const FiberModel& model, const OrientationField& field, int bundle)

@@ -243,7 +243,9 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     if (nonEmptyShare(*fields[static_cast<std::size_t>(k)]) == 0.0)
     {
       result.error = std::string("the ") +
-        (k == 0 ? "orientation field" : "second orientation field") +
+        (k == 0 ? "orientation field"
+                : "second orientation field (SecondOrientationArray, or components 3-5 of a "
+                  "6-component OrientationArray)") +
         " is empty everywhere (every vector zero or not finite)";
       return result;
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace fiberpli
 {
@@ -52,6 +53,51 @@ std::size_t normalizeOrientationField(OrientationField& f)
     v = n > 0.0 && std::isfinite(n) ? v / n : Vec3{};
   }
   return notFinite;
+}
+
+std::string validateOrientationComponents(int components)
+{
+  if (components == 3 || components == 6)
+  {
+    return {};
+  }
+  return "has " + std::to_string(components) +
+    " components; an orientation array needs 3 (one axis per point) or 6 (two axes per point: "
+    "components 0-2 and 3-5)";
+}
+
+std::string orientationFieldsFromArray(const double* values, std::size_t tuples, int components,
+  const OrientationField& grid, std::vector<OrientationField>& fields, std::size_t& notFinite)
+{
+  fields.clear();
+  notFinite = 0;
+  const std::string badComponents = validateOrientationComponents(components);
+  if (!badComponents.empty())
+  {
+    return badComponents;
+  }
+  if (tuples != grid.size())
+  {
+    return "has " + std::to_string(tuples) + " tuples for " + std::to_string(grid.size()) +
+      " grid points";
+  }
+  const int populations = components / 3;
+  for (int p = 0; p < populations; ++p)
+  {
+    OrientationField f;
+    f.origin = grid.origin;
+    f.spacing = grid.spacing;
+    f.dimensions = grid.dimensions;
+    f.vectors.resize(tuples);
+    const double* v = values + 3 * p;
+    for (std::size_t i = 0; i < tuples; ++i, v += components)
+    {
+      f.vectors[i] = { v[0], v[1], v[2] };
+    }
+    notFinite += normalizeOrientationField(f);
+    fields.push_back(std::move(f));
+  }
+  return {};
 }
 
 double nonEmptyShare(const OrientationField& f)

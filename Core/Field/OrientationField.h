@@ -51,6 +51,20 @@ std::string validateOrientationField(const OrientationField& field);
 /// Returns how many were not finite (NaN or infinite components), for the caller's warning.
 std::size_t normalizeOrientationField(OrientationField& field);
 
+/// "" for 3 or 6 components per grid point (one or two axes), else "has <n> components; an
+/// orientation array needs 3 ... or 6 ..." (the caller puts the array's name in front).
+std::string validateOrientationComponents(int components);
+
+/// The populations of an orientation array with `components` values per grid point (x fastest,
+/// `tuples` tuples, interleaved as VTK stores them) on the grid of `grid` (its origin, spacing and
+/// dimensions; its vectors are not used): 3 components give one field, 6 give two populations
+/// (axis 1 = components 0–2, axis 2 = components 3–5; a zero triple leaves that population empty
+/// at that point), exactly the fields two 3-component arrays would give. Every field is normalised
+/// (normalizeOrientationField); `notFinite` receives how many triples were NaN or infinite. Returns
+/// "" or the reason: validateOrientationComponents's, or a tuple count unlike the grid's.
+std::string orientationFieldsFromArray(const double* values, std::size_t tuples, int components,
+  const OrientationField& grid, std::vector<OrientationField>& fields, std::size_t& notFinite);
+
 /// The share of grid points that are not empty, in [0, 1].
 double nonEmptyShare(const OrientationField& field);
 

@@ -2,6 +2,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <sstream>
@@ -62,7 +63,7 @@ CactusReadResult readCactusStrands(
     const LineReader::Status s = lines.next(line);
     if (s == LineReader::Status::TooLong)
     {
-      why = "line is longer than " + std::to_string(maxLineLength) + " characters";
+      why = lines.reader.tooLongMessage();
       return false;
     }
     if (s != LineReader::Status::Line)
@@ -142,8 +143,7 @@ CactusReadResult readCactusStrands(
       const LineReader::Status st = lines.next(line);
       if (st == LineReader::Status::TooLong)
       {
-        return fail(lines.reader.lineNumber(),
-          "line is longer than " + std::to_string(maxLineLength) + " characters");
+        return fail(lines.reader.lineNumber(), lines.reader.tooLongMessage());
       }
       if (st != LineReader::Status::Line)
       {
@@ -171,9 +171,7 @@ CactusReadResult readCactusStrands(
       }
       if (!(v[3] > 0.0))
       {
-        std::ostringstream msg;
-        msg << "radius " << v[3] << " must be > 0";
-        return fail(lines.reader.lineNumber(), msg.str());
+        return fail(lines.reader.lineNumber(), valueMustBe("radius", v[3], "> 0"));
       }
       fiber.points.push_back({ v[0], v[1], v[2] });
       fiber.radii.push_back(v[3]);

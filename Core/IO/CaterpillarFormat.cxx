@@ -3,6 +3,7 @@
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
 #include "Model/InnerRadii.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,23 +107,9 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
   };
 
   std::string_view line;
-  for (;;)
+  LineReader::Stop stop;
+  while (reader.nextLine(line, stop, " (not a CATERPillar sphere line)"))
   {
-    const LineReader::Status status = reader.next(line);
-    if (status == LineReader::Status::End)
-    {
-      break;
-    }
-    if (status == LineReader::Status::TooLong)
-    {
-      return fail(reader.lineNumber(),
-        "line is longer than " + std::to_string(maxLineLength) +
-          " characters (not a CATERPillar sphere line)");
-    }
-    if (status == LineReader::Status::Failed)
-    {
-      return fail(reader.lineNumber() + 1, "read error");
-    }
     if (isBlank(line))
     {
       continue;
@@ -163,10 +150,9 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     }
     if (!(v[3] > 0.0) || !(v[4] > 0.0))
     {
-      std::ostringstream msg;
-      msg << (v[3] > 0.0 ? "outer_radius " : "inner_radius ") << (v[3] > 0.0 ? v[4] : v[3])
-          << " must be > 0";
-      return fail(reader.lineNumber(), msg.str());
+      return fail(reader.lineNumber(),
+        v[3] > 0.0 ? valueMustBe("outer_radius", v[4], "> 0")
+                   : valueMustBe("inner_radius", v[3], "> 0"));
     }
     if (v[3] > v[4])
     {
@@ -211,6 +197,10 @@ FiberReadResult readCaterpillarCsv(std::istream& in, const std::string& fileName
     inner.push_back(v[3]);
     anyInnerDiffers = anyInnerDiffers || v[3] != v[4];
   }
+  if (stop.failed())
+  {
+    return fail(stop.line, stop.what);
+  }
   if (!headerSeen)
   {
     return fail(
@@ -252,10 +242,8 @@ std::string writeCaterpillarCsv(std::ostream& out, const FiberModel& model, doub
   }
   if (!std::isfinite(tolerance) || !(tolerance > 0.0))
   {
-    std::ostringstream msg;
-    msg << "cannot write CATERPillar .csv: sphere tolerance " << tolerance
-        << " µm must be finite and > 0";
-    return msg.str();
+    return "cannot write CATERPillar .csv: " +
+      valueMustBe("sphere tolerance", tolerance, "finite and > 0", "µm");
   }
   // The one rule of Model/InnerRadii.h: per fiber none, or one value per point in (0, radius].
   const std::string badInner = validateInnerRadii(model);

@@ -3,6 +3,7 @@
 
 #include "IO/LineReader.h"
 #include "IO/TextFields.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cctype>
@@ -118,7 +119,7 @@ std::string describePointError(
       msg << "'" << printableText(badToken) << "' is not a finite number";
       break;
     case PointParse::BadRadius:
-      msg << "radius " << v[3] << " must be > 0";
+      msg << valueMustBe("radius", v[3], "> 0");
       break;
     case PointParse::Ok:
       break;
@@ -168,23 +169,9 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName)
   };
 
   std::string_view line;
-  for (;;)
+  LineReader::Stop stop;
+  while (reader.nextLine(line, stop, " (not a fastPLI .dat point line)"))
   {
-    const LineReader::Status status = reader.next(line);
-    if (status == LineReader::Status::End)
-    {
-      break;
-    }
-    if (status == LineReader::Status::TooLong)
-    {
-      return fail(reader.lineNumber(),
-        "line is longer than " + std::to_string(maxLineLength) +
-          " characters (not a fastPLI .dat point line)");
-    }
-    if (status == LineReader::Status::Failed)
-    {
-      return fail(reader.lineNumber() + 1, "read error");
-    }
     const std::string_view s = trim(line);
     if (!s.empty() && s.front() == '#')
     {
@@ -219,6 +206,10 @@ FiberReadResult readFastPliDat(std::istream& in, const std::string& fileName)
     }
     fiber.points.push_back({ v[0], v[1], v[2] });
     fiber.radii.push_back(v[3]);
+  }
+  if (stop.failed())
+  {
+    return fail(stop.line, stop.what);
   }
   if (!fiber.points.empty())
   {

@@ -6,10 +6,10 @@
 
 #include "Model/FiberModel.h"
 #include "Util/Status.h"
+#include "Util/ValueCheck.h"
 
 #include <cmath>
 #include <cstddef>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,9 +45,7 @@ inline std::string defaultRadiusError(const std::string& fileName, double defaul
   {
     return {};
   }
-  std::ostringstream msg;
-  msg << fileName << ": DefaultRadius " << defaultRadius << " must be finite and > 0";
-  return msg.str();
+  return fileName + ": " + valueMustBe("DefaultRadius", defaultRadius, "finite and > 0");
 }
 
 } // namespace fiberpli

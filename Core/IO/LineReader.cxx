@@ -103,4 +103,30 @@ LineReader::Status LineReader::next(std::string_view& line)
   }
 }
 
+bool LineReader::nextLine(std::string_view& line, Stop& stop, const std::string& tooLongNote)
+{
+  stop = Stop{};
+  switch (next(line))
+  {
+    case Status::Line:
+      return true;
+    case Status::TooLong:
+      stop.line = lineNumber_;
+      stop.what = tooLongMessage() + tooLongNote;
+      break;
+    case Status::Failed:
+      stop.line = lineNumber_ + 1;
+      stop.what = "read error";
+      break;
+    case Status::End:
+      break;
+  }
+  return false;
+}
+
+std::string LineReader::tooLongMessage() const
+{
+  return "line is longer than " + std::to_string(maxLineLength_) + " characters";
+}
+
 } // namespace fiberpli

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <istream>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -27,6 +28,21 @@ public:
 
   /// The view stays valid until the next call.
   Status next(std::string_view& line);
+
+  /// What ended nextLine before the end of the text: the line it concerns and the message.
+  struct Stop
+  {
+    std::size_t line = 0;
+    std::string what; ///< "" at the end of the text
+    bool failed() const { return !what.empty(); }
+  };
+  /// The loop of a reader that reads every line: true with the next line; false at the end of the
+  /// text (stop not failed), at a line longer than maxLineLength (stop: that line, "line is longer
+  /// than <maxLineLength> characters" and tooLongNote) or at a read error (stop: the line after
+  /// the last one returned, "read error").
+  bool nextLine(std::string_view& line, Stop& stop, const std::string& tooLongNote = {});
+  /// "line is longer than <maxLineLength> characters": how the readers report Status::TooLong.
+  std::string tooLongMessage() const;
   /// 1-based number of the line last returned (or of the too-long line).
   std::size_t lineNumber() const { return lineNumber_; }
 

@@ -1,6 +1,7 @@
 #include "IO/McdcCylinders.h"
 
 #include "IO/TextFields.h"
+#include "Util/ValueCheck.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,10 +38,8 @@ std::string writeMcdcCylinders(
   }
   if (!std::isfinite(tolerance) || tolerance < 0.0)
   {
-    std::ostringstream msg;
-    msg << "cannot write MC/DC " << name << ": straightness tolerance " << tolerance
-        << " µm must be finite and >= 0";
-    return msg.str();
+    return std::string("cannot write MC/DC ") + name + ": " +
+      valueMustBe("straightness tolerance", tolerance, "finite and >= 0", "µm");
   }
   std::size_t worstFiber = 0;
   double worst = -1.0;

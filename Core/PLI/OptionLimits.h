@@ -1,6 +1,7 @@
 /// OptionLimits: the largest values PLISimulation accepts where a larger one would not fail by
-/// itself but silently turn the images into inf, NaN or zeros (issue: "no silent clamp"). The XML
-/// ranges of Plugin/PLISimulation.xml repeat these numbers; planPLI and makeTissueSpec check them.
+/// itself but silently turn the images into inf, NaN or zeros: such values are refused, never
+/// clamped. The XML ranges of Plugin/PLISimulation.xml repeat these numbers; planPLI and
+/// makeTissueSpec check them.
 #pragma once
 
 namespace fiberpli

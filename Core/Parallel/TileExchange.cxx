@@ -57,7 +57,7 @@ PieceSummary decode(const std::vector<char>& bytes)
 }
 
 /// Every rank's `mine`, by rank. Collective.
-std::vector<std::vector<char>> allGather(const std::vector<char>& mine, SolverComm& comm)
+std::vector<std::vector<char>> allGather(const std::vector<char>& mine, Comm& comm)
 {
   return comm.exchange(std::vector<std::vector<char>>(static_cast<std::size_t>(comm.size()), mine));
 }
@@ -170,8 +170,7 @@ TileFibers wholeModelTile(const TilePiece& piece, const std::string& localError)
 }
 
 TileFibers exchangeTileFibers(const TilePiece& piece, const std::string& localError,
-  const std::string& who, const ReachFunction& reachOf, const AgreeFunction& agree,
-  SolverComm& comm)
+  const std::string& who, const ReachFunction& reachOf, const AgreeFunction& agree, Comm& comm)
 {
   static const FiberModel none;
   const FiberModel& model = piece.model ? *piece.model : none;

@@ -6,13 +6,13 @@
 /// depends on that order, then gives every voxel the owner it has in one process: the tiles are
 /// bit for bit the crop of the serial result. Errors on any rank (a bad piece, a plan error, the
 /// memory budget of the received fibers) are agreed on before anything is sent, so every rank
-/// fails together. Pure C++ over a SolverComm; the VTK side is Conversion/FiberTileExchange.
+/// fails together. Pure C++ over a Comm; the VTK side is Conversion/FiberTileExchange.
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
 #include "Model/TileReach.h"
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 #include <functional>
 #include <string>
@@ -65,7 +65,6 @@ TileFibers wholeModelTile(const TilePiece& piece, const std::string& localError)
 /// Every rank of `comm` calls it once, whatever its own state (`localError`, "" when none, takes
 /// part in the agreement). `who` starts the memory budget's message. Collective.
 TileFibers exchangeTileFibers(const TilePiece& piece, const std::string& localError,
-  const std::string& who, const ReachFunction& reachOf, const AgreeFunction& agree,
-  SolverComm& comm);
+  const std::string& who, const ReachFunction& reachOf, const AgreeFunction& agree, Comm& comm);
 
 } // namespace fiberpli

@@ -56,7 +56,7 @@ std::size_t countCollisions(
   return overflow ? maxPairs + 1 : pairs.size();
 }
 
-double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, SolverComm* comm)
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, Comm* comm)
 {
   const double volume = capsuleVolume(model, comm);
   if (cell.enabled())

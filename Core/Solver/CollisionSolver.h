@@ -5,8 +5,8 @@
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
+#include "Parallel/Comm.h"
 #include "Solver/ShapeControl.h"
-#include "Solver/SolverComm.h"
 #include "Solver/SolverState.h"
 #include "Util/Progress.h"
 #include "Util/Status.h"
@@ -136,7 +136,7 @@ public:
   /// The run works on `model` in place; progress and observer as for solveCollisions.
   /// comm (optional): distributed over its ranks (docs/solver.md §13), model = this rank's piece.
   CollisionSolverRun(FiberModel& model, const CollisionSolverOptions& options,
-    const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
+    const ProgressFn& progress = {}, const StepObserver& observer = {}, Comm* comm = nullptr);
   ~CollisionSolverRun();
   CollisionSolverRun(const CollisionSolverRun&) = delete;
   CollisionSolverRun& operator=(const CollisionSolverRun&) = delete;
@@ -185,7 +185,7 @@ private:
 /// holds): a distributed run may solve a model too large for one process, and refuses only what
 /// the serial run would refuse too; the packing bound is the whole model's (§13).
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress = {}, const StepObserver& observer = {}, SolverComm* comm = nullptr);
+  const ProgressFn& progress = {}, const StepObserver& observer = {}, Comm* comm = nullptr);
 
 /// Number of colliding capsule pairs (δ < ρa + ρb + minimumGap, same-fiber skip rule of §3.1) of
 /// all fibers with >= 2 points; threads 0 = all cores. Same count the solver reports. Above the
@@ -198,8 +198,7 @@ std::size_t countCollisions(const FiberModel& model, double minimumGap = 0.0,
 /// a cell by the volume of the model's bounding box (points grown by their radii); 0 if empty.
 /// Summed exactly (the same bits for any order or split); comm: over all ranks' fibers
 /// (collective).
-double cellVolumeFraction(
-  const FiberModel& model, const PeriodicCell& cell, SolverComm* comm = nullptr);
+double cellVolumeFraction(const FiberModel& model, const PeriodicCell& cell, Comm* comm = nullptr);
 
 /// Empty when the options are usable, else a message naming the option and its value.
 std::string validateCollisionSolverOptions(const CollisionSolverOptions& options);

@@ -1,11 +1,11 @@
 #include "Solver/Decomposition.h"
 
 #include "Model/FiberWire.h"
+#include "Parallel/Collectives.h"
 #include "Util/ByteBuffer.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 
 namespace fiberpli
@@ -86,7 +86,7 @@ void extent(const Fiber& f, int axis, double& lo, double& hi)
 }
 
 TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to,
-  const std::vector<char>& keep, SolverComm& comm)
+  const std::vector<char>& keep, Comm& comm)
 {
   TrafficCount t;
   std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
@@ -111,7 +111,7 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
 }
 } // namespace
 
-BoxLayout BoxLayout::make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm)
+BoxLayout BoxLayout::make(const FiberModel& local, const PeriodicCell& cell, Comm& comm)
 {
   BoxLayout s;
   s.ranks_ = comm.size();
@@ -208,7 +208,7 @@ void BoxLayout::indicesOf(int r, int idx[3]) const
   idx[0] = r / (n_[2] * n_[1]);
 }
 
-void BoxLayout::cutTesterBoxes(const FiberModel& local, SolverComm& comm, std::int64_t work)
+void BoxLayout::cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t work)
 {
   // Per axis a histogram of all ranks' link centres (exact integer sums, the same on every rank),
   // cut where its running sum passes k/n_d of the links: within one bin (1/4096 of the axis) of
@@ -289,7 +289,7 @@ void BoxLayout::cutTesterBoxes(const FiberModel& local, SolverComm& comm, std::i
   }
 }
 
-void BoxLayout::balanceTesterBoxes(const FiberModel& local, std::int64_t work, SolverComm& comm)
+void BoxLayout::balanceTesterBoxes(const FiberModel& local, std::int64_t work, Comm& comm)
 {
   cutTesterBoxes(local, comm, std::max<std::int64_t>(0, work));
 }
@@ -377,7 +377,7 @@ int BoxLayout::owner(const Fiber& f) const
   return ownerOf(middle(f));
 }
 
-TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverComm& comm)
+TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, Comm& comm)
 {
   std::vector<std::vector<std::size_t>> to(static_cast<std::size_t>(comm.size()));
   std::vector<char> keep(r.size(), 1);
@@ -390,132 +390,6 @@ TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, SolverCom
     }
   }
   return send(r, to, keep, comm);
-}
-
-RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError)
-{
-  std::vector<std::int64_t> failed(static_cast<std::size_t>(comm.size()), 0);
-  failed[static_cast<std::size_t>(comm.rank())] = localError.empty() ? 0 : 1;
-  comm.sum(failed);
-  const auto first = std::find(failed.begin(), failed.end(), 1);
-  RankFailure agreed;
-  if (first == failed.end())
-  {
-    return agreed;
-  }
-  const std::size_t who = static_cast<std::size_t>(first - failed.begin());
-  std::vector<std::vector<char>> out(static_cast<std::size_t>(comm.size()));
-  if (who == static_cast<std::size_t>(comm.rank()))
-  {
-    for (std::vector<char>& b : out)
-      b.assign(localError.begin(), localError.end());
-  }
-  const std::vector<std::vector<char>> in = comm.exchange(out);
-  agreed.rank = static_cast<int>(who);
-  agreed.message.assign(in[who].begin(), in[who].end());
-  agreed.all =
-    std::count(failed.begin(), failed.end(), 1) == static_cast<std::ptrdiff_t>(failed.size());
-  return agreed;
-}
-
-std::string agreeOnError(SolverComm& comm, const std::string& localError)
-{
-  const RankFailure agreed = agreeOnFailure(comm, localError);
-  if (!agreed.failed())
-  {
-    return {};
-  }
-  // When only some ranks failed, say which one (the same text on every rank); when all failed
-  // (a bad option, the same everywhere) the message stands alone.
-  return agreed.all ? agreed.message
-                    : "rank " + std::to_string(agreed.rank) + ": " + agreed.message;
-}
-
-bool anyRank(SolverComm& comm, bool value)
-{
-  std::vector<std::int64_t> v{ value ? 1 : 0 };
-  comm.sum(v);
-  return v[0] > 0;
-}
-
-double maxOverRanks(SolverComm& comm, double value)
-{
-  std::vector<double> v{ value };
-  comm.max(v);
-  return v[0];
-}
-
-double minOverRanks(SolverComm& comm, double value)
-{
-  return -maxOverRanks(comm, -value);
-}
-
-void ExactSum::add(double term)
-{
-  double q = std::nearbyint(std::ldexp(term, 32)); // an integer below 2^96: three exact digits
-  for (std::uint64_t& limb : limbs_)
-  {
-    const double digit = std::fmod(q, 4294967296.0);
-    limb += static_cast<std::uint64_t>(digit);
-    q = std::ldexp(q - digit, -32);
-  }
-}
-
-double ExactSum::total(SolverComm* comm) const
-{
-  std::vector<std::int64_t> limbs(3);
-  std::uint64_t carry = 0;
-  for (std::size_t i = 0; i < 3; ++i) // carried into 32-bit digits: a rank sum cannot overflow
-  {
-    const std::uint64_t v = limbs_[i] + carry;
-    limbs[i] = static_cast<std::int64_t>(v & 0xffffffffu);
-    carry = v >> 32;
-  }
-  limbs[2] += static_cast<std::int64_t>(carry << 32);
-  if (comm)
-  {
-    comm->sum(limbs);
-  }
-  std::uint64_t d[3];
-  carry = 0;
-  for (std::size_t i = 0; i < 3; ++i)
-  {
-    const std::uint64_t v = static_cast<std::uint64_t>(limbs[i]) + carry;
-    d[i] = i < 2 ? (v & 0xffffffffu) : v;
-    carry = v >> 32;
-  }
-  return std::ldexp(static_cast<double>(d[2]), 32) + static_cast<double>(d[1]) +
-    std::ldexp(static_cast<double>(d[0]), -32);
-}
-
-double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverComm& comm)
-{
-  std::vector<std::int64_t> n{ static_cast<std::int64_t>(local.size()) };
-  comm.sum(n);
-  if (n[0] == 0)
-  {
-    return 0.0;
-  }
-  // Non-negative doubles sort like their bit patterns: find the smallest pattern v with more
-  // than k values <= v.
-  std::vector<std::uint64_t> bits(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i)
-    std::memcpy(&bits[i], &local[i], sizeof(double));
-  std::uint64_t lo = 0, hi = 0x7ff0000000000000ull; // +inf
-  while (lo < hi)
-  {
-    const std::uint64_t mid = lo + (hi - lo) / 2;
-    std::vector<std::int64_t> c{ static_cast<std::int64_t>(
-      std::count_if(bits.begin(), bits.end(), [mid](std::uint64_t b) { return b <= mid; })) };
-    comm.sum(c);
-    if (c[0] > k)
-      hi = mid;
-    else
-      lo = mid + 1;
-  }
-  double v;
-  std::memcpy(&v, &lo, sizeof(double));
-  return v;
 }
 
 } // namespace fiberpli

@@ -3,18 +3,17 @@
 /// grid fixed for the run). Whole fibers are owned by the rank whose owner box holds the fiber's
 /// reference point, the middle of its extent (in a periodic cell wrapped into the cell). Every
 /// rank keeps its owned fibers, in global fiber order; fibers travel between ranks as byte records
-/// through SolverComm::exchange. The pair work goes by tester box (links, not fibers:
+/// through Comm::exchange. The pair work goes by tester box (links, not fibers:
 /// Solver/LinkExchange.h).
 #pragma once
 
 #include "Geometry/PeriodicCell.h"
 #include "Model/FiberModel.h"
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 #include "Solver/SolverState.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace fiberpli
@@ -51,7 +50,7 @@ public:
   /// into boxes thinner than their halo nor an axis the model does not span (if none does, the
   /// least volume of those that cut spanned axes only); equal volumes to the more cuts along
   /// the lower axis. From exact sums and maxima: every rank picks the same grid.
-  static BoxLayout make(const FiberModel& local, const PeriodicCell& cell, SolverComm& comm);
+  static BoxLayout make(const FiberModel& local, const PeriodicCell& cell, Comm& comm);
   /// Boxes along axis d.
   int boxes(int d) const { return n_[d]; }
   /// Rank of box (i, j, k).
@@ -78,7 +77,7 @@ public:
   /// weigh its work per link (histograms of all ranks' link centres along each axis), so layers
   /// of costly links get thinner. Who tests a pair never changes a result, only the balance; the
   /// cuts stay when a box with links reported no work.
-  void balanceTesterBoxes(const FiberModel& local, std::int64_t work, SolverComm& comm);
+  void balanceTesterBoxes(const FiberModel& local, std::int64_t work, Comm& comm);
   /// Largest move of a tester cut since `before`, as a fraction of its axis' span.
   double largestCutMove(const BoxLayout& before) const;
   /// What wrapping x into the cell adds to it (PeriodicCell::wrapShift; 0 without a cell).
@@ -101,7 +100,7 @@ private:
   double fraction(int d, double x) const;
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
   // every rank) or its box's measured work per link (every rank passes its work >= 0).
-  void cutTesterBoxes(const FiberModel& local, SolverComm& comm, std::int64_t work);
+  void cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t work);
 };
 
 /// What a redistribution moved (this rank's share).
@@ -113,48 +112,6 @@ struct TrafficCount
 
 /// Sends every fiber whose destination (dest(index), a rank) is another rank there, receives the
 /// fibers others send here, keeps global order. Collective.
-TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, SolverComm& comm);
-
-/// What the ranks agree on when some failed (the one rule, docs/data-contract.md §5): which rank's
-/// message wins (the lowest failing rank) and whether every rank failed. The same on every rank.
-struct RankFailure
-{
-  int rank = -1;       ///< the lowest failing rank; -1: no rank failed
-  std::string message; ///< that rank's error
-  bool all = false;    ///< every rank failed
-  bool failed() const { return rank >= 0; }
-};
-/// Every rank passes its own error ("" = success). Collective.
-RankFailure agreeOnFailure(SolverComm& comm, const std::string& localError);
-
-/// The solver's text of agreeOnFailure, on every rank: "" when no rank failed, else the winning
-/// message as it is when every rank failed, else as "rank R: <message>" (so that the other ranks'
-/// reports name the rank whose piece failed). Collective.
-std::string agreeOnError(SolverComm& comm, const std::string& localError);
-/// Logical or / exact minimum and maximum over all ranks. Collective.
-bool anyRank(SolverComm& comm, bool value);
-double minOverRanks(SolverComm& comm, double value);
-double maxOverRanks(SolverComm& comm, double value);
-
-/// Deterministic sum of non-negative terms: the same bits on every rank, independent of the terms'
-/// order and of how they are split over ranks. Each term is rounded to a multiple of 2^-32 (terms
-/// below 2^64) and the multiples are summed exactly as integers; only the final conversion of that
-/// integer to a double rounds (up to three roundings of its 32-bit digits, so within a few ulp of
-/// the exact sum of the rounded terms, not necessarily the nearest double).
-class ExactSum
-{
-public:
-  void add(double term);
-  /// Collective: the sum over all ranks (same bits on every rank); comm null = this rank only.
-  double total(SolverComm* comm) const;
-
-private:
-  std::uint64_t limbs_[3] = { 0, 0, 0 }; // the fixed-point sum in 32-bit digits (with carries)
-};
-
-/// Value of rank k (0-based, ascending) of all ranks' values (as std::nth_element on the union),
-/// exactly, by bisection on the bit patterns of non-negative doubles; 0 when there are none.
-/// Collective (64 integer sums).
-double globalNthValue(const std::vector<double>& local, std::int64_t k, SolverComm& comm);
+TrafficCount redistribute(RankFibers& fibers, const std::vector<int>& dest, Comm& comm);
 
 } // namespace fiberpli

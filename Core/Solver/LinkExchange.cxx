@@ -35,7 +35,7 @@ using Reader = ByteReader;
 // The exchange of the buffers with the partners (this rank's own links and pushes never go
 // into a buffer: out[me] stays empty, as does every buffer for a rank that is no partner).
 std::vector<std::vector<char>> exchangeWithPartners(const std::vector<std::vector<char>>& out,
-  const std::vector<int>& partners, SolverComm& comm, TrafficCount& sent)
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent)
 {
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
@@ -122,7 +122,7 @@ double capsuleRadius(double r0, double r1, double scale)
 
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
   const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
-  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners)
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
@@ -353,12 +353,12 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
 }
 
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  const std::vector<int>& partners, SolverComm& comm, TrafficCount& sent,
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
   std::vector<std::vector<ReceivedPush>>& received)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
-  // Sizes first, so that every buffer is written once into its final place.
+  // Sizes first, so that every buffer is written once into its final place (no regrowth).
   std::vector<std::size_t> size(nr, 0);
   const auto bytes = [](std::uint32_t sides)
   {
@@ -385,29 +385,24 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
       p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
   std::vector<std::vector<char>> out(nr);
   for (std::size_t q = 0; q < nr; ++q)
-    out[q].resize(size[q]);
-  std::fill(size.begin(), size.end(), 0); // now: bytes written
+    out[q].reserve(size[q]);
   for (const LinkPairPush& p : tested)
   {
     route(p,
       [&](int to, std::uint32_t sides)
       {
-        char* at = out[static_cast<std::size_t>(to)].data() + size[static_cast<std::size_t>(to)];
-        const PushHeader h{ p.fiberA, p.kA, p.fiberB, p.kB, sides };
-        std::memcpy(at, &h, sizeof h);
-        at += sizeof h;
+        ByteWriter w(out[static_cast<std::size_t>(to)]);
+        w.put(PushHeader{ p.fiberA, p.kA, p.fiberB, p.kB, sides });
         if (sides & 1)
         {
-          std::memcpy(at, &p.a0, sizeof(Vec3));
-          std::memcpy(at + sizeof(Vec3), &p.a1, sizeof(Vec3));
-          at += 2 * sizeof(Vec3);
+          w.put(p.a0);
+          w.put(p.a1);
         }
         if (sides & 2)
         {
-          std::memcpy(at, &p.b0, sizeof(Vec3));
-          std::memcpy(at + sizeof(Vec3), &p.b1, sizeof(Vec3));
+          w.put(p.b0);
+          w.put(p.b1);
         }
-        size[static_cast<std::size_t>(to)] += bytes(sides);
       });
   }
   const std::vector<std::vector<char>> in = exchangeWithPartners(out, partners, comm, sent);

@@ -13,8 +13,8 @@
 
 #include "Index/CollisionGrid.h"
 #include "Model/FiberModel.h"
+#include "Parallel/Comm.h"
 #include "Solver/Decomposition.h"
-#include "Solver/SolverComm.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -74,7 +74,7 @@ double capsuleRadius(double r0, double r1, double scale);
 /// values, one exchange with the partners); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
   const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
-  SolverComm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners);
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).
@@ -100,7 +100,7 @@ struct ReceivedPush
 /// fibers' global indices, ascending; partners: those of the exchangeLinks that sent the links.
 /// Collective; `sent` counts what went to other ranks.
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  const std::vector<int>& partners, SolverComm& comm, TrafficCount& sent,
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
   std::vector<std::vector<ReceivedPush>>& received);
 
 /// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):

@@ -1,5 +1,6 @@
 #include "Solver/PairBound.h"
 
+#include "Parallel/Collectives.h"
 #include "Solver/Decomposition.h"
 
 #include <algorithm>
@@ -9,8 +10,7 @@
 namespace fiberpli
 {
 
-PairBound packingPairBound(
-  const std::vector<CapsuleLink>& links, double minimumGap, SolverComm* comm)
+PairBound packingPairBound(const std::vector<CapsuleLink>& links, double minimumGap, Comm* comm)
 {
   std::vector<double> extremes{ -HUGE_VAL, 0.0 }; // −ρ_min, ρ_max: one maximum
   ExactSum length;

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "Index/CollisionGrid.h"
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 #include <cstddef>
 #include <vector>
@@ -21,10 +21,10 @@ struct PairBound
 };
 
 /// The packing bound of `links` with gap `minimumGap`: ρ_min and ρ_max exact, the mean link length
-/// and Σ n_a in fixed point (Solver/Decomposition.h ExactSum), each n_a capped at 1e18. comm: each
+/// and Σ n_a in fixed point (Parallel/Collectives.h ExactSum), each n_a capped at 1e18. comm: each
 /// rank passes the links it owns, and every rank gets the bound of all of them (collective: one
 /// maximum, three sums).
 PairBound packingPairBound(
-  const std::vector<CapsuleLink>& links, double minimumGap, SolverComm* comm = nullptr);
+  const std::vector<CapsuleLink>& links, double minimumGap, Comm* comm = nullptr);
 
 } // namespace fiberpli

@@ -28,7 +28,6 @@ std::string checkMemory(const SolverEngine& s);
 /// Exact copies of a fiber beyond a few, and a MinimumGap beyond a few radii: both would make the
 /// colliding pairs grow with the square of the copies or the gap. comm: the largest radius of all
 /// ranks.
-std::string checkStacksAndGap(
-  const FiberModel& model, const CollisionSolverOptions& o, SolverComm* comm);
+std::string checkStacksAndGap(const FiberModel& model, const CollisionSolverOptions& o, Comm* comm);
 
 } // namespace fiberpli

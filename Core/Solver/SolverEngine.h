@@ -8,6 +8,7 @@
 
 #include "Index/CollisionGrid.h"
 #include "Index/PeriodicPairs.h"
+#include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
@@ -52,7 +53,7 @@ public:
   std::string detectError_;
   // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
   // fibers this rank owns; the pairs are found among the links near its box (LinkExchange.h).
-  SolverComm* comm_ = nullptr;
+  Comm* comm_ = nullptr;
   std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
   HeldLinkInfo held_;                 // per link of links_
   BoxLayout layout_;

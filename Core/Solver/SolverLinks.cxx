@@ -1,5 +1,6 @@
 #include "Solver/SolverLinks.h"
 
+#include "Parallel/Collectives.h"
 #include "Solver/Decomposition.h"
 #include "Solver/LinkExchange.h"
 
@@ -72,7 +73,7 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   }
 }
 
-double medianRadius(const FiberModel& model, SolverComm* comm)
+double medianRadius(const FiberModel& model, Comm* comm)
 {
   std::vector<double> r;
   for (const Fiber& fib : model.fibers)
@@ -96,7 +97,7 @@ double medianRadius(const FiberModel& model, SolverComm* comm)
   return r[r.size() / 2];
 }
 
-double capsuleVolume(const FiberModel& model, SolverComm* comm)
+double capsuleVolume(const FiberModel& model, Comm* comm)
 {
   ExactSum sum;
   for (const Fiber& f : model.fibers)

@@ -5,7 +5,7 @@
 
 #include "Index/CollisionGrid.h"
 #include "Model/FiberModel.h"
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 #include <cstddef>
 #include <vector>
@@ -23,11 +23,11 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
 
 /// Median point radius of the fibers with >= 2 points; distributed (comm): of all ranks' fibers,
 /// exactly the same value.
-double medianRadius(const FiberModel& model, SolverComm* comm = nullptr);
+double medianRadius(const FiberModel& model, Comm* comm = nullptr);
 
 /// Σ π ρ² · link length over all links (ρ = capsule radius), summed exactly: the same bits for
 /// any order and split of the fibers; comm: over all ranks' fibers (collective).
-double capsuleVolume(const FiberModel& model, SolverComm* comm = nullptr);
+double capsuleVolume(const FiberModel& model, Comm* comm = nullptr);
 
 /// Bytes the solver keeps per point (model point and radius, velocity, source index, force, its
 /// link and the grid's buffers; links ≈ points) and per colliding pair (the pair and its push).

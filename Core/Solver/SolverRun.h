@@ -16,7 +16,7 @@ namespace fiberpli
 struct CollisionSolverRun::Impl
 {
   Impl(FiberModel& m, const CollisionSolverOptions& o, const ProgressFn& p, const StepObserver& ob,
-    SolverComm* c)
+    Comm* c)
     : model(m)
     , options(o)
     , progress(p)

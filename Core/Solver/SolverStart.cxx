@@ -11,7 +11,7 @@ namespace fiberpli
 {
 
 CollisionSolverRun::CollisionSolverRun(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+  const ProgressFn& progress, const StepObserver& observer, Comm* comm)
   : impl_(std::make_unique<Impl>(model, options, progress, observer, comm))
 {
 }

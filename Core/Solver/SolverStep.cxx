@@ -239,7 +239,7 @@ CollisionSolverResult CollisionSolverRun::finish()
 }
 
 CollisionSolverResult solveCollisions(FiberModel& model, const CollisionSolverOptions& options,
-  const ProgressFn& progress, const StepObserver& observer, SolverComm* comm)
+  const ProgressFn& progress, const StepObserver& observer, Comm* comm)
 {
   CollisionSolverRun run(model, options, progress, observer, comm);
   if (run.start())

@@ -7,6 +7,7 @@
 // hold a shell around its box and talk to its neighbours only); with ranks whose box is empty,
 // fibers longer than a box, fibers moving between ranks, a flat model, tester boxes re-cut during
 // the run (also across a resume), and an error or a stop on one rank only.
+#include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/Decomposition.h"
 
@@ -59,7 +60,7 @@ std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolver
       runs[r].model.fibers.push_back(whole.fibers[at++]);
   }
   runRanks(ranks,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
       run.result =
@@ -184,7 +185,7 @@ TEST(DistributedSolver, AnOpenModelsHaloIsOneSided)
     // the pieces: here rank 0 passes the whole model).
     std::vector<std::size_t> perBox(static_cast<std::size_t>(ranks), 0);
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         const BoxLayout layout =
           BoxLayout::make(comm.rank() == 0 ? in : FiberModel{}, PeriodicCell{}, comm);
@@ -254,7 +255,7 @@ TEST(DistributedSolver, AFlatModelIsSharedByTheRanks)
   o.maxSteps = 30;
   for (int ranks : { 2, 4 })
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         EXPECT_EQ(
           BoxLayout::make(comm.rank() == 0 ? m : FiberModel{}, o.periodicCell, comm).boxes(2), 1);
@@ -413,7 +414,7 @@ TEST(DistributedSolver, TesterBoxesHoldEqualLinkCounts)
   {
     std::vector<std::vector<int>> testers(static_cast<std::size_t>(ranks));
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         FiberModel piece;
         for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size();
@@ -451,7 +452,7 @@ TEST(DistributedSolver, TesterBoxesRecutAtEqualWork)
   {
     std::vector<std::vector<int>> counts(2);
     runRanks(2,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         FiberModel piece;
         for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < m.fibers.size(); f += 2)
@@ -555,7 +556,7 @@ TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
     }
     std::vector<int> recutsBefore(static_cast<std::size_t>(ranks), -1);
     runRanks(ranks,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
         FiberModel model;
@@ -634,7 +635,7 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   std::vector<std::string> errors(2);
   std::vector<FiberModel> after = pieces;
   runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const std::size_t p = static_cast<std::size_t>(comm.rank());
       CollisionSolverRun run(after[p], o, {}, {}, &comm);
@@ -651,7 +652,7 @@ TEST(DistributedSolver, ResumingASerialStateOnSeveralRanksIsRefused)
   // One rank takes it (0..n-1 are then the global indices).
   FiberModel whole = pieces[0];
   runRanks(1,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       CollisionSolverRun run(whole, o, {}, {}, &comm);
       EXPECT_EQ(run.resume(states[0]), "");
@@ -728,7 +729,7 @@ Boxes startBoxes(const FiberModel& in, const PeriodicCell& cell, int ranks)
   Boxes b;
   b.box.resize(static_cast<std::size_t>(ranks));
   runRanks(ranks,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       FiberModel piece;
       const std::size_t n = in.fibers.size(), r = static_cast<std::size_t>(comm.rank());
@@ -934,7 +935,7 @@ TEST(DistributedSolver, AnEqualCubeIsCutAcrossItsShortestLinks)
       const FiberModel in = generateCube(c);
       const int expected = shortestLinkAxis(in);
       runRanks(2,
-        [&](SolverComm& comm)
+        [&](Comm& comm)
         {
           FiberModel piece;
           for (std::size_t f = static_cast<std::size_t>(comm.rank()); f < in.fibers.size(); f += 2)

@@ -105,7 +105,7 @@ TEST(FarCoordinates, AFarPieceOnOneRankFailsEveryRankWithoutHanging)
     [&errors]
     {
       fiberpli_test::runRanks(2,
-        [&errors](SolverComm& comm)
+        [&errors](Comm& comm)
         {
           FiberModel piece = crossingPair(comm.rank() == 1 ? 3e16 : 0.0);
           for (Fiber& f : piece.fibers)

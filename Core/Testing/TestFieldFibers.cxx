@@ -195,6 +195,96 @@ TEST(FieldFibers, TwoCrossingFieldsGiveTwoPopulations)
   EXPECT_NEAR(fieldAgreement(r.model, fx, 1).meanErrorDegrees, 90.0, 1e-6);
 }
 
+TEST(FieldFibers, SixComponentArrayIsTwoPopulations)
+{
+  // One array with two axes per grid point: axis 1 (components 0-2) along x with alternating
+  // signs and lengths, absent above z = 12; axis 2 (components 3-5) along -y, absent above z = 8.
+  // It gives the fields two 3-component arrays give, hence the same model, and each population
+  // follows its own axis.
+  const std::array<int, 3> n{ 16, 16, 16 };
+  const auto axis1 = [](const Vec3& p) { return p.z > 12.0 ? Vec3{} : Vec3{ 1, 0, 0 }; };
+  const auto axis2 = [](const Vec3& p) { return p.z > 8.0 ? Vec3{} : Vec3{ 0, -1, 0 }; };
+  const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, n, axis1);
+  const OrientationField fy = makeField({ 0, 0, 0 }, 1.0, n, axis2);
+  std::vector<double> values, first, second; // the 6-component array and its two halves
+  for (std::size_t i = 0; i < fx.size(); ++i)
+  {
+    const Vec3 p{ static_cast<double>(i % 16), static_cast<double>(i / 16 % 16),
+      static_cast<double>(i / 256) };
+    const double scale = i % 2 == 0 ? 2.5 : -0.5; // any length, any sign
+    const Vec3 v1 = axis1(p) * scale;
+    const Vec3 v2 = axis2(p) * (1.0 / scale);
+    values.insert(values.end(), { v1.x, v1.y, v1.z, v2.x, v2.y, v2.z });
+    first.insert(first.end(), { v1.x, v1.y, v1.z });
+    second.insert(second.end(), { v2.x, v2.y, v2.z });
+  }
+  values[6 * 7 + 3] = second[3 * 7] = std::numeric_limits<double>::quiet_NaN(); // axis 2 of point 7
+  std::vector<OrientationField> fields, halves, half;
+  std::size_t notFinite = 0;
+  ASSERT_EQ(orientationFieldsFromArray(values.data(), fx.size(), 6, fx, fields, notFinite), "");
+  ASSERT_EQ(fields.size(), 2u);
+  EXPECT_EQ(notFinite, 1u);
+  for (const std::vector<double>* a : { &first, &second })
+  {
+    ASSERT_EQ(orientationFieldsFromArray(a->data(), fx.size(), 3, fx, half, notFinite), "");
+    ASSERT_EQ(half.size(), 1u);
+    halves.push_back(half[0]);
+  }
+  EXPECT_EQ(notFinite, 1u);
+  EXPECT_EQ(fields[0].vectors, halves[0].vectors);
+  EXPECT_EQ(fields[1].vectors, halves[1].vectors);
+  EXPECT_TRUE(fields[1].origin == fx.origin && fields[1].dimensions == fx.dimensions);
+  // Up to the sign, the analytic axes; the NaN triple is empty.
+  for (std::size_t i = 0; i < fx.size(); ++i)
+  {
+    EXPECT_EQ(std::fabs(dot(fields[0].vectors[i], fx.vectors[i])), norm2(fx.vectors[i]));
+    EXPECT_EQ(
+      std::fabs(dot(fields[1].vectors[i], fy.vectors[i])), i == 7 ? 0.0 : norm2(fy.vectors[i]));
+  }
+
+  const FieldFiberOptions o = options(0.3, 0.5, 1.0);
+  const FieldFiberResult six = generateFieldFibers({ &fields[0], &fields[1] }, o);
+  const FieldFiberResult two = generateFieldFibers({ &halves[0], &halves[1] }, o);
+  ASSERT_TRUE(six.ok() && two.ok()) << six.error << two.error;
+  ASSERT_EQ(six.model.fibers.size(), two.model.fibers.size());
+  EXPECT_EQ(six.regionVolume, two.regionVolume);
+  for (std::size_t i = 0; i < six.model.fibers.size(); ++i)
+  {
+    EXPECT_EQ(six.model.fibers[i].points, two.model.fibers[i].points);
+    EXPECT_EQ(six.model.fibers[i].radii, two.model.fibers[i].radii);
+    EXPECT_EQ(six.model.fibers[i].bundle, two.model.fibers[i].bundle);
+  }
+  int perBundle[2] = { 0, 0 };
+  for (const Fiber& fiber : six.model.fibers)
+  {
+    ++perBundle[fiber.bundle];
+    // The absent parts are masks: population 0 stays at z <= 12.5, population 1 at z <= 8.5.
+    for (const Vec3& p : fiber.points)
+    {
+      EXPECT_LE(p.z, (fiber.bundle == 0 ? 12.5 : 8.5) + 1e-9);
+    }
+  }
+  EXPECT_GT(perBundle[0], 20);
+  EXPECT_GT(perBundle[1], 20);
+  const FieldAgreement a0 = fieldAgreement(six.model, fields[0], 0);
+  const FieldAgreement a1 = fieldAgreement(six.model, fields[1], 1);
+  EXPECT_GT(a0.voxels, 500u);
+  EXPECT_GT(a1.voxels, 300u);
+  EXPECT_LT(a0.meanErrorDegrees, 1e-6);
+  EXPECT_LT(a1.meanErrorDegrees, 1e-6);
+  EXPECT_NEAR(fieldAgreement(six.model, fields[0], 1).meanErrorDegrees, 90.0, 1e-6);
+
+  // 3 components: one field; other counts and sizes are refused with the count.
+  ASSERT_EQ(orientationFieldsFromArray(values.data(), fx.size(), 3, fx, fields, notFinite), "");
+  EXPECT_EQ(fields.size(), 1u);
+  EXPECT_EQ(orientationFieldsFromArray(values.data(), fx.size(), 4, fx, fields, notFinite),
+    "has 4 components; an orientation array needs 3 (one axis per point) or 6 (two axes per point: "
+    "components 0-2 and 3-5)");
+  EXPECT_EQ(orientationFieldsFromArray(values.data(), 10, 6, fx, fields, notFinite),
+    "has 10 tuples for 4096 grid points");
+  EXPECT_TRUE(fields.empty());
+}
+
 TEST(FieldFibers, CountModeSplitsByShares)
 {
   const OrientationField fx = makeField({ 0, 0, 0 }, 1.0, { 11, 11, 11 },

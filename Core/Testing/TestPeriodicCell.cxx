@@ -423,7 +423,7 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheBoxes)
   FiberModel model;
   model.fibers.push_back(fiberpli_test::line({ -5, 0.25, 10.2 }, { 4, 1, 0 }, 4, 0.1, 0));
   runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const BoxLayout layout = BoxLayout::make(model, cell, comm);
       for (const Vec3 p : { Vec3{ -5, 0.25, 10 }, Vec3{ 7, 3.25, 10.5 }, Vec3{ -41.5, 100.1, -3.3 },

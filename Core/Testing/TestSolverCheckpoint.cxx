@@ -132,7 +132,7 @@ void expectResumeEqualsUninterrupted(
 }
 // runRanks, but a hang (a rank waiting in a collective the others never make) ends the test
 // program with a failure message instead of blocking ctest.
-void runRanksWithin(int ranks, int seconds, const std::function<void(SolverComm&)>& f)
+void runRanksWithin(int ranks, int seconds, const std::function<void(Comm&)>& f)
 {
   auto done = std::make_shared<std::promise<void>>();
   std::future<void> finished = done->get_future();
@@ -345,7 +345,7 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
   std::vector<FiberModel> out(2);
   std::vector<CollisionSolverResult> results(2);
   fiberpli_test::runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       FiberModel m = piece(comm.rank());
       int last = 0;
@@ -373,7 +373,7 @@ TEST(SolverCheckpoint, DistributedRanksResumeToTheSerialResultAndShareErrors)
   const std::string blocked = file.path + ".1-of-2";
   ASSERT_EQ(::mkdir(blocked.c_str(), 0700), 0);
   fiberpli_test::runRanks(2,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       FiberModel m = piece(comm.rank());
       results[static_cast<std::size_t>(comm.rank())] =
@@ -403,7 +403,7 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   const auto stopAt45 = [&]
   {
     runRanksWithin(2, 120,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         FiberModel m = piece(comm.rank());
         int last = 0;
@@ -418,7 +418,7 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   const auto resume = [&]
   {
     runRanksWithin(2, 120,
-      [&](SolverComm& comm)
+      [&](Comm& comm)
       {
         const std::size_t r = static_cast<std::size_t>(comm.rank());
         out[r] = piece(comm.rank());
@@ -475,7 +475,7 @@ TEST(SolverCheckpoint, RanksWithCheckpointsOfDifferentStepsAgreeOrAllFail)
   // The copy was written for rank 0's input: resume rank 1 from rank 0's piece too, so only the
   // fiber set (not the input fingerprint) is wrong.
   runRanksWithin(2, 120,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const std::size_t r = static_cast<std::size_t>(comm.rank());
       out[r] = piece(0);
@@ -496,7 +496,7 @@ TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
   TempFile file;
   const std::string own1 = file.path + ".1-of-2";
   runRanksWithin(2, 120,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       FiberModel m = piece(comm.rank());
       int last = 0;
@@ -514,7 +514,7 @@ TEST(SolverCheckpoint, AStateThatFitsOnlyOneRankFailsEveryRankNamingTheFile)
   std::vector<CollisionSolverResult> results(2);
   std::vector<FiberModel> out{ piece(0), piece(1) };
   runRanksWithin(2, 120,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const std::size_t r = static_cast<std::size_t>(comm.rank());
       results[r] = solveWithCheckpoints(out[r], o, { file.path, 20, true }, {}, {}, &comm);
@@ -652,7 +652,7 @@ TEST(SolverCheckpoint, ResumingOnAnotherRankCountSaysWhichFilesExist)
   const FiberModel whole = denseOpenCube();
   std::vector<std::string> errors(3);
   runRanksWithin(3, 60,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       FiberModel piece;
       for (std::size_t f = whole.fibers.size() * comm.rank() / 3;
@@ -679,7 +679,7 @@ TEST(SolverCheckpoint, AFifoAsCheckpointFileIsRefusedWithoutBlocking)
   ASSERT_EQ(::mkfifo(file.path.c_str(), 0600), 0);
   std::string error;
   runRanksWithin(1, 30,
-    [&](SolverComm&)
+    [&](Comm&)
     {
       FiberModel m = denseOpenCube();
       error = solveWithCheckpoints(m, twoRankOptions(), { file.path, 0, true }).error;

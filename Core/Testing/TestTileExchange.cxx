@@ -3,7 +3,7 @@
 // it held; the summary of the model is the same on every rank; an error on one rank fails all.
 #include "Parallel/TileExchange.h"
 
-#include "Solver/Decomposition.h"
+#include "Parallel/Collectives.h"
 #include "ThreadComm.h"
 
 #include <gtest/gtest.h>
@@ -80,7 +80,7 @@ std::vector<TileFibers> exchange(int ranks, const std::vector<RankRun>& runs = {
 {
   std::vector<TileFibers> results(static_cast<std::size_t>(ranks));
   runRanks(ranks,
-    [&](SolverComm& comm)
+    [&](Comm& comm)
     {
       const int r = comm.rank();
       const RankRun run = runs.empty() ? RankRun() : runs[static_cast<std::size_t>(r)];

@@ -1,8 +1,9 @@
-// ThreadComm: SolverComm with threads as ranks (in one process), for testing the distributed
-// solver without MPI. runRanks(R, f) runs f(comm) on R threads and waits for all of them.
+// ThreadComm: Comm with threads as ranks (in one process), for testing the parallel code (the
+// distributed solver, the tile exchange) without MPI. runRanks(R, f) runs f(comm) on R threads and
+// waits for all of them.
 #pragma once
 
-#include "Solver/SolverComm.h"
+#include "Parallel/Comm.h"
 
 #include <algorithm>
 #include <condition_variable>
@@ -54,7 +55,7 @@ private:
   long generation_ = 0;
 };
 
-class ThreadComm final : public fiberpli::SolverComm
+class ThreadComm final : public fiberpli::Comm
 {
 public:
   ThreadComm(ThreadBoard& board, int rank)
@@ -127,7 +128,7 @@ private:
 };
 
 // Runs f(comm) for every rank on its own thread.
-inline void runRanks(int ranks, const std::function<void(fiberpli::SolverComm&)>& f)
+inline void runRanks(int ranks, const std::function<void(fiberpli::Comm&)>& f)
 {
   ThreadBoard board(ranks);
   std::vector<std::thread> threads;

@@ -89,6 +89,13 @@ inline void store64LE(unsigned char* p, std::uint64_t value)
   }
 }
 
+inline void storeFloat64LE(unsigned char* p, double value)
+{
+  std::uint64_t u;
+  std::memcpy(&u, &value, sizeof u);
+  store64LE(p, u);
+}
+
 /// Bytes from the current position to the end of the stream; the position is kept. False when the
 /// stream cannot seek (sizes declared in headers must be checked against the real length before
 /// anything is allocated, so an unseekable stream is refused).

@@ -1,5 +1,6 @@
 /// ValueCheck: the one shape of the message for a refused value, "<name> is <value>, must be
-/// <rule>" with the value in NumberFormat's short form, and the few rules most options follow.
+/// <rule>" with the value in NumberFormat's short form (and the readers' shorter "<what> <value>
+/// must be <rule>"), and the few rules most options follow.
 /// A validation written with it reads as the list of rules it applies, in order, and every
 /// refusal names the option and the value the same way.
 #pragma once
@@ -12,11 +13,23 @@
 namespace fiberpli
 {
 
-/// "<name> is <value>, must be <rule>".
+/// "<name> is <value>, must be <rule>"; with a unit, "<name> is <value> <unit>, must be <rule>".
 template <typename T>
-std::string mustBe(const std::string& name, T value, const std::string& rule)
+std::string mustBe(
+  const std::string& name, T value, const std::string& rule, const std::string& unit = {})
 {
-  return name + " is " + formatNumber(value) + ", must be " + rule;
+  return name + " is " + formatNumber(value) + (unit.empty() ? "" : " " + unit) + ", must be " +
+    rule;
+}
+
+/// "<what> <value> must be <rule>" (with a unit, "<what> <value> <unit> must be <rule>"): the
+/// shorter shape the file readers and writers use for a value they found ("radius -2 must be > 0"
+/// on a line of a file, "DefaultRadius 0 must be finite and > 0").
+template <typename T>
+std::string valueMustBe(
+  const std::string& what, T value, const std::string& rule, const std::string& unit = {})
+{
+  return what + " " + formatNumber(value) + (unit.empty() ? "" : " " + unit) + " must be " + rule;
 }
 
 /// Checks applied in order; the first refusal is kept and later checks are skipped, so an

@@ -1,7 +1,8 @@
 // GUI test: the Properties panel shows FiberPLI's labels with their units ("Edge Length (µm)"),
 // PLISimulation's angle lists with their names ("Rotation Angles (°)", not only a "Value"
 // header), while the XML labels, and so the pvpython names, stay without units
-// (Plugin/FiberPLIUnitLabels.h).
+// (Plugin/FiberPLIUnitLabels.h). FiberFieldSource shows the guide properties, with their units, for
+// guide lines (polydata) and the orientation arrays for an image, never the other kind's.
 //
 // The panel is ParaView's own pqProxyWidget for a proxy, shown in a window; the plugin is loaded
 // through pqPluginManager as File → Load Plugin does, so its auto-start parts run.
@@ -118,6 +119,34 @@ int main(int argc, char* argv[])
   expect(sim, "PLISimulation", QString::fromUtf8("Rotation Angles (°) Value Range: [0, 180]"));
   expect(sim, "PLISimulation", QString::fromUtf8("Tilt Azimuths (°) Value Range: [0, 360]"));
   expect(sim, "PLISimulation", "Absorption (1/mm)");
+
+  // FiberFieldSource on fibers (guide lines) and on an image with a vector array (Swirl).
+  vtkSmartPointer<vtkSMProxy> grid;
+  grid.TakeReference(pxm->NewProxy("sources", "FastUniformGrid"));
+  controller->InitializeProxy(grid);
+  controller->RegisterPipelineProxy(grid);
+  QStringList onGuides, onImage;
+  for (vtkSMProxy* input : { source.GetPointer(), grid.GetPointer() })
+  {
+    vtkSmartPointer<vtkSMProxy> field;
+    field.TakeReference(pxm->NewProxy("filters", "FiberFieldSource"));
+    controller->PreInitializeProxy(field);
+    vtkSMPropertyHelper(field, "Input").Set(input, 0);
+    controller->PostInitializeProxy(field);
+    controller->RegisterPipelineProxy(field);
+    (input == source ? onGuides : onImage) = panelLabels(field);
+    controller->UnRegisterProxy(field);
+  }
+  controller->UnRegisterProxy(grid);
+  expect(onGuides, "FiberFieldSource on guides", QString::fromUtf8("Guide Radius (µm)"));
+  expect(onGuides, "FiberFieldSource on guides", QString::fromUtf8("Guide Spacing (µm)"));
+  expect(onGuides, "FiberFieldSource on guides", "Guide Populations");
+  check(
+    !onGuides.contains("Orientation Array"), "FiberFieldSource on guides hides Orientation Array");
+  expect(onImage, "FiberFieldSource on an image", "Orientation Array");
+  check(!onImage.contains(QString::fromUtf8("Guide Radius (µm)")),
+    "FiberFieldSource on an image hides Guide Radius");
+  check(!onImage.contains("Guides"), "FiberFieldSource on an image hides the Guides group");
 
   // The XML label (the pvpython name's source) has no unit.
   const std::string xmlLabel = source->GetProperty("EdgeLength")->GetXMLLabel();

@@ -1,5 +1,6 @@
 """pvbatch --symmetric under mpiexec -n 2: FiberFieldSource makes its pieces. Every rank builds the
-same orientation field (a bend and a crossing second field) and runs the source; the pipeline
+same orientation field (a bend and a crossing second field), and the same guide lines (two crossing
+bundles, one population each), and runs the source; the pipeline
 update gives it piece r of 2, which must hold exactly the fibers [N·r/2, N·(r+1)/2) of the
 one-piece output, bit for bit, with their global fiber ids and the same field data."""
 import os
@@ -11,7 +12,8 @@ from fiberpli_test import check, load_plugin  # noqa: E402
 from paraview.simple import *  # noqa: F401,F403,E402
 import numpy as np  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData  # noqa: E402
 from vtkmodules.vtkParallelCore import vtkMultiProcessController  # noqa: E402
 
 signal.alarm(100)  # a rank stuck in a collective dies instead of hanging
@@ -83,4 +85,25 @@ two = FiberFieldSource(Input=producer, VolumeFraction=0.2, FiberRadius=0.5, Segm
 two.OrientationArray = ["POINTS", "bend"]
 two.SecondOrientationArray = ["POINTS", "across"]
 check_pieces(two, "bend and crossing")
+
+# Guide lines: arcs about the z axis (bundle_id 0) and straight lines along z (bundle_id 1).
+points, lines, bundle_ids = vtkPoints(), vtkCellArray(), []
+guides = [[(r * np.cos(t), r * np.sin(t), z) for t in np.linspace(0, np.pi / 2, 40)] for r in (14.0, 16.0) for z in (1.0, 3.0)]
+guides += [[(x, 10.0, z) for z in np.linspace(-4, 8, 13)] for x in (6.0, 8.0)]
+for k, guide in enumerate(guides):
+    lines.InsertNextCell(len(guide))
+    for p in guide:
+        lines.InsertCellPoint(points.InsertNextPoint(*p))
+    bundle_ids.append(0 if k < 4 else 1)
+guide_data = vtkPolyData()
+guide_data.SetPoints(points)
+guide_data.SetLines(lines)
+ids = numpy_to_vtk(np.asarray(bundle_ids, dtype=np.int32), deep=1)
+ids.SetName("bundle_id")
+guide_data.GetCellData().AddArray(ids)
+guide_producer = TrivialProducer()
+guide_producer.GetClientSideObject().SetOutput(guide_data)
+three = FiberFieldSource(Input=guide_producer, GuideRadius=2.0, GuideSpacing=0.5, GuidePopulations="ByBundle",
+                         VolumeFraction=0.2, FiberRadius=0.3, SegmentLength=1.0, Seed=2, NumberOfThreads=2)
+check_pieces(three, "guides")
 print("mpi_field_pieces passed on rank %d" % rank)

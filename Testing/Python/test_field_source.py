@@ -137,6 +137,57 @@ for p, b in zip(lines, bundles):
     length[int(b)] += np.linalg.norm(d)
 check(abs(length[0] - length[1]) <= 15.0, "volume shares %s" % length)
 
+# Two axes per voxel in one 6-component array (axis 2 absent above z = 8): exactly the model of the
+# two 3-component arrays, each population along its axis.
+def axis_x(x, y, z):
+    return np.c_[np.where(x % 2 == 0, 2.0, -1.0), 0 * x, 0 * x]
+
+
+def axis_y(x, y, z):
+    v = np.c_[0 * x, -np.ones_like(x), 0 * x]
+    v[z > 8] = 0.0
+    return v
+
+
+pairs = producer(image((16, 16, 16), {"first": axis_x, "second": axis_y,
+                                      "both": lambda x, y, z: np.c_[axis_x(x, y, z), axis_y(x, y, z)],
+                                      "quad": lambda x, y, z: np.c_[axis_x(x, y, z), 0 * x]}))
+as_two = FiberFieldSource(Input=pairs, VolumeFraction=0.3, FiberRadius=0.5, SegmentLength=1.0, Seed=2,
+                          PopulationShares=[1, 2])
+as_two.OrientationArray = ["POINTS", "first"]
+as_two.SecondOrientationArray = ["POINTS", "second"]
+as_six = FiberFieldSource(Input=pairs, VolumeFraction=0.3, FiberRadius=0.5, SegmentLength=1.0, Seed=2,
+                          PopulationShares=[1, 2])
+as_six.OrientationArray = ["POINTS", "both"]
+two_lines, two_bundles, two_data = fibers_of(as_two)
+six_lines, six_bundles, six_data = fibers_of(as_six)
+check(set(six_bundles.tolist()) == {0, 1}, "6-component bundles %s" % set(six_bundles.tolist()))
+check(len(six_lines) == len(two_lines) and all(np.array_equal(a, b) for a, b in zip(six_lines, two_lines))
+      and np.array_equal(six_bundles, two_bundles), "the 6-component array gave another model")
+check(np.array_equal(vtk_to_numpy(six_data.GetPointData().GetArray("radius")),
+                     vtk_to_numpy(two_data.GetPointData().GetArray("radius"))), "6-component radii differ")
+for p, b in zip(six_lines, six_bundles):
+    d = np.diff(p, axis=0)
+    axis = np.array([1.0, 0, 0]) if b == 0 else np.array([0, 1.0, 0])
+    check(np.all(np.linalg.norm(np.cross(d, axis), axis=1) < 1e-9 * np.linalg.norm(d, axis=1)), "bundle %d off its axis" % b)
+    check(b == 0 or p[:, 2].max() <= 8.5 + 1e-9, "bundle 1 where its axis is absent: z %g" % p[:, 2].max())
+print("6-component field: %d fibers, the same as from two arrays" % len(six_lines))
+catcher = ErrorCatcher(as_six)
+for first, second, words in (("quad", "None", "OrientationArray 'quad': the point array 'quad' has 4 components"),
+                             ("both", "second", "SecondOrientationArray 'second' is set, but OrientationArray 'both' has 6 components"),
+                             ("first", "both", "SecondOrientationArray 'both' has 6 components, must have 3")):
+    as_six.OrientationArray = ["POINTS", first]
+    as_six.SecondOrientationArray = ["POINTS", second]
+    catcher.clear()
+    as_six.UpdatePipeline()
+    check(words in catcher.text(), "no error %r: %r" % (words, catcher.text()))
+    check(servermanager.Fetch(as_six).GetNumberOfCells() == 0, "output after %s + %s" % (first, second))
+as_six.OrientationArray = ["POINTS", "both"]
+as_six.SecondOrientationArray = ["POINTS", "None"]
+catcher.clear()
+as_six.UpdatePipeline()
+check(not catcher.errors and servermanager.Fetch(as_six).GetNumberOfCells() == len(six_lines), "no recovery: %r" % catcher.text())
+
 # A cell array lives on the cell centres: fibers along z from z = 0.5 to z = 10.5.
 cells = vtkImageData()
 cells.SetDimensions(12, 12, 12)
@@ -164,7 +215,8 @@ check(inner is not None and np.allclose(vtk_to_numpy(inner), 0.6 * radius, rtol=
 check(radius.std() > 0.05 and abs(radius.mean() - 0.5) < 0.05, "beaded radii mean %g std %g" % (radius.mean(), radius.std()))
 
 # The GUI enables the filter (Filters > FiberPLI) for what its Input domains accept, checked as the
-# filters menu does: any image with a 3-component point or cell array, nothing else.
+# filters menu does: any image with a 3- or 6-component point or cell array, and polydata (guide
+# lines, test_guide_source.py), nothing else.
 def accepts(source):
     proto = servermanager.ProxyManager().SMProxyManager.GetPrototypeProxy("filters", "FiberFieldSource")
     prop = proto.GetProperty("Input")
@@ -176,8 +228,10 @@ def accepts(source):
 
 
 check(accepts(field) and accepts(producer(cells)), "an image with a vector array is not accepted")
+check(accepts(pairs), "an image with a 6-component array is not accepted")
 check(not accepts(Wavelet()), "an image without a 3-component array is accepted")
-check(not accepts(FiberCubeSource(NumberOfFibers=2)), "fiber polydata is accepted")
+check(accepts(FiberCubeSource(NumberOfFibers=2)), "fiber polydata (guide lines) is not accepted")
+check(not accepts(producer(cells.NewInstance())), "an empty image is accepted")
 
 # 4. Bad input: errors name the property and value; the pipeline recovers.
 bad = FiberFieldSource(Input=field, VolumeFraction=0.95, FiberRadius=0.5, SegmentLength=1.0)

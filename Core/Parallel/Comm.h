@@ -1,8 +1,10 @@
-/// SolverComm: what the distributed collision solver needs from its ranks (docs/solver.md §13):
-/// exact reductions, an all-to-all of byte buffers and its neighbours-only form. Pure C++; the VTK
-/// build implements it over vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests
-/// with threads as ranks. Every call is collective: all ranks make the same calls in the same
-/// order.
+/// Comm: what FiberPLI's parallel code needs from its ranks: exact reductions, an all-to-all of
+/// byte buffers and its form among partners (neighbours only). The distributed collision solver
+/// (docs/solver.md §13), its checkpoints and the tile exchange (Parallel/TileExchange.h) run over
+/// it; the rank collectives they share are in Parallel/Collectives.h. Pure C++; the VTK build
+/// implements it over vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests with
+/// threads as ranks (Core/Testing/ThreadComm.h). Every call is collective: all ranks make the same
+/// calls in the same order.
 #pragma once
 
 #include <cstdint>
@@ -11,10 +13,10 @@
 namespace fiberpli
 {
 
-class SolverComm
+class Comm
 {
 public:
-  virtual ~SolverComm() = default;
+  virtual ~Comm() = default;
   virtual int rank() const = 0;
   virtual int size() const = 0;
   /// Element-wise sum over all ranks, in place (integers: exact, the same on every rank).
@@ -36,7 +38,7 @@ public:
 };
 
 /// One rank: the reductions return their input, exchange returns send.
-class SerialComm final : public SolverComm
+class SerialComm final : public Comm
 {
 public:
   int rank() const override { return 0; }
