@@ -15,7 +15,7 @@ namespace
 // The point-to-point messages of the solver and of FiberTileExchange (vtkMultiProcessController
 // reserves 1–4, vtkCommunicator 10–16).
 constexpr int kExchangeTag = 48151;
-constexpr int kSizeTag = 48152; // the sizes, only without MPI
+constexpr int kSizeTag = 48152; // the sizes, without MPI or among partners
 // vtkMPICommunicator's non-blocking calls take an int count: longer buffers go as several
 // messages, which MPI delivers in the order they were sent (same sender, tag and communicator).
 constexpr std::size_t kChunk = std::size_t(1) << 30;
@@ -25,22 +25,42 @@ std::size_t Chunks(std::size_t bytes)
   return (bytes + kChunk - 1) / kChunk;
 }
 
-/// MPI: the sizes by MPI_Alltoall (each rank learns the R sizes addressed to it, O(R) memory),
-/// then every non-empty receive and send posted at once and one wait on all, so no rank waits
-/// for a pair it is not part of.
+/// MPI: the sizes by MPI_Alltoall (each rank learns the R sizes addressed to it, O(R) memory), or
+/// among `partners` only (non-null: a symmetric list) by non-blocking sends and receives of the
+/// sizes to and from them, then every non-empty receive and send posted at once and one wait on
+/// all, so no rank waits for a pair it is not part of.
 void ExchangeMPI(vtkMPICommunicator& mpi, const std::vector<std::vector<char>>& send,
-  std::vector<std::vector<char>>& received)
+  std::vector<std::vector<char>>& received, const std::vector<int>* partners = nullptr)
 {
   const int n = mpi.GetNumberOfProcesses();
   const int me = mpi.GetLocalProcessId();
-  std::vector<long long> out(static_cast<std::size_t>(n)), in(static_cast<std::size_t>(n));
+  std::vector<long long> out(static_cast<std::size_t>(n)), in(static_cast<std::size_t>(n), 0);
   for (int q = 0; q < n; ++q)
   {
     out[static_cast<std::size_t>(q)] =
       static_cast<long long>(send[static_cast<std::size_t>(q)].size());
   }
-  MPI_Alltoall(
-    out.data(), 1, MPI_LONG_LONG, in.data(), 1, MPI_LONG_LONG, *mpi.GetMPIComm()->GetHandle());
+  if (partners)
+  {
+    // Each size as 8 bytes (the non-blocking calls take chars).
+    std::vector<vtkMPICommunicator::Request> sizes(2 * partners->size());
+    std::size_t k = 0;
+    for (int q : *partners)
+      mpi.NoBlockReceive(reinterpret_cast<char*>(&in[static_cast<std::size_t>(q)]),
+        static_cast<int>(sizeof(long long)), q, kSizeTag, sizes[k++]);
+    for (int q : *partners)
+      mpi.NoBlockSend(reinterpret_cast<const char*>(&out[static_cast<std::size_t>(q)]),
+        static_cast<int>(sizeof(long long)), q, kSizeTag, sizes[k++]);
+    if (k > 0)
+    {
+      mpi.WaitAll(static_cast<int>(k), sizes.data());
+    }
+  }
+  else
+  {
+    MPI_Alltoall(
+      out.data(), 1, MPI_LONG_LONG, in.data(), 1, MPI_LONG_LONG, *mpi.GetMPIComm()->GetHandle());
+  }
   std::size_t count = 0;
   for (int q = 0; q < n; ++q)
   {
@@ -175,6 +195,20 @@ std::vector<std::vector<char>> FiberSolverComm::exchange(const std::vector<std::
   {
     ExchangePairwise(*this->Controller, send, received);
   }
+  return received;
+}
+
+std::vector<std::vector<char>> FiberSolverComm::exchangeWith(
+  const std::vector<int>& partners, const std::vector<std::vector<char>>& send)
+{
+  auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
+  if (this->size() == 1 || !mpi)
+  {
+    return this->exchange(send);
+  }
+  std::vector<std::vector<char>> received(send.size());
+  received[static_cast<std::size_t>(this->rank())] = send[static_cast<std::size_t>(this->rank())];
+  ExchangeMPI(*mpi, send, received, &partners);
   return received;
 }
 

@@ -3,7 +3,7 @@
 3D-PLI measurement (PLISimulation + PLIAnalysis) over a strip of several cells along x, the cell
 tiling the strip. Every stage runs distributed over the ranks with the parallel engine of
 ParaView: FiberCubeSource gives each rank its share of the fibers, FiberCollisionSolver solves them
-over slabs with a halo exchange, PLISimulation gives each rank the fibers reaching its image tile,
+over boxes with a halo exchange, PLISimulation gives each rank the fibers reaching its image tile,
 PLIAnalysis analyses its tile; the result is bit for bit the one-process result for any rank
 count. Prints what each stage did and how long it took.
 

@@ -1,9 +1,10 @@
-// The distributed solver's slab axis on a section strip (bench/README.md, "Slab axis on a section
+// The distributed solver's boxes on a section strip (bench/README.md, "Slab axis on a section
 // strip"): Examples/mpi_section.py's periodic cell (2 populations along x and y, 30 µm, volume
 // fraction 0.3, seed 42) tiled along x and clipped to a thickness (each tile's fibers cut at its
 // faces), solved for a few steps on 2 and 4 thread ranks (Core/Testing/ThreadComm.h, as the Core
-// tests run the distributed solver). Prints the slab axis and per rank: owned fibers, peak held
-// links (own + halo), peak halo links and the bytes sent per step, against the share of links.
+// tests run the distributed solver). Prints the box grid the solver chooses and per rank: owned
+// fibers, peak held links (own + halo), peak halo links, partners and the bytes sent per step,
+// against the share of links.
 // Usage: fiberpli_slab_axis_bench [steps 20] [cells along x 16] [thickness 10 (um)]
 #include "PeriodicReference.h"
 #include "Solver/CollisionSolver.h"
@@ -77,7 +78,7 @@ int main(int argc, char** argv)
   {
     std::vector<FiberModel> pieces(static_cast<std::size_t>(ranks));
     std::vector<CollisionSolverResult> result(pieces.size());
-    int axis = -1;
+    int grid[3] = { 1, 1, 1 };
     for (std::size_t r = 0; r < pieces.size(); ++r)
     {
       for (std::size_t f = model.fibers.size() * r / pieces.size();
@@ -88,19 +89,20 @@ int main(int argc, char** argv)
       [&](Comm& comm)
       {
         const std::size_t r = static_cast<std::size_t>(comm.rank());
-        const int a =
-          SlabLayout::make(pieces[r], PeriodicCell{}, comm).axis(); // the solver's own choice
+        const BoxLayout layout =
+          BoxLayout::make(pieces[r], PeriodicCell{}, comm); // the solver's own choice
         if (r == 0)
-          axis = a;
+          for (int d = 0; d < 3; ++d)
+            grid[d] = layout.boxes(d);
         result[r] = solveCollisions(pieces[r], o, {}, {}, &comm);
       });
-    std::printf("%d ranks, slab axis %c, %d steps, share %.0f links:", ranks, "xyz"[axis],
-      result[0].steps, static_cast<double>(links) / ranks);
+    std::printf("%d ranks, boxes %d x %d x %d, %d steps, share %.0f links:", ranks, grid[0],
+      grid[1], grid[2], result[0].steps, static_cast<double>(links) / ranks);
     for (std::size_t r = 0; r < result.size(); ++r)
     {
       const CollisionSolverResult& s = result[r];
-      std::printf(" [%zu fibers, held %zu, halo %zu, %.0f B/step]", s.rankFibers, s.peakHeldLinks,
-        s.peakHaloLinks, s.haloBytesPerStep);
+      std::printf(" [%zu fibers, held %zu, halo %zu, %zu partners, %.0f B/step]", s.rankFibers,
+        s.peakHeldLinks, s.peakHaloLinks, s.peakPartners, s.haloBytesPerStep);
     }
     std::printf("\n");
   }

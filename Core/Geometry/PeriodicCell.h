@@ -27,8 +27,8 @@ struct PeriodicCell
   }
 
   /// The multiple t of the edge along `axis` that brings x + t into [lo, hi) along it: the one
-  /// wrap rule (the distributed solver's slabs, Solver/Decomposition.h, wrap one axis with it and
-  /// must agree bit for bit with the pair finder's images).
+  /// wrap rule (the distributed solver's boxes, Solver/Decomposition.h, wrap with it and must
+  /// agree bit for bit with the pair finder's images).
   double wrapShift(double x, int axis) const
   {
     const double e = hi[axis] - lo[axis];

@@ -1,9 +1,10 @@
-/// Comm: what FiberPLI's parallel code needs from its ranks: exact reductions and an all-to-all of
-/// byte buffers. The distributed collision solver (docs/solver.md §13), its checkpoints and the
-/// tile exchange (Parallel/TileExchange.h) run over it; the rank collectives they share are in
-/// Parallel/Collectives.h. Pure C++; the VTK build implements it over vtkMultiProcessController
-/// (Conversion/FiberSolverComm.h), the tests with threads as ranks (Core/Testing/ThreadComm.h).
-/// Every call is collective: all ranks make the same calls in the same order.
+/// Comm: what FiberPLI's parallel code needs from its ranks: exact reductions, an all-to-all of
+/// byte buffers and its form among partners (neighbours only). The distributed collision solver
+/// (docs/solver.md §13), its checkpoints and the tile exchange (Parallel/TileExchange.h) run over
+/// it; the rank collectives they share are in Parallel/Collectives.h. Pure C++; the VTK build
+/// implements it over vtkMultiProcessController (Conversion/FiberSolverComm.h), the tests with
+/// threads as ranks (Core/Testing/ThreadComm.h). Every call is collective: all ranks make the same
+/// calls in the same order.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,16 @@ public:
   virtual void max(std::vector<double>& values) = 0;
   /// send[r] (size() buffers) goes to rank r; returns what every rank sent to this one, by rank.
   virtual std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) = 0;
+  /// exchange among partners only: send[r] is empty for every rank r not in `partners`
+  /// (ascending, without this rank), nothing comes from them, and the relation is symmetric (r
+  /// lists this rank when this rank lists r), so a transport needs no all-to-all of sizes. The
+  /// default is exchange().
+  virtual std::vector<std::vector<char>> exchangeWith(
+    const std::vector<int>& partners, const std::vector<std::vector<char>>& send)
+  {
+    (void)partners;
+    return exchange(send);
+  }
 };
 
 /// One rank: the reductions return their input, exchange returns send.

@@ -120,12 +120,13 @@ struct CollisionSolverResult : Status
     0; ///< most it held in a step: owned points + halo links (one point each)
   std::size_t peakHaloLinks = 0; ///< most halo links (of other ranks' fibers) it held in a step
   std::size_t peakHeldLinks = 0; ///< most links (own or halo) it held for its pair tests in a step
+  std::size_t peakPartners = 0;  ///< most ranks it exchanged links and pushes with in a step
   double haloBytesPerStep = 0.0; ///< bytes it sent per step, mean: links out and pushes back
   std::size_t migrations = 0;    ///< fibers that changed rank during the solve (all ranks)
   std::size_t testerRecuts =
-    0; ///< re-cuts at equal pair work that moved a tester slab cut (same on all ranks) ...
+    0; ///< re-cuts at equal pair work that moved a tester box cut (same on all ranks) ...
   double testerCutMove =
-    0.0; ///< ... and the largest move of a cut, as a fraction of the slab axis' span
+    0.0; ///< ... and the largest move of a cut, as a fraction of its axis' span
   /// [ours] Links of all detections of the run (this rank's held links) and, of them, the loud
   /// ones whose pairs were tested (docs/solver.md §3.4; all of them with quietLinks off).
   std::uint64_t detectedLinks = 0;

@@ -111,203 +111,270 @@ TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to
 }
 } // namespace
 
-SlabLayout SlabLayout::make(const FiberModel& local, const PeriodicCell& cell, Comm& comm)
+BoxLayout BoxLayout::make(const FiberModel& local, const PeriodicCell& cell, Comm& comm)
 {
-  SlabLayout s;
+  BoxLayout s;
   s.ranks_ = comm.size();
   s.periodic_ = cell.enabled();
   s.cell_ = cell;
-  // Per axis: the fibers' summed extent (exactly over all ranks), the domain [lo, hi] the slabs
-  // cut and the width `room` over which the fibers' middles, which decide the owners, spread.
-  std::vector<std::int64_t> fibers{ 0 }; // with points, on all ranks
-  for (const Fiber& f : local.fibers)
-    fibers[0] += f.points.empty() ? 0 : 1;
+  // Per axis, exactly over all ranks: the links' summed extent and count, the bounds of all points
+  // (the domain without a cell) and of the link centres (the room they spread over).
+  std::vector<std::int64_t> links{ 0 };
   double extentSum[3];
-  std::vector<double> m(12, -HUGE_VAL); // −lo, hi, −lowest middle, highest middle per axis
+  std::vector<double> m(12, -HUGE_VAL); // −lo, hi of the points, −lo, hi of the centres, per axis
   for (int d = 0; d < 3; ++d)
   {
     ExactSum sum;
     for (const Fiber& f : local.fibers)
     {
-      if (f.points.empty())
-        continue;
-      double a, b;
-      extent(f, d, a, b);
-      sum.add(b - a);
-      m[d] = std::max(m[d], -a);
-      m[3 + d] = std::max(m[3 + d], b);
-      m[6 + d] = std::max(m[6 + d], -0.5 * (a + b));
-      m[9 + d] = std::max(m[9 + d], 0.5 * (a + b));
+      for (std::size_t k = 0; k < f.points.size(); ++k)
+      {
+        const double x = f.points[k][d];
+        m[d] = std::max(m[d], -x);
+        m[3 + d] = std::max(m[3 + d], x);
+        if (k + 1 < f.points.size())
+        {
+          const double y = f.points[k + 1][d];
+          sum.add(std::fabs(y - x));
+          const double c = 0.5 * (x + y);
+          m[6 + d] = std::max(m[6 + d], -c);
+          m[9 + d] = std::max(m[9 + d], c);
+          links[0] += d == 0 ? 1 : 0;
+        }
+      }
     }
     extentSum[d] = sum.total(&comm);
   }
-  comm.sum(fibers);
+  comm.sum(links);
   comm.max(m);
-  Vec3 lo, hi;
-  double room[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    lo[d] = s.periodic_ ? cell.lo[d] : -m[d];
-    hi[d] = s.periodic_ ? cell.hi[d] : m[3 + d];
-    room[d] =
-      s.periodic_ ? hi[d] - lo[d] : std::max(0.0, m[9 + d] + m[6 + d]); // middles wrap in a cell
-  }
-  // The axis with room for the most whole slabs that each own fibers and are wider than a fiber
-  // and its halo: floor(room_a / (e_a + 2·reach)), e_a the mean fiber extent along a (a rank's
-  // own fibers reach e_a/2 out of its slab on each side, its held links the pair reach 2·ρmax
-  // beyond each face). Equal counts go to the axis of the shortest fibers (least summed extent:
-  // fewest reach into other slabs), then to the lower axis. In an equal-sided cell that is
-  // always the axis of the shortest fibers; in a section (1 cm × 1 cm × 60 µm, fibers in-plane
-  // and shorter than the section) an in-plane axis, not the thickness. Whole slabs, because the
-  // count is an estimate: an open cube's sides differ by where its outermost points lie, which
-  // must not outweigh the fibers' extents. From exact sums and maxima: every rank picks the same
-  // axis. Only axes the model spans: along a flat model's zero extent every link would be tested
-  // on rank 0.
   const double reach = 2.0 * maxOverRanks(comm, largestRadius(local));
-  const double n = static_cast<double>(fibers[0]);
-  double slabs[3];
+  double room[3], halo[3];
   for (int d = 0; d < 3; ++d)
   {
-    const double need = extentSum[d] + 2.0 * n * reach; // N · (e_a + 2·reach)
-    slabs[d] = need > 0.0 ? std::floor(room[d] * n / need) : 0.0;
+    s.lo_[d] = s.periodic_ ? cell.lo[d] : (m[d] > -HUGE_VAL ? -m[d] : 0.0);
+    s.hi_[d] = s.periodic_ ? cell.hi[d] : (m[3 + d] > -HUGE_VAL ? m[3 + d] : 0.0);
+    room[d] = s.periodic_ ? s.hi_[d] - s.lo_[d] : std::max(0.0, m[9 + d] + m[6 + d]);
+    halo[d] = (links[0] > 0 ? extentSum[d] / static_cast<double>(links[0]) : 0.0) + reach;
   }
-  const auto spans = [&](int d) { return hi[d] > lo[d]; };
-  for (int d = 1; d < 3; ++d)
+  // The factorisation of least held volume per rank: a box of widths w_d holds the links whose
+  // centres lie within about h_d of it (its own links reach half their extent out, a partner's
+  // half its extent in, and the pair reach between them). Boxes thinner than their halo, or cuts
+  // of an axis the model does not span, are taken only when nothing else is possible (many ranks
+  // on a small model). Enumerated with the most cuts along x first: equal volumes keep the first.
+  const int R = s.ranks_;
+  double best = HUGE_VAL;
+  bool bestFits = false;
+  for (int nx = R; nx >= 1; --nx)
   {
-    const int c = s.axis_;
-    const bool better =
-      slabs[d] > slabs[c] || (slabs[d] == slabs[c] && extentSum[d] < extentSum[c]);
-    if (spans(d) && (!spans(c) || better))
-      s.axis_ = d;
+    if (R % nx != 0)
+      continue;
+    for (int ny = R / nx; ny >= 1; --ny)
+    {
+      if ((R / nx) % ny != 0)
+        continue;
+      const int n[3] = { nx, ny, R / nx / ny };
+      bool spans = true, fits = true;
+      double volume = 1.0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double w = room[d] / n[d];
+        spans = spans && (n[d] == 1 || (s.hi_[d] > s.lo_[d] && room[d] > 0.0));
+        fits = fits && (n[d] == 1 || w >= halo[d]);
+        volume *= w + 2.0 * halo[d];
+      }
+      if (spans && ((fits && !bestFits) || (fits == bestFits && volume < best)))
+      {
+        best = volume;
+        bestFits = fits;
+        s.n_[0] = n[0];
+        s.n_[1] = n[1];
+        s.n_[2] = n[2];
+      }
+    }
   }
-  s.lo_ = lo[s.axis_];
-  s.hi_ = hi[s.axis_];
-  s.cutTesterSlabs(local, comm, -1);
+  if (best == HUGE_VAL) // no axis is spanned: one layer along x holds everything in its first box
+  {
+    s.n_[0] = R;
+    s.n_[1] = s.n_[2] = 1;
+  }
+  s.cutTesterBoxes(local, comm, -1);
   return s;
 }
 
-void SlabLayout::cutTesterSlabs(const FiberModel& local, Comm& comm, std::int64_t work)
+void BoxLayout::indicesOf(int r, int idx[3]) const
 {
-  // A histogram of all ranks' link centres (exact integer sums, the same on every rank), cut
-  // where its running sum passes k/R of the links: within one bin (1/4096 of [lo, hi]) of the
-  // balanced cut. With the ranks' pair work (its R entries after the bins), each bin's links
-  // weigh their slab's work per link instead of 1.
+  idx[2] = r % n_[2];
+  idx[1] = (r / n_[2]) % n_[1];
+  idx[0] = r / (n_[2] * n_[1]);
+}
+
+void BoxLayout::cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t work)
+{
+  // Per axis a histogram of all ranks' link centres (exact integer sums, the same on every rank),
+  // cut where its running sum passes k/n_d of the links: within one bin (1/4096 of the axis) of
+  // the balanced cut. With the boxes' pair work, each link weighs its box's work per link instead
+  // of 1, in fixed point (2^20 for the costliest box) so that the sums stay exact integers.
   constexpr std::size_t kBins = 4096;
   const std::size_t nr = static_cast<std::size_t>(ranks_);
-  std::vector<std::int64_t> count(kBins + nr, 0);
-  const std::size_t nf = hi_ > lo_ ? local.fibers.size() : 0; // (no copy of the piece)
-  for (std::size_t i = 0; i < nf; ++i)
-  {
-    const Fiber& f = local.fibers[i];
-    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
-    {
-      const double t = fraction(0.5 * (f.points[k][axis_] + f.points[k + 1][axis_]));
-      const double bin = std::floor(t * static_cast<double>(kBins));
-      ++count[bin < 0.0 ? 0 : bin >= kBins ? kBins - 1 : static_cast<std::size_t>(bin)];
-    }
-  }
-  count[kBins + static_cast<std::size_t>(comm.rank())] = work;
-  comm.sum(count);
-  // Weight of one link of bin b: 1, or its slab's work per link (the current cuts lie on bin
-  // edges, so a bin is in one slab). Every rank computes the same doubles in the same order.
-  std::vector<double> weight(kBins, 1.0);
+  std::vector<std::int64_t> weight; // per box, empty: 1
   if (work >= 0)
   {
-    std::vector<std::int64_t> links(nr, 0);
-    const auto slabOfBin = [this](std::size_t b)
-    {
-      return static_cast<std::size_t>(std::upper_bound(testCuts_.begin(), testCuts_.end(),
-                                        static_cast<double>(b) / static_cast<double>(kBins)) -
-        testCuts_.begin());
-    };
-    for (std::size_t b = 0; b < kBins; ++b)
-      links[slabOfBin(b)] += count[b];
+    std::vector<std::int64_t> perBox(2 * nr, 0); // links (current cuts), then work
+    for (const Fiber& f : local.fibers)
+      for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+        ++perBox[static_cast<std::size_t>(testerOf(0.5 * (f.points[k] + f.points[k + 1])))];
+    perBox[nr + static_cast<std::size_t>(comm.rank())] = work;
+    comm.sum(perBox);
+    double most = 0.0;
     for (std::size_t q = 0; q < nr; ++q)
     {
-      if (links[q] > 0 && count[kBins + q] <= 0)
-        return; // a slab with links and no measured work: keep the cuts
+      if (perBox[q] > 0 && perBox[nr + q] <= 0)
+        return; // a box with links and no measured work: keep the cuts
+      if (perBox[q] > 0)
+        most = std::max(most, static_cast<double>(perBox[nr + q]) / static_cast<double>(perBox[q]));
     }
-    for (std::size_t b = 0; b < kBins; ++b)
-    {
-      const std::size_t q = slabOfBin(b);
-      weight[b] =
-        links[q] > 0 ? static_cast<double>(count[kBins + q]) / static_cast<double>(links[q]) : 0.0;
-    }
+    if (!(most > 0.0))
+      return;
+    weight.assign(nr, 0);
+    for (std::size_t q = 0; q < nr; ++q)
+      if (perBox[q] > 0)
+        weight[q] = std::llround(
+          static_cast<double>(perBox[nr + q]) / static_cast<double>(perBox[q]) / most * 1048576.0);
   }
-  double total = 0.0;
-  for (std::size_t b = 0; b < kBins; ++b)
-    total += weight[b] * static_cast<double>(count[b]);
-  testCuts_.clear();
-  double below = 0.0;
-  std::size_t b = 0;
-  for (int k = 1; k < ranks_; ++k)
+  std::vector<std::int64_t> count(3 * kBins, 0);
+  for (const Fiber& f : local.fibers)
   {
-    // The first bin edge b with below(b) >= k/R of all (equal widths when there are no links).
-    if (!(total > 0.0))
+    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
     {
-      testCuts_.push_back(static_cast<double>(k) / ranks_);
-      continue;
+      const Vec3 c = 0.5 * (f.points[k] + f.points[k + 1]);
+      const std::int64_t w = weight.empty() ? 1 : weight[static_cast<std::size_t>(testerOf(c))];
+      for (int d = 0; d < 3; ++d)
+      {
+        if (!(hi_[d] > lo_[d]))
+          continue;
+        const double bin = std::floor(fraction(d, c[d]) * static_cast<double>(kBins));
+        count[d * kBins +
+          (bin < 0.0         ? 0
+              : bin >= kBins ? kBins - 1
+                             : static_cast<std::size_t>(bin))] += w;
+      }
     }
-    while (b < kBins && below * ranks_ < k * total)
+  }
+  comm.sum(count);
+  for (int d = 0; d < 3; ++d)
+  {
+    const std::int64_t* h = count.data() + d * kBins;
+    std::int64_t total = 0;
+    for (std::size_t b = 0; b < kBins; ++b)
+      total += h[b];
+    cuts_[d].clear();
+    std::int64_t below = 0;
+    std::size_t b = 0;
+    for (int k = 1; k < n_[d]; ++k)
     {
-      below += weight[b] * static_cast<double>(count[b]);
-      ++b;
+      // The first bin edge b with below(b) >= k/n of all (equal widths when there are no links).
+      if (total <= 0)
+      {
+        cuts_[d].push_back(static_cast<double>(k) / n_[d]);
+        continue;
+      }
+      while (b < kBins &&
+        static_cast<double>(below) * n_[d] < static_cast<double>(k) * static_cast<double>(total))
+      {
+        below += h[b];
+        ++b;
+      }
+      cuts_[d].push_back(static_cast<double>(b) / static_cast<double>(kBins));
     }
-    testCuts_.push_back(static_cast<double>(b) / static_cast<double>(kBins));
   }
 }
 
-void SlabLayout::balanceTesterSlabs(const FiberModel& local, std::int64_t work, Comm& comm)
+void BoxLayout::balanceTesterBoxes(const FiberModel& local, std::int64_t work, Comm& comm)
 {
-  cutTesterSlabs(local, comm, std::max<std::int64_t>(0, work));
+  cutTesterBoxes(local, comm, std::max<std::int64_t>(0, work));
 }
 
-double SlabLayout::fraction(double x) const
+double BoxLayout::largestCutMove(const BoxLayout& before) const
 {
-  const double t = (x - lo_) / (hi_ - lo_);
+  double moved = 0.0;
+  for (int d = 0; d < 3; ++d)
+    for (std::size_t i = 0; i < cuts_[d].size() && i < before.cuts_[d].size(); ++i)
+      moved = std::max(moved, std::fabs(cuts_[d][i] - before.cuts_[d][i]));
+  return moved;
+}
+
+double BoxLayout::fraction(int d, double x) const
+{
+  const double t = (x - lo_[d]) / (hi_[d] - lo_[d]);
   return periodic_ ? t - std::floor(t) : t;
 }
 
-int SlabLayout::testerOf(double x) const
+int BoxLayout::layerOf(int d, double x, bool owners) const
 {
-  if (ranks_ == 1 || !(hi_ > lo_))
+  if (n_[d] == 1 || !(hi_[d] > lo_[d]))
   {
     return 0;
   }
-  return static_cast<int>(
-    std::upper_bound(testCuts_.begin(), testCuts_.end(), fraction(x)) - testCuts_.begin());
+  const double t = fraction(d, x);
+  if (owners)
+  {
+    const double layer = std::floor(t * n_[d]);
+    return layer < 0.0 ? 0 : layer >= n_[d] ? n_[d] - 1 : static_cast<int>(layer);
+  }
+  return static_cast<int>(std::upper_bound(cuts_[d].begin(), cuts_[d].end(), t) - cuts_[d].begin());
 }
 
-double SlabLayout::testerLo(int q) const
+double BoxLayout::cut(int d, int i, bool owners) const
 {
-  const double t = q <= 0 ? 0.0 : q >= ranks_ ? 1.0 : testCuts_[static_cast<std::size_t>(q - 1)];
-  return lo_ + (hi_ - lo_) * t;
+  const double t = i <= 0 ? 0.0
+    : i >= n_[d]          ? 1.0
+    : owners              ? static_cast<double>(i) / n_[d]
+                          : cuts_[d][static_cast<std::size_t>(i - 1)];
+  return lo_[d] + (hi_[d] - lo_[d]) * t;
 }
 
-int SlabLayout::owner(const Fiber& f) const
+LayoutBox BoxLayout::box(int r, bool owners) const
 {
-  if (f.points.empty() || ranks_ == 1 || !(hi_ > lo_))
+  int idx[3];
+  indicesOf(r, idx);
+  LayoutBox b;
+  for (int d = 0; d < 3; ++d)
+  {
+    b.lo[d] = !periodic_ && idx[d] == 0 ? -HUGE_VAL : cut(d, idx[d], owners);
+    b.hi[d] = !periodic_ && idx[d] + 1 == n_[d] ? HUGE_VAL : cut(d, idx[d] + 1, owners);
+  }
+  return b;
+}
+
+int BoxLayout::testerOf(const Vec3& x) const
+{
+  return rankOf(layerOf(0, x[0]), layerOf(1, x[1]), layerOf(2, x[2]));
+}
+
+int BoxLayout::ownerOf(const Vec3& x) const
+{
+  return rankOf(layerOf(0, x[0], true), layerOf(1, x[1], true), layerOf(2, x[2], true));
+}
+
+Vec3 BoxLayout::middle(const Fiber& f)
+{
+  Vec3 c;
+  for (int d = 0; d < 3; ++d)
+  {
+    double a, b;
+    extent(f, d, a, b);
+    c[d] = 0.5 * (a + b);
+  }
+  return c;
+}
+
+int BoxLayout::owner(const Fiber& f) const
+{
+  if (f.points.empty() || ranks_ == 1)
   {
     return 0;
   }
-  double a, b;
-  extent(f, axis_, a, b);
-  return slabOf(0.5 * (a + b));
-}
-
-int SlabLayout::slabOf(double x) const
-{
-  if (ranks_ == 1 || !(hi_ > lo_))
-  {
-    return 0;
-  }
-  const double slab = std::floor(fraction(x) * ranks_);
-  return slab < 0.0 ? 0 : slab >= ranks_ ? ranks_ - 1 : static_cast<int>(slab);
-}
-
-double SlabLayout::wrapShift(double x) const
-{
-  return periodic_ ? cell_.wrapShift(x, axis_) : 0.0;
+  return ownerOf(middle(f));
 }
 
 TrafficCount redistribute(RankFibers& r, const std::vector<int>& dest, Comm& comm)

@@ -1,9 +1,9 @@
 /// Decomposition: how the distributed collision solver splits the fibers over its ranks
-/// (docs/solver.md §13). Whole fibers are owned by the rank whose slab (one axis, fixed for the
-/// run, the one with room for the most fiber-and-halo widths) holds the fiber's reference point,
-/// the middle of its extent along that axis (in a periodic cell wrapped into the cell). Every rank
-/// keeps its owned fibers, in global fiber order; fibers travel between ranks as byte records
-/// through Comm::exchange. The pair work goes by region (links, not fibers:
+/// (docs/solver.md §13). The domain is cut into a 3-D grid of boxes, one per rank (BoxLayout, the
+/// grid fixed for the run). Whole fibers are owned by the rank whose owner box holds the fiber's
+/// reference point, the middle of its extent (in a periodic cell wrapped into the cell). Every
+/// rank keeps its owned fibers, in global fiber order; fibers travel between ranks as byte records
+/// through Comm::exchange. The pair work goes by tester box (links, not fibers:
 /// Solver/LinkExchange.h).
 #pragma once
 
@@ -28,54 +28,79 @@ struct RankFibers
   std::size_t size() const { return model.fibers.size(); }
 };
 
-/// Slabs along one axis: of the periodic cell, else of the bounds of every rank's points.
-class SlabLayout
+/// An axis-aligned box; open models give the outermost boxes infinite outer faces (a point beyond
+/// the start bounds belongs to them).
+struct LayoutBox
+{
+  Vec3 lo, hi;
+};
+
+/// The boxes of a distributed solve: the periodic cell, else the bounds of every rank's points at
+/// the start, cut into nx × ny × nz boxes, box (i, j, k) being rank (i·ny + j)·nz + k. Two cuts
+/// of the same grid: *owner boxes* of equal widths (a fiber belongs to the box holding the middle
+/// of its extent, wrapped into the cell) and *tester boxes*, cut along each axis so that each
+/// layer holds the same number of link centres, later the same pair work (a link's pairs are
+/// tested by the tester box holding its centre, Solver/LinkExchange.h).
+class BoxLayout
 {
 public:
-  /// Collective: slabs along the axis with room for the most whole slabs that each own fibers
-  /// and are wider than a fiber and its halo, floor(room_a / (e_a + 2·reach)) (room_a: the cell's
-  /// edge, or else the width over which the fibers' middles spread; e_a: all ranks' mean fiber
-  /// extent along a; reach: 2·ρmax), equal counts to the axis of least summed fiber extent, then
-  /// the lower axis; cutting the cell, or else the global bounds of all points. In an equal-sided
-  /// cell, the axis of the shortest fibers.
-  static SlabLayout make(const FiberModel& local, const PeriodicCell& cell, Comm& comm);
-  /// Rank that owns the fiber (0 for a fiber without points).
+  /// Collective: the factorisation nx·ny·nz = R of least held volume per rank, Π_d (w_d + 2·h_d)
+  /// (w_d: the room along d over n_d, the room being the cell's edge or the spread of the link
+  /// centres; h_d: the halo, the mean link extent along d + 2·ρmax), among those that cut no axis
+  /// into boxes thinner than their halo nor an axis the model does not span (if none does, the
+  /// least volume of those that cut spanned axes only); equal volumes to the more cuts along
+  /// the lower axis. From exact sums and maxima: every rank picks the same grid.
+  static BoxLayout make(const FiberModel& local, const PeriodicCell& cell, Comm& comm);
+  /// Boxes along axis d.
+  int boxes(int d) const { return n_[d]; }
+  /// Rank of box (i, j, k).
+  int rankOf(int i, int j, int k) const { return (i * n_[1] + j) * n_[2] + k; }
+  /// The box indices of rank r.
+  void indicesOf(int r, int idx[3]) const;
+  /// Rank that owns the fiber: the owner box of the middle of its extent along each axis
+  /// (0 for a fiber without points).
   int owner(const Fiber& f) const;
-  /// Slab (rank) holding coordinate x along the axis (in a periodic cell after wrapping x into it).
-  int slabOf(double x) const;
-  /// Rank testing the pairs of a link whose centre is at x along the axis (Solver/LinkExchange.h):
-  /// slabs cut so that each holds as many link centres of the start model as the others (the pair
-  /// search is ~90 % of a step; equal widths left one of two ranks of the 1000-fiber cube with 54 %
-  /// of it), then re-cut during the run at equal measured work (balanceTesterSlabs). Ownership
-  /// (owner, slabOf) keeps equal widths: it decides only shape control and moves.
-  int testerOf(double x) const;
-  /// Collective: re-cuts the tester slabs at equal pair work. work: this rank's pair-search work
-  /// since the last cut (CollisionGrid::work). A slab's current links each weigh its work per link
-  /// (a histogram of all ranks' link centres), so the slabs of costly links get narrower. Who
-  /// tests a pair never changes a result, only the balance; the cuts stay when a slab with links
-  /// reported no work.
-  void balanceTesterSlabs(const FiberModel& local, std::int64_t work, Comm& comm);
-  /// Lower bound along the axis of tester slab q (q = R: the upper bound of the last one).
-  double testerLo(int q) const;
-  /// What wrapping x into the cell adds to it along the axis (PeriodicCell::wrapShift; 0 without a
-  /// cell).
-  double wrapShift(double x) const;
-  int axis() const { return axis_; }
-  /// The cell's edge along the axis (0 without a cell).
-  double period() const { return periodic_ ? hi_ - lo_ : 0.0; }
+  /// Middle of a fiber's extent along each axis (the point its owner box holds).
+  static Vec3 middle(const Fiber& f);
+  /// Owner box (rank) of point x (in a periodic cell after wrapping x into it).
+  int ownerOf(const Vec3& x) const;
+  /// Tester box (rank) of point x (in a periodic cell after wrapping x into it).
+  int testerOf(const Vec3& x) const;
+  /// Index along axis d of the tester (owner: owners = true) layer holding coordinate x.
+  int layerOf(int d, double x, bool owners = false) const;
+  /// Lower bound along d of tester (owner) layer i (i = boxes(d): the upper bound of the last).
+  double cut(int d, int i, bool owners = false) const;
+  /// Tester (owner) box of rank r; open models: the outermost faces are infinite.
+  LayoutBox box(int r, bool owners = false) const;
+  /// Collective: re-cuts the tester layers at equal pair work. work: this rank's (its tester
+  /// box's) pair-search work since the last cut (CollisionGrid::work). A box's current links each
+  /// weigh its work per link (histograms of all ranks' link centres along each axis), so layers
+  /// of costly links get thinner. Who tests a pair never changes a result, only the balance; the
+  /// cuts stay when a box with links reported no work.
+  void balanceTesterBoxes(const FiberModel& local, std::int64_t work, Comm& comm);
+  /// Largest move of a tester cut since `before`, as a fraction of its axis' span.
+  double largestCutMove(const BoxLayout& before) const;
+  /// What wrapping x into the cell adds to it (PeriodicCell::wrapShift; 0 without a cell).
+  Vec3 wrapShift(const Vec3& x) const { return periodic_ ? cell_.wrapShift(x) : Vec3{}; }
+  bool periodic() const { return periodic_; }
+  /// The cell's edge along d (0 without a cell).
+  double period(int d) const { return periodic_ ? hi_[d] - lo_[d] : 0.0; }
+  /// The domain's extent along d.
+  double span(int d) const { return hi_[d] - lo_[d]; }
 
 private:
-  int axis_ = 0;
-  double lo_ = 0.0, hi_ = 0.0;
+  int n_[3] = { 1, 1, 1 };
+  Vec3 lo_, hi_;
   int ranks_ = 1;
   bool periodic_ = false;
-  PeriodicCell cell_; // wrapShift: the cell's own rule along axis_
-  std::vector<double>
-    testCuts_; // the R − 1 inner cuts of the tester slabs, as fractions of [lo, hi]
-  double fraction(double x) const; // x as a fraction of [lo, hi], wrapped into [0, 1) in a cell
+  PeriodicCell cell_; // wrapShift: the cell's own rule
+  // Per axis the n_d − 1 inner cuts of the tester layers, as fractions of [lo, hi].
+  std::vector<double> cuts_[3];
+  // x as a fraction of [lo, hi] along d, wrapped into [0, 1) in a cell.
+  double fraction(int d, double x) const;
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
-  // every rank) or its slab's measured work per link (every rank passes its work >= 0).
-  void cutTesterSlabs(const FiberModel& local, Comm& comm, std::int64_t work);
+  // every rank) or its box's measured work per link (every rank passes its work >= 0).
+  void cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t work);
 };
 
 /// What a redistribution moved (this rank's share).

@@ -32,14 +32,14 @@ struct PushHeader
 
 using Reader = ByteReader;
 
-// The all-to-all of the buffers for other ranks (this rank's own links and pushes never go
-// into a buffer: out[me] stays empty).
-std::vector<std::vector<char>> exchangeAll(
-  const std::vector<std::vector<char>>& out, Comm& comm, TrafficCount& sent)
+// The exchange of the buffers with the partners (this rank's own links and pushes never go
+// into a buffer: out[me] stays empty, as does every buffer for a rank that is no partner).
+std::vector<std::vector<char>> exchangeWithPartners(const std::vector<std::vector<char>>& out,
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent)
 {
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
-  return comm.exchange(out);
+  return comm.exchangeWith(partners, out);
 }
 
 // Merges streams of records, each in ascending key order (keys unique across streams), into one
@@ -79,36 +79,20 @@ bool within(double a, double b, double c, double d, double reach, double period)
   return std::floor((d - a + reach) / period) >= std::ceil((c - b - reach) / period);
 }
 
-double centre(const CapsuleLink& l, int axis)
+Vec3 centre(const CapsuleLink& l)
 {
-  return 0.5 * (l.p0[axis] + l.p1[axis]);
+  return 0.5 * (l.p0 + l.p1);
 }
 
-// Calls f(q) for every tester slab q that [a, b] touches (modulo the cell) and one more on each
-// side (rounding). In a cell an interval shorter than the cell minus the widest slab cannot wrap
-// back into the slab it starts in, so its slabs run cyclically from a's to b's.
-// widest: the widest tester slab.
-template <class F>
-void forNearbySlabs(const SlabLayout& layout, int ranks, double widest, double a, double b, F f)
+// Lower and upper bound along d of tester (owners: owner) layer i, the outermost faces of an open
+// model infinite (a coordinate beyond them belongs to that layer).
+double layerLo(const BoxLayout& layout, int d, int i, bool owners)
 {
-  const double period = layout.period();
-  if (period > 0.0 && b - a >= 0.999 * (period - widest))
-  {
-    for (int q = 0; q < ranks; ++q)
-      f(static_cast<std::size_t>(q));
-    return;
-  }
-  const int qa = layout.testerOf(a), qb = layout.testerOf(b);
-  if (period > 0.0)
-  {
-    const int n =
-      std::min(ranks, ((qb - qa) % ranks + ranks) % ranks + 3); // qa − 1 … qb + 1, cyclic
-    for (int j = 0; j < n; ++j)
-      f(static_cast<std::size_t>(((qa - 1 + j) % ranks + ranks) % ranks));
-    return;
-  }
-  for (int q = std::max(0, qa - 1); q <= std::min(ranks - 1, qb + 1); ++q)
-    f(static_cast<std::size_t>(q));
+  return !layout.periodic() && i == 0 ? -HUGE_VAL : layout.cut(d, i, owners);
+}
+double layerHi(const BoxLayout& layout, int d, int i, bool owners)
+{
+  return !layout.periodic() && i + 1 == layout.boxes(d) ? HUGE_VAL : layout.cut(d, i + 1, owners);
 }
 
 // Writes the run of own[first, first + count) (links of one fiber, consecutive).
@@ -137,59 +121,87 @@ double capsuleRadius(double r0, double r1, double scale)
 }
 
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
-  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info)
+  const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners)
 {
-  const int axis = layout.axis();
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
-  // Every rank's test region (−lo, hi; none: −∞, −∞) from the links of all owners.
-  // tester: per own link, the rank testing its pairs (kept for the held copy below).
-  std::vector<double> region(2 * nr, -HUGE_VAL);
+  // How far links reach beyond the faces of their tester box (`grow`, each link shifted as
+  // wrapping its centre shifts it) and beyond the owner box of the rank owning their fiber
+  // (`spread`, shifted as wrapping the fiber's middle shifts it): below / above, per axis, the
+  // maxima over all ranks. tester: per own link, the box testing its pairs; shift: its wrap.
+  const LayoutBox ownerBox = layout.box(me, true);
+  std::vector<double> m(12, 0.0); // grow below, grow above, spread below, spread above
   std::vector<int> tester(own.size());
+  std::vector<Vec3> shift(own.size());
+  std::uint32_t fiber = UINT32_MAX;
+  Vec3 fiberShift;
   for (std::size_t i = 0; i < own.size(); ++i)
   {
     const CapsuleLink& l = own[i];
-    const double c = centre(l, axis);
-    tester[i] = layout.testerOf(c);
-    const std::size_t q = static_cast<std::size_t>(tester[i]);
-    const double shift = layout.wrapShift(c);
-    region[2 * q] = std::max(region[2 * q], -(std::min(l.p0[axis], l.p1[axis]) + shift));
-    region[2 * q + 1] = std::max(region[2 * q + 1], std::max(l.p0[axis], l.p1[axis]) + shift);
-  }
-  comm.max(region);
-  // Every region lies in its slab grown by `grow`: a link can only reach the regions of the slabs
-  // its extent grown by reach + grow touches (and, for rounding, one more on each side), so a
-  // link tests a few ranks, not all.
-  // Without a period the outer sides of the first and last slab do not count: forNearbySlabs
-  // clamps a coordinate beyond them to that slab anyway (open-model fibers drifting outward
-  // would otherwise widen every link's search).
-  const bool aperiodic = layout.period() <= 0.0;
-  // Without a cell a pair is tested by the lower of its links' tester slabs: a link goes to no
-  // rank above its own.
-  const bool downOnly = testedPairs(layout) == TestedPairs::EitherLink;
-  double grow = 0.0, widest = 0.0;
-  for (std::size_t q = 0; q < nr; ++q)
-  {
-    widest = std::max(
-      widest, layout.testerLo(static_cast<int>(q) + 1) - layout.testerLo(static_cast<int>(q)));
-    if (region[2 * q + 1] > -HUGE_VAL)
+    if (l.fiber != fiber)
     {
-      const int r = static_cast<int>(q);
-      if (!(aperiodic && q == 0))
-        grow = std::max(grow, layout.testerLo(r) + region[2 * q]);
-      if (!(aperiodic && q + 1 == nr))
-        grow = std::max(grow, region[2 * q + 1] - layout.testerLo(r + 1));
+      fiber = l.fiber;
+      fiberShift = layout.wrapShift(BoxLayout::middle(model.fibers[l.fiber]));
+    }
+    const Vec3 c = centre(l);
+    tester[i] = layout.testerOf(c);
+    shift[i] = layout.wrapShift(c);
+    const LayoutBox t = layout.box(tester[i]);
+    for (int d = 0; d < 3; ++d)
+    {
+      const double lo = std::min(l.p0[d], l.p1[d]), hi = std::max(l.p0[d], l.p1[d]);
+      m[d] = std::max(m[d], t.lo[d] - (lo + shift[i][d]));
+      m[3 + d] = std::max(m[3 + d], hi + shift[i][d] - t.hi[d]);
+      m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - (lo + fiberShift[d]));
+      m[9 + d] = std::max(m[9 + d], hi + fiberShift[d] - ownerBox.hi[d]);
     }
   }
-  grow +=
-    1e-9 * (layout.testerLo(static_cast<int>(nr)) - layout.testerLo(0)); // testerLo's rounding
-  // Down-only routing without a cell: below[t] is the highest top of the regions of the slabs
-  // below t, so a link of slab t whose extent lies more than reach above it goes to t alone
-  // (most links; the general search below would find the same).
-  std::vector<double> below(nr, -HUGE_VAL);
-  for (std::size_t q = 1; downOnly && q < nr; ++q)
-    below[q] = std::max(below[q - 1], region[2 * (q - 1) + 1]);
+  comm.max(m);
+  for (int d = 0; d < 3; ++d) // the rounding of the cuts and shifts
+  {
+    const double margin = 1e-9 * layout.span(d);
+    for (int j = 0; j < 4; ++j)
+      m[3 * j + d] += margin;
+  }
+  // Owner layer o (grown by the spread) and tester layer t (grown by the growth) closer than
+  // reach along d (modulo the cell): then an owner of o may send a link to a tester of t. One
+  // function of (d, o, t), so that every rank evaluates the relation alike.
+  const auto near = [&](int d, int o, int t)
+  {
+    return within(layerLo(layout, d, o, true) - m[6 + d], layerHi(layout, d, o, true) + m[9 + d],
+      layerLo(layout, d, t, false) - m[d], layerHi(layout, d, t, false) + m[3 + d], reach,
+      layout.period(d));
+  };
+  // The partners: the tester boxes this rank's owner box may send links to, and the owner boxes
+  // that may send links to this rank's tester box (pushes go back the same way). Symmetric: q is
+  // a partner of r exactly when r is one of q.
+  int idx[3];
+  layout.indicesOf(me, idx);
+  std::vector<int> sendsTo[3], getsFrom[3]; // per axis, the layers
+  for (int d = 0; d < 3; ++d)
+  {
+    for (int j = 0; j < layout.boxes(d); ++j)
+    {
+      if (near(d, idx[d], j))
+        sendsTo[d].push_back(j);
+      if (near(d, j, idx[d]))
+        getsFrom[d].push_back(j);
+    }
+  }
+  partners.clear();
+  const std::vector<int>* both[2] = { sendsTo, getsFrom };
+  for (const std::vector<int>* layers : both)
+    for (int i : layers[0])
+      for (int j : layers[1])
+        for (int k : layers[2])
+          if (layout.rankOf(i, j, k) != me)
+            partners.push_back(layout.rankOf(i, j, k));
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  // Without a cell a pair is tested by the lower of its links' tester boxes: a link goes to no
+  // box above its own.
+  const bool downOnly = testedPairs(layout) == TestedPairs::EitherLink;
   // Per destination, the run of links being collected (first link, length); `open`: those with
   // a run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
   std::vector<std::vector<char>> out(nr);
@@ -203,30 +215,37 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
       writeRun(out[q], own, first[q], count[q], model, global);
     count[q] = 0;
   };
+  std::vector<int> along[3];
   for (std::size_t i = 0; i < own.size(); ++i)
   {
     const CapsuleLink& l = own[i];
-    const double lo = std::min(l.p0[axis], l.p1[axis]), hi = std::max(l.p0[axis], l.p1[axis]);
+    // The tester boxes (grown by the growth) the link comes within reach of, among the layers
+    // this rank's owner box sends to.
+    for (int d = 0; d < 3; ++d)
+    {
+      const double lo = std::min(l.p0[d], l.p1[d]) + shift[i][d];
+      const double hi = std::max(l.p0[d], l.p1[d]) + shift[i][d];
+      along[d].clear();
+      for (int j : sendsTo[d])
+      {
+        if (within(lo, hi, layerLo(layout, d, j, false) - m[d],
+              layerHi(layout, d, j, false) + m[3 + d], reach, layout.period(d)))
+          along[d].push_back(j);
+      }
+    }
     dests.clear();
     const std::size_t t = static_cast<std::size_t>(tester[i]);
-    if (downOnly && lo - reach > below[t])
-    {
-      dests.push_back(t); // its own region holds it
-      stamp[t] = i;
-    }
-    else
-    {
-      forNearbySlabs(layout, static_cast<int>(nr), widest, lo - reach - grow, hi + reach + grow,
-        [&](std::size_t q)
+    for (int a : along[0])
+      for (int b : along[1])
+        for (int c : along[2])
         {
-          if ((!downOnly || q <= t) && region[2 * q + 1] > -HUGE_VAL &&
-            within(lo, hi, -region[2 * q], region[2 * q + 1], reach, layout.period()))
+          const std::size_t q = static_cast<std::size_t>(layout.rankOf(a, b, c));
+          if (!downOnly || q <= t)
           {
             dests.push_back(q);
             stamp[q] = i;
           }
-        });
-    }
+        }
     const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
     std::size_t kept = 0;
     for (std::size_t q : open)
@@ -251,7 +270,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   for (std::size_t q : open)
     closeRun(q);
   TrafficCount sent;
-  const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
+  const std::vector<std::vector<char>> in = exchangeWithPartners(out, partners, comm, sent);
   // Each sender's runs come in its link order, which is global order (an owner's fibers are in
   // global order), and no two senders send links of one fiber: taking the run with the lowest
   // first link among the senders' next ones gives global link order without a sort. This
@@ -326,7 +345,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
       info.pointRadius.push_back(std::min(r[k], r[k + 1]));
       info.owner.push_back(static_cast<int>(q));
       info.local.push_back(kNotOwned);
-      info.tested.push_back(layout.testerOf(centre(l, axis)) == me ? 1 : 0);
+      info.tested.push_back(layout.testerOf(centre(l)) == me ? 1 : 0);
     }
   };
   mergeStreams<std::uint64_t>(nr, peek, take);
@@ -334,7 +353,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
 }
 
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  Comm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received)
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
+  std::vector<std::vector<ReceivedPush>>& received)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
@@ -385,7 +405,7 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
         }
       });
   }
-  const std::vector<std::vector<char>> in = exchangeAll(out, comm, sent);
+  const std::vector<std::vector<char>> in = exchangeWithPartners(out, partners, comm, sent);
   // A side not sent stays zero: its fiber is not this rank's. A sender's pairs come in pair
   // order, so their first fibers ascend: one cursor through `global` finds them.
   const auto localOf = [&global](std::uint32_t fiber)

@@ -1,12 +1,14 @@
-/// LinkExchange: the pair work of the distributed collision solver, by region (docs/solver.md §13).
-/// Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every step
-/// each owner sends each of its links to every rank whose test region comes within reach of it.
-/// A pair is tested by exactly one rank (testedPairs): without a cell the lower of its two links'
-/// tester slabs (SlabLayout::testerOf: slabs of equal pair work, by the link's centre), so a rank
-/// needs the links of the slabs above it only; in a periodic cell the slab of its lower link (in
-/// global link order). That rank holds every partner of its links. It sends the pair's pushes
-/// back to the owners of the two links, and they add them in pair order, as the serial solver
-/// does (§4.4). A rank holds its owned fibers and the links near its slab, not whole fibers.
+/// LinkExchange: the pair work of the distributed collision solver, by tester box (docs/solver.md
+/// §13). Fibers stay owned whole (Solver/Decomposition.h), but pairs are found among links: every
+/// step each owner sends each of its links to every rank whose tester box, grown by how far any
+/// link reaches out of its own, comes within reach of it. A pair is tested by exactly one rank
+/// (testedPairs): without a cell the lower of its two links' tester boxes (BoxLayout::testerOf:
+/// the box holding the link's centre; lower in rank order), so a rank needs the links of higher
+/// boxes only; in a periodic cell the box of its lower link (in global link order). That rank
+/// holds every partner of its links. It sends the pair's pushes back to the owners of the two
+/// links, and they add them in pair order, as the serial solver does (§4.4). A rank holds its
+/// owned fibers and the links near its box, a shell, not whole fibers; it exchanges links and
+/// pushes with its partners only, ranks whose boxes are within reach.
 #pragma once
 
 #include "Index/CollisionGrid.h"
@@ -14,6 +16,7 @@
 #include "Parallel/Comm.h"
 #include "Solver/Decomposition.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -37,38 +40,41 @@ struct HeldLinkInfo
   std::vector<double> pointRadius;  ///< the smaller radius of the link's two points (unscaled)
   std::vector<int> owner;           ///< the rank owning the link's fiber
   std::vector<std::uint32_t> local; ///< the fiber's index in this rank's model, or kNotOwned
-  std::vector<char> tested; ///< 1: a link of this rank's tester slab (testedPairs says which of its
+  std::vector<char> tested; ///< 1: a link of this rank's tester box (testedPairs says which of its
                             ///< pairs the rank tests)
 };
 
 /// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester
-/// slab's): without a cell every pair with a flagged link (a rank holds besides them only links of
-/// higher slabs, exchangeLinks), in a periodic cell those whose lower link is flagged (the cell
-/// has no lowest slab; its ghost images rely on that rule, Index/PeriodicPairs.h).
-inline TestedPairs testedPairs(const SlabLayout& layout)
+/// box's): without a cell every pair with a flagged link (a rank holds besides them only links of
+/// higher boxes, exchangeLinks), in a periodic cell those whose lower link is flagged (the cell
+/// has no lowest box; its ghost images rely on that rule, Index/PeriodicPairs.h).
+inline TestedPairs testedPairs(const BoxLayout& layout)
 {
-  return layout.period() > 0.0 ? TestedPairs::LowerLink : TestedPairs::EitherLink;
+  return layout.periodic() ? TestedPairs::LowerLink : TestedPairs::EitherLink;
 }
 
 /// A link's capsule radius from its points' radii at radius scale `scale` (radius growth); the
 /// solver's links and the received ones use this one formula, so they have the same bits.
 double capsuleRadius(double r0, double r1, double scale);
 
-/// Sends every owned link to every rank whose test region comes within `reach` of the link's
-/// extent along the slab axis (modulo the cell), without a cell only to the ranks of its own
-/// tester slab and the lower ones (testedPairs). A rank's test region is the extent of all links
-/// whose centre lies in its tester slab, each shifted as wrapping its centre into the cell shifts
-/// it. own: the links of `model` (CapsuleLink::fiber = index in model), in link order; global: the
-/// fibers' global indices, ascending (so `own` is in global link order); scale: the capsule radius
-/// scale they were built with. Consecutive links of a fiber travel as one run of points (about 32
-/// bytes a link); the links a rank keeps of its own are copied, not serialised. Returns in `held`
+/// Sends every owned link to every rank whose tester box, grown by how far any link reaches beyond
+/// the faces of its own tester box, comes within `reach` of the link's bounding box (modulo the
+/// cell), without a cell only to the ranks of its own tester box and lower ones (testedPairs).
+/// The links and pushes go to `partners` only (set here, ascending, without this rank): the ranks
+/// whose tester box comes within reach of this rank's owner box grown by how far any fiber reaches
+/// beyond its owner's box, or whose owner box does so with this rank's tester box; every rank
+/// computes the same symmetric relation from the boxes and four maxima per axis. own: the links of
+/// `model` (CapsuleLink::fiber = index in model), in link order; global: the fibers' global
+/// indices, ascending (so `own` is in global link order); scale: the capsule radius scale they
+/// were built with. Consecutive links of a fiber travel as one run of points (about 32 bytes a
+/// link); the links a rank keeps of its own are copied, not serialised. Returns in `held`
 /// (CapsuleLink::fiber = global fiber index, in global link order, merged from the senders' runs;
 /// the buffers' capacity is kept) and `info` what this rank receives: with reach at least 2·ρmax +
-/// gap every colliding partner of a link tested here is held here. Collective (a maximum of 2·R
-/// values, one exchange); returns what was sent to other ranks.
+/// gap every colliding partner of a link tested here is held here. Collective (a maximum of 12
+/// values, one exchange with the partners); returns what was sent to other ranks.
 TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const SlabLayout& layout, double reach,
-  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info);
+  const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
+  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).
@@ -91,9 +97,11 @@ struct ReceivedPush
 /// its side; both sides once when one rank owns both) and returns in `received` (per sender, the
 /// buffers reused) the pushes other ranks tested on this rank's links, each sender's in pair
 /// order (a side not received is zero). `tested` must be in pair order; global: this rank's
-/// fibers' global indices, ascending. Collective; `sent` counts what went to other ranks.
+/// fibers' global indices, ascending; partners: those of the exchangeLinks that sent the links.
+/// Collective; `sent` counts what went to other ranks.
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  Comm& comm, TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received);
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
+  std::vector<std::vector<ReceivedPush>>& received);
 
 /// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):
 /// take(push, fa, fb) with the model indices of its links' fibers (kNotOwned: another rank's).
@@ -109,12 +117,18 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
   const auto key = [](const LinkPairPush& x)
   { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
   // Each record's key is computed once: the senders' next ones are kept, as is the next own one.
+  // Only the senders with records left are searched (a rank hears from its partners only, a few
+  // of R).
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
   std::vector<Key> next(received.size());          // its key
+  std::vector<std::size_t> live;                   // the senders with records left
   for (std::size_t q = 0; q < received.size(); ++q)
   {
     if (!received[q].empty())
+    {
       next[q] = key(received[q][0].push);
+      live.push_back(q);
+    }
   }
   std::size_t i = 0;            // next pair tested here
   std::size_t keyed = SIZE_MAX; // the pair whose key mine holds
@@ -124,10 +138,14 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
     while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
       ++i;                       // neither link is this rank's
     std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
-    for (std::size_t q = 0; q < received.size(); ++q)
+    std::size_t where = 0;       // its place in live
+    for (std::size_t j = 0; j < live.size(); ++j)
     {
-      if (at[q] < received[q].size() && (from == SIZE_MAX || next[q] < next[from]))
-        from = q;
+      if (from == SIZE_MAX || next[live[j]] < next[from])
+      {
+        from = live[j];
+        where = j;
+      }
     }
     if (i < tested.size() && keyed != i)
     {
@@ -144,6 +162,8 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
       const ReceivedPush& r = received[from][at[from]++];
       if (at[from] < received[from].size())
         next[from] = key(received[from][at[from]].push);
+      else
+        live.erase(live.begin() + static_cast<std::ptrdiff_t>(where));
       take(r.push, r.localA, r.localB);
     }
     else

@@ -1,4 +1,4 @@
-// SolverEngine: the slabs, migrations and link exchanges of a distributed run (docs/solver.md §13).
+// SolverEngine: the boxes, migrations and link exchanges of a distributed run (docs/solver.md §13).
 
 #include "Solver/SolverEngine.h"
 
@@ -8,10 +8,10 @@
 namespace fiberpli
 {
 
-// The slabs, the pair and probe reaches and every fiber to its owner (the run's first exchange).
+// The boxes, the pair and probe reaches and every fiber to its owner (the run's first exchange).
 void SolverEngine::startDistribution()
 {
-  layout_ = SlabLayout::make(model_, o_.periodicCell, *comm_);
+  layout_ = BoxLayout::make(model_, o_.periodicCell, *comm_);
   const double rhoMax = maxOverRanks(*comm_, largestRadius(model_));
   // Pairs collide closer than 2·ρmax + gap; the minimum gap probes pairs up to one median
   // radius (<= ρmax) apart; a relative margin covers the rounding of the distances.
@@ -28,38 +28,36 @@ void SolverEngine::startDistribution()
   pairWork_ = 0;
 }
 
-// Every kBalanceSteps steps the tester slabs are re-cut at equal pair work of the steps since
+// Every kBalanceSteps steps the tester boxes are re-cut at equal pair work of the steps since
 // (the link counts they start with balance the links, not their pairs: the 1000-fiber cube's
 // ranks did 52 / 48 % of the box tests).
 void SolverEngine::balanceTesters()
 {
   if (st_.steps > 0 && st_.steps % kBalanceSteps == 0)
   {
-    const SlabLayout before = layout_;
-    layout_.balanceTesterSlabs(model_, static_cast<std::int64_t>(pairWork_), *comm_);
+    const BoxLayout before = layout_;
+    layout_.balanceTesterBoxes(model_, static_cast<std::int64_t>(pairWork_), *comm_);
     pairWork_ = 0;
-    const double span = layout_.testerLo(comm_->size()) - layout_.testerLo(0);
-    double moved = 0.0;
-    for (int q = 1; q < comm_->size(); ++q)
-      moved = std::max(moved, std::abs(layout_.testerLo(q) - before.testerLo(q)));
+    const double moved = layout_.largestCutMove(before);
     if (moved > 0.0)
     {
       ++testerRecuts_;
-      testerCutMove_ = std::max(testerCutMove_, moved / span);
+      testerCutMove_ = std::max(testerCutMove_, moved);
     }
   }
 }
 
 void SolverEngine::resetTraffic()
 {
-  migrations_ = haloExchanges_ = haloBytes_ = peakHaloLinks_ = peakRankPoints_ = peakHeldLinks_ = 0;
+  migrations_ = haloExchanges_ = haloBytes_ = peakHaloLinks_ = peakRankPoints_ = peakHeldLinks_ =
+    peakPartners_ = 0;
   testerRecuts_ = 0;
   testerCutMove_ = 0.0;
 }
 
-// Before a detection: fibers whose slab changed go to their new owner (only when a rank said so
-// at the end of the last step: most steps move no fiber out of its slab, and the links go to
-// every rank whose region they reach whoever owns them).
+// Before a detection: fibers whose owner box changed go to their new owner (only when a rank said
+// so at the end of the last step: most steps move no fiber out of its box, and the links go to
+// every rank whose tester box they reach whoever owns them).
 void SolverEngine::migrate()
 {
   if (migrationDue_)
@@ -75,7 +73,7 @@ void SolverEngine::migrate()
   }
 }
 
-// links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's slab,
+// links_ (and pointOffset_) of the owned fibers; distributed: the links near this rank's box,
 // from all owners, with the current positions (so they are complete for this step), or with
 // the wider reach of the minimum-gap probe (then not counted as a step's traffic).
 void SolverEngine::gatherLinks(
@@ -87,8 +85,8 @@ void SolverEngine::gatherLinks(
     return;
   }
   const double reach = forGapProbe ? probeReach_ : pairReach_;
-  const TrafficCount sent =
-    exchangeLinks(ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_);
+  const TrafficCount sent = exchangeLinks(
+    ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_, partners_);
   if (forGapProbe)
   {
     return;
@@ -99,12 +97,13 @@ void SolverEngine::gatherLinks(
   for (std::uint32_t f : held_.local)
     halo += f == kNotOwned ? 1 : 0;
   peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
+  peakPartners_ = std::max(peakPartners_, partners_.size());
   peakHaloLinks_ = std::max(peakHaloLinks_, halo);
   peakRankPoints_ =
     std::max(peakRankPoints_, pointOffset_.back() + halo); // owned points + halo links
 }
 
-// Owned fibers whose middle left this rank's slab (after a move): they migrate next step.
+// Owned fibers whose middle left this rank's owner box (after a move): they migrate next step.
 std::int64_t SolverEngine::leavingFibers() const
 {
   std::int64_t n = 0;

@@ -1,6 +1,6 @@
 /// SolverEngine: the working state of one collision solve and the operations a step is made of
 /// (docs/solver.md §3–§6, §13). Internal to Core/Solver: CollisionSolverRun (SolverRun.h) drives
-/// it; the operations live in one file per job: SolverDistribution.cxx (the slabs and the
+/// it; the operations live in one file per job: SolverDistribution.cxx (the boxes and the
 /// exchanges of a distributed run), SolverDetection.cxx (the colliding pairs and their limits),
 /// SolverMoves.cxx (pushes and shape control), SolverMeasures.cxx (overlap and gap figures of the
 /// result), SolverSetup.cxx (preparing the fibers and the step size).
@@ -24,7 +24,7 @@
 namespace fiberpli
 {
 
-// Steps between re-cuts of the distributed solver's tester slabs (a histogram sum each time).
+// Steps between re-cuts of the distributed solver's tester boxes (two sums each time).
 constexpr int kBalanceSteps = 32;
 // Pairs per link below which the packing bound (>= 27 per link, Index/CollisionGrid.h) cannot be
 // exceeded, so its exact sum over all links is skipped.
@@ -58,21 +58,22 @@ public:
   std::uint64_t detectedLinks_ = 0, loudLinks_ = 0;       // summed over the detections of the run
   std::size_t lastDetectedLinks_ = 0, lastLoudLinks_ = 0; // of the last detection
   // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
-  // fibers this rank owns; the pairs are found among the links near its slab (LinkExchange.h).
+  // fibers this rank owns; the pairs are found among the links near its box (LinkExchange.h).
   Comm* comm_ = nullptr;
   std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
   HeldLinkInfo held_;                 // per link of links_
-  SlabLayout layout_;
-  // Links closer than this along the slab axis to a rank's test region go there: for the pairs of
-  // a step, and for the minimum-gap probe at the end.
+  BoxLayout layout_;
+  std::vector<int> partners_; // the ranks the last gatherLinks exchanged with (pushes go back)
+  // Links closer than this to a rank's grown tester box go there: for the pairs of a step, and
+  // for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
-  bool migrationDue_ = false; // some rank holds a fiber another rank's slab owns (last step's move)
+  bool migrationDue_ = false; // some rank holds a fiber another rank's box owns (last step's move)
   std::uint64_t pairWork_ =
-    0; // the pair search's work (CollisionGrid::work) since the tester slabs were cut
+    0; // the pair search's work (CollisionGrid::work) since the tester boxes were cut
   std::size_t testerRecuts_ = 0; // balanceTesters calls that moved a cut ...
   double testerCutMove_ = 0.0;   // ... and the largest move, as a fraction of the axis' span
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0,
-              peakRankPoints_ = 0, peakHeldLinks_ = 0;
+              peakRankPoints_ = 0, peakHeldLinks_ = 0, peakPartners_ = 0;
 
   RankFibers rankFibers() { return RankFibers{ model_, st_ }; }
 

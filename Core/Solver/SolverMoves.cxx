@@ -158,7 +158,7 @@ void SolverEngine::separate()
     // Per sender, the pushes others tested on this rank's links (not kept between steps: the
     // peak memory stays the pair search's).
     std::vector<std::vector<ReceivedPush>> received;
-    returnPushes(push_, st_.global, *comm_, sent, received);
+    returnPushes(push_, st_.global, partners_, *comm_, sent, received);
     haloBytes_ += sent.bytes;
     const auto own = [](std::uint32_t f)
     { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };

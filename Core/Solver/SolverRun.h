@@ -119,6 +119,7 @@ struct CollisionSolverRun::Impl
     result.peakHaloLinks = s.peakHaloLinks_;
     result.peakRankPoints = s.peakRankPoints_;
     result.peakHeldLinks = s.peakHeldLinks_;
+    result.peakPartners = s.peakPartners_;
     result.testerRecuts = s.testerRecuts_;
     result.testerCutMove = s.testerCutMove_;
   }

@@ -177,7 +177,7 @@ std::string CollisionSolverRun::resume(
   }
   if (r.s.comm_)
   {
-    r.s.startDistribution(); // any slabs do: the result does not depend on who owns what
+    r.s.startDistribution(); // any boxes do: the result does not depend on who owns what
   }
   r.phase = Impl::Phase::Running;
   return {};

@@ -413,20 +413,19 @@ TEST(PeriodicDetection, ACellTooSmallForItsLinksIsNeverCountedAsOverlapFree)
 }
 
 // One wrap rule: the cell's wrap brings any point into [lo, hi) by whole edges, and the
-// distributed solver's slabs (one axis) shift a coordinate by exactly the same bits, so that a
-// link's test region and the pair finder's image of it agree.
-TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
+// distributed solver's boxes shift a point by exactly the same bits, so that a link's tester box
+// and the pair finder's image of it agree.
+TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheBoxes)
 {
   PeriodicCell cell;
   cell.lo = { -5.0, 0.25, 10.0 };
   cell.hi = { 7.0, 3.25, 10.5 }; // edges 12, 3, 0.5
-  FiberModel model;              // straight along x and y: the slabs cut z
+  FiberModel model;
   model.fibers.push_back(fiberpli_test::line({ -5, 0.25, 10.2 }, { 4, 1, 0 }, 4, 0.1, 0));
   runRanks(2,
     [&](Comm& comm)
     {
-      const SlabLayout layout = SlabLayout::make(model, cell, comm);
-      ASSERT_EQ(layout.axis(), 2);
+      const BoxLayout layout = BoxLayout::make(model, cell, comm);
       for (const Vec3 p : { Vec3{ -5, 0.25, 10 }, Vec3{ 7, 3.25, 10.5 }, Vec3{ -41.5, 100.1, -3.3 },
              Vec3{ 1e3, -1e-9, 10.49 } })
       {
@@ -439,7 +438,8 @@ TEST(PeriodicCell, WrapShiftIsOneRuleForTheCellAndTheSlabs)
           EXPECT_LT(p[d] + t[d], cell.hi[d] + 1e-12 * std::fabs(p[d]))
             << "axis " << d; // up to rounding
         }
-        EXPECT_EQ(layout.wrapShift(p.z), t.z);
+        const Vec3 b = layout.wrapShift(p);
+        EXPECT_TRUE(b.x == t.x && b.y == t.y && b.z == t.z);
       }
     });
 }

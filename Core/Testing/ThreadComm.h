@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <functional>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 namespace fiberpli_test
@@ -23,6 +24,7 @@ public:
     , sums_(ranks)
     , maxima_(ranks)
     , mail_(ranks)
+    , partners_(ranks)
   {
   }
 
@@ -44,6 +46,7 @@ public:
   std::vector<std::vector<std::int64_t>> sums_;
   std::vector<std::vector<double>> maxima_;
   std::vector<std::vector<std::vector<char>>> mail_; // mail_[from][to]
+  std::vector<std::vector<int>> partners_;           // of the last exchangeWith, per rank
 
 private:
   std::mutex mutex_;
@@ -90,6 +93,32 @@ public:
     for (int r = 0; r < board_.ranks_; ++r)
       received[r] = board_.mail_[r][rank_];
     board_.barrier();
+    return received;
+  }
+
+  // As a neighbours-only transport: reads the mail of its partners only (what another rank sent
+  // here is lost), and the partner lists must be symmetric and the mail to others empty (else
+  // std::logic_error: a broken partner list would hang or lose data under MPI).
+  std::vector<std::vector<char>> exchangeWith(
+    const std::vector<int>& partners, const std::vector<std::vector<char>>& send) override
+  {
+    board_.mail_[rank_] = send;
+    board_.partners_[rank_] = partners;
+    board_.barrier();
+    std::vector<std::vector<char>> received(board_.ranks_);
+    bool symmetric = true;
+    for (int r : partners)
+    {
+      const std::vector<int>& theirs = board_.partners_[r];
+      symmetric = symmetric && std::binary_search(theirs.begin(), theirs.end(), rank_);
+      received[r] = board_.mail_[r][rank_];
+    }
+    for (int r = 0; r < board_.ranks_; ++r)
+      symmetric = symmetric &&
+        (r == rank_ || send[r].empty() || std::binary_search(partners.begin(), partners.end(), r));
+    board_.barrier();
+    if (!symmetric)
+      throw std::logic_error("exchangeWith: asymmetric partners or mail to a non-partner");
     return received;
   }
 

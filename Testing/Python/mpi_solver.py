@@ -1,5 +1,5 @@
 """pvbatch: FiberCollisionSolver distributed over the MPI ranks (docs/solver.md §13) gives the
-one-process result bit for bit, for 1, 2 and 3 ranks x 1 and 2 threads.
+one-process result bit for bit, for 1, 2, 3 and 4 ranks x 1 and 2 threads.
 
 Usage: pvbatch mpi_solver.py <plugin> <tmp dir> serial          (one process: writes the reference)
        mpiexec -n R pvbatch mpi_solver.py <plugin> <tmp dir> R  (compares with the reference)
