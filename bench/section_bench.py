@@ -170,6 +170,7 @@ def window_of(polydata):
     bundle = vtk_to_numpy(polydata.GetCellData().GetArray("bundle_id"))
     x0, y0 = WINDOW
     out_points, out_radius, out_bundle, lines = [], [], [], vtkCellArray()
+    first = 0  # index of the next run's first point in the window
     for f in range(len(offsets) - 1):
         ids = conn[offsets[f]:offsets[f + 1]]
         p = points[ids]
@@ -180,11 +181,11 @@ def window_of(polydata):
         for start, stop in zip(edges[::2], edges[1::2]):
             if stop - start < 2:
                 continue
-            first = sum(len(q) for q in out_points)
             out_points.append(p[start:stop])
             out_radius.append(radius[ids[start:stop]])
             out_bundle.append(bundle[f])
-            lines.InsertNextCell(stop - start, [int(i) for i in range(first, first + stop - start)])
+            lines.InsertNextCell(stop - start, list(range(first, first + stop - start)))
+            first += stop - start
     window = vtkPolyData()
     pts = vtkPoints()
     pts.SetData(numpy_to_vtk(np.concatenate(out_points), deep=1))
@@ -207,16 +208,21 @@ def top_down(view, centre, half_height):
     view.CameraParallelScale = half_height
 
 
-def pictures(analysis, window):
-    """The fiber orientation map of the whole section, and the tubes of a 60 µm window at the
-    crossing band's edge, as PNG files in --out."""
-    os.makedirs(args.out, exist_ok=True)
-    fom = FiberOrientationMap(Input=analysis)
+def white_view():
     view = CreateView("RenderView")
     view.ViewSize = [900, 900]
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
     view.Background = [1, 1, 1]
+    return view
+
+
+def pictures(analysis, window):
+    """The fiber orientation map of the whole section, and the tubes of a 60 µm window at the
+    crossing band's edge, as PNG files in --out."""
+    os.makedirs(args.out, exist_ok=True)
+    fom = FiberOrientationMap(Input=analysis)
+    view = white_view()
     Show(OutputPort(fom, 0), view)
     top_down(view, [0.5 * L, 0.5 * L, 0.5 * T], 0.5 * L)
     SaveScreenshot(os.path.join(args.out, "section_fom.png"), view, ImageResolution=[900, 900])
@@ -224,11 +230,7 @@ def pictures(analysis, window):
     producer = TrivialProducer()
     producer.GetClientSideObject().SetOutput(window)
     tubes = FiberTubes(Input=producer, NumberOfSides=12)
-    view = CreateView("RenderView")
-    view.ViewSize = [900, 900]
-    view.OrientationAxesVisibility = 0
-    view.UseColorPaletteForBackground = 0
-    view.Background = [1, 1, 1]
+    view = white_view()
     display = Show(tubes, view)
     ColorBy(display, ("CELLS", "bundle_id"))
     x0, y0 = WINDOW
