@@ -4,7 +4,9 @@
 Workloads: cube-a|cube-b|cube-c (the 1000-fiber cubes of solver_bench: 1/2/3 populations, edge
 √3·30 µm, r 0.8 µm, point spacing 2 µm, displacement ±0.5 µm, seed 42, SegmentLength 2,
 MinCurvatureRadius 4) and cell (the (100 µm)³ periodic cell, 2 populations, VolumeFraction 0.7,
-Seeding Lattice, displacement 0.5 µm). The source makes the pieces; rank 0 times the solver's
+Seeding Lattice, displacement 0.5 µm) and section (section_bench.py's recipe cut to an edge of
+`--size` µm × 60 µm: FiberFieldSource, radius 1 µm, SegmentLength 2, seed 1, solved with
+SeparationSpeed 0.1 and MaxDisplacement 0.4). The source makes the pieces; rank 0 times the solver's
 update (the source is updated first and not timed) and prints one line: ranks, threads, steps, wall
 seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
 the most links held for its pair tests, halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
@@ -12,6 +14,9 @@ memory before the solve (VmRSS after the source), and a hash of the joined outpu
 every R and T)."""
 import argparse
 import hashlib
+import os
+import sys
+import tempfile
 import time
 
 from paraview.simple import *  # noqa: F401,F403
@@ -20,9 +25,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 parser = argparse.ArgumentParser()
 parser.add_argument("plugin")
-parser.add_argument("workload", choices=["cube-a", "cube-b", "cube-c", "cell"])
+parser.add_argument("workload", choices=["cube-a", "cube-b", "cube-c", "cell", "section"])
 parser.add_argument("--threads", type=int, default=1)
 parser.add_argument("--max-steps", type=int, default=10000)
+parser.add_argument("--size", type=float, default=250.0, help="section: edge L (µm)")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -31,6 +37,26 @@ if args.workload == "cell":
     source = FiberCubeSource(Populations=2, EdgeLength=100.0, Periodic=1, VolumeFraction=0.7, Seeding=1,
                              Displacement=0.5, Seed=42)
     solver = FiberCollisionSolver(Input=source, MaxSteps=args.max_steps, NumberOfThreads=args.threads)
+elif args.workload == "section":
+    # Every rank reads the field from a file (the script runs on rank 0 only), written in binary
+    # mode: Debian's expat cannot read raw-appended XML.
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from section_field import section_field
+    from vtkmodules.vtkIOXML import vtkXMLImageDataWriter
+    field_file = os.path.join(tempfile.mkdtemp(prefix="section_field_"), "field.vti")
+    writer = vtkXMLImageDataWriter()
+    writer.SetInputData(section_field(args.size, 60.0, 0.3))
+    writer.SetDataModeToBinary()
+    writer.SetFileName(field_file)
+    writer.Write()
+    field = XMLImageDataReader(FileName=[field_file])
+    source = FiberFieldSource(Input=field, VolumeFraction=0.57 + 0.10 * 0.3, FiberRadius=1.0, SegmentLength=2.0,
+                              Seed=1)
+    source.OrientationArray = ["POINTS", "a"]
+    source.SecondOrientationArray = ["POINTS", "b"]
+    source.PopulationShares = [0.57, 0.10 * 0.3]
+    solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, SeparationSpeed=0.1, MaxDisplacement=0.4,
+                                  MaxSteps=args.max_steps, NumberOfThreads=args.threads)
 else:
     source = FiberCubeSource(Populations=" abc".index(args.workload[-1]), NumberOfFibers=1000,
                              EdgeLength=3 ** 0.5 * 30.0, Seed=42)

@@ -22,6 +22,7 @@ The whole section's fiber volume fraction (Σ π r² · length / section volume)
 traced and the solved model."""
 import argparse
 import os
+import sys
 import time
 
 import numpy as np
@@ -30,7 +31,10 @@ from paraview import servermanager
 from scipy.spatial import cKDTree
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from section_field import section_field  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument("plugin")
@@ -72,26 +76,8 @@ def phase(name, work):
 
 
 def make_field():
-    h = 10.0
-    n = int(round(L / h)) + 1
-    nz = max(2, int(round(T / h)) + 1)
-    x = np.linspace(0.0, L, n)
-    z = np.linspace(0.0, T, nz)
-    X, Y, _ = np.meshgrid(x, x, z, indexing="ij")
-    a, wavelength = 25.0, 400.0
-    k = 2.0 * np.pi / wavelength
-    va = np.stack([np.ones_like(X), a * k * np.cos(k * X), np.zeros_like(X)], -1)
-    vb = np.zeros_like(va)
-    vb[np.abs(X - 0.5 * L) < 0.5 * args.band * L] = (0.0, 1.0, 0.0)
-    image = vtkImageData()
-    image.SetDimensions(n, n, nz)
-    image.SetSpacing(h, h, T / (nz - 1))
-    for name, v in (("a", va), ("b", vb)):
-        array = numpy_to_vtk(np.ascontiguousarray(v.transpose(2, 1, 0, 3).reshape(-1, 3)), deep=1)
-        array.SetName(name)
-        image.GetPointData().AddArray(array)
     producer = TrivialProducer()
-    producer.GetClientSideObject().SetOutput(image)
+    producer.GetClientSideObject().SetOutput(section_field(L, T, args.band))
     return producer
 
 
