@@ -84,8 +84,8 @@ struct CollisionSolverOptions
   double tortuosity = 0.0;
   /// [ours] Skip the pairs of two links that are unchanged and collision-free since the last
   /// detection (docs/solver.md §3.4): detection then costs about the links still moving. Never
-  /// changes the result (tests compare it on and off); distributed runs test every link. Core
-  /// only. Default true.
+  /// changes the result (tests compare it on and off, serial and distributed). Core only.
+  /// Default true.
   bool quietLinks = true;
 };
 

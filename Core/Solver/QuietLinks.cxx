@@ -55,22 +55,7 @@ bool sameCapsule(const CapsuleLink& x, const CapsuleLink& y)
   return sameBits(x.rho, y.rho) && sameBits(x.arc1 - x.arc0, y.arc1 - y.arc0);
 }
 
-// start[f] = first link of fiber f (links come fiber by fiber, fibers ascending), start[f + 1]
-// its end, for f < fibers.
-void fiberStarts(
-  const std::vector<CapsuleLink>& links, std::size_t fibers, std::vector<std::size_t>& start)
-{
-  start.assign(fibers + 1, 0);
-  for (const CapsuleLink& l : links)
-    ++start[static_cast<std::size_t>(l.fiber) + 1];
-  for (std::size_t f = 0; f < fibers; ++f)
-    start[f + 1] += start[f];
-}
-
-std::size_t fiberCount(const std::vector<CapsuleLink>& links)
-{
-  return links.empty() ? 0 : static_cast<std::size_t>(links.back().fiber) + 1;
-}
+constexpr std::size_t kNoMatch = static_cast<std::size_t>(-1);
 } // namespace
 
 void QuietLinks::keep(std::vector<CapsuleLink>& links)
@@ -107,40 +92,45 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
     loudCount_ = n;
     return nullptr;
   }
-  const std::size_t nf = std::max(fiberCount(links), fiberCount(prev_));
-  fiberStarts(prev_, nf, prevStart_);
-  fiberStarts(links, nf, curStart_);
+  // The runs of one fiber's links (both lists come fiber by fiber, fibers and links ascending).
+  runStart_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (i == 0 || links[i].fiber != links[i - 1].fiber)
+      runStart_.push_back(i);
+  }
+  runStart_.push_back(n);
   loud_.resize(n);
-  const std::int64_t nff = static_cast<std::int64_t>(nf);
+  match_.resize(n);
+  const auto runs = static_cast<std::int64_t>(runStart_.size()) - 1;
   std::int64_t loudTotal = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64) reduction(+ : loudTotal)
-  for (std::int64_t ff = 0; ff < nff; ++ff)
+  for (std::int64_t run = 0; run < runs; ++run)
   {
-    const std::size_t f = static_cast<std::size_t>(ff);
-    const std::size_t cb = curStart_[f], ce = curStart_[f + 1];
-    const std::size_t pb = prevStart_[f];
-    if (ce == cb)
+    const std::size_t cb = runStart_[static_cast<std::size_t>(run)];
+    const std::size_t ce = runStart_[static_cast<std::size_t>(run) + 1];
+    const std::uint32_t fiber = links[cb].fiber;
+    const auto first = std::lower_bound(prev_.begin(), prev_.end(), fiber,
+      [](const CapsuleLink& l, std::uint32_t f) { return l.fiber < f; });
+    const auto pb = static_cast<std::size_t>(first - prev_.begin());
+    std::size_t pe = pb;
+    double rhoMax = 0.0; // of the fiber's links at the last detection
+    while (pe < prev_.size() && prev_[pe].fiber == fiber)
+      rhoMax = std::max(rhoMax, prev_[pe++].rho);
+    // Link (fiber, k) now against link (fiber, k) then: a split or merge shifts the indices
+    // behind it, and those links then differ (loud).
+    for (std::size_t i = cb, p = pb; i < ce; ++i)
     {
-      continue;
-    }
-    if (prevStart_[f + 1] - pb != ce - cb) // split, merge, or a fiber new to the links
-    {
-      std::fill(loud_.begin() + static_cast<std::ptrdiff_t>(cb),
-        loud_.begin() + static_cast<std::ptrdiff_t>(ce), 1);
-      loudTotal += static_cast<std::int64_t>(ce - cb);
-      continue;
-    }
-    double rhoMax = 0.0; // of the fiber at the last detection
-    for (std::size_t i = cb; i < ce; ++i)
-    {
-      const CapsuleLink& was = prev_[pb + (i - cb)];
-      rhoMax = std::max(rhoMax, was.rho);
-      loud_[i] = prevColliding_[pb + (i - cb)] || !sameCapsule(links[i], was) ? 1 : 0;
+      while (p < pe && prev_[p].k < links[i].k)
+        ++p;
+      const bool same = p < pe && prev_[p].k == links[i].k;
+      match_[i] = same ? p : kNoMatch;
+      loud_[i] = !same || prevColliding_[p] || !sameCapsule(links[i], prev_[p]) ? 1 : 0;
     }
     // Pairs of two quiet links of this fiber that the same-fiber rule skipped and skips no more.
     const auto check = [&](std::size_t a, std::size_t b)
     {
-      if (!loud_[b] && skipSameFiberPair(prev_[pb + (a - cb)], prev_[pb + (b - cb)]) &&
+      if (!loud_[b] && skipSameFiberPair(prev_[match_[a]], prev_[match_[b]]) &&
         !skipSameFiberPair(links[a], links[b]))
       {
         loud_[a] = loud_[b] = 1;
@@ -152,17 +142,26 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
       {
         continue;
       }
-      const CapsuleLink& pa = prev_[pb + (a - cb)];
+      const CapsuleLink& pa = prev_[match_[a]];
       const double reach = 2.0 * (pa.rho + rhoMax);
-      for (std::size_t b = a + 2; b < ce && prev_[pb + (b - cb)].arc0 - pa.arc1 < reach; ++b)
+      // Links without a match are loud; the walk stops at the first matched link that was out of
+      // reach along the fiber (the arc lengths of the matched ones grow with k).
+      for (std::size_t b = a + 1; b < ce; ++b)
       {
+        if (match_[b] == kNoMatch)
+          continue;
+        if (prev_[match_[b]].arc0 - pa.arc1 >= reach)
+          break;
         check(a, b);
       }
       if (pa.closedLength > 0.0) // the other way round, through the closure
       {
-        for (std::size_t b = ce - 1;
-             b >= a + 2 && pa.closedLength - prev_[pb + (b - cb)].arc1 + pa.arc0 < reach; --b)
+        for (std::size_t b = ce - 1; b > a; --b)
         {
+          if (match_[b] == kNoMatch)
+            continue;
+          if (pa.closedLength - prev_[match_[b]].arc1 + pa.arc0 >= reach)
+            break;
           check(a, b);
         }
       }

@@ -33,9 +33,11 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
   {
     migrate();
   }
-  // [ours] §3.4: serially, the pairs of two links that are quiet since the last detection are
-  // skipped (the same pairs are found). Distributed runs test every link.
-  const bool quiet = o_.quietLinks && !comm_;
+  // [ours] §3.4: the pairs of two links that are quiet since the last detection are skipped (the
+  // same pairs are found). Distributed, each rank judges the links it holds: a pair of two quiet
+  // links was tested here last time too (the tester of a pair follows from its links' places
+  // and the tester boxes, which forget() on a re-cut).
+  const bool quiet = o_.quietLinks;
   if (quiet)
   {
     quiet_.keep(links_);

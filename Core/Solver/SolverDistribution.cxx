@@ -41,6 +41,7 @@ void SolverEngine::balanceTesters()
     const double moved = layout_.largestCutMove(before);
     if (moved > 0.0)
     {
+      quiet_.forget(); // pairs may change testers: every link is loud once (§3.4)
       ++testerRecuts_;
       testerCutMove_ = std::max(testerCutMove_, moved);
     }

@@ -52,7 +52,7 @@ public:
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
   std::string detectError_;
-  // [ours] The links whose pairs a detection tests (§3.4); serial runs with quietLinks only.
+  // [ours] The links whose pairs a detection tests (§3.4), with quietLinks.
   QuietLinks quiet_;
   const std::vector<char>* loud_ = nullptr;               // this detection's loud flags (null: all)
   std::uint64_t detectedLinks_ = 0, loudLinks_ = 0;       // summed over the detections of the run

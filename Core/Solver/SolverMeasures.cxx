@@ -41,6 +41,7 @@ double smallestGap(SolverEngine& s, double probe)
   std::vector<LinkPairPush>().swap(s.push_);
   if (s.comm_)
   {
+    s.quiet_.forget(); // links_ no longer holds the last detection's links
     s.gatherLinks(&s.st_.active, s.periodic() ? &s.st_.closed : nullptr, s.st_.scale, true);
   }
   const std::vector<char>* tested = s.comm_ ? &s.held_.tested : nullptr;
