@@ -10,7 +10,7 @@ SeparationSpeed 0.1 and MaxDisplacement 0.4). The source makes the pieces; rank 
 update (the source is updated first and not timed) and prints one line: ranks, threads, steps, wall
 seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
 the most links held for its pair tests, halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
-memory before the solve (VmRSS after the source), and a hash of the joined output (the same for
+memory before the solve (VmRSS after the source), per rank the CPU seconds of its solve, and a hash of the joined output (the same for
 every R and T)."""
 import argparse
 import hashlib
@@ -66,13 +66,16 @@ else:
 # (VmRSS) and peak (VmHWM, the high-water mark since the start) into field data: once after the
 # source (the pvbatch process plus its input piece), once after the solve (the peak includes it).
 MEMORY_SCRIPT = """
+import resource
 from vtkmodules.vtkCommonCore import vtkDoubleArray
 with open("/proc/self/status") as status:
     kb = dict((l.split(":")[0], float(l.split()[1])) for l in status if l.startswith(("VmRSS", "VmHWM")))
-for name in ("VmRSS", "VmHWM"):
+usage = resource.getrusage(resource.RUSAGE_SELF)
+values = {"VmRSS": kb["VmRSS"] / 1024.0, "VmHWM": kb["VmHWM"] / 1024.0, "cpu": usage.ru_utime + usage.ru_stime}
+for name, value in values.items():
     a = vtkDoubleArray()
     a.SetName(name)
-    a.InsertNextValue(kb[name] / 1024.0)
+    a.InsertNextValue(value)
     self.GetOutput().GetFieldData().AddArray(a)
 """
 
@@ -90,11 +93,14 @@ wall = time.perf_counter() - start
 after = memory_probe(solver)
 
 
-def mib(probe, rank, name):
+def probed(probe, rank, name):
     return servermanager.Fetch(probe, rank).GetFieldData().GetArray(name).GetTuple1(0)
 
 
-memory = ["%.0f / %.0f MiB" % (mib(after, r, "VmHWM"), mib(before, r, "VmRSS")) for r in range(ranks)]
+memory = ["%.0f / %.0f MiB" % (probed(after, r, "VmHWM"), probed(before, r, "VmRSS")) for r in range(ranks)]
+# CPU seconds of each rank's process during the solve (user + system): what a rank costs when the
+# machine is shared and wall time is not its own.
+cpu = ["%.1f" % (probed(after, r, "cpu") - probed(before, r, "cpu")) for r in range(ranks)]
 
 pieces = [servermanager.Fetch(solver, r) for r in range(ranks)]
 h = hashlib.sha256()
@@ -112,6 +118,6 @@ for p in pieces:
         share.append("%d fibers/%d pts/%d halo/%d held/%.0f B" % (p.GetNumberOfLines(), f.GetArray("rank_points").GetTuple1(0),
                      f.GetArray("halo_links").GetTuple1(0), f.GetArray("held_links").GetTuple1(0),
                      f.GetArray("halo_bytes_per_step").GetTuple1(0)))
-print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s | %s |" % (
+print("| %s | %d | %d | %d | %.2f | %.4f | %d | %s | %s | %s | %s |" % (
     args.workload, ranks, args.threads, steps, wall, wall / (steps if steps > 0 else 1), int(fd.GetArray("collisions").GetTuple1(0)),
-    "; ".join(share) if share else "-", "; ".join(memory), h.hexdigest()[:12]))
+    "; ".join(share) if share else "-", "; ".join(memory), " / ".join(cpu), h.hexdigest()[:12]))

@@ -14,8 +14,8 @@ pvbatch=$(command -v pvbatch)
 # --bind-to none: Open MPI binds each of up to 2 ranks to one core by default, which would run a
 # rank's threads on that one core. Waiting ranks yield the core (the default busy poll starves the others on a loaded machine).
 export OMP_WAIT_POLICY=PASSIVE OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_mpi_yield_when_idle=1
-echo "| workload | ranks | threads | steps | wall [s] | s/step | collisions left | per rank: fibers/peak points/halo links/held links/halo bytes per step | per rank: peak RSS / RSS before the solve | hash |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| workload | ranks | threads | steps | wall [s] | s/step | collisions left | per rank: fibers/peak points/halo links/held links/halo bytes per step | per rank: peak RSS / RSS before the solve | per rank: CPU [s] | hash |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for w in "${workloads[@]}"; do
   for run in "1 1" "1 2" "2 1"; do
     set -- $run
