@@ -29,6 +29,8 @@ parser.add_argument("workload", choices=["cube-a", "cube-b", "cube-c", "cell", "
 parser.add_argument("--threads", type=int, default=1)
 parser.add_argument("--max-steps", type=int, default=10000)
 parser.add_argument("--size", type=float, default=250.0, help="section: edge L (µm)")
+parser.add_argument("--max-fiber-length", type=float, default=0.0,
+                    help="section: FiberFieldSource's MaxFiberLength (µm; 0 = lines end at the faces only)")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -51,7 +53,7 @@ elif args.workload == "section":
     writer.Write()
     field = XMLImageDataReader(FileName=[field_file])
     source = FiberFieldSource(Input=field, VolumeFraction=0.57 + 0.10 * 0.3, FiberRadius=1.0, SegmentLength=2.0,
-                              Seed=1)
+                              MaxFiberLength=args.max_fiber_length, Seed=1)
     source.OrientationArray = ["POINTS", "a"]
     source.SecondOrientationArray = ["POINTS", "b"]
     source.PopulationShares = [0.57, 0.10 * 0.3]
