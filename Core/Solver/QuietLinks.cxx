@@ -130,6 +130,17 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
       loudTotal += static_cast<std::int64_t>(ce - cb);
       continue;
     }
+    if (std::memcmp(&links[cb], &prev_[pb], (ce - cb) * sizeof(CapsuleLink)) == 0)
+    {
+      // The fiber's links are bitwise those of the last detection, arc lengths and indices
+      // included: every same-fiber decision is the same, only the colliding links are loud.
+      for (std::size_t i = cb; i < ce; ++i)
+      {
+        loud_[i] = prevColliding_[pb + (i - cb)];
+        loudTotal += loud_[i];
+      }
+      continue;
+    }
     double rhoMax = 0.0; // of the fiber at the last detection
     for (std::size_t i = cb; i < ce; ++i)
     {
