@@ -104,8 +104,7 @@ int main(int argc, char** argv)
   }
   FiberModel& model = traced.model;
   std::printf("trace %.1f s: %zu fibers, %zu points, traced hash %016llx\n", bench::seconds() - t0,
-    model.fibers.size(), model.numberOfPoints(),
-    static_cast<unsigned long long>(modelHash(model)));
+    model.fibers.size(), model.numberOfPoints(), static_cast<unsigned long long>(modelHash(model)));
   CollisionSolverOptions o;
   o.segmentLength = 2.0;
   o.maxSteps = maxSteps;
@@ -137,7 +136,7 @@ int main(int argc, char** argv)
   std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
               "solved hash %016llx%s%s\n",
     bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, bench::peakRssMB(),
-    static_cast<unsigned long long>(modelHash(model)), r.error.empty() ? "" : " error: ",
-    r.error.c_str());
+    static_cast<unsigned long long>(modelHash(model)),
+    r.error.empty() ? "" : " error: ", r.error.c_str());
   return r.error.empty() ? 0 : 1;
 }

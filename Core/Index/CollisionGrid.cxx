@@ -171,12 +171,13 @@ CollisionGrid::Layout CollisionGrid::boundLinks(
   edges_.resize(n);
   double ox = HUGE_VAL, oy = HUGE_VAL, oz = HUGE_VAL;
   double tx = -HUGE_VAL, ty = -HUGE_VAL, tz = -HUGE_VAL;
+  double ex = 0.0, ey = 0.0, ez = 0.0; // the largest box edge along each axis
   const std::int64_t nn = static_cast<std::int64_t>(n);
   // min/max are exact, so the reduction gives the same bits for any thread count.
 #pragma omp parallel for num_threads(nThreads) schedule(static) reduction(min                      \
                                                                           : ox, oy, oz)            \
   reduction(max                                                                                    \
-            : tx, ty, tz)
+            : tx, ty, tz, ex, ey, ez)
   for (std::int64_t ii = 0; ii < nn; ++ii)
   {
     const std::size_t i = static_cast<std::size_t>(ii);
@@ -194,11 +195,17 @@ CollisionGrid::Layout CollisionGrid::boundLinks(
     tx = std::max(tx, bx.hi.x);
     ty = std::max(ty, bx.hi.y);
     tz = std::max(tz, bx.hi.z);
+    ex = std::max(ex, bx.hi.x - bx.lo.x);
+    ey = std::max(ey, bx.hi.y - bx.lo.y);
+    ez = std::max(ez, bx.hi.z - bx.lo.z);
     edges_[i] = std::max(bx.hi.x - bx.lo.x, std::max(bx.hi.y - bx.lo.y, bx.hi.z - bx.lo.z));
   }
   Layout layout;
   layout.origin = { ox, oy, oz };
   layout.top = { tx, ty, tz };
+  layout.h[0] = ex;
+  layout.h[1] = ey;
+  layout.h[2] = ez;
   return layout;
 }
 
@@ -239,24 +246,35 @@ CollisionGrid::Layout CollisionGrid::chooseCells(std::size_t n, const Layout& bo
     h = hAll;
     grid.nOversize = 0;
   }
-  // Margin: floor((c − origin)/h) is rounded, keep neighbours at most one cell apart.
-  h = std::max(h, 1e-300) * (1.0 + 1e-9);
+  // Without oversize links every link is regular, and along each axis the largest edge of all
+  // links is enough (two boxes overlapping along an axis have centres closer than it there):
+  // flat models, such as a section whose fibers lie in its plane, get flat cells with fewer
+  // links around each one. With oversize links the cells stay cubes of the largest regular edge.
+  double hd[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    // Margin: floor((c − origin)/h) is rounded, keep neighbours at most one cell apart.
+    hd[d] = std::max(grid.nOversize == 0 ? std::min(bounds.h[d], h) : h, 1e-300) * (1.0 + 1e-9);
+  }
   double dims[3];
   for (int d = 0; d < 3; ++d)
   {
-    dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
+    dims[d] = std::floor((grid.top[d] - grid.origin[d]) / hd[d]) + 1.0;
   }
   // The linear cell index must fit 32 bits (sort key = cell << 32 | id): coarser cells stay
   // correct, only slower.
   while (dims[0] * dims[1] * dims[2] >= 4.0e9)
   {
-    h *= 2.0;
     for (int d = 0; d < 3; ++d)
     {
-      dims[d] = std::floor((grid.top[d] - grid.origin[d]) / h) + 1.0;
+      hd[d] *= 2.0;
+      dims[d] = std::floor((grid.top[d] - grid.origin[d]) / hd[d]) + 1.0;
     }
   }
-  grid.h = h;
+  for (int d = 0; d < 3; ++d)
+  {
+    grid.h[d] = hd[d];
+  }
   grid.nx = static_cast<std::int64_t>(dims[0]);
   grid.ny = static_cast<std::int64_t>(dims[1]);
   grid.nz = static_cast<std::int64_t>(dims[2]);
@@ -284,7 +302,7 @@ std::uint32_t CollisionGrid::cellOf(const Box& bx, const Layout& grid)
   for (int d = 0; d < 3; ++d)
   {
     const double centre = 0.5 * (bx.lo[d] + bx.hi[d]);
-    c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h));
+    c[d] = static_cast<std::int64_t>(std::floor((centre - grid.origin[d]) / grid.h[d]));
   }
   c[0] = std::min(std::max<std::int64_t>(c[0], 0), grid.nx - 1);
   c[1] = std::min(std::max<std::int64_t>(c[1], 0), grid.ny - 1);

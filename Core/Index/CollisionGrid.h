@@ -116,9 +116,9 @@ private:
   /// Where the grid lies and how it is cut (phases 1 and 2).
   struct Layout
   {
-    Vec3 origin;    ///< lower corner of all boxes
-    Vec3 top;       ///< upper corner of all boxes
-    double h = 0.0; ///< cell edge
+    Vec3 origin;                     ///< lower corner of all boxes
+    Vec3 top;                        ///< upper corner of all boxes
+    double h[3] = { 0.0, 0.0, 0.0 }; ///< cell edge along each axis (boundLinks: largest box edge)
     std::int64_t nx = 0, ny = 0, nz = 0;
     double limit = 0.0;        ///< a box edge above this makes a link oversize
     std::size_t nOversize = 0; ///< 0: no link is oversize (limit is then not used)
