@@ -148,6 +148,7 @@ private:
   // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
   std::vector<std::uint32_t> cellOf_;
   std::vector<std::uint32_t> count_;
+  std::vector<std::uint32_t> rowOfCell_; // per cell (+ end), its first row in order_; dense only
   // Sparse grids: (linear cell index << 32) | link id of the regular links, and last call's
   // order (a nearly sorted start for this call).
   std::vector<std::uint64_t> sortKeys_;
