@@ -116,9 +116,9 @@ private:
   /// Where the grid lies and how it is cut (phases 1 and 2).
   struct Layout
   {
-    Vec3 origin;    ///< lower corner of all boxes
-    Vec3 top;       ///< upper corner of all boxes
-    double h = 0.0; ///< cell edge
+    Vec3 origin;                     ///< lower corner of all boxes
+    Vec3 top;                        ///< upper corner of all boxes
+    double h[3] = { 0.0, 0.0, 0.0 }; ///< cell edge along each axis (boundLinks: largest box edge)
     std::int64_t nx = 0, ny = 0, nz = 0;
     double limit = 0.0;        ///< a box edge above this makes a link oversize
     std::size_t nOversize = 0; ///< 0: no link is oversize (limit is then not used)
@@ -132,8 +132,11 @@ private:
   void sortKeysByCell(const Layout& grid, int nThreads);
   static std::uint32_t cellOf(const Box& bx, const Layout& grid);
   void flaggedFirst(const char* head);
-  void buildCellArrays(
-    const std::vector<CapsuleLink>& links, const char* tested, const char* loud, int nThreads);
+  void buildCellArrays(const std::vector<CapsuleLink>& links, const char* tested, const char* loud,
+    const Layout& grid, int nThreads);
+  // The rows of only the visited cells and their neighbours are filled when fewer than one cell
+  // in this many is visited.
+  static constexpr std::size_t kFillAllBelow = 8;
   bool collectPairs(const std::vector<CapsuleLink>& links, const char* tested, TestedPairs rule,
     const char* loud, double minimumGap, const Layout& grid, int nThreads, std::size_t maxPairs);
   void mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs);
@@ -145,6 +148,7 @@ private:
   // Dense grids: per link its cell, per chunk of links and cell a counter (counting sort).
   std::vector<std::uint32_t> cellOf_;
   std::vector<std::uint32_t> count_;
+  std::vector<std::uint32_t> rowOfCell_; // per cell (+ end), its first row in order_; dense only
   // Sparse grids: (linear cell index << 32) | link id of the regular links, and last call's
   // order (a nearly sorted start for this call).
   std::vector<std::uint64_t> sortKeys_;
@@ -162,6 +166,9 @@ private:
   std::vector<std::uint32_t> cellStart_; // cellKeys_.size() + 1 offsets into order_
   std::vector<std::uint32_t>
     cellUnflagged_;                     // per occupied cell, the offset of its first unflagged link
+  std::vector<std::uint32_t> visit_;    // the occupied cells holding a flagged link, ascending
+  std::vector<char> need_;              // per occupied cell: its rows are read (buildCellArrays)
+  std::vector<std::uint32_t> fill_;     // the cells whose rows are filled, ascending
   std::vector<std::uint32_t> oversize_; // links queried against all links
   std::vector<std::vector<CapsulePair>> perThread_;
   std::vector<std::size_t> pairEnd_; // per link, the end of the merged pairs with a <= it

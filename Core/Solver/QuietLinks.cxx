@@ -117,6 +117,18 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
     double rhoMax = 0.0; // of the fiber's links at the last detection
     while (pe < prev_.size() && prev_[pe].fiber == fiber)
       rhoMax = std::max(rhoMax, prev_[pe++].rho);
+    if (pe - pb == ce - cb &&
+      std::memcmp(&links[cb], &prev_[pb], (ce - cb) * sizeof(CapsuleLink)) == 0)
+    {
+      // The fiber's links are bitwise those of the last detection, arc lengths and indices
+      // included: every same-fiber decision is the same, only the colliding links are loud.
+      for (std::size_t i = cb; i < ce; ++i)
+      {
+        loud_[i] = prevColliding_[pb + (i - cb)];
+        loudTotal += loud_[i];
+      }
+      continue;
+    }
     // Link (fiber, k) now against link (fiber, k) then: a split or merge shifts the indices
     // behind it, and those links then differ (loud).
     for (std::size_t i = cb, p = pb; i < ce; ++i)

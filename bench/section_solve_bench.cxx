@@ -1,0 +1,142 @@
+// The millimetre section's solve on the Core alone (bench/README.md "A millimetre section"):
+// the same field, FiberFieldSource's fibers and FiberCollisionSolver's options as
+// bench/section_bench.py, without ParaView, so that the solve can be profiled (perf) and its
+// output compared bit for bit between builds (the hash of the solved points and radii).
+// Usage: fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2]
+//        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
+#include "BenchUtil.h"
+#include "Field/FieldFibers.h"
+#include "Solver/CollisionSolver.h"
+#include "Util/Fnv1a.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace fiberpli;
+
+namespace
+{
+// The orientation fields of section_bench.py's make_field: population A along x on sinusoids
+// (amplitude 25 µm, wavelength 400 µm), population B along y in a band of band·L across the
+// middle; 10 µm grid.
+std::vector<OrientationField> sectionFields(double L, double T, double band)
+{
+  const double h = 10.0;
+  const int n = static_cast<int>(std::lround(L / h)) + 1;
+  const int nz = std::max(2, static_cast<int>(std::lround(T / h)) + 1);
+  OrientationField a;
+  a.origin = { 0.0, 0.0, 0.0 };
+  a.spacing = { L / (n - 1), L / (n - 1), T / (nz - 1) };
+  a.dimensions = { n, n, nz };
+  a.vectors.resize(a.size());
+  OrientationField b = a;
+  const double amplitude = 25.0, k = 2.0 * M_PI / 400.0;
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+      {
+        const double px = L * x / (n - 1); // numpy's linspace(0, L, n)
+        a.vectors[a.index(x, y, z)] = { 1.0, amplitude * k * std::cos(k * px), 0.0 };
+        b.vectors[b.index(x, y, z)] =
+          std::fabs(px - 0.5 * L) < 0.5 * band * L ? Vec3{ 0.0, 1.0, 0.0 } : Vec3{};
+      }
+  normalizeOrientationField(a);
+  normalizeOrientationField(b);
+  return { a, b };
+}
+
+std::uint64_t modelHash(const FiberModel& model)
+{
+  std::uint64_t h = kFnv1aOffset;
+  for (const Fiber& f : model.fibers)
+  {
+    fnv1aAdd(h, f.points.data(), f.points.size() * sizeof(Vec3));
+    fnv1aAdd(h, f.radii.data(), f.radii.size() * sizeof(double));
+  }
+  return h;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  double L = 250.0, T = 60.0, fa = 0.57, fb = 0.10, band = 0.3;
+  int threads = 2, maxSteps = 20000, every = 100;
+  bool quiet = true;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const auto next = [&]() { return i + 1 < argc ? argv[++i] : "0"; };
+    if (a == "--size")
+      L = std::atof(next());
+    else if (a == "--thickness")
+      T = std::atof(next());
+    else if (a == "--threads")
+      threads = std::atoi(next());
+    else if (a == "--max-steps")
+      maxSteps = std::atoi(next());
+    else if (a == "--every")
+      every = std::atoi(next());
+    else if (a == "--no-quiet")
+      quiet = false;
+    else
+    {
+      std::fprintf(stderr, "unknown argument %s\n", argv[i]);
+      return 2;
+    }
+  }
+  const std::vector<OrientationField> fields = sectionFields(L, T, band);
+  FieldFiberOptions fo;
+  fo.volumeFraction = fa + fb * band;
+  fo.fiberRadius = 1.0;
+  fo.trace.segmentLength = 2.0;
+  fo.seed = 1;
+  fo.populationShares = { fa, fb * band };
+  double t0 = bench::seconds();
+  FieldFiberResult traced = generateFieldFibers({ &fields[0], &fields[1] }, fo);
+  if (!traced.ok())
+  {
+    std::fprintf(stderr, "trace: %s\n", traced.error.c_str());
+    return 1;
+  }
+  FiberModel& model = traced.model;
+  std::printf("trace %.1f s: %zu fibers, %zu points, traced hash %016llx\n", bench::seconds() - t0,
+    model.fibers.size(), model.numberOfPoints(), static_cast<unsigned long long>(modelHash(model)));
+  CollisionSolverOptions o;
+  o.segmentLength = 2.0;
+  o.maxSteps = maxSteps;
+  o.numberOfThreads = threads;
+  o.separationSpeed = 0.1;
+  o.maxDisplacement = 0.4;
+  o.quietLinks = quiet;
+  CollisionSolverRun run(model, o);
+  t0 = bench::seconds();
+  const double c0 = bench::cpuSeconds();
+  double tl = t0, cl = c0;
+  if (run.start())
+  {
+    while (run.step())
+    {
+      const int s = run.state().steps;
+      if (every > 0 && s % every == 0)
+      {
+        const double t = bench::seconds(), c = bench::cpuSeconds();
+        std::printf("step %5d  %.3f s/step wall  %.3f s/step cpu  loud %zu of %zu links\n", s,
+          (t - tl) / every, (c - cl) / every, run.loudLinks(), run.detectedLinks());
+        std::fflush(stdout);
+        tl = t;
+        cl = c;
+      }
+    }
+  }
+  const CollisionSolverResult r = run.finish();
+  std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
+              "solved hash %016llx%s%s\n",
+    bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, bench::peakRssMB(),
+    static_cast<unsigned long long>(modelHash(model)),
+    r.error.empty() ? "" : " error: ", r.error.c_str());
+  return r.error.empty() ? 0 : 1;
+}
