@@ -193,12 +193,12 @@ double fiberVolume(const CubeOptions& o, int k, int j)
 
 // The fiber with its shape knobs: undulated (and dispersed) points from cubeFiberShape, or the
 // straight fiber; then the beaded radii.
-Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
+Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached, const Vec3& fieldShift = {})
 {
   Fiber f;
   if (reshaped(o, k))
   {
-    const FiberShape shape = cubeFiberShape(o, k, j);
+    const FiberShape shape = cubeFiberShape(o, k, j, fieldShift);
     if (reached)
       *reached = shape.reached;
     f.bundle = k;
@@ -555,7 +555,7 @@ void placeInSheet(
 }
 } // namespace
 
-FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
+FiberShape cubeFiberShape(const CubeOptions& o, int k, int j, const Vec3& fieldShift)
 {
   const double half = 0.5 * o.edgeLength;
   FiberShape shape;
@@ -592,10 +592,27 @@ FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   shape.jitter = drawJitter(jitter, shape.pointCount, o.displacement, o.periodic);
   if (o.realism.undulating())
   {
-    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation,
-      static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-    shape.undulation =
-      drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    if (o.undulationCoherence > 0.0)
+    {
+      // The population's field (its own stream), sampled along this fiber.
+      RandomStream waves =
+        shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), kGroupStream);
+      const Vec3 axis = cubePopulationAxes(o)[static_cast<std::size_t>(k)].direction;
+      Vec3 e1, e2;
+      e1[(k + 1) % 3] = 1.0;
+      e2[(k + 2) % 3] = 1.0;
+      shape.undulation = sampleUndulationField(
+        drawUndulationField(waves, axis, e1, e2, o.realism.undulationWavelength,
+          o.undulationCoherence, o.periodic ? o.edgeLength : 0.0),
+        shape.base.points.front() + fieldShift, span);
+    }
+    else
+    {
+      RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation,
+        static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+      shape.undulation =
+        drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    }
     shape.reached = calibrateUndulation(
       shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
   }
@@ -697,6 +714,8 @@ std::string independentProblems(const CubeOptions& o)
     mustBe("VolumeFraction", o.volumeFraction, "in (0, 1) (0 = use NumberOfFibers)"));
   add(!finite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
     mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees"));
+  add(!finite(o.undulationCoherence) || o.undulationCoherence < 0.0,
+    mustBe("UndulationCoherence", o.undulationCoherence, ">= 0 µm (0 = off)"));
   const std::string arrangementCode = arrangementProblem(o);
   add(!arrangementCode.empty(), arrangementCode);
   std::string all;
@@ -785,6 +804,16 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   else if (!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0)
   {
     msg << mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees");
+  }
+  else if (!std::isfinite(o.undulationCoherence) || o.undulationCoherence < 0.0)
+  {
+    msg << mustBe("UndulationCoherence", o.undulationCoherence, ">= 0 µm (0 = off)");
+  }
+  else if (o.undulationCoherence > 0.0 && o.crossingAngle != 90.0 && o.populations >= 2)
+  {
+    msg << "UndulationCoherence is " << o.undulationCoherence << " with CrossingAngle "
+        << o.crossingAngle
+        << ", which needs every population along a coordinate axis (CrossingAngle 90)";
   }
   else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
   {
@@ -959,19 +988,31 @@ FiberModel generateCube(
         return {};
       bool reached = true;
       Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
+      const auto place = [&](Fiber& g)
+      {
+        if (!sites.empty())
+        {
+          placeOnSite(o, k, j, sites[k][j], spacing, g);
+        }
+        if (!sheets.empty())
+        {
+          placeInSheet(o, k, j, sheets, g);
+        }
+        if (!strata[k].empty())
+        {
+          placeInStratum(o, k, j, strata[k][j], strataPerSide(count), g);
+        }
+      };
+      if (o.undulationCoherence > 0.0 && o.realism.undulating())
+      {
+        // A shared field is sampled where the fiber ends up: the seeding's translation first.
+        const Vec3 drawn = f.points.front();
+        place(f);
+        const Vec3 shift = f.points.front() - drawn;
+        f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, shift);
+      }
       unreached += reached ? 0 : 1;
-      if (!sites.empty())
-      {
-        placeOnSite(o, k, j, sites[k][j], spacing, f);
-      }
-      if (!sheets.empty())
-      {
-        placeInSheet(o, k, j, sheets, f);
-      }
-      if (!strata[k].empty())
-      {
-        placeInStratum(o, k, j, strata[k][j], strataPerSide(count), f);
-      }
+      place(f);
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));
     }
