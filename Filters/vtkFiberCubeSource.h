@@ -214,6 +214,17 @@ public:
   vtkSetMacro(UndulationCoherence, double);
   vtkGetMacro(UndulationCoherence, double);
   ///@}
+
+  ///@{
+  /**
+   * With Seeding Lattice, Periodic and BeadingCV > 0: each fiber's radius profile is turned along
+   * it (a cyclic shift by whole points) so that its beads meet those of its neighbours least
+   * (docs/tissue-models.md §10.3). Default is off (every profile as drawn).
+   */
+  vtkSetMacro(BeadPhasing, bool);
+  vtkGetMacro(BeadPhasing, bool);
+  vtkBooleanMacro(BeadPhasing, bool);
+  ///@}
   ///@{
   /**
    * Relative shares of populations 0, 1, 2 (fibers with NumberOfFibers, volume with
@@ -265,6 +276,7 @@ private:
   int GRatioModel = 0;
   double CrossingAngle = 90.0;
   double UndulationCoherence = 0.0;
+  bool BeadPhasing = false;
   double PopulationShares[3] = { 1.0, 1.0, 1.0 };
   int Arrangement = 0;
 };

@@ -1,6 +1,7 @@
 #include "Tissue/CubeGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/BeadPhasing.h"
 #include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
 #include "Tissue/Dispersion.h"
@@ -193,7 +194,8 @@ double fiberVolume(const CubeOptions& o, int k, int j)
 
 // The fiber with its shape knobs: undulated (and dispersed) points from cubeFiberShape, or the
 // straight fiber; then the beaded radii.
-Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached, const Vec3& fieldShift = {})
+Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached, const Vec3& fieldShift = {},
+  std::size_t beadShift = 0)
 {
   Fiber f;
   if (reshaped(o, k))
@@ -212,8 +214,10 @@ Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached, const Vec3& f
   if (o.realism.beaded())
   {
     const std::vector<double> factor = beadingFactors(cubeBeading(o, k, j, f.points.size()));
+    // A closed fiber's profile turned by beadShift points (its last point repeats the first).
+    const std::size_t m = o.periodic ? factor.size() - 1 : factor.size();
     for (std::size_t i = 0; i < f.radii.size(); ++i)
-      f.radii[i] *= factor[i];
+      f.radii[i] *= beadShift == 0 ? factor[i] : factor[(i % m + beadShift) % m];
   }
   return f;
 }
@@ -964,6 +968,31 @@ FiberModel generateCube(
     ? sheetHeights(o, counts)
     : std::vector<double>{};
   const std::vector<std::vector<int>> strata = populationStrata(o, counts);
+  // Bead phases of every fiber (every piece computes all of them: a fiber's phase depends on its
+  // neighbours').
+  std::vector<std::vector<std::size_t>> phases;
+  if (o.beadPhasing && o.periodic && o.realism.beaded() && !sites.empty())
+  {
+    for (std::size_t k = 0; k < counts.size(); ++k)
+    {
+      std::vector<std::vector<double>> radii;
+      std::vector<Seed2D> centres;
+      for (int j = 0; j < counts[k]; ++j)
+      {
+        const int kk = static_cast<int>(k);
+        const std::size_t n = shapedPointCount(o, kk, j);
+        std::vector<double> r = beadingFactors(cubeBeading(o, kk, j, n));
+        r.pop_back();
+        const double radius = cubeFiberRadius(o, kk, j);
+        for (double& x : r)
+          x *= radius;
+        radii.push_back(std::move(r));
+        centres.push_back(
+          { sites[k][static_cast<std::size_t>(j)].t1, sites[k][static_cast<std::size_t>(j)].t2 });
+      }
+      phases.push_back(beadPhases(radii, centres, o.edgeLength));
+    }
+  }
   if (warning)
     *warning = packed;
   if (aborted)
@@ -987,7 +1016,8 @@ FiberModel generateCube(
           made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
         return {};
       bool reached = true;
-      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
+      const std::size_t beadShift = phases.empty() ? 0 : phases[k][j];
+      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, {}, beadShift);
       const auto place = [&](Fiber& g)
       {
         if (!sites.empty())
@@ -1009,7 +1039,7 @@ FiberModel generateCube(
         const Vec3 drawn = f.points.front();
         place(f);
         const Vec3 shift = f.points.front() - drawn;
-        f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, shift);
+        f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, shift, beadShift);
       }
       unreached += reached ? 0 : 1;
       place(f);

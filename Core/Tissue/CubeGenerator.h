@@ -99,6 +99,10 @@ struct CubeOptions
   /// transverse coherence length ξ: fibers whose axes are r apart undulate with correlation about
   /// exp(−r²/2ξ²). Needs every population along a coordinate axis. 0 = off (independent).
   double undulationCoherence = 0.0;
+  /// Lattice seeding of a periodic cell with beading: each fiber's radius profile is turned (a
+  /// cyclic shift by whole points, Tissue/BeadPhasing.h) so that its beads meet those of its
+  /// neighbours on their sites least. false = every profile as drawn.
+  bool beadPhasing = false;
 };
 
 /// The target shape of fiber j of population k (Tissue/FiberShape.h): the straight base path from
