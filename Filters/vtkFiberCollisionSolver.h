@@ -147,6 +147,18 @@ public:
 
   ///@{
   /**
+   * Beaded fibers closed through a periodic cell keep their radius profile along their arc length
+   * (docs/solver.md §5.4): every step a point takes the input profile at its arc fraction plus one
+   * phase per fiber, so pushes slide a fiber's beads along it as a whole instead of squeezing them
+   * into shorter links. Open fibers and constant radii are unaffected. Default is off.
+   */
+  vtkSetMacro(KeepBeads, bool);
+  vtkGetMacro(KeepBeads, bool);
+  vtkBooleanMacro(KeepBeads, bool);
+  ///@}
+
+  ///@{
+  /**
    * Expose the solver's steps as time steps: 0, TimeStepInterval, 2 × TimeStepInterval, … and the
    * step the solve ended at, which is the last time step (the solve runs when the pipeline
    * information is updated, once, and is cached). Default is off.
@@ -231,6 +243,7 @@ private:
   double PushBoost = 3.0;
   double MaxDisplacement = 0.125;
   double Tortuosity = 0.0;
+  bool KeepBeads = false;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;
   int MaximumSnapshots = 100;

@@ -112,6 +112,8 @@ int vtkFiberCubeSource::ExecutePiece(vtkInformationVector* outputVector)
   options.displacement = this->Displacement;
   options.seed = static_cast<std::uint64_t>(this->Seed);
   options.crossingAngle = this->CrossingAngle;
+  options.undulationCoherence = this->UndulationCoherence;
+  options.beadPhasing = this->BeadPhasing;
   options.populationShares.assign(this->PopulationShares, this->PopulationShares + 3);
   options.radiusSpread = this->RadiusSpread;
   options.periodic = this->Periodic;
@@ -196,6 +198,8 @@ void vtkFiberCubeSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GRatio: " << this->GRatio << "\n";
   os << indent << "GRatioModel: " << this->GRatioModel << "\n";
   os << indent << "CrossingAngle: " << this->CrossingAngle << "\n";
+  os << indent << "UndulationCoherence: " << this->UndulationCoherence << "\n";
+  os << indent << "BeadPhasing: " << this->BeadPhasing << "\n";
   os << indent << "PopulationShares: " << this->PopulationShares[0] << " "
      << this->PopulationShares[1] << " " << this->PopulationShares[2] << "\n";
   os << indent << "Arrangement: " << this->Arrangement << "\n";

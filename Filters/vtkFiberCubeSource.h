@@ -201,6 +201,30 @@ public:
   vtkSetMacro(CrossingAngle, double);
   vtkGetMacro(CrossingAngle, double);
   ///@}
+
+  ///@{
+  /**
+   * µm, >= 0: with Tortuosity > 1, the undulation of each population is one random field over the
+   * cube instead of independent modes per fiber, with this transverse coherence length ξ: fibers
+   * whose axes are r apart undulate with correlation about exp(−r²/2ξ²), so neighbours bend
+   * together (as axons of a fascicle do) and dense cells keep their undulation. Needs every
+   * population along a coordinate axis (CrossingAngle 90). Default is 0 (off: every fiber
+   * undulates independently).
+   */
+  vtkSetMacro(UndulationCoherence, double);
+  vtkGetMacro(UndulationCoherence, double);
+  ///@}
+
+  ///@{
+  /**
+   * With Seeding Lattice, Periodic and BeadingCV > 0: each fiber's radius profile is turned along
+   * it (a cyclic shift by whole points) so that its beads meet those of its neighbours least
+   * (docs/tissue-models.md §10.3). Default is off (every profile as drawn).
+   */
+  vtkSetMacro(BeadPhasing, bool);
+  vtkGetMacro(BeadPhasing, bool);
+  vtkBooleanMacro(BeadPhasing, bool);
+  ///@}
   ///@{
   /**
    * Relative shares of populations 0, 1, 2 (fibers with NumberOfFibers, volume with
@@ -251,6 +275,8 @@ private:
   double GRatio = 0.0;
   int GRatioModel = 0;
   double CrossingAngle = 90.0;
+  double UndulationCoherence = 0.0;
+  bool BeadPhasing = false;
   double PopulationShares[3] = { 1.0, 1.0, 1.0 };
   int Arrangement = 0;
 };

@@ -82,6 +82,12 @@ struct CollisionSolverOptions
   /// tortuosity falls 5 % of the excess below it. Straight fibers stay straight. 0 = off (any
   /// value <= 1), else in (1, 3]. Default 0.
   double tortuosity = 0.0;
+  /// [ours] Beaded closed fibers keep their radius profile along their arc length (docs/solver.md
+  /// §5.4, Solver/BeadProfile.h): every step each point takes the input profile at its arc
+  /// fraction plus one phase per fiber, so pushes slide a fiber's beads along it as a whole
+  /// instead of squeezing them into shorter links. Open fibers and constant radii are unaffected.
+  /// Default false (points carry their radii).
+  bool keepBeads = false;
   /// [ours] Skip the pairs of two links that are unchanged and collision-free since the last
   /// detection (docs/solver.md §3.4): detection then costs about the links still moving. Never
   /// changes the result (tests compare it on and off, serial and distributed). Core only.

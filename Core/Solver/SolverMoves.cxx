@@ -2,6 +2,7 @@
 
 #include "Solver/SolverEngine.h"
 
+#include "Solver/BeadProfile.h"
 #include "Solver/PushBoost.h"
 #include "Solver/TortuosityControl.h"
 
@@ -10,7 +11,8 @@
 namespace fiberpli
 {
 
-// Tortuosity, length, then curvature per fiber; parallel over fibers, each fiber sequential (§5).
+// Tortuosity, length, beads, then curvature per fiber; parallel over fibers, each fiber sequential
+// (§5).
 bool SolverEngine::shapeControl()
 {
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
@@ -29,6 +31,10 @@ bool SolverEngine::shapeControl()
     bool c = controlTortuosity(
       fib, o_.tortuosity, tortuosityTolerance(), moveCap(), 5.0 * st_.segmentLength, closure);
     c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2) || c;
+    if (o_.keepBeads && closed)
+    {
+      c = followBeadProfile(fib, st) || c;
+    }
     c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
     close(static_cast<std::size_t>(f));
     changed |= c ? 1 : 0;

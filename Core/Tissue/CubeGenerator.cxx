@@ -1,6 +1,7 @@
 #include "Tissue/CubeGenerator.h"
 
 #include "Model/FiberPieces.h"
+#include "Tissue/BeadPhasing.h"
 #include "Tissue/Beading.h"
 #include "Tissue/DiskPacking.h"
 #include "Tissue/Dispersion.h"
@@ -193,12 +194,13 @@ double fiberVolume(const CubeOptions& o, int k, int j)
 
 // The fiber with its shape knobs: undulated (and dispersed) points from cubeFiberShape, or the
 // straight fiber; then the beaded radii.
-Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
+Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached, const Vec3& fieldShift = {},
+  std::size_t beadShift = 0)
 {
   Fiber f;
   if (reshaped(o, k))
   {
-    const FiberShape shape = cubeFiberShape(o, k, j);
+    const FiberShape shape = cubeFiberShape(o, k, j, fieldShift);
     if (reached)
       *reached = shape.reached;
     f.bundle = k;
@@ -212,8 +214,10 @@ Fiber makeFiber(const CubeOptions& o, int k, int j, bool* reached)
   if (o.realism.beaded())
   {
     const std::vector<double> factor = beadingFactors(cubeBeading(o, k, j, f.points.size()));
+    // A closed fiber's profile turned by beadShift points (its last point repeats the first).
+    const std::size_t m = o.periodic ? factor.size() - 1 : factor.size();
     for (std::size_t i = 0; i < f.radii.size(); ++i)
-      f.radii[i] *= factor[i];
+      f.radii[i] *= beadShift == 0 ? factor[i] : factor[(i % m + beadShift) % m];
   }
   return f;
 }
@@ -555,7 +559,7 @@ void placeInSheet(
 }
 } // namespace
 
-FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
+FiberShape cubeFiberShape(const CubeOptions& o, int k, int j, const Vec3& fieldShift)
 {
   const double half = 0.5 * o.edgeLength;
   FiberShape shape;
@@ -592,10 +596,27 @@ FiberShape cubeFiberShape(const CubeOptions& o, int k, int j)
   shape.jitter = drawJitter(jitter, shape.pointCount, o.displacement, o.periodic);
   if (o.realism.undulating())
   {
-    RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation,
-      static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
-    shape.undulation =
-      drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    if (o.undulationCoherence > 0.0)
+    {
+      // The population's field (its own stream), sampled along this fiber.
+      RandomStream waves =
+        shapeStream(o.seed, ShapeFeature::Undulation, static_cast<std::uint64_t>(k), kGroupStream);
+      const Vec3 axis = cubePopulationAxes(o)[static_cast<std::size_t>(k)].direction;
+      Vec3 e1, e2;
+      e1[(k + 1) % 3] = 1.0;
+      e2[(k + 2) % 3] = 1.0;
+      shape.undulation = sampleUndulationField(
+        drawUndulationField(waves, axis, e1, e2, o.realism.undulationWavelength,
+          o.undulationCoherence, o.periodic ? o.edgeLength : 0.0),
+        shape.base.points.front() + fieldShift, span);
+    }
+    else
+    {
+      RandomStream modes = shapeStream(o.seed, ShapeFeature::Undulation,
+        static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(j));
+      shape.undulation =
+        drawUndulation(modes, norm(span), o.realism.undulationWavelength, o.periodic);
+    }
     shape.reached = calibrateUndulation(
       shape.base, shape.undulation, o.realism.tortuosity, shape.pointCount, &shape.jitter);
   }
@@ -697,6 +718,8 @@ std::string independentProblems(const CubeOptions& o)
     mustBe("VolumeFraction", o.volumeFraction, "in (0, 1) (0 = use NumberOfFibers)"));
   add(!finite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0,
     mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees"));
+  add(!finite(o.undulationCoherence) || o.undulationCoherence < 0.0,
+    mustBe("UndulationCoherence", o.undulationCoherence, ">= 0 µm (0 = off)"));
   const std::string arrangementCode = arrangementProblem(o);
   add(!arrangementCode.empty(), arrangementCode);
   std::string all;
@@ -785,6 +808,16 @@ std::string validateCubeOptions(const CubeOptions& o, int pieces)
   else if (!std::isfinite(o.crossingAngle) || o.crossingAngle < 0.0 || o.crossingAngle > 90.0)
   {
     msg << mustBe("CrossingAngle", o.crossingAngle, "in [0, 90] degrees");
+  }
+  else if (!std::isfinite(o.undulationCoherence) || o.undulationCoherence < 0.0)
+  {
+    msg << mustBe("UndulationCoherence", o.undulationCoherence, ">= 0 µm (0 = off)");
+  }
+  else if (o.undulationCoherence > 0.0 && o.crossingAngle != 90.0 && o.populations >= 2)
+  {
+    msg << "UndulationCoherence is " << o.undulationCoherence << " with CrossingAngle "
+        << o.crossingAngle
+        << ", which needs every population along a coordinate axis (CrossingAngle 90)";
   }
   else if (o.crossingAngle != 90.0 && o.populations >= 2 && o.seeding == CubeSeeding::Lattice)
   {
@@ -935,6 +968,31 @@ FiberModel generateCube(
     ? sheetHeights(o, counts)
     : std::vector<double>{};
   const std::vector<std::vector<int>> strata = populationStrata(o, counts);
+  // Bead phases of every fiber (every piece computes all of them: a fiber's phase depends on its
+  // neighbours').
+  std::vector<std::vector<std::size_t>> phases;
+  if (o.beadPhasing && o.periodic && o.realism.beaded() && !sites.empty())
+  {
+    for (std::size_t k = 0; k < counts.size(); ++k)
+    {
+      std::vector<std::vector<double>> radii;
+      std::vector<Seed2D> centres;
+      for (int j = 0; j < counts[k]; ++j)
+      {
+        const int kk = static_cast<int>(k);
+        const std::size_t n = shapedPointCount(o, kk, j);
+        std::vector<double> r = beadingFactors(cubeBeading(o, kk, j, n));
+        r.pop_back();
+        const double radius = cubeFiberRadius(o, kk, j);
+        for (double& x : r)
+          x *= radius;
+        radii.push_back(std::move(r));
+        centres.push_back(
+          { sites[k][static_cast<std::size_t>(j)].t1, sites[k][static_cast<std::size_t>(j)].t2 });
+      }
+      phases.push_back(beadPhases(radii, centres, o.edgeLength));
+    }
+  }
   if (warning)
     *warning = packed;
   if (aborted)
@@ -958,20 +1016,33 @@ FiberModel generateCube(
           made + (1.0 - made) * static_cast<double>(done) / static_cast<double>(range.size())))
         return {};
       bool reached = true;
-      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached);
+      const std::size_t beadShift = phases.empty() ? 0 : phases[k][j];
+      Fiber f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, {}, beadShift);
+      const auto place = [&](Fiber& g)
+      {
+        if (!sites.empty())
+        {
+          placeOnSite(o, k, j, sites[k][j], spacing, g);
+        }
+        if (!sheets.empty())
+        {
+          placeInSheet(o, k, j, sheets, g);
+        }
+        if (!strata[k].empty())
+        {
+          placeInStratum(o, k, j, strata[k][j], strataPerSide(count), g);
+        }
+      };
+      if (o.undulationCoherence > 0.0 && o.realism.undulating())
+      {
+        // A shared field is sampled where the fiber ends up: the seeding's translation first.
+        const Vec3 drawn = f.points.front();
+        place(f);
+        const Vec3 shift = f.points.front() - drawn;
+        f = makeFiber(o, static_cast<int>(k), static_cast<int>(j), &reached, shift, beadShift);
+      }
       unreached += reached ? 0 : 1;
-      if (!sites.empty())
-      {
-        placeOnSite(o, k, j, sites[k][j], spacing, f);
-      }
-      if (!sheets.empty())
-      {
-        placeInSheet(o, k, j, sheets, f);
-      }
-      if (!strata[k].empty())
-      {
-        placeInStratum(o, k, j, strata[k][j], strataPerSide(count), f);
-      }
+      place(f);
       f.id = static_cast<std::int64_t>(first + j);
       model.fibers.push_back(std::move(f));
     }

@@ -94,14 +94,26 @@ struct CubeOptions
   /// or fibers are added to the population furthest below its share of the volume.
   std::vector<double> populationShares;
   CubeArrangement arrangement = CubeArrangement::Auto;
+  /// µm, > 0: the undulation of a population is one random field over the cell
+  /// (Tissue/Undulation.h, drawUndulationField) instead of independent modes per fiber, with this
+  /// transverse coherence length ξ: fibers whose axes are r apart undulate with correlation about
+  /// exp(−r²/2ξ²). Needs every population along a coordinate axis. 0 = off (independent).
+  double undulationCoherence = 0.0;
+  /// Lattice seeding of a periodic cell with beading: each fiber's radius profile is turned (a
+  /// cyclic shift by whole points, Tissue/BeadPhasing.h) so that its beads meet those of its
+  /// neighbours on their sites least. false = every profile as drawn.
+  bool beadPhasing = false;
 };
 
 /// The target shape of fiber j of population k (Tissue/FiberShape.h): the straight base path from
 /// the drawn transverse position along the fiber's span, its calibrated undulation, the point
 /// count, the displacements (drawn from the Jitter stream) and the radius drawn for it. Lattice
 /// seeding and Sheets translate the finished fiber across its axis afterwards.
-/// Meaningful when the fiber is reshaped (undulation, dispersion or a crossing-angle axis).
-FiberShape cubeFiberShape(const CubeOptions& options, int k, int j);
+/// Meaningful when the fiber is reshaped (undulation, dispersion or a crossing-angle axis). With
+/// undulationCoherence the population's field is sampled along the base path shifted by
+/// `fieldShift` (generateCube passes the translation the seeding applies afterwards, so the field
+/// is sampled where the fiber ends up).
+FiberShape cubeFiberShape(const CubeOptions& options, int k, int j, const Vec3& fieldShift = {});
 
 /// The achieved ⟨cos²⟩ of the end-to-end directions about the axis, per population (1 without
 /// dispersion; every fiber of the model counted, so the same on every piece). Open cubes: the

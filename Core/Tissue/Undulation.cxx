@@ -82,6 +82,53 @@ Undulation drawUndulation(RandomStream& rng, double baseLength, double wavelengt
   return und;
 }
 
+UndulationField drawUndulationField(RandomStream& rng, const Vec3& axis, const Vec3& across1,
+  const Vec3& across2, double wavelength, double coherence, double period)
+{
+  UndulationField field;
+  double sum = 0.0;
+  for (int i = 0; i < kUndulationFieldWaves; ++i)
+  {
+    const double along = 2.0 * M_PI / (wavelength * std::exp(0.25 * rng.normal()));
+    double q1 = rng.normal() / coherence;
+    double q2 = rng.normal() / coherence;
+    double ka = along;
+    if (period > 0.0)
+    {
+      const double unit = 2.0 * M_PI / period;
+      ka = unit * std::max(1.0, std::round(along / unit));
+      q1 = unit * std::round(q1 / unit);
+      q2 = unit * std::round(q2 / unit);
+    }
+    UndulationWave w;
+    w.k = ka * axis + q1 * across1 + q2 * across2;
+    w.weight = rng.uniform(0.5, 1.0);
+    w.phaseU = rng.uniform(0.0, 2.0 * M_PI);
+    w.phaseV = rng.uniform(0.0, 2.0 * M_PI);
+    sum += w.weight * w.weight;
+    field.waves.push_back(w);
+  }
+  for (UndulationWave& w : field.waves)
+    w.weight /= std::sqrt(sum);
+  return field;
+}
+
+Undulation sampleUndulationField(const UndulationField& field, const Vec3& start, const Vec3& span)
+{
+  Undulation und;
+  for (const UndulationWave& w : field.waves)
+  {
+    UndulationMode m;
+    m.cycles = dot(w.k, span) / (2.0 * M_PI);
+    m.weight = w.weight;
+    const double at = dot(w.k, start);
+    m.phaseU = at + w.phaseU;
+    m.phaseV = at + w.phaseV;
+    und.modes.push_back(m);
+  }
+  return und;
+}
+
 void undulationDeviation(const Undulation& und, double t, bool closed, double& du, double& dv)
 {
   const auto raw = [&](double x, double& a, double& b)

@@ -67,6 +67,44 @@ constexpr int kUndulationModes = 3;
 /// spare (so the draw count per mode is fixed). Precondition: baseLength, wavelength > 0.
 Undulation drawUndulation(RandomStream& rng, double baseLength, double wavelength, bool closed);
 
+/// One plane wave of a population's shared undulation field: its wave vector (rad/µm), weight and
+/// a phase for each of the two transverse directions.
+struct UndulationWave
+{
+  Vec3 k;
+  double weight = 1.0;
+  double phaseU = 0.0; ///< radians
+  double phaseV = 0.0; ///< radians
+};
+
+/// A population's undulation field (docs/tissue-models.md §10.1, `UndulationCoherence`): the
+/// deviation at a point x of the cell is Σ weight·sin(k·x + phase) along each of the two
+/// directions across the population's axis, so fibers whose axes are r apart undulate with
+/// correlation about exp(−r²/2ξ²) (ξ the coherence length) instead of independently.
+struct UndulationField
+{
+  std::vector<UndulationWave> waves;
+};
+
+/// The number of waves drawUndulationField draws.
+constexpr int kUndulationFieldWaves = 32;
+
+/// Draws a population's field (axis and the two directions across it unit and orthogonal):
+/// kUndulationFieldWaves waves of wavelength λ·exp(0.25·z) along the axis (z standard normal) and
+/// transverse wave numbers q₁, q₂ standard normal / ξ, so that the deviations of two fibers r apart
+/// across the axis correlate as exp(−r²/2ξ²). period > 0 (a periodic cell of that edge, the axis
+/// and directions along coordinate axes): every wave vector is a whole multiple of 2π/period per
+/// axis (at least one wave along the axis), so the field is periodic over the cell and closed
+/// fibers stay closed. Weights U[0.5, 1] normalised to Σ weight² = 1, phases U[0, 2π). Draws 6
+/// numbers per wave from rng: z, q₁, q₂, weight, phaseU, phaseV. Precondition: wavelength,
+/// coherence > 0.
+UndulationField drawUndulationField(RandomStream& rng, const Vec3& axis, const Vec3& across1,
+  const Vec3& across2, double wavelength, double coherence, double period);
+
+/// The field sampled along the straight fiber start + t·span, t ∈ [0, 1], as the fiber's modes
+/// (amplitude 0): wave w gives cycles k·span / 2π and phases k·start + phase.
+Undulation sampleUndulationField(const UndulationField& field, const Vec3& start, const Vec3& span);
+
 /// The transverse deviation (along u, along v) of the modes at the fraction t ∈ [0, 1] of the base
 /// length, for amplitude 1 (open fibers: minus the straight trend, so 0 at both ends).
 void undulationDeviation(

@@ -122,7 +122,8 @@ bad = FiberCubeSource(Populations=2, NumberOfFibers=10, EdgeLength=20.0)
 catcher = ErrorCatcher(bad)
 for prop, value in (("Tortuosity", 0.9), ("Tortuosity", float("nan")), ("UndulationWavelength", 0.0),
                     ("DispersionC2", 0.3), ("DispersionC2", 1.5), ("BeadingCV", -0.1), ("GRatio", 1.2),
-                    ("CrossingAngle", 120.0), ("PopulationShares", [1.0, -1.0, 1.0]), ("Arrangement", "Sheets")):
+                    ("CrossingAngle", 120.0), ("PopulationShares", [1.0, -1.0, 1.0]), ("Arrangement", "Sheets"),
+                    ("UndulationCoherence", -1.0), ("UndulationCoherence", float("nan"))):
     catcher.clear()
     kwargs = {prop: value}
     if prop == "UndulationWavelength":
@@ -134,7 +135,8 @@ for prop, value in (("Tortuosity", 0.9), ("Tortuosity", float("nan")), ("Undulat
     check(prop in catcher.text(), "%s=%r: error must name it, got %r" % (prop, value, catcher.text()))
     check(servermanager.Fetch(bad).GetNumberOfLines() == 0, "no output on a bad value")
     SetProperties(bad, Populations=2, Tortuosity=1.0, UndulationWavelength=20.0, DispersionC2=1.0, BeadingCV=0.0,
-                  GRatio=0.0, CrossingAngle=90.0, PopulationShares=[1, 1, 1], Arrangement="Auto")
+                  GRatio=0.0, CrossingAngle=90.0, PopulationShares=[1, 1, 1], Arrangement="Auto",
+                  UndulationCoherence=0.0)
 bad.UpdatePipeline()
 check(servermanager.Fetch(bad).GetNumberOfLines() == 10, "pipeline must recover")
 bundle_bad = FiberBundleSource(GRatio=-0.5)
