@@ -485,6 +485,16 @@ void CollisionGrid::sortKeysByCell(const Layout& grid, int nThreads)
   }
 }
 
+// The (x, y, z) indices of a linear cell index.
+void CollisionGrid::cellCoordinates(
+  std::uint64_t cell, const Layout& grid, std::int64_t& cx, std::int64_t& cy, std::int64_t& cz)
+{
+  const auto c = static_cast<std::int64_t>(cell);
+  cx = c % grid.nx;
+  cy = (c / grid.nx) % grid.ny;
+  cz = c / (grid.nx * grid.ny);
+}
+
 // Phase 5: in each cell the flagged links first (each part in id order), and where its unflagged
 // ones begin (all flagged, or no flags: the cell's end). A pair of two unflagged links is never
 // tested, so only the cells with a flagged link are listed for the pair search (visit_).
@@ -571,10 +581,8 @@ void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const
     for (const std::uint32_t ci : visit_)
     {
       need_[ci] = 1;
-      const std::uint64_t cell = cellKeys_[ci];
-      const std::int64_t cx = static_cast<std::int64_t>(cell) % grid.nx;
-      const std::int64_t cy = (static_cast<std::int64_t>(cell) / grid.nx) % grid.ny;
-      const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
+      std::int64_t cx = 0, cy = 0, cz = 0;
+      cellCoordinates(cellKeys_[ci], grid, cx, cy, cz);
       for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, grid.nz - 1);
            ++z)
         for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0); y <= std::min(cy + 1, grid.ny - 1);
@@ -781,10 +789,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
           continue;
         }
         const std::size_t ci = visit_[static_cast<std::size_t>(vi)];
-        const std::uint64_t cell = cellKeys_[ci];
-        const std::int64_t cx = static_cast<std::int64_t>(cell) % grid.nx;
-        const std::int64_t cy = (static_cast<std::int64_t>(cell) / grid.nx) % grid.ny;
-        const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
+        std::int64_t cx = 0, cy = 0, cz = 0;
+        cellCoordinates(cellKeys_[ci], grid, cx, cy, cz);
         std::uint32_t runBegin[9], runEnd[9];
         int runs = 0;
         for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0); z <= std::min(cz + 1, grid.nz - 1);
@@ -833,10 +839,8 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
           continue; // an omp for cannot break: skip the remaining cells
         }
         const std::size_t ci = visit_[static_cast<std::size_t>(vi)];
-        const std::uint64_t cell = cellKeys_[ci];
-        const std::int64_t cx = static_cast<std::int64_t>(cell) % grid.nx;
-        const std::int64_t cy = (static_cast<std::int64_t>(cell) / grid.nx) % grid.ny;
-        const std::int64_t cz = static_cast<std::int64_t>(cell) / (grid.nx * grid.ny);
+        std::int64_t cx = 0, cy = 0, cz = 0;
+        cellCoordinates(cellKeys_[ci], grid, cx, cy, cz);
         const std::uint32_t begin = cellStart_[ci];
         const std::uint32_t end = cellStart_[ci + 1];
         const std::uint32_t split = cellUnflagged_[ci];
