@@ -1,8 +1,9 @@
 """pvpython: the realism knobs of FiberCubeSource (periodic and open) and FiberBundleSource, measured
 with numpy on the output: per-fiber tortuosity, closure on lattice vectors, <cos^2> of the
 end-to-end directions against the reported dispersion_c2, the crossing axes, the along-fiber radius
-CV, inner_radius by both g-ratio models (and kept through the solver), defaults leaving the
-fibers untouched, and the errors naming the property."""
+CV, inner_radius by both g-ratio models (and kept through the solver), bead phasing (radii only
+turned, fewer beads meeting), coherent undulation (neighbours correlated, tortuosity kept), beads
+kept through the solver, defaults leaving the fibers untouched, and the errors naming the property."""
 import math
 import os
 import sys
@@ -116,6 +117,84 @@ plain = fibers_of(FiberCubeSource(Populations=2, NumberOfFibers=50, EdgeLength=2
 myelin = fibers_of(FiberCubeSource(Populations=2, NumberOfFibers=50, EdgeLength=20.0, Seed=9, GRatio=0.7))[0]
 for a, b in zip(plain, myelin):
     check(np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]) and a[2] is None, "defaults changed")
+
+# --- bead phasing: the same points, each fiber's radii turned cyclically, fewer beads meeting -----
+def lattice_cell(phasing):
+    return fibers_of(FiberCubeSource(Populations=1, VolumeFraction=0.7, EdgeLength=20.0, Periodic=1, Seed=4,
+                                     Seeding="Lattice", Displacement=0.0, BeadingCV=0.25, BeadingLength=4.0,
+                                     BeadPhasing=phasing))[0]
+
+
+def overlapping_point_pairs(fibers):
+    """Pairs of points of different fibers whose spheres overlap (minimum image in a 20 µm cell)."""
+    pts = np.concatenate([p[:-1] for p, _, _, _ in fibers])
+    rad = np.concatenate([r[:-1] for _, r, _, _ in fibers])
+    owner = np.concatenate([np.full(len(p) - 1, i) for i, (p, _, _, _) in enumerate(fibers)])
+    count = 0
+    for i in range(len(pts)):
+        d = pts[i + 1:] - pts[i]
+        d -= 20.0 * np.round(d / 20.0)
+        close = np.linalg.norm(d, axis=1) < rad[i + 1:] + rad[i]
+        count += int(np.count_nonzero(close & (owner[i + 1:] != owner[i])))
+    return count
+
+
+drawn, turned = lattice_cell(0), lattice_cell(1)
+check(len(drawn) == len(turned) and len(drawn) > 30, "lattice fibers %d / %d" % (len(drawn), len(turned)))
+shifted = 0
+for (pa, ra, _, _), (pb, rb, _, _) in zip(drawn, turned):
+    check(np.array_equal(pa, pb), "BeadPhasing moved points")
+    n = len(ra) - 1
+    shifts = [s for s in range(n) if np.array_equal(np.roll(ra[:-1], -s), rb[:-1])]
+    check(len(shifts) > 0 and rb[-1] == rb[0], "BeadPhasing must only turn a fiber's radii cyclically")
+    shifted += shifts[0] != 0
+check(shifted > 0, "BeadPhasing turned no fiber")
+before, after = overlapping_point_pairs(drawn), overlapping_point_pairs(turned)
+check(after < before, "beads meeting: %d drawn, %d phased" % (before, after))
+
+# --- coherent undulation: neighbours bend together, every fiber keeps its tortuosity -------------
+def neighbour_correlation(coherence):
+    fibers = fibers_of(FiberCubeSource(Populations=1, NumberOfFibers=64, EdgeLength=24.0, Periodic=1, Seed=6,
+                                       Seeding="Lattice", Displacement=0.0, Tortuosity=1.05,
+                                       UndulationWavelength=8.0, UndulationCoherence=coherence))[0]
+    taus = np.array([tortuosity(p) for p, _, _, _ in fibers])
+    check(np.all(np.abs(taus - 1.05) < 0.005), "coherence %g: tortuosity %g..%g" % (coherence, taus.min(),
+                                                                                    taus.max()))
+    # Transverse (y, z) deviations from each fiber's mean axis, resampled on a common x grid.
+    grid = np.linspace(0.0, 24.0, 49)[:-1]
+    axes, devs = [], []
+    for p, _, _, _ in fibers:
+        x = p[:, 0] - p[0, 0]
+        dev = np.stack([np.interp(grid, x, p[:, a]) for a in (1, 2)])
+        axes.append(dev.mean(axis=1))
+        devs.append((dev - dev.mean(axis=1, keepdims=True)).ravel())
+    corr = []
+    for i in range(len(fibers)):
+        for j in range(i + 1, len(fibers)):
+            d = axes[j] - axes[i]
+            d -= 24.0 * np.round(d / 24.0)
+            if np.linalg.norm(d) < 4.0:
+                corr.append(np.dot(devs[i], devs[j]) / np.linalg.norm(devs[i]) / np.linalg.norm(devs[j]))
+    return np.mean(corr)
+
+
+independent, coherent = neighbour_correlation(0.0), neighbour_correlation(5.0)
+check(abs(independent) < 0.2 and coherent > 0.5, "neighbour correlation %g independent, %g coherent"
+      % (independent, coherent))
+
+# --- KeepBeads: through the solver, a beaded fiber keeps its radii as drawn (mean, range, CV) -----
+beaded = FiberCubeSource(Populations=1, VolumeFraction=0.5, EdgeLength=16.0, Periodic=1, Seed=8,
+                         Displacement=0.3, BeadingCV=0.25, BeadingLength=4.0, Tortuosity=1.05,
+                         UndulationWavelength=8.0)
+kept = FiberCollisionSolver(Input=beaded, MaxSteps=3000, NumberOfThreads=2, KeepBeads=1)
+inputs, (outputs, kpd) = fibers_of(beaded)[0], fibers_of(kept)
+check(kpd.GetFieldData().GetArray("solved").GetValue(0) == 1, "KeepBeads cell at 0.5 not solved")
+for (_, ri, _, _), (po, ro, _, _) in zip(inputs, outputs):
+    seg = np.linalg.norm(np.diff(po, axis=0), axis=1)
+    along = 0.5 * (ro[:-1] + ro[1:])  # the radius along the arc, by length
+    check(abs(np.dot(seg, along) / seg.sum() / ri[:-1].mean() - 1.0) < 0.03, "KeepBeads changed a mean radius")
+    check(ro.min() >= ri.min() - 1e-9 and ro.max() <= ri.max() + 1e-9, "KeepBeads radius outside the drawn range")
+    check(abs(cv(ro[:-1]) - cv(ri[:-1])) < 0.05, "KeepBeads CV %g, drawn %g" % (cv(ro[:-1]), cv(ri[:-1])))
 
 # --- bad values name the property; the pipeline recovers ----------------------------------------
 bad = FiberCubeSource(Populations=2, NumberOfFibers=10, EdgeLength=20.0)
