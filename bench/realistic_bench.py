@@ -2,8 +2,9 @@
     pvpython bench/realistic_bench.py <FiberPLI.so> [case ...] [--edge L] [--threads T]
 Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.03 at wavelength
 10 µm, beading CV 0.16 over 16 µm, `VolumeFraction` 0.87), cc-coherent (the same with
-`UndulationCoherence` 5 µm), cc-straight (tortuosity 1.04 without
-beading, 0.78), crossing-90 and
+`UndulationCoherence` 5 µm), cc-dense (cc-coherent at `VolumeFraction` 0.89 with `Tortuosity`
+1.025 asked of source and solver and the solver's `SeparationSpeed` 0.0125: the cell above 80 %),
+cc-straight (tortuosity 1.04 without beading, 0.78), crossing-90 and
 crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
 `VolumeFraction` 0.65), crossing-90-layers (the 90° crossing on the lattice's alternating
 one-fiber layers, tortuosity 1.15), crossing-90-target and crossing-45-target (tortuosity 1.13 and
@@ -31,6 +32,8 @@ CASES = {
                BeadingCV=0.16, BeadingLength=16.0),
     "cc-coherent": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03,
                         UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
+    "cc-dense": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.025,
+                     UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
     "crossing-90": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
@@ -49,6 +52,11 @@ CASES = {
                                BeadingLength=8.0),
     "three": dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.58, Tortuosity=1.15,
                   UndulationWavelength=15.0),
+}
+# Solver properties of a case besides SegmentLength, MaxSteps, MaxDisplacement and Tortuosity (--solver-set
+# overrides them).
+SOLVER = {
+    "cc-dense": dict(SeparationSpeed=0.0125),
 }
 
 parser = argparse.ArgumentParser()
@@ -220,7 +228,7 @@ for case in args.cases:
     solver = FiberCollisionSolver(Input=source, SegmentLength=2.0, MaxSteps=args.max_steps, MaxDisplacement=0.4,
                                   NumberOfThreads=args.threads, Tortuosity=knobs["Tortuosity"],
                                   MinCurvatureRadius=args.min_curvature_radius)
-    for key, value in assignments(args.solver_set).items():
+    for key, value in {**SOLVER.get(case, {}), **assignments(args.solver_set)}.items():
         setattr(solver, key, value)
     wall, cpu = time.time(), time.process_time()
     solver.UpdatePipeline()
