@@ -2,17 +2,23 @@
 // the same field, FiberFieldSource's fibers and FiberCollisionSolver's options as
 // bench/section_bench.py, without ParaView, so that the solve can be profiled (perf) and its
 // output compared bit for bit between builds (the hash of the solved points and radii).
-// Usage: fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2]
+// --ranks R solves it distributed (docs/solver.md §13) on R thread ranks
+// (Core/Testing/ThreadComm.h) and prints each rank's CPU seconds outside the collectives and the
+// critical path: the sum over the stretches between two collectives of the slowest rank's CPU (the
+// wall time with free, instant communication and a core per rank). Usage:
+// fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2] [--ranks 1]
 //        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
 #include "BenchUtil.h"
 #include "Field/FieldFibers.h"
 #include "Solver/CollisionSolver.h"
+#include "ThreadComm.h"
 #include "Util/Fnv1a.h"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -49,22 +55,89 @@ std::vector<OrientationField> sectionFields(double L, double T, double band)
   return { a, b };
 }
 
-std::uint64_t modelHash(const FiberModel& model)
+void addToHash(std::uint64_t& h, const FiberModel& model)
 {
-  std::uint64_t h = kFnv1aOffset;
   for (const Fiber& f : model.fibers)
   {
     fnv1aAdd(h, f.points.data(), f.points.size() * sizeof(Vec3));
     fnv1aAdd(h, f.radii.data(), f.radii.size() * sizeof(double));
   }
+}
+
+std::uint64_t modelHash(const FiberModel& model)
+{
+  std::uint64_t h = kFnv1aOffset;
+  addToHash(h, model);
   return h;
 }
+
+// CPU seconds of the calling thread.
+double threadCpuSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// A thread rank that notes its CPU seconds between two collective calls (every call is
+// collective, so the i-th stretch of every rank ends at the same collective).
+class TimedComm final : public Comm
+{
+public:
+  explicit TimedComm(Comm& inner)
+    : inner_(inner)
+    , last_(threadCpuSeconds())
+  {
+  }
+  int rank() const override { return inner_.rank(); }
+  int size() const override { return inner_.size(); }
+  void sum(std::vector<std::int64_t>& v) override
+  {
+    note();
+    inner_.sum(v);
+    last_ = threadCpuSeconds();
+  }
+  void max(std::vector<double>& v) override
+  {
+    note();
+    inner_.max(v);
+    last_ = threadCpuSeconds();
+  }
+  std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override
+  {
+    note();
+    std::vector<std::vector<char>> in = inner_.exchange(send);
+    last_ = threadCpuSeconds();
+    return in;
+  }
+  std::vector<std::vector<char>> exchangeWith(
+    const std::vector<int>& partners, const std::vector<std::vector<char>>& send) override
+  {
+    note();
+    std::vector<std::vector<char>> in = inner_.exchangeWith(partners, send);
+    last_ = threadCpuSeconds();
+    return in;
+  }
+  // The stretches, the last one (after the last collective) included.
+  std::vector<double> finish()
+  {
+    note();
+    return stretches_;
+  }
+
+private:
+  void note() { stretches_.push_back(threadCpuSeconds() - last_); }
+  Comm& inner_;
+  double last_;
+  std::vector<double> stretches_;
+};
 } // namespace
 
 int main(int argc, char** argv)
 {
   double L = 250.0, T = 60.0, fa = 0.57, fb = 0.10, band = 0.3;
-  int threads = 2, maxSteps = 20000, every = 100;
+  int threads = 2, maxSteps = 20000, every = 100, ranks = 1;
+  std::string stretchFile;
   bool quiet = true;
   for (int i = 1; i < argc; ++i)
   {
@@ -76,6 +149,10 @@ int main(int argc, char** argv)
       T = std::atof(next());
     else if (a == "--threads")
       threads = std::atoi(next());
+    else if (a == "--ranks")
+      ranks = std::max(1, std::atoi(next()));
+    else if (a == "--stretches")
+      stretchFile = next();
     else if (a == "--max-steps")
       maxSteps = std::atoi(next());
     else if (a == "--every")
@@ -112,6 +189,75 @@ int main(int argc, char** argv)
   o.separationSpeed = 0.1;
   o.maxDisplacement = 0.4;
   o.quietLinks = quiet;
+  if (ranks > 1)
+  {
+    // Pieces of consecutive fibers, as a reader would hand them out; the output pieces in rank
+    // order are the solved model.
+    std::vector<FiberModel> pieces(static_cast<std::size_t>(ranks));
+    const std::size_t nf = model.fibers.size();
+    for (int r = 0; r < ranks; ++r)
+      for (std::size_t f = nf * r / ranks; f < nf * (r + 1) / ranks; ++f)
+        pieces[static_cast<std::size_t>(r)].fibers.push_back(model.fibers[f]);
+    std::vector<CollisionSolverResult> results(pieces.size());
+    std::vector<std::vector<double>> stretches(pieces.size());
+    t0 = bench::seconds();
+    const double c0 = bench::cpuSeconds();
+    fiberpli_test::runRanks(ranks,
+      [&](Comm& inner)
+      {
+        TimedComm comm(inner);
+        const auto r = static_cast<std::size_t>(comm.rank());
+        results[r] = solveCollisions(pieces[r], o, {}, {}, &comm);
+        stretches[r] = comm.finish();
+      });
+    const double wall = bench::seconds() - t0, cpu = bench::cpuSeconds() - c0;
+    if (!stretchFile.empty())
+    {
+      if (FILE* f = std::fopen(stretchFile.c_str(), "w"))
+      {
+        for (std::size_t i = 0; i < stretches[0].size(); ++i)
+        {
+          for (const std::vector<double>& s : stretches)
+            std::fprintf(f, " %.6f", i < s.size() ? s[i] : 0.0);
+          std::fprintf(f, "\n");
+        }
+        std::fclose(f);
+      }
+    }
+    std::uint64_t h = kFnv1aOffset;
+    for (const FiberModel& p : pieces)
+      addToHash(h, p);
+    double critical = 0.0;
+    for (std::size_t i = 0; i < stretches[0].size(); ++i)
+    {
+      double slowest = 0.0;
+      for (const std::vector<double>& s : stretches)
+        slowest = std::max(slowest, i < s.size() ? s[i] : 0.0);
+      critical += slowest;
+    }
+    const CollisionSolverResult& r = results[0];
+    std::printf("solve on %d ranks %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS "
+                "%.0f MB, solved hash %016llx%s%s\n",
+      ranks, wall, cpu, r.steps, r.collisions, bench::peakRssMB(),
+      static_cast<unsigned long long>(h), r.error.empty() ? "" : " error: ", r.error.c_str());
+    std::printf("cpu outside the collectives per rank:");
+    for (std::size_t q = 0; q < stretches.size(); ++q)
+    {
+      double sum = 0.0;
+      for (double x : stretches[q])
+        sum += x;
+      std::printf(" %.1f", sum);
+    }
+    std::printf(
+      " s; critical path %.1f s over %zu collectives\n", critical, stretches[0].size() - 1);
+    for (std::size_t q = 0; q < results.size(); ++q)
+      std::printf("rank %zu: %zu held links, %zu halo links, %.0f B sent per step, %zu partners, "
+                  "%zu of %zu links loud\n",
+        q, results[q].peakHeldLinks, results[q].peakHaloLinks, results[q].haloBytesPerStep,
+        results[q].peakPartners, static_cast<std::size_t>(results[q].loudLinks),
+        static_cast<std::size_t>(results[q].detectedLinks));
+    return r.error.empty() ? 0 : 1;
+  }
   CollisionSolverRun run(model, o);
   t0 = bench::seconds();
   const double c0 = bench::cpuSeconds();
@@ -133,6 +279,8 @@ int main(int argc, char** argv)
     }
   }
   const CollisionSolverResult r = run.finish();
+  std::printf("loud links %zu of %zu over all detections\n", static_cast<std::size_t>(r.loudLinks),
+    static_cast<std::size_t>(r.detectedLinks));
   std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
               "solved hash %016llx%s%s\n",
     bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, bench::peakRssMB(),

@@ -73,18 +73,6 @@ void keepAndSort(RankFibers& r, const std::vector<char>& keep)
   permute(st.home);
 }
 
-// Extent [lo, hi] of a fiber's points along an axis.
-void extent(const Fiber& f, int axis, double& lo, double& hi)
-{
-  lo = HUGE_VAL;
-  hi = -HUGE_VAL;
-  for (const Vec3& p : f.points)
-  {
-    lo = std::min(lo, p[axis]);
-    hi = std::max(hi, p[axis]);
-  }
-}
-
 TrafficCount send(RankFibers& r, const std::vector<std::vector<std::size_t>>& to,
   const std::vector<char>& keep, Comm& comm)
 {
@@ -358,14 +346,18 @@ int BoxLayout::ownerOf(const Vec3& x) const
 
 Vec3 BoxLayout::middle(const Fiber& f)
 {
-  Vec3 c;
-  for (int d = 0; d < 3; ++d)
+  // One pass over the points for the three axes (the solver asks every step).
+  Vec3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (const Vec3& p : f.points)
   {
-    double a, b;
-    extent(f, d, a, b);
-    c[d] = 0.5 * (a + b);
+    lo.x = std::min(lo.x, p.x);
+    lo.y = std::min(lo.y, p.y);
+    lo.z = std::min(lo.z, p.z);
+    hi.x = std::max(hi.x, p.x);
+    hi.y = std::max(hi.y, p.y);
+    hi.z = std::max(hi.z, p.z);
   }
-  return c;
+  return { 0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z) };
 }
 
 int BoxLayout::owner(const Fiber& f) const

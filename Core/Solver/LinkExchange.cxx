@@ -130,32 +130,124 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // wrapping its centre shifts it) and beyond the owner box of the rank owning their fiber
   // (`spread`, shifted as wrapping the fiber's middle shifts it): below / above, per axis, the
   // maxima over all ranks. tester: per own link, the box testing its pairs; shift: its wrap.
+  const bool periodic = layout.periodic();
+  // Per axis the faces of the tester layers (a link's tester box is its layers along the axes).
+  std::vector<double> faceLo[3], faceHi[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    for (int j = 0; j < layout.boxes(d); ++j)
+    {
+      faceLo[d].push_back(layerLo(layout, d, j, false));
+      faceHi[d].push_back(layerHi(layout, d, j, false));
+    }
+  }
   const LayoutBox ownerBox = layout.box(me, true);
   std::vector<double> m(12, 0.0); // grow below, grow above, spread below, spread above
   std::vector<int> tester(own.size());
-  std::vector<Vec3> shift(own.size());
+  std::vector<Vec3> shift(periodic ? own.size() : 0); // without a cell no link is shifted
+  // Without a cell the links go in blocks of up to kBlock consecutive links of one fiber. A block
+  // whose points lie inside one tester box by more than the rounding of layerOf (1e-9 of the
+  // span, far above it) has that tester for every link and no link reaching beyond its faces;
+  // the routing below then sends it whole when its bounding box comes within reach of that box
+  // alone. Most links lie so (a box is much wider than a link): each costs its points' extremes.
+  constexpr std::size_t kBlock = 16;
+  struct Block
+  {
+    std::size_t begin, end;
+    bool inside; // in tester layers `layer`, by the margin
+    int layer[3];
+    double lo[3], hi[3]; // the bounding box of its points
+  };
+  std::vector<Block> blocks;
+  double rounding[3];
+  for (int d = 0; d < 3; ++d)
+    rounding[d] = 1e-9 * layout.span(d);
   std::uint32_t fiber = UINT32_MAX;
   Vec3 fiberShift;
-  for (std::size_t i = 0; i < own.size(); ++i)
+  for (std::size_t i = 0; i < own.size();)
   {
-    const CapsuleLink& l = own[i];
-    if (l.fiber != fiber)
+    std::size_t e = i + 1;
+    while (e < own.size() && e - i < kBlock && own[e].fiber == own[e - 1].fiber &&
+      own[e].k == own[e - 1].k + 1)
+      ++e;
+    Block block{ i, e, false, { 0, 0, 0 }, { HUGE_VAL, HUGE_VAL, HUGE_VAL },
+      { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
+    if (!periodic)
     {
-      fiber = l.fiber;
-      fiberShift = layout.wrapShift(BoxLayout::middle(model.fibers[l.fiber]));
+      // The points of links i..e-1: each link's p0, and the last one's p1 (consecutive links
+      // share a point).
+      Vec3 lo = own[e - 1].p1, hi = lo;
+      for (std::size_t j = i; j < e; ++j)
+      {
+        const Vec3& p = own[j].p0;
+        lo.x = std::min(lo.x, p.x);
+        lo.y = std::min(lo.y, p.y);
+        lo.z = std::min(lo.z, p.z);
+        hi.x = std::max(hi.x, p.x);
+        hi.y = std::max(hi.y, p.y);
+        hi.z = std::max(hi.z, p.z);
+      }
+      block.lo[0] = lo.x;
+      block.lo[1] = lo.y;
+      block.lo[2] = lo.z;
+      block.hi[0] = hi.x;
+      block.hi[1] = hi.y;
+      block.hi[2] = hi.z;
+      block.inside = true;
+      for (int d = 0; d < 3; ++d)
+      {
+        const int j = layout.layerOf(d, 0.5 * (block.lo[d] + block.hi[d]));
+        block.layer[d] = j;
+        block.inside = block.inside &&
+          block.lo[d] >= faceLo[d][static_cast<std::size_t>(j)] + rounding[d] &&
+          block.hi[d] <= faceHi[d][static_cast<std::size_t>(j)] - rounding[d];
+      }
     }
-    const Vec3 c = centre(l);
-    tester[i] = layout.testerOf(c);
-    shift[i] = layout.wrapShift(c);
-    const LayoutBox t = layout.box(tester[i]);
-    for (int d = 0; d < 3; ++d)
+    if (block.inside)
     {
-      const double lo = std::min(l.p0[d], l.p1[d]), hi = std::max(l.p0[d], l.p1[d]);
-      m[d] = std::max(m[d], t.lo[d] - (lo + shift[i][d]));
-      m[3 + d] = std::max(m[3 + d], hi + shift[i][d] - t.hi[d]);
-      m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - (lo + fiberShift[d]));
-      m[9 + d] = std::max(m[9 + d], hi + fiberShift[d] - ownerBox.hi[d]);
+      // Every link's centre is in the block's layers; no link reaches beyond their faces (its
+      // growth is negative: the maxima, which start at 0, stay), and its spread beyond the owner
+      // box is the block's.
+      std::fill(tester.begin() + static_cast<std::ptrdiff_t>(i),
+        tester.begin() + static_cast<std::ptrdiff_t>(e),
+        layout.rankOf(block.layer[0], block.layer[1], block.layer[2]));
+      for (int d = 0; d < 3; ++d)
+      {
+        m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - block.lo[d]);
+        m[9 + d] = std::max(m[9 + d], block.hi[d] - ownerBox.hi[d]);
+      }
+      blocks.push_back(block);
+      i = e;
+      continue;
     }
+    for (; i < e; ++i)
+    {
+      const CapsuleLink& l = own[i];
+      const Vec3 c = centre(l);
+      int layer[3];
+      for (int d = 0; d < 3; ++d)
+        layer[d] = layout.layerOf(d, c[d]);
+      tester[i] = layout.rankOf(layer[0], layer[1], layer[2]); // layout.testerOf(c)
+      Vec3 s;
+      if (periodic)
+      {
+        if (l.fiber != fiber)
+        {
+          fiber = l.fiber;
+          fiberShift = layout.wrapShift(BoxLayout::middle(model.fibers[l.fiber]));
+        }
+        s = shift[i] = layout.wrapShift(c);
+      }
+      for (int d = 0; d < 3; ++d)
+      {
+        const double lo = std::min(l.p0[d], l.p1[d]), hi = std::max(l.p0[d], l.p1[d]);
+        m[d] = std::max(m[d], faceLo[d][static_cast<std::size_t>(layer[d])] - (lo + s[d]));
+        m[3 + d] = std::max(m[3 + d], hi + s[d] - faceHi[d][static_cast<std::size_t>(layer[d])]);
+        m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - (lo + fiberShift[d]));
+        m[9 + d] = std::max(m[9 + d], hi + fiberShift[d] - ownerBox.hi[d]);
+      }
+    }
+    blocks.push_back(block);
   }
   comm.max(m);
   for (int d = 0; d < 3; ++d) // the rounding of the cuts and shifts
@@ -215,37 +307,26 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
       writeRun(out[q], own, first[q], count[q], model, global);
     count[q] = 0;
   };
-  std::vector<int> along[3];
-  for (std::size_t i = 0; i < own.size(); ++i)
+  // The layers this rank's owner box sends to, per axis, with their faces grown by the growth.
+  struct Grown
+  {
+    int layer;
+    double lo, hi;
+  };
+  std::vector<Grown> grown[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    for (int j : sendsTo[d])
+    {
+      grown[d].push_back({ j, faceLo[d][static_cast<std::size_t>(j)] - m[d],
+        faceHi[d][static_cast<std::size_t>(j)] + m[3 + d] });
+    }
+  }
+  // Link i goes to the ranks in `dests` (stamped i): the runs it does not continue are closed,
+  // those it starts are opened.
+  const auto route = [&](std::size_t i)
   {
     const CapsuleLink& l = own[i];
-    // The tester boxes (grown by the growth) the link comes within reach of, among the layers
-    // this rank's owner box sends to.
-    for (int d = 0; d < 3; ++d)
-    {
-      const double lo = std::min(l.p0[d], l.p1[d]) + shift[i][d];
-      const double hi = std::max(l.p0[d], l.p1[d]) + shift[i][d];
-      along[d].clear();
-      for (int j : sendsTo[d])
-      {
-        if (within(lo, hi, layerLo(layout, d, j, false) - m[d],
-              layerHi(layout, d, j, false) + m[3 + d], reach, layout.period(d)))
-          along[d].push_back(j);
-      }
-    }
-    dests.clear();
-    const std::size_t t = static_cast<std::size_t>(tester[i]);
-    for (int a : along[0])
-      for (int b : along[1])
-        for (int c : along[2])
-        {
-          const std::size_t q = static_cast<std::size_t>(layout.rankOf(a, b, c));
-          if (!downOnly || q <= t)
-          {
-            dests.push_back(q);
-            stamp[q] = i;
-          }
-        }
     const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
     std::size_t kept = 0;
     for (std::size_t q : open)
@@ -265,6 +346,71 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
         first[q] = i;
         open.push_back(q);
       }
+    }
+  };
+  std::vector<int> along[3];
+  for (const Block& block : blocks)
+  {
+    if (block.inside)
+    {
+      // The block's box within reach of its own tester layer only, along every axis: so is each
+      // of its links (it lies in that layer), which then goes to its tester box alone.
+      bool alone = true;
+      for (int d = 0; d < 3 && alone; ++d)
+      {
+        int reached = 0;
+        for (const Grown& g : grown[d])
+        {
+          if (within(block.lo[d], block.hi[d], g.lo, g.hi, reach, layout.period(d)))
+          {
+            ++reached;
+            alone = alone && g.layer == block.layer[d];
+          }
+        }
+        alone = alone && reached == 1;
+      }
+      if (alone)
+      {
+        const std::size_t t = static_cast<std::size_t>(tester[block.begin]);
+        dests.assign(1, t);
+        stamp[t] = block.begin;
+        route(block.begin);
+        // The block's further links continue the same run to t.
+        count[t] += block.end - block.begin - 1;
+        continue;
+      }
+    }
+    for (std::size_t i = block.begin; i < block.end; ++i)
+    {
+      const CapsuleLink& l = own[i];
+      // The tester boxes (grown by the growth) the link comes within reach of, among the layers
+      // this rank's owner box sends to.
+      for (int d = 0; d < 3; ++d)
+      {
+        const double s = periodic ? shift[i][d] : 0.0;
+        const double lo = std::min(l.p0[d], l.p1[d]) + s;
+        const double hi = std::max(l.p0[d], l.p1[d]) + s;
+        along[d].clear();
+        for (const Grown& g : grown[d])
+        {
+          if (within(lo, hi, g.lo, g.hi, reach, layout.period(d)))
+            along[d].push_back(g.layer);
+        }
+      }
+      dests.clear();
+      const std::size_t t = static_cast<std::size_t>(tester[i]);
+      for (int a : along[0])
+        for (int b : along[1])
+          for (int c : along[2])
+          {
+            const std::size_t q = static_cast<std::size_t>(layout.rankOf(a, b, c));
+            if (!downOnly || q <= t)
+            {
+              dests.push_back(q);
+              stamp[q] = i;
+            }
+          }
+      route(i);
     }
   }
   for (std::size_t q : open)
@@ -309,17 +455,22 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   {
     if (q == static_cast<std::size_t>(me))
     {
+      // A run is links of one fiber: copied at once, then given the global fiber index.
       const auto [at, n] = mine[nextMine++];
-      for (std::size_t i = at; i < at + n; ++i)
+      const std::uint32_t f = own[at].fiber;
+      const auto g = static_cast<std::uint32_t>(global[f]);
+      const std::vector<double>& radii = model.fibers[f].radii;
+      const std::size_t base = held.size();
+      held.insert(held.end(), own.begin() + static_cast<std::ptrdiff_t>(at),
+        own.begin() + static_cast<std::ptrdiff_t>(at + n));
+      info.owner.insert(info.owner.end(), n, me);
+      info.local.insert(info.local.end(), n, f);
+      for (std::size_t j = 0; j < n; ++j)
       {
-        CapsuleLink l = own[i];
-        const std::vector<double>& radii = model.fibers[l.fiber].radii;
+        CapsuleLink& l = held[base + j];
+        l.fiber = g;
         info.pointRadius.push_back(std::min(radii[l.k], radii[l.k + 1]));
-        info.owner.push_back(me);
-        info.local.push_back(l.fiber);
-        info.tested.push_back(tester[i] == me ? 1 : 0);
-        l.fiber = static_cast<std::uint32_t>(global[l.fiber]);
-        held.push_back(l);
+        info.tested.push_back(tester[at + j] == me ? 1 : 0);
       }
       return;
     }

@@ -23,6 +23,20 @@ public:
   /// The loud flag of every link of `links` (1 = test its pairs), null when every link is loud
   /// (no usable last detection). Call once per detection, after keep() and the rebuild.
   const std::vector<char>* mark(const std::vector<CapsuleLink>& links, int threads);
+  /// After mark() returned flags: makes loud every quiet link i for which alsoLoud(i) holds (the
+  /// distributed solver's links whose tester box moved, docs/solver.md §13). Loud links stay loud.
+  template <class AlsoLoud>
+  void makeLoud(AlsoLoud alsoLoud)
+  {
+    for (std::size_t i = 0; i < loud_.size(); ++i)
+    {
+      if (!loud_[i] && alsoLoud(i))
+      {
+        loud_[i] = 1;
+        ++loudCount_;
+      }
+    }
+  }
   /// After a detection that found every colliding pair among `links`: which links collided, for
   /// the next detection. Without it (a failed detection, a partial search) the next one is loud.
   void remember(std::size_t links, const std::vector<CapsulePair>& pairs);

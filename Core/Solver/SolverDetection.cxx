@@ -36,7 +36,7 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
   // [ours] §3.4: the pairs of two links that are quiet since the last detection are skipped (the
   // same pairs are found). Distributed, each rank judges the links it holds: a pair of two quiet
   // links was tested here last time too (the tester of a pair follows from its links' places
-  // and the tester boxes, which forget() on a re-cut).
+  // and the tester boxes; a re-cut makes the links whose tester box moved loud).
   const bool quiet = o_.quietLinks;
   if (quiet)
   {
@@ -44,6 +44,16 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
   }
   gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
   loud_ = quiet ? quiet_.mark(links_, threads_) : nullptr;
+  if (loud_ && testersMoved_)
+  {
+    quiet_.makeLoud(
+      [this](std::size_t i)
+      {
+        const Vec3 c = 0.5 * (links_[i].p0 + links_[i].p1);
+        return testersBefore_.testerOf(c) != layout_.testerOf(c);
+      });
+  }
+  testersMoved_ = false;
   const bool found = findBoundedPairs(boundFirst);
   loud_ = nullptr;
   lastDetectedLinks_ = links_.size();

@@ -41,7 +41,13 @@ void SolverEngine::balanceTesters()
     const double moved = layout_.largestCutMove(before);
     if (moved > 0.0)
     {
-      quiet_.forget(); // pairs may change testers: every link is loud once (§3.4)
+      // A pair's tester follows from its two links' tester boxes: the links whose tester box
+      // moved are loud at the next detection (§3.4), the pairs of the others kept their tester.
+      if (!testersMoved_)
+      {
+        testersBefore_ = before;
+        testersMoved_ = true;
+      }
       ++testerRecuts_;
       testerCutMove_ = std::max(testerCutMove_, moved);
     }

@@ -63,6 +63,10 @@ public:
   std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
   HeldLinkInfo held_;                 // per link of links_
   BoxLayout layout_;
+  // The tester boxes of the last detection when a re-cut moved them since (testersMoved_): a link
+  // whose tester box changed is loud at the next detection (§3.4, §13).
+  BoxLayout testersBefore_;
+  bool testersMoved_ = false;
   std::vector<int> partners_; // the ranks the last gatherLinks exchanged with (pushes go back)
   // Links closer than this to a rank's grown tester box go there: for the pairs of a step, and
   // for the minimum-gap probe at the end.

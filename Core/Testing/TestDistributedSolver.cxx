@@ -537,6 +537,72 @@ TEST(DistributedSolver, ReCutsThatMoveTheTesterBoxesKeepTheSerialResult)
   }
 }
 
+// A re-cut that moves the tester boxes changes the tester of the pairs of the links whose tester
+// box moved, and of no other pair (a pair's tester follows from its links' tester boxes): only
+// those links turn loud (docs/solver.md §3.4). At the detections right after the two re-cuts
+// (the steps starting at 32 and 64) some links stay quiet on the ranks together, where making
+// every link loud would test them all, and the run stays bit for bit serial.
+TEST(DistributedSolver, AReCutMakesLoudOnlyTheLinksWhoseTesterBoxMoved)
+{
+  const FiberModel in = denseBesideSparse();
+  CollisionSolverOptions o = recutOptions();
+  o.quietLinks = true;
+  FiberModel serial = in;
+  const CollisionSolverResult s = solveCollisions(serial, o);
+  ASSERT_EQ(s.error, "");
+  ASSERT_GT(s.steps, 64);
+  for (int ranks : { 2, 3, 8 })
+  {
+    std::vector<RankRun> runs(static_cast<std::size_t>(ranks));
+    for (int r = 0; r < ranks; ++r)
+    {
+      const std::size_t n = in.fibers.size();
+      runs[r].model.fibers.assign(
+        in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
+    }
+    // Per rank, the loud and the held links of the detections after the re-cuts.
+    std::vector<std::array<std::size_t, 4>> atRecut(static_cast<std::size_t>(ranks));
+    runRanks(ranks,
+      [&](Comm& comm)
+      {
+        RankRun& run = runs[static_cast<std::size_t>(comm.rank())];
+        std::array<std::size_t, 4>& seen = atRecut[static_cast<std::size_t>(comm.rank())];
+        seen.fill(0);
+        CollisionSolverRun solve(run.model, o, {}, {}, &comm);
+        ASSERT_TRUE(solve.start());
+        for (;;)
+        {
+          const int before = solve.state().steps;
+          if (!solve.step())
+            break;
+          if (before == 32 || before == 64)
+          {
+            const std::size_t k = before == 32 ? 0 : 2;
+            seen[k] = solve.loudLinks();
+            seen[k + 1] = solve.detectedLinks();
+          }
+        }
+        run.result = solve.finish();
+      });
+    const std::string what = std::to_string(ranks) + " ranks";
+    expectSerial(runs, serial, s, what);
+    for (std::size_t k : { 0u, 2u })
+    {
+      std::size_t loud = 0, held = 0;
+      for (const std::array<std::size_t, 4>& seen : atRecut)
+      {
+        loud += seen[k];
+        held += seen[k + 1];
+      }
+      EXPECT_GT(loud, 0u) << what;
+      EXPECT_LT(loud, held) << what << ", re-cut " << (k == 0 ? 32 : 64) << ": " << loud << " of "
+                            << held << " links loud";
+    }
+    for (const RankRun& run : runs)
+      EXPECT_EQ(run.result.testerRecuts, 2u) << what << ": both re-cuts must move the cuts";
+  }
+}
+
 TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
 {
   const FiberModel in = denseBesideSparse();
