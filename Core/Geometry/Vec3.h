@@ -94,6 +94,15 @@ inline bool isFinite(const Vec3& a)
 {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
+/// Per-axis minimum and maximum (the corners of a bounding box).
+inline Vec3 componentMin(const Vec3& a, const Vec3& b)
+{
+  return { a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z };
+}
+inline Vec3 componentMax(const Vec3& a, const Vec3& b)
+{
+  return { a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z };
+}
 
 /// Unit vector along a; a zero vector stays zero (callers decide what a degenerate direction
 /// means).

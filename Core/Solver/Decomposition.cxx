@@ -350,14 +350,10 @@ Vec3 BoxLayout::middle(const Fiber& f)
   Vec3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
   for (const Vec3& p : f.points)
   {
-    lo.x = std::min(lo.x, p.x);
-    lo.y = std::min(lo.y, p.y);
-    lo.z = std::min(lo.z, p.z);
-    hi.x = std::max(hi.x, p.x);
-    hi.y = std::max(hi.y, p.y);
-    hi.z = std::max(hi.z, p.z);
+    lo = componentMin(lo, p);
+    hi = componentMax(hi, p);
   }
-  return { 0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z) };
+  return 0.5 * (lo + hi);
 }
 
 int BoxLayout::owner(const Fiber& f) const

@@ -156,7 +156,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     std::size_t begin, end;
     bool inside; // in tester layers `layer`, by the margin
     int layer[3];
-    double lo[3], hi[3]; // the bounding box of its points
+    Vec3 lo, hi; // the bounding box of its points
   };
   std::vector<Block> blocks;
   double rounding[3];
@@ -170,29 +170,17 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     while (e < own.size() && e - i < kBlock && own[e].fiber == own[e - 1].fiber &&
       own[e].k == own[e - 1].k + 1)
       ++e;
-    Block block{ i, e, false, { 0, 0, 0 }, { HUGE_VAL, HUGE_VAL, HUGE_VAL },
-      { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL } };
+    Block block{ i, e, false, { 0, 0, 0 }, {}, {} };
     if (!periodic)
     {
       // The points of links i..e-1: each link's p0, and the last one's p1 (consecutive links
       // share a point).
-      Vec3 lo = own[e - 1].p1, hi = lo;
+      block.lo = block.hi = own[e - 1].p1;
       for (std::size_t j = i; j < e; ++j)
       {
-        const Vec3& p = own[j].p0;
-        lo.x = std::min(lo.x, p.x);
-        lo.y = std::min(lo.y, p.y);
-        lo.z = std::min(lo.z, p.z);
-        hi.x = std::max(hi.x, p.x);
-        hi.y = std::max(hi.y, p.y);
-        hi.z = std::max(hi.z, p.z);
+        block.lo = componentMin(block.lo, own[j].p0);
+        block.hi = componentMax(block.hi, own[j].p0);
       }
-      block.lo[0] = lo.x;
-      block.lo[1] = lo.y;
-      block.lo[2] = lo.z;
-      block.hi[0] = hi.x;
-      block.hi[1] = hi.y;
-      block.hi[2] = hi.z;
       block.inside = true;
       for (int d = 0; d < 3; ++d)
       {

@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 using namespace fiberpli;
 using fiberpli_test::line;
@@ -41,11 +42,10 @@ struct RankRun
   CollisionSolverResult result;
 };
 
-// Cuts `whole` into `ranks` pieces in order (sizes: fibers per piece; empty = as even as
-// possible), solves them on thread ranks and returns every rank's piece and result.
-std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolverOptions& o,
-  int ranks, std::vector<std::size_t> sizes = {},
-  const std::function<ProgressFn(int)>& progress = {})
+// `whole` cut into `ranks` pieces in order (sizes: fibers per piece; empty = as even as
+// possible), one per rank, not yet solved.
+std::vector<RankRun> piecesOnRanks(
+  const FiberModel& whole, int ranks, std::vector<std::size_t> sizes = {})
 {
   if (sizes.empty())
   {
@@ -59,6 +59,16 @@ std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolver
     for (std::size_t i = 0; i < sizes[r]; ++i)
       runs[r].model.fibers.push_back(whole.fibers[at++]);
   }
+  return runs;
+}
+
+// Cuts `whole` into pieces (piecesOnRanks), solves them on thread ranks and returns every rank's
+// piece and result.
+std::vector<RankRun> solveOnRanks(const FiberModel& whole, const CollisionSolverOptions& o,
+  int ranks, std::vector<std::size_t> sizes = {},
+  const std::function<ProgressFn(int)>& progress = {})
+{
+  std::vector<RankRun> runs = piecesOnRanks(whole, ranks, std::move(sizes));
   runRanks(ranks,
     [&](Comm& comm)
     {
@@ -553,13 +563,7 @@ TEST(DistributedSolver, AReCutMakesLoudOnlyTheLinksWhoseTesterBoxMoved)
   ASSERT_GT(s.steps, 64);
   for (int ranks : { 2, 3, 8 })
   {
-    std::vector<RankRun> runs(static_cast<std::size_t>(ranks));
-    for (int r = 0; r < ranks; ++r)
-    {
-      const std::size_t n = in.fibers.size();
-      runs[r].model.fibers.assign(
-        in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
-    }
+    std::vector<RankRun> runs = piecesOnRanks(in, ranks);
     // Per rank, the loud and the held links of the detections after the re-cuts.
     std::vector<std::array<std::size_t, 4>> atRecut(static_cast<std::size_t>(ranks));
     runRanks(ranks,
@@ -613,13 +617,7 @@ TEST(DistributedSolver, AResumeBetweenReCutsEndsAsTheUninterruptedRun)
   ASSERT_GT(s.steps, 64);
   for (int ranks : { 2, 3, 8 })
   {
-    std::vector<RankRun> runs(static_cast<std::size_t>(ranks));
-    for (int r = 0; r < ranks; ++r)
-    {
-      const std::size_t n = in.fibers.size();
-      runs[r].model.fibers.assign(
-        in.fibers.begin() + n * r / ranks, in.fibers.begin() + n * (r + 1) / ranks);
-    }
+    std::vector<RankRun> runs = piecesOnRanks(in, ranks);
     std::vector<int> recutsBefore(static_cast<std::size_t>(ranks), -1);
     runRanks(ranks,
       [&](Comm& comm)
