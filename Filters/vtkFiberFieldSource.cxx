@@ -180,6 +180,7 @@ int vtkFiberFieldSource::Execute(
   options.trace.scheme = static_cast<fiberpli::TraceScheme>(this->IntegrationScheme);
   options.trace.maxLength = this->MaxFiberLength;
   options.seed = static_cast<std::uint64_t>(this->Seed);
+  options.seedCandidates = this->SeedCandidates;
   options.populationShares.assign(this->PopulationShares, this->PopulationShares + 2);
   options.realism.beadingCV = this->BeadingCV;
   options.realism.beadingLength = this->BeadingLength;
@@ -198,12 +199,13 @@ int vtkFiberFieldSource::Execute(
   // The fields: from the image's arrays, or rasterised from guide lines.
   std::vector<fiberpli::OrientationField> fields;
   double traceBegin = 0.0;
+  if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
+  {
+    return 0;
+  }
+  options.threads = fiberpli::resolveThreadCount(this->NumberOfThreads);
   if (vtkPolyData* guides = vtkPolyData::GetData(inputVector[0]))
   {
-    if (!fiberpli::CheckThreads(this, this->NumberOfThreads))
-    {
-      return 0;
-    }
     fiberpli::GuideFieldOptions guideOptions;
     guideOptions.radius = this->GuideRadius;
     guideOptions.spacing = this->GuideSpacing;
@@ -311,6 +313,7 @@ void vtkFiberFieldSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GRatio: " << this->GRatio << "\n";
   os << indent << "GRatioModel: " << this->GRatioModel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "SeedCandidates: " << this->SeedCandidates << "\n";
   os << indent << "GuideRadius: " << this->GuideRadius << "\n";
   os << indent << "GuideSpacing: " << this->GuideSpacing << "\n";
   os << indent << "GuidePopulations: " << this->GuidePopulations << "\n";

@@ -160,6 +160,16 @@ public:
 
   ///@{
   /**
+   * Candidate lines per fiber, in [1, 64]: each fiber keeps, of this many traced seeds, the line
+   * that overlaps the fibers placed before it least, so dense models start with fewer collisions.
+   * 1 = the first seed, as drawn. Default is 1.
+   */
+  vtkSetMacro(SeedCandidates, int);
+  vtkGetMacro(SeedCandidates, int);
+  ///@}
+
+  ///@{
+  /**
    * Guide lines (a vtkPolyData input): how far a guide reaches, in µm, > 0. A grid point within
    * GuideRadius of a guide segment takes the principal axis of the length-weighted orientation
    * tensor of the segments within that distance; farther points are empty. Default is 5.
@@ -189,7 +199,8 @@ public:
 
   ///@{
   /**
-   * Threads for rasterising guide lines, 0 = all cores; the result does not depend on it.
+   * Threads for rasterising guide lines and tracing candidate lines, 0 = all cores; the result
+   * does not depend on it.
    * Default is 0.
    */
   vtkSetMacro(NumberOfThreads, int);
@@ -223,6 +234,7 @@ private:
   double GRatio = 0.0;
   int GRatioModel = 0;
   int Seed = 42;
+  int SeedCandidates = 1;
   double GuideRadius = 5.0;
   double GuideSpacing = 1.0;
   int GuidePopulations = 0;

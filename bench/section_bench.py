@@ -1,6 +1,6 @@
 """A whole section on one machine (bench/README.md "A millimetre section"):
     pvpython bench/section_bench.py <FiberPLI.so> [--size 1000] [--thickness 60] [--threads 2]
-        [--out folder]
+        [--seed-candidates 64] [--out folder]
 An L × L × T µm section whose fibers follow an orientation field with bends and a crossing:
 population A runs along x on sinusoidal paths y = y0 + a·sin(2πx/λ) (a 25 µm, λ 400 µm: the
 steepest part 21° off x, the tightest bend of radius λ²/(4π²a) = 162 µm) at `--fraction-a` of the
@@ -8,7 +8,7 @@ volume; population B runs along y through a band |x − L/2| < `--band`·L/2, at
 the band's volume. Radii 1 µm, `SegmentLength` 2 µm. Phases, each timed (wall s) with the peak
 resident memory of the process during it (VmHWM, reset before every phase):
   field  the grid of the field (10 µm spacing), NumPy;
-  trace  FiberFieldSource;
+  trace  FiberFieldSource (`SeedCandidates` 64: each fiber the least overlapping of 64 lines);
   solve  FiberCollisionSolver (SeparationSpeed 0.1, MaxDisplacement 0.4);
   check  an independent overlap check (NumPy/SciPy, no FiberPLI code) in `--boxes` random
          sub-volumes of (`--box` µm)² × T: every pair of links of different fibers whose capsules
@@ -45,6 +45,7 @@ parser.add_argument("--fraction-b", type=float, default=0.10, help="population B
 parser.add_argument("--band", type=float, default=0.3, help="B's band width over L")
 parser.add_argument("--radius", type=float, default=1.0)
 parser.add_argument("--threads", type=int, default=2)
+parser.add_argument("--seed-candidates", type=int, default=64, help="FiberFieldSource's SeedCandidates")
 parser.add_argument("--max-steps", type=int, default=20000)
 parser.add_argument("--boxes", type=int, default=8)
 parser.add_argument("--box", type=float, default=40.0)
@@ -230,7 +231,8 @@ def pictures(analysis, window):
 
 producer = phase("field", make_field)
 source = FiberFieldSource(Input=producer, VolumeFraction=args.fraction_a + args.fraction_b * args.band,
-                          FiberRadius=args.radius, SegmentLength=2.0, Seed=1)
+                          FiberRadius=args.radius, SegmentLength=2.0, Seed=1,
+                          SeedCandidates=args.seed_candidates, NumberOfThreads=args.threads)
 source.OrientationArray = ["POINTS", "a"]
 source.SecondOrientationArray = ["POINTS", "b"]
 source.PopulationShares = [args.fraction_a, args.fraction_b * args.band]

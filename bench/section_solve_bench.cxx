@@ -8,6 +8,7 @@
 // wall time with free, instant communication and a core per rank). Usage:
 // fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2] [--ranks 1]
 //        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
+//        [--seed-candidates M] (FiberFieldSource's SeedCandidates, 1)
 #include "BenchUtil.h"
 #include "Field/FieldFibers.h"
 #include "Solver/CollisionSolver.h"
@@ -136,7 +137,7 @@ private:
 int main(int argc, char** argv)
 {
   double L = 250.0, T = 60.0, fa = 0.57, fb = 0.10, band = 0.3;
-  int threads = 2, maxSteps = 20000, every = 100, ranks = 1;
+  int threads = 2, maxSteps = 20000, every = 100, ranks = 1, seedCandidates = 1;
   std::string stretchFile;
   bool quiet = true;
   for (int i = 1; i < argc; ++i)
@@ -157,6 +158,8 @@ int main(int argc, char** argv)
       maxSteps = std::atoi(next());
     else if (a == "--every")
       every = std::atoi(next());
+    else if (a == "--seed-candidates")
+      seedCandidates = std::atoi(next());
     else if (a == "--no-quiet")
       quiet = false;
     else
@@ -171,6 +174,8 @@ int main(int argc, char** argv)
   fo.fiberRadius = 1.0;
   fo.trace.segmentLength = 2.0;
   fo.seed = 1;
+  fo.seedCandidates = seedCandidates;
+  fo.threads = threads;
   fo.populationShares = { fa, fb * band };
   double t0 = bench::seconds();
   FieldFiberResult traced = generateFieldFibers({ &fields[0], &fields[1] }, fo);

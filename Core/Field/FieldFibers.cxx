@@ -1,5 +1,7 @@
 #include "Field/FieldFibers.h"
 
+#include "Field/OccupancyGrid.h"
+
 #include "Tissue/Beading.h"
 #include "Tissue/Myelin.h"
 #include "Util/MemoryBudget.h"
@@ -8,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 namespace fiberpli
@@ -17,6 +20,11 @@ namespace
 {
 constexpr int kSeedTries = 100000;           // uniform tries for one seed position
 constexpr std::size_t kDiscardLimit = 10000; // consecutive seeds without a segment: give up
+constexpr int kMaxSeedCandidates = 64;
+constexpr int kCandidateBatch = 8; // candidates traced per parallel batch
+// [ours] The occupancy grid's voxels: the fiber radius, coarser when the region would need more
+// than this many (one byte each).
+constexpr std::size_t kMaxOccupancyVoxels = std::size_t(1) << 27;
 
 double boxVolume(const OrientationField& f)
 {
@@ -106,6 +114,58 @@ bool drawSeed(const OrientationField& f, RandomStream& rng, Vec3& seed)
   return false;
 }
 
+/// The traced line of the seed whose line overlaps the occupancy least per µm (the first of equal
+/// ones; without occupancy the first seed's). A line shorter than a third of a segment (a seed in
+/// a sliver of the field) is no fiber: it would add next to no volume, so a field of slivers could
+/// make fibers without end. Empty when every seed gives such a line. The seeds are traced in
+/// batches (the first alone, then kCandidateBatch at a time on `threads` threads), stopping after
+/// the batch that holds a line without overlap: the first such line is then the least, so the
+/// choice is that of tracing them one by one, for any thread count.
+TracedLine bestLine(const OrientationField& field, const std::vector<Vec3>& seeds, double radius,
+  const TraceOptions& trace, const OccupancyGrid* occupancy, int threads)
+{
+  const int n = occupancy ? static_cast<int>(seeds.size()) : 1;
+  std::vector<TracedLine> lines(static_cast<std::size_t>(n));
+  std::vector<double> overlaps(static_cast<std::size_t>(n), -1.0); // -1: no fiber
+  const auto evaluate = [&](int c)
+  {
+    TracedLine& line = lines[static_cast<std::size_t>(c)];
+    line = traceFieldLine(field, seeds[static_cast<std::size_t>(c)], trace);
+    const double length = line.length();
+    if (line.points.size() >= 2 && length >= trace.segmentLength / 3.0)
+    {
+      // Per µm of line: the sum would favour short lines (those leaving the region early).
+      overlaps[static_cast<std::size_t>(c)] =
+        occupancy ? static_cast<double>(occupancy->overlap(line.points, radius)) / length : 0.0;
+    }
+  };
+  int best = -1;
+  for (int first = 0; first < n;)
+  {
+    const int last = first == 0 ? 1 : std::min(n, first + kCandidateBatch);
+#pragma omp parallel for num_threads(threads)                                                      \
+  schedule(dynamic, 1) if (threads > 1 && last - first > 1)
+    for (int c = first; c < last; ++c)
+    {
+      evaluate(c);
+    }
+    for (int c = first; c < last; ++c)
+    {
+      const double overlap = overlaps[static_cast<std::size_t>(c)];
+      if (overlap >= 0.0 && (best < 0 || overlap < overlaps[static_cast<std::size_t>(best)]))
+      {
+        best = c;
+      }
+    }
+    if (best >= 0 && overlaps[static_cast<std::size_t>(best)] == 0.0)
+    {
+      break; // the first line without overlap, whatever the batches
+    }
+    first = last;
+  }
+  return best < 0 ? TracedLine() : std::move(lines[static_cast<std::size_t>(best)]);
+}
+
 } // namespace
 
 double fieldRegionVolume(const std::vector<const OrientationField*>& fields)
@@ -164,6 +224,11 @@ std::string validateFieldFiberOptions(
           ", must be > 0";
       }
     }
+  }
+  if (o.seedCandidates < 1 || o.seedCandidates > kMaxSeedCandidates)
+  {
+    return "SeedCandidates is " + std::to_string(o.seedCandidates) + ", must be in [1, " +
+      std::to_string(kMaxSeedCandidates) + "]";
   }
   problem = validateShapeOptions(o.realism);
   if (problem.empty() && (o.realism.undulating() || o.realism.dispersed()))
@@ -264,6 +329,12 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
   std::vector<int> made(static_cast<std::size_t>(populations), 0);
   double total = 0.0;
   std::size_t discardedInARow = 0;
+  std::unique_ptr<OccupancyGrid> occupancy;
+  if (o.seedCandidates > 1)
+  {
+    occupancy = std::make_unique<OccupancyGrid>(
+      fields[0]->lower(), fields[0]->upper(), o.fiberRadius, kMaxOccupancyVoxels);
+  }
   while (true)
   {
     // The next population: in count mode the fibers of 0, then of 1; by volume the one furthest
@@ -301,20 +372,21 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     const OrientationField& field = *fields[static_cast<std::size_t>(k)];
     const std::uint64_t index = drawn[static_cast<std::size_t>(k)]++;
     RandomStream rng(o.seed, static_cast<std::uint64_t>(k), index);
-    Vec3 seed;
-    if (!drawSeed(field, rng, seed))
+    std::vector<Vec3> seeds(static_cast<std::size_t>(o.seedCandidates));
+    for (Vec3& seed : seeds)
     {
-      result.error = "no seed found on the non-empty part of the " +
-        std::string(k == 0 ? "orientation field" : "second orientation field") + " in " +
-        std::to_string(kSeedTries) + " uniform tries (it is almost all empty)";
-      return result;
+      if (!drawSeed(field, rng, seed))
+      {
+        result.error = "no seed found on the non-empty part of the " +
+          std::string(k == 0 ? "orientation field" : "second orientation field") + " in " +
+          std::to_string(kSeedTries) + " uniform tries (it is almost all empty)";
+        return result;
+      }
     }
     const double radius =
       drawFiberRadius(rng, o.fiberRadius, o.radiusSpread, o.radiusDistribution, maxRadius);
-    TracedLine line = traceFieldLine(field, seed, o.trace);
-    // A line shorter than a third of a segment (a seed in a sliver of the field) is no fiber: it
-    // would add next to no volume, so a field of slivers could make fibers without end.
-    if (line.points.size() < 2 || line.length() < o.trace.segmentLength / 3.0)
+    TracedLine line = bestLine(field, seeds, radius, o.trace, occupancy.get(), o.threads);
+    if (line.points.empty())
     {
       ++result.discardedSeeds;
       if (++discardedInARow >= kDiscardLimit)
@@ -342,6 +414,10 @@ FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>&
     volume[static_cast<std::size_t>(k)] += added;
     total += added;
     ++made[static_cast<std::size_t>(k)];
+    if (occupancy)
+    {
+      occupancy->add(fiber.points, fiber.radii);
+    }
     result.model.fibers.push_back(std::move(fiber));
     if (result.model.fibers.size() % 64 == 0)
     {

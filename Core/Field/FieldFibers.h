@@ -32,6 +32,12 @@ struct FieldFiberOptions
   RadiusDistribution radiusDistribution = RadiusDistribution::Constant;
   TraceOptions trace; ///< segment length, scheme, length cap
   std::uint64_t seed = 42;
+  /// Candidate lines per fiber, in [1, 64]: each fiber draws this many seeds, traces each and
+  /// keeps the line that overlaps the fibers placed before it least (Field/OccupancyGrid.h), so
+  /// that a dense model starts with fewer collisions. 1 = the first seed, as drawn.
+  int seedCandidates = 1;
+  /// Threads tracing the candidate lines (>= 1); the fibers do not depend on it.
+  int threads = 1;
   /// Relative shares of the populations (of the volume, or of the count), one per field, each > 0.
   /// Empty: equal shares.
   std::vector<double> populationShares;
@@ -61,12 +67,13 @@ double fieldRegionVolume(const std::vector<const OrientationField*>& fields);
 /// Generates the fibers. All fields must have the same grid, each already normalised
 /// (normalizeOrientationField). Fiber k-th drawn of population p takes its draws from the stream
 /// (seed, p, k): the seed position (three uniforms per try, until one falls on the non-empty
-/// field), then the radius; with beading its profile along the traced points comes from the
-/// stream shapeStream(seed, Beading, p, k). A fiber's volume is Σ over links of π · (r_i² +
-/// r_i+1²)/2 · link length (π r² · length without beading). Volume mode adds each fiber to the
-/// population furthest below its share of the target volume and stops at the first fiber that
-/// reaches the target. With myelin every fiber gets its inner radii. Progress is reported every 64
-/// fibers; when it returns false the result is `aborted` with an empty model.
+/// field; with seedCandidates c, c such positions one after the other), then the radius; with
+/// beading its profile along the traced points comes from the stream shapeStream(seed, Beading, p,
+/// k). A fiber's volume is Σ over links of π · (r_i² + r_i+1²)/2 · link length (π r² · length
+/// without beading). Volume mode adds each fiber to the population furthest below its share of the
+/// target volume and stops at the first fiber that reaches the target. With myelin every fiber gets
+/// its inner radii. Progress is reported every 64 fibers; when it returns false the result is
+/// `aborted` with an empty model.
 FieldFiberResult generateFieldFibers(const std::vector<const OrientationField*>& fields,
   const FieldFiberOptions& options, const ProgressFn& progress = {});
 

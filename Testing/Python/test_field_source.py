@@ -238,8 +238,9 @@ bad = FiberFieldSource(Input=field, VolumeFraction=0.95, FiberRadius=0.5, Segmen
 bad.OrientationArray = ["POINTS", "orientation"]
 catcher = ErrorCatcher(bad)
 for prop, value, words in (("VolumeFraction", 0.95, "VolumeFraction is 0.95"), ("SegmentLength", 0.0, "SegmentLength is 0"),
-                           ("Seed", -2, "Seed is -2"), ("NumberOfFibers", 2000000000, "NumberOfFibers 2000000000")):
-    ok = {"VolumeFraction": 0.2, "SegmentLength": 1.0, "Seed": 42, "NumberOfFibers": 0}
+                           ("Seed", -2, "Seed is -2"), ("NumberOfFibers", 2000000000, "NumberOfFibers 2000000000"),
+                           ("SeedCandidates", 0, "SeedCandidates is 0"), ("SeedCandidates", 65, "SeedCandidates is 65")):
+    ok = {"VolumeFraction": 0.2, "SegmentLength": 1.0, "Seed": 42, "NumberOfFibers": 0, "SeedCandidates": 1}
     for k, v in ok.items():
         setattr(bad, k, v)
     setattr(bad, prop, value)
@@ -248,6 +249,7 @@ for prop, value, words in (("VolumeFraction", 0.95, "VolumeFraction is 0.95"), (
     check(words in catcher.text(), "no error %r: %r" % (words, catcher.text()))
     check(servermanager.Fetch(bad).GetNumberOfCells() == 0, "output after a bad %s" % prop)
 bad.NumberOfFibers = 0
+bad.SeedCandidates = 1
 bad.OrientationArray = ["POINTS", "missing"]
 catcher.clear()
 bad.UpdatePipeline()
