@@ -1,6 +1,6 @@
 """MPI benchmark of the distributed collision solver (bench/README.md "Distributed solver"):
     mpiexec -n R pvbatch bench/mpi_solver_bench.py <FiberPLI.so> <workload> [--threads T]
-        [--max-steps N]
+        [--max-steps N] [--size L] [--seed-candidates C]
 Workloads: cube-a|cube-b|cube-c (the 1000-fiber cubes of solver_bench: 1/2/3 populations, edge
 √3·30 µm, r 0.8 µm, point spacing 2 µm, displacement ±0.5 µm, seed 42, SegmentLength 2,
 MinCurvatureRadius 4) and cell (the (100 µm)³ periodic cell, 2 populations, VolumeFraction 0.7,
@@ -31,6 +31,8 @@ parser.add_argument("--max-steps", type=int, default=10000)
 parser.add_argument("--size", type=float, default=250.0, help="section: edge L (µm)")
 parser.add_argument("--max-fiber-length", type=float, default=0.0,
                     help="section: FiberFieldSource's MaxFiberLength (µm; 0 = lines end at the faces only)")
+parser.add_argument("--seed-candidates", type=int, default=1,
+                    help="section: FiberFieldSource's SeedCandidates (section_bench.py uses 64)")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -53,7 +55,8 @@ elif args.workload == "section":
     writer.Write()
     field = XMLImageDataReader(FileName=[field_file])
     source = FiberFieldSource(Input=field, VolumeFraction=0.57 + 0.10 * 0.3, FiberRadius=1.0, SegmentLength=2.0,
-                              MaxFiberLength=args.max_fiber_length, Seed=1)
+                              MaxFiberLength=args.max_fiber_length, Seed=1, SeedCandidates=args.seed_candidates,
+                              NumberOfThreads=args.threads)
     source.OrientationArray = ["POINTS", "a"]
     source.SecondOrientationArray = ["POINTS", "b"]
     source.PopulationShares = [0.57, 0.10 * 0.3]
