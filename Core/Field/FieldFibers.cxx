@@ -125,6 +125,7 @@ TracedLine bestLine(const OrientationField& field, const std::vector<Vec3>& seed
   const TraceOptions& trace, const OccupancyGrid* occupancy, int threads)
 {
   const int n = occupancy ? static_cast<int>(seeds.size()) : 1;
+  threads = std::max(1, threads);
   std::vector<TracedLine> lines(static_cast<std::size_t>(n));
   std::vector<double> overlaps(static_cast<std::size_t>(n), -1.0); // -1: no fiber
   const auto evaluate = [&](int c)
