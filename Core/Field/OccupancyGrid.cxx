@@ -37,30 +37,31 @@ template <class Visit>
 void OccupancyGrid::stamp(const std::vector<Vec3>& line, const std::vector<double>* radii,
   double radius, Visit&& visit) const
 {
-  const auto voxelOf = [this](double v, double lo)
-  { return static_cast<int>(std::floor((v - lo) / edge_)); };
+  const auto voxelOf = [this](const Vec3& p, int a)
+  { return static_cast<int>(std::floor((p[a] - lower_[a]) / edge_)); };
   const auto sample = [&](const Vec3& p, double r)
   {
-    const double c[3] = { p.x, p.y, p.z };
-    const double lo[3] = { lower_.x, lower_.y, lower_.z };
+    const Vec3 reach{ r, r, r };
+    const Vec3 low = p - reach;
+    const Vec3 high = p + reach;
     int from[3];
     int to[3];
     int own[3];
     for (int a = 0; a < 3; ++a)
     {
-      own[a] = voxelOf(c[a], lo[a]);
-      from[a] = std::max(0, voxelOf(c[a] - r, lo[a]));
-      to[a] = std::min(n_[a] - 1, voxelOf(c[a] + r, lo[a]));
+      own[a] = voxelOf(p, a);
+      from[a] = std::max(0, voxelOf(low, a));
+      to[a] = std::min(n_[a] - 1, voxelOf(high, a));
     }
     for (int k = from[2]; k <= to[2]; ++k)
     {
-      const double dz = lo[2] + (k + 0.5) * edge_ - c[2];
+      const double dz = lower_.z + (k + 0.5) * edge_ - p.z;
       for (int j = from[1]; j <= to[1]; ++j)
       {
-        const double dy = lo[1] + (j + 0.5) * edge_ - c[1];
+        const double dy = lower_.y + (j + 0.5) * edge_ - p.y;
         for (int i = from[0]; i <= to[0]; ++i)
         {
-          const double dx = lo[0] + (i + 0.5) * edge_ - c[0];
+          const double dx = lower_.x + (i + 0.5) * edge_ - p.x;
           const bool inside = dx * dx + dy * dy + dz * dz <= r * r;
           if (inside || (i == own[0] && j == own[1] && k == own[2]))
           {

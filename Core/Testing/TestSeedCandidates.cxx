@@ -1,9 +1,9 @@
 // Spread seeding of the field source (docs/field-source.md §4.1): the occupancy grid's overlap
 // measure, and candidate lines that start a dense model with fewer overlapping capsules.
+#include "BruteForceOverlap.h"
 #include "Field/FieldFibers.h"
 #include "Field/OccupancyGrid.h"
 #include "FieldTestFields.h"
-#include "Geometry/SegmentDistance.h"
 
 #include <gtest/gtest.h>
 
@@ -23,41 +23,6 @@ std::vector<Vec3> lineAlongX(double y, double z)
     line.push_back({ 2.0 * i, y, z });
   }
   return line;
-}
-
-/// Pairs of links of different fibers closer than the sum of their radii (brute force).
-std::size_t overlappingLinkPairs(const FiberModel& model)
-{
-  struct Link
-  {
-    Vec3 a, b;
-    double r;
-    std::size_t fiber;
-  };
-  std::vector<Link> links;
-  for (std::size_t f = 0; f < model.fibers.size(); ++f)
-  {
-    const Fiber& fiber = model.fibers[f];
-    for (std::size_t i = 0; i + 1 < fiber.points.size(); ++i)
-    {
-      links.push_back(
-        { fiber.points[i], fiber.points[i + 1], std::max(fiber.radii[i], fiber.radii[i + 1]), f });
-    }
-  }
-  std::size_t pairs = 0;
-  for (std::size_t i = 0; i < links.size(); ++i)
-  {
-    for (std::size_t j = i + 1; j < links.size(); ++j)
-    {
-      if (links[i].fiber == links[j].fiber)
-      {
-        continue;
-      }
-      const SegmentClosest c = closestPoints(links[i].a, links[i].b, links[j].a, links[j].b);
-      pairs += c.distance < links[i].r + links[j].r;
-    }
-  }
-  return pairs;
 }
 
 double totalVolume(const FiberModel& model)
@@ -121,8 +86,8 @@ TEST(SeedCandidates, FewerOverlapsAtTheSameVolumeFraction)
   const double target = 0.4 * 30.0 * 15.0 * 15.0;
   EXPECT_NEAR(totalVolume(random.model), target, 0.05 * target);
   EXPECT_NEAR(totalVolume(spread.model), target, 0.05 * target);
-  const std::size_t before = overlappingLinkPairs(random.model);
-  const std::size_t after = overlappingLinkPairs(spread.model);
+  const std::size_t before = fiberpli_test::refCollisionCount(random.model);
+  const std::size_t after = fiberpli_test::refCollisionCount(spread.model);
   EXPECT_GT(before, 100u);
   EXPECT_LT(2 * after, before) << "random " << before << ", 32 candidates " << after;
 }
