@@ -495,6 +495,23 @@ void CollisionGrid::cellCoordinates(
   cz = c / (grid.nx * grid.ny);
 }
 
+// The cell ranges [c0, c1] (per axis, clamped to the grid) holding the centres of all regular
+// links whose boxes can overlap box bx: its extent widened by half a cell edge (a regular box is
+// at most one edge wide), plus a margin for the rounding of the centres.
+void CollisionGrid::reachedCells(
+  const Box& bx, const Layout& grid, std::int64_t c0[3], std::int64_t c1[3])
+{
+  const std::int64_t n[3] = { grid.nx, grid.ny, grid.nz };
+  for (int d = 0; d < 3; ++d)
+  {
+    const double margin = 0.5 * grid.h[d] + 1e-9 * (std::fabs(bx.lo[d]) + std::fabs(bx.hi[d]));
+    const double lo = std::floor((bx.lo[d] - margin - grid.origin[d]) / grid.h[d]);
+    const double hi = std::floor((bx.hi[d] + margin - grid.origin[d]) / grid.h[d]);
+    c0[d] = static_cast<std::int64_t>(std::max(lo, 0.0));
+    c1[d] = static_cast<std::int64_t>(std::min(hi, static_cast<double>(n[d] - 1)));
+  }
+}
+
 // Phase 5: in each cell the flagged links first (each part in id order), and where its unflagged
 // ones begin (all flagged, or no flags: the cell's end). A pair of two unflagged links is never
 // tested, so only the cells with a flagged link are listed for the pair search (visit_).
@@ -620,7 +637,6 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
   TestedPairs rule, const char* loud, double minimumGap, const Layout& grid, int nThreads,
   std::size_t maxPairs)
 {
-  const std::size_t nRegular = order_.size();
   perThread_.resize(static_cast<std::size_t>(nThreads));
   for (auto& v : perThread_)
   {
@@ -892,8 +908,12 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         }
       }
     }
-    // Oversize links: against every regular link, and against later oversize links.
+    // Oversize links: against the regular links of the cells their box can reach, and against
+    // later oversize links. A regular box is at most one cell edge wide, so a regular link whose
+    // box overlaps the oversize one has its centre (which picks its cell) within half a cell
+    // edge of that box: the cells of that widened box hold all its partners.
     const std::int64_t nOver = static_cast<std::int64_t>(oversize_.size());
+    const char* headFlags = loud ? loud : tested; // what flaggedFirst put first in each cell
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t oi = 0; oi < nOver; ++oi)
     {
@@ -903,15 +923,34 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
       }
       const std::uint32_t o = oversize_[static_cast<std::size_t>(oi)];
       const Box& bo = boxes_[o];
-      boxTests += nRegular + static_cast<std::uint64_t>(nOver - oi - 1);
-      for (std::size_t r = 0; r < nRegular; ++r)
-      {
-        const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
-        if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
+      // An unflagged oversize link only meets the flagged heads of the cells (a pair of two
+      // unflagged links is never tested).
+      const bool headsOnly = headFlags && !headFlags[o];
+      std::int64_t c0[3], c1[3];
+      reachedCells(bo, grid, c0, c1);
+      boxTests += static_cast<std::uint64_t>(nOver - oi - 1);
+      for (std::int64_t z = c0[2]; z <= c1[2]; ++z)
+        for (std::int64_t y = c0[1]; y <= c1[1]; ++y)
         {
-          testPair(links, tested, rule, loud, o, order_[r], minimumGap, out, exactTests);
+          const std::uint64_t k0 = static_cast<std::uint64_t>(c0[0] + grid.nx * (y + grid.ny * z));
+          const std::uint64_t k1 = static_cast<std::uint64_t>(c1[0] + grid.nx * (y + grid.ny * z));
+          const auto i0 = std::lower_bound(cellKeys_.begin(), cellKeys_.end(), k0);
+          const auto i1 = std::upper_bound(i0, cellKeys_.end(), k1);
+          for (auto it = i0; it != i1; ++it)
+          {
+            const std::size_t c = static_cast<std::size_t>(it - cellKeys_.begin());
+            const std::uint32_t rEnd = headsOnly ? cellUnflagged_[c] : cellStart_[c + 1];
+            boxTests += rEnd - cellStart_[c];
+            for (std::uint32_t r = cellStart_[c]; r < rEnd; ++r)
+            {
+              const Box br{ { lx[r], ly[r], lz[r] }, { hx[r], hy[r], hz[r] } };
+              if (boxesOverlap(bo.lo, bo.hi, br.lo, br.hi))
+              {
+                testPair(links, tested, rule, loud, o, order_[r], minimumGap, out, exactTests);
+              }
+            }
+          }
         }
-      }
       for (std::int64_t oj = oi + 1; oj < nOver; ++oj)
       {
         const std::uint32_t p = oversize_[static_cast<std::size_t>(oj)];

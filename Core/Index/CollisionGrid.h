@@ -131,6 +131,8 @@ private:
   void countByCell(const Layout& grid, std::size_t nCells, int nThreads);
   void sortKeysByCell(const Layout& grid, int nThreads);
   static std::uint32_t cellOf(const Box& bx, const Layout& grid);
+  static void reachedCells(
+    const Box& bx, const Layout& grid, std::int64_t c0[3], std::int64_t c1[3]);
   static void cellCoordinates(
     std::uint64_t cell, const Layout& grid, std::int64_t& cx, std::int64_t& cy, std::int64_t& cz);
   void flaggedFirst(const char* head);

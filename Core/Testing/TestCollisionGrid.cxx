@@ -135,6 +135,60 @@ TEST(CollisionGrid, RandomCapsulesMatchBruteForce)
   EXPECT_EQ(gridPairs(m, 2, 0.25), refGap);
 }
 
+TEST(CollisionGrid, ManyLocalOversizeLinksMatchBruteForceWithAnyFlags)
+{
+  // Polydisperse links: one in eighty is thick (radius 2.5 instead of 0.3–0.6), so its box
+  // is over twice the median edge (oversize) but spans only a few cells of the 40 µm box: the
+  // oversize path must search the cells around it, not the whole grid. Checked against the
+  // brute-force pairs, unflagged, with loud flags (pairs with a loud link) and with tested flags
+  // under both rules, on 1 and 2 threads.
+  FiberModel m;
+  RandomStream rng(17, 3, 0);
+  for (int i = 0; i < 3000; ++i)
+  {
+    const Vec3 a{ rng.uniform(0, 40), rng.uniform(0, 40), rng.uniform(0, 40) };
+    const Vec3 d{ rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1) };
+    const double r = i % 80 == 0 ? 2.5 : rng.uniform(0.3, 0.6);
+    m.fibers.push_back(fiber({ a, a + d }, r, i));
+  }
+  const std::vector<CapsuleLink> links = linksOf(m);
+  const auto ref = fiberpli_test::refPairs(fiberpli_test::refLinks(m));
+  std::size_t thickPairs = 0;
+  for (const auto& p : ref)
+    thickPairs += (p.first % 80 == 0) + (p.second % 80 == 0);
+  ASSERT_GT(thickPairs, 80u);
+  std::vector<char> flags(links.size());
+  for (char& c : flags)
+    c = rng.uniform(0, 1) < 0.3 ? 1 : 0;
+  using Ids = std::vector<std::pair<std::size_t, std::size_t>>;
+  Ids withLoud, lowerTested, eitherTested;
+  for (const auto& p : ref)
+  {
+    if (flags[p.first] || flags[p.second])
+      withLoud.push_back(p);
+    if (flags[p.first])
+      lowerTested.push_back(p);
+  }
+  eitherTested = withLoud;
+  ASSERT_LT(withLoud.size(), ref.size());
+  for (int threads : { 1, 2 })
+  {
+    CollisionGrid grid;
+    std::vector<CapsulePair> pairs;
+    ASSERT_TRUE(grid.findPairs(links, 0.0, threads, pairs));
+    EXPECT_EQ(pairIds(pairs), ref);
+    ASSERT_TRUE(grid.findPairs(links, 0.0, threads, pairs, static_cast<std::size_t>(-1), nullptr,
+      TestedPairs::LowerLink, &flags));
+    EXPECT_EQ(pairIds(pairs), withLoud);
+    ASSERT_TRUE(grid.findPairs(
+      links, 0.0, threads, pairs, static_cast<std::size_t>(-1), &flags, TestedPairs::LowerLink));
+    EXPECT_EQ(pairIds(pairs), lowerTested);
+    ASSERT_TRUE(grid.findPairs(
+      links, 0.0, threads, pairs, static_cast<std::size_t>(-1), &flags, TestedPairs::EitherLink));
+    EXPECT_EQ(pairIds(pairs), eitherTested);
+  }
+}
+
 TEST(CollisionGrid, CubeMatchesBruteForceAndIsTranslationInvariant)
 {
   CubeOptions o;

@@ -153,30 +153,53 @@ void undulationDeviation(const Undulation& und, double t, bool closed, double& d
   dv -= (1.0 - t) * v0 + t * v1;
 }
 
-std::vector<Vec3> undulatedPath(
-  const BasePath& base, const Undulation& und, double amplitude, std::size_t points)
+namespace
 {
-  points = std::max<std::size_t>(points, 2);
+// The dense samples of the curve base(s) + amplitude·(du(s)·u(s) + dv(s)·v(s)) that do not depend
+// on the amplitude: the base point and the deviation direction du·u + dv·v of each. The sines are
+// nearly all of an undulated fiber's cost, and the calibration evaluates the curve at some fifty
+// amplitudes: it samples once.
+struct DenseUndulation
+{
+  std::vector<Vec3> base;
+  std::vector<Vec3> deviation;
+};
+
+DenseUndulation sampleDense(const BasePath& base, const Undulation& und, std::size_t points)
+{
   const std::vector<double> baseCum = arcLengths(base.points);
   const double baseLength = baseCum.back();
   const std::size_t dense = kDensity * std::max(points, base.points.size());
-  std::vector<Vec3> curve(dense + 1);
+  DenseUndulation d;
+  d.base.resize(dense + 1);
+  d.deviation.resize(dense + 1);
   std::size_t k = 0;
   for (std::size_t j = 0; j <= dense; ++j)
   {
     const double t = static_cast<double>(j) / static_cast<double>(dense);
     double f = 0.0;
     k = locate(baseCum, t * baseLength, k, f);
-    const Vec3 p = lerp(base.points[k], base.points[k + 1], f);
-    Vec3 c = p;
+    d.base[j] = lerp(base.points[k], base.points[k + 1], f);
+    const Vec3 u = normalized(lerp(base.u[k], base.u[k + 1], f));
+    const Vec3 v = normalized(lerp(base.v[k], base.v[k + 1], f));
+    double du = 0.0, dv = 0.0;
+    undulationDeviation(und, t, base.closed, du, dv);
+    d.deviation[j] = du * u + dv * v;
+  }
+  return d;
+}
+
+// The curve at this amplitude resampled to `points` points equally spaced in arc length.
+std::vector<Vec3> resampleDense(
+  const DenseUndulation& d, const BasePath& base, double amplitude, std::size_t points)
+{
+  const std::size_t n = d.base.size();
+  std::vector<Vec3> curve(n);
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    Vec3 c = d.base[j];
     if (amplitude != 0.0)
-    {
-      const Vec3 u = normalized(lerp(base.u[k], base.u[k + 1], f));
-      const Vec3 v = normalized(lerp(base.v[k], base.v[k + 1], f));
-      double du = 0.0, dv = 0.0;
-      undulationDeviation(und, t, base.closed, du, dv);
-      c += amplitude * (du * u + dv * v);
-    }
+      c += amplitude * d.deviation[j];
     curve[j] = c;
   }
   // Equal arc length along the dense curve.
@@ -193,6 +216,14 @@ std::vector<Vec3> undulatedPath(
   out.front() = curve.front();
   out.back() = base.closed ? curve.front() + base.closure : curve.back();
   return out;
+}
+} // namespace
+
+std::vector<Vec3> undulatedPath(
+  const BasePath& base, const Undulation& und, double amplitude, std::size_t points)
+{
+  points = std::max<std::size_t>(points, 2);
+  return resampleDense(sampleDense(base, und, points), base, amplitude, points);
 }
 
 double jitteredLength(const std::vector<Vec3>& p, const std::vector<Vec3>* jitter)
@@ -221,8 +252,10 @@ bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosit
     if (norm(ends) > 0.0)
       baseLength *= moved / norm(ends);
   }
+  points = std::max<std::size_t>(points, 2);
+  const DenseUndulation dense = sampleDense(base, und, points);
   const auto ratio = [&](double a)
-  { return jitteredLength(undulatedPath(base, und, a, points), jitter) / baseLength; };
+  { return jitteredLength(resampleDense(dense, base, a, points), jitter) / baseLength; };
   und.amplitude = 0.0;
   if (!(baseLength > 0.0) || ratio(0.0) >= tortuosity)
     return false;
