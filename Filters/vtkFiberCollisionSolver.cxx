@@ -247,6 +247,7 @@ std::string vtkFiberCollisionSolver::CheckInput(
   options.pushBoost = this->PushBoost;
   options.maxDisplacement = this->MaxDisplacement;
   options.tortuosity = this->Tortuosity;
+  options.tortuosityWavelength = this->TortuosityWavelength;
   options.keepBeads = this->KeepBeads;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
@@ -434,6 +435,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PushBoost: " << this->PushBoost << "\n";
   os << indent << "MaxDisplacement: " << this->MaxDisplacement << "\n";
   os << indent << "Tortuosity: " << this->Tortuosity << "\n";
+  os << indent << "TortuosityWavelength: " << this->TortuosityWavelength << "\n";
   os << indent << "KeepBeads: " << this->KeepBeads << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";

@@ -147,6 +147,18 @@ public:
 
   ///@{
   /**
+   * With Tortuosity: the longest wavelength (µm) of a fiber's deviation that the tortuosity rule
+   * scales back up (docs/solver.md §5.3), >= 0. The rule then restores the undulation without
+   * amplifying the long sweeps pushes leave across a long fiber, which its neighbours would have
+   * to follow: large dense cells solve in fewer steps and pack denser. About 1.5 × the source's
+   * UndulationWavelength. Default is 0 (every wavelength).
+   */
+  vtkSetMacro(TortuosityWavelength, double);
+  vtkGetMacro(TortuosityWavelength, double);
+  ///@}
+
+  ///@{
+  /**
    * Beaded fibers closed through a periodic cell keep their radius profile along their arc length
    * (docs/solver.md §5.4): every step a point takes the input profile at its arc fraction plus one
    * phase per fiber, so pushes slide a fiber's beads along it as a whole instead of squeezing them
@@ -243,6 +255,7 @@ private:
   double PushBoost = 3.0;
   double MaxDisplacement = 0.125;
   double Tortuosity = 0.0;
+  double TortuosityWavelength = 0.0;
   bool KeepBeads = false;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;

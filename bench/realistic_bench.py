@@ -3,7 +3,7 @@
 Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.03 at wavelength
 10 µm, beading CV 0.16 over 16 µm, `VolumeFraction` 0.87), cc-coherent (the same with
 `UndulationCoherence` 5 µm), cc-dense (cc-coherent at `VolumeFraction` 0.89 with `Tortuosity`
-1.025 asked of source and solver and the solver's `SeparationSpeed` 0.0125: the cell above 80 %),
+1.03, the solver's `SeparationSpeed` 0.0125 and `TortuosityWavelength` 15 µm: the cell above 80 %),
 cc-straight (tortuosity 1.04 without beading, 0.78), crossing-90 and
 crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
 `VolumeFraction` 0.65), crossing-90-layers (the 90° crossing on the lattice's alternating
@@ -32,7 +32,7 @@ CASES = {
                BeadingCV=0.16, BeadingLength=16.0),
     "cc-coherent": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03,
                         UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
-    "cc-dense": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.025,
+    "cc-dense": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.03,
                      UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
@@ -56,7 +56,7 @@ CASES = {
 # Solver properties of a case besides SegmentLength, MaxSteps, MaxDisplacement and Tortuosity (--solver-set
 # overrides them).
 SOLVER = {
-    "cc-dense": dict(SeparationSpeed=0.0125),
+    "cc-dense": dict(SeparationSpeed=0.0125, TortuosityWavelength=15.0),
 }
 
 parser = argparse.ArgumentParser()

@@ -5,7 +5,9 @@
 // Displacement 0, undulation 1.025 at 10 µm with coherence 5 µm, beading CV 0.16 over 16 µm;
 // FiberCollisionSolver SegmentLength 2, MaxDisplacement 0.4, Tortuosity as the source's. Usage:
 // fiberpli_realistic_solve_bench [--edge 40] [--threads 2] [--volume-fraction 0.89]
-//        [--tortuosity 1.025] [--solver-tortuosity T (the source's)] [--separation-speed 0.0125]
+//        [--tortuosity 1.025] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength W
+//        (0)]
+//        [--separation-speed 0.0125]
 //        [--max-steps 20000] [--every 100]
 //        [--seed 42] [--coherence 5]
 #include "BenchUtil.h"
@@ -76,6 +78,8 @@ int main(int argc, char** argv)
       c.realism.tortuosity = std::atof(next());
     else if (a == "--solver-tortuosity")
       solverTortuosity = std::atof(next());
+    else if (a == "--tortuosity-wavelength")
+      o.tortuosityWavelength = std::atof(next());
     else if (a == "--separation-speed")
       o.separationSpeed = std::atof(next());
     else if (a == "--max-steps")

@@ -59,7 +59,13 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
     { "periodic_cell xmax", c.hi.x }, { "periodic_cell ymin", c.lo.y },
     { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
     { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale },
-    { "Tortuosity", o.tortuosity } };
+    { "Tortuosity", o.tortuosity }, { "TortuosityWavelength", o.tortuosityWavelength } };
+}
+
+// Options added after the format: a file without one was written at this value (its default).
+bool laterOptionAtDefault(const std::string& name, double value)
+{
+  return name == "TortuosityWavelength" && value == 0.0;
 }
 
 class Writer
@@ -393,6 +399,10 @@ std::string readSolverCheckpoint(const std::string& path, const CollisionSolverO
   {
     const auto it =
       std::find_if(saved.begin(), saved.end(), [&](const auto& s) { return s.first == name; });
+    if (it == saved.end() && laterOptionAtDefault(name, value))
+    {
+      continue;
+    }
     if (it == saved.end() || bitsOf(it->second) != bitsOf(value))
     {
       std::ostringstream msg;

@@ -82,6 +82,12 @@ struct CollisionSolverOptions
   /// tortuosity falls 5 % of the excess below it. Straight fibers stay straight. 0 = off (any
   /// value <= 1), else in (1, 3]. Default 0.
   double tortuosity = 0.0;
+  /// [ours] With tortuosity: the longest wavelength (µm) of the deviation the rule scales (§5.3),
+  /// so that it restores the fibers' undulation without amplifying the long sweeps the pushes
+  /// leave across a long fiber, which its neighbours must then follow (large dense cells solve in
+  /// fewer steps and pack denser, bench/README.md "Realistic substrates"); about 1.5 × the
+  /// source's UndulationWavelength. 0 = every mode (any fiber length). Default 0.
+  double tortuosityWavelength = 0.0;
   /// [ours] Beaded closed fibers keep their radius profile along their arc length (docs/solver.md
   /// §5.4, Solver/BeadProfile.h): every step each point takes the input profile at its arc
   /// fraction plus one phase per fiber, so pushes slide a fiber's beads along it as a whole

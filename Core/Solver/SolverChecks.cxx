@@ -102,6 +102,8 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
       "InitialRadiusScale", o.initialRadiusScale, "in [0, 1] (0 = automatic, 1 = off)")
     .require(finite(o.tortuosity) && o.tortuosity >= 0.0 && o.tortuosity <= 3.0, "Tortuosity",
       o.tortuosity, "in [0, 3] (0 or 1 = off)")
+    .require(finite(o.tortuosityWavelength) && o.tortuosityWavelength >= 0.0,
+      "TortuosityWavelength", o.tortuosityWavelength, ">= 0 (0 = every wavelength)")
     // Model/PeriodicCellRule.h: "" when usable
     .then(checkCell ? validatePeriodicCell(o.periodicCell) : std::string())
     .error();

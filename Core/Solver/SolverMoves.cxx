@@ -28,8 +28,8 @@ bool SolverEngine::shapeControl()
     FiberPointState& st = st_.points[static_cast<std::size_t>(f)];
     const bool closed = periodic() && st_.closed[static_cast<std::size_t>(f)];
     const Vec3* closure = closed ? &st_.closure[static_cast<std::size_t>(f)] : nullptr;
-    bool c = controlTortuosity(
-      fib, o_.tortuosity, tortuosityTolerance(), moveCap(), 5.0 * st_.segmentLength, closure);
+    bool c = controlTortuosity(fib, o_.tortuosity, tortuosityTolerance(), moveCap(),
+      5.0 * st_.segmentLength, closure, o_.tortuosityWavelength);
     c = controlSegmentLength(fib, st, st_.segmentLength, closed ? 3 : 2) || c;
     if (o_.keepBeads && closed)
     {

@@ -25,7 +25,7 @@ double fiberTortuosity(const Fiber& f, const Vec3* closure)
 }
 
 bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove,
-  double minWavelength, const Vec3* closure)
+  double minWavelength, const Vec3* closure, double maxWavelength)
 {
   const std::size_t n = f.size();
   if (target <= 1.0 || n < 3 || !(maxMove > 0.0))
@@ -69,10 +69,19 @@ bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove
     minWavelength = 5.0 * tau * span / static_cast<double>(n - 1);
   }
   // Mode m has wavelength span/m over a closure, 2·span/m in the sine series of an open fiber.
-  const int modes = std::max(1, static_cast<int>((closure ? 1.0 : 2.0) * span / minWavelength));
+  const double period = (closure ? 1.0 : 2.0) * span; // mode m has wavelength period / m
+  const int modes = std::max(1, static_cast<int>(period / minWavelength));
+  // The longest wavelength scaled: the first mode at or below maxWavelength.
+  const int firstMode = maxWavelength > 0.0
+    ? std::max(1, static_cast<int>(std::ceil(period / maxWavelength - 1e-9)))
+    : 1;
+  if (firstMode > modes)
+  {
+    return false; // no mode in the band: nothing to scale
+  }
   const double pi = 3.14159265358979323846;
   std::vector<Vec3> smooth(n, Vec3{});
-  for (int m = 1; m <= modes; ++m)
+  for (int m = firstMode; m <= modes; ++m)
   {
     // Closed: cos and sin of 2πmt/T; open: sin of πmt/T (zero at both ends).
     const double w = (closure ? 2.0 : 1.0) * pi * m / span;

@@ -24,9 +24,11 @@ double fiberTortuosity(const Fiber& f, const Vec3* closure = nullptr);
 /// down to wavelength minWavelength (periodic over the closure, a sine series between open ends;
 /// minWavelength <= 0: five mean links); it is added (k − 1) times with k = √((target − 1)/(τ − 1))
 /// (small slopes: τ − 1 grows with the square of the deviations), limited so that no point moves
-/// more than maxMove. A straight fiber has nothing to scale and stays. target <= 1 disables it.
-/// Returns true when it moved points.
+/// more than maxMove. maxWavelength > 0: only the modes of wavelength at most this are scaled
+/// (the bends of one undulation, not the long sweeps the pushes leave across the fiber, which its
+/// neighbours must follow); 0 = every mode down from the fiber's length. A straight fiber has
+/// nothing to scale and stays. target <= 1 disables it. Returns true when it moved points.
 bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove,
-  double minWavelength, const Vec3* closure = nullptr);
+  double minWavelength, const Vec3* closure = nullptr, double maxWavelength = 0.0);
 
 } // namespace fiberpli

@@ -131,3 +131,54 @@ TEST(TortuosityControl, AClosedFiberStaysClosed)
   }
   EXPECT_NEAR(meanX / (f.size() - 1), 5.0, 1e-9);
 }
+
+TEST(TortuosityControl, AWavelengthLimitScalesOnlyTheShortBends)
+{
+  // A fiber closed through a cell of edge 60 along z: a sweep of one wave over the cell
+  // (wavelength 60, amplitude 2 along y) and a flattened undulation of six waves (wavelength 10,
+  // amplitude 0.2 along x). With modes up to 15 µm only the undulation grows: the sweep stays
+  // exactly as it was (its mode is outside the band) and the x-amplitude reaches what the target
+  // needs; with every mode, the sweep grows too.
+  const double span = 60.0;
+  const std::size_t n = 241;
+  const auto fiber = [&](double sweep, double wiggle)
+  {
+    Fiber f;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double z = span * static_cast<double>(i) / static_cast<double>(n - 1);
+      f.points.push_back(Vec3{
+        wiggle * std::sin(2.0 * kPi * 6.0 * z / span), sweep * std::sin(2.0 * kPi * z / span), z });
+      f.radii.push_back(1.0);
+    }
+    return f;
+  };
+  const Vec3 closure{ 0.0, 0.0, span };
+  const double target = fiberTortuosity(fiber(2.0, 0.5), &closure);
+  Fiber banded = fiber(2.0, 0.2);
+  Fiber all = banded;
+  const Fiber before = banded;
+  for (int i = 0; i < 1000 && controlTortuosity(banded, target, 0.0, 0.05, 8.0, &closure, 15.0);
+       ++i)
+  {
+  }
+  for (int i = 0; i < 1000 && controlTortuosity(all, target, 0.0, 0.05, 8.0, &closure); ++i)
+  {
+  }
+  EXPECT_NEAR(fiberTortuosity(banded, &closure), target, 1e-9);
+  EXPECT_NEAR(fiberTortuosity(all, &closure), target, 1e-9);
+  double sweepChange = 0.0, allSweepChange = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    sweepChange = std::max(sweepChange, std::fabs(banded.points[i].y - before.points[i].y));
+    allSweepChange = std::max(allSweepChange, std::fabs(all.points[i].y - before.points[i].y));
+    const double z = before.points[i].z;
+    EXPECT_NEAR(banded.points[i].x, 0.5 * std::sin(2.0 * kPi * 6.0 * z / span), 0.02) << i;
+  }
+  EXPECT_LT(sweepChange, 1e-9);
+  EXPECT_GT(allSweepChange, 0.1);
+  // No mode in the band (the band ends below the shortest mode kept, 8 µm): nothing moves.
+  Fiber none = before;
+  EXPECT_FALSE(controlTortuosity(none, target, 0.0, 0.05, 8.0, &closure, 7.0));
+  EXPECT_EQ(none.points, before.points);
+}

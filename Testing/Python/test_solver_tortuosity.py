@@ -2,7 +2,8 @@
 §5.3). A dense periodic cell of Gamma radii is given a smooth random undulation of tortuosity
 1.04 here (numpy, independent of the sources); solved without the rule the pushes flatten it,
 with it the solved cell keeps 1.04 within a tenth of the excess and has no overlap, also by a
-brute-force capsule check of its own. A bad value names the property."""
+brute-force capsule check of its own. A bad value (Tortuosity, TortuosityWavelength) names the
+property."""
 import os
 import sys
 
@@ -125,4 +126,11 @@ catcher = ErrorCatcher(kept)
 kept.Tortuosity = 5.0
 kept.UpdatePipeline()
 check("Tortuosity" in catcher.text() and "5" in catcher.text(), "error must name Tortuosity: %r" % catcher.text())
+kept.Tortuosity = TARGET
+for value, text in ((-2.0, "-2"), (float("nan"), "nan")):
+    catcher = ErrorCatcher(kept)
+    kept.TortuosityWavelength = value
+    kept.UpdatePipeline()
+    check("TortuosityWavelength" in catcher.text() and text in catcher.text().lower(),
+          "error must name TortuosityWavelength and %s: %r" % (text, catcher.text()))
 print("test_solver_tortuosity passed")
