@@ -963,7 +963,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     publish(true);
     work += boxTests + kExactTestWork * exactTests;
   }
-  work_ = work.load();
+  work_ = work.load() + kLinkWork * links.size();
   if (overflow.load())
   {
     for (auto& v : perThread_)

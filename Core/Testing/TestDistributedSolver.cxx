@@ -541,7 +541,8 @@ TEST(DistributedSolver, ReCutsThatMoveTheTesterBoxesKeepTheSerialResult)
       for (const RankRun& run : runs)
       {
         EXPECT_EQ(run.result.testerRecuts, 2u) << what << ": both re-cuts must move the cuts";
-        EXPECT_GT(run.result.testerCutMove, 0.1) << what; // (~0.02 in the even paper cube)
+        // The dense cluster moves a cut by ~7 % of the axis (~0.02 in the even paper cube).
+        EXPECT_GT(run.result.testerCutMove, 0.05) << what;
       }
     }
   }
