@@ -2,13 +2,12 @@
 // alone, with a line of timings every N steps, so that a large cell's solve can be followed and
 // profiled (perf) without ParaView. Same source and solver options as the pvpython bench's case:
 // FiberCubeSource periodic, Lattice seeding, radii Gamma (mean 1 µm, spread 0.5), SegmentLength 2,
-// Displacement 0, undulation 1.025 at 10 µm with coherence 5 µm, beading CV 0.16 over 16 µm;
-// FiberCollisionSolver SegmentLength 2, MaxDisplacement 0.4, Tortuosity as the source's. Usage:
+// Displacement 0, undulation 1.03 at 10 µm with coherence 5 µm, beading CV 0.16 over 16 µm;
+// FiberCollisionSolver SegmentLength 2, MaxDisplacement 0.4, SeparationSpeed 0.0125, Tortuosity as
+// the source's, TortuosityWavelength 15 µm. Usage:
 // fiberpli_realistic_solve_bench [--edge 40] [--threads 2] [--volume-fraction 0.89]
-//        [--tortuosity 1.025] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength W
-//        (0)]
-//        [--separation-speed 0.0125]
-//        [--max-steps 20000] [--every 100]
+//        [--tortuosity 1.03] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength 15]
+//        [--separation-speed 0.0125] [--max-steps 20000] [--every 100]
 //        [--seed 42] [--coherence 5]
 #include "BenchUtil.h"
 #include "Solver/CollisionSolver.h"
@@ -52,7 +51,7 @@ int main(int argc, char** argv)
   c.seeding = CubeSeeding::Lattice;
   c.volumeFraction = 0.89;
   c.undulationCoherence = 5.0;
-  c.realism.tortuosity = 1.025;
+  c.realism.tortuosity = 1.03;
   c.realism.undulationWavelength = 10.0;
   c.realism.beadingCV = 0.16;
   c.realism.beadingLength = 16.0;
@@ -61,6 +60,7 @@ int main(int argc, char** argv)
   o.maxSteps = 20000;
   o.maxDisplacement = 0.4;
   o.separationSpeed = 0.0125;
+  o.tortuosityWavelength = 15.0;
   o.numberOfThreads = 2;
   int every = 100;
   double solverTortuosity = -1.0; // < 0: the source's
