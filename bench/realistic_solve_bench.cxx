@@ -9,32 +9,15 @@
 //        [--tortuosity 1.03] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength 15]
 //        [--separation-speed 0.0125] [--max-steps 20000] [--every 100]
 //        [--seed 42] [--coherence 5]
-#include "BenchUtil.h"
-#include "Solver/CollisionSolver.h"
+#include "BenchSolve.h"
 #include "Solver/SolverState.h"
 #include "Tissue/CubeGenerator.h"
-#include "Util/Fnv1a.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 using namespace fiberpli;
-
-namespace
-{
-// FNV-1a of every fiber's points and radii: the same model bit for bit, the same hash.
-unsigned long long modelHash(const FiberModel& model)
-{
-  std::uint64_t h = kFnv1aOffset;
-  for (const Fiber& f : model.fibers)
-  {
-    fnv1aAdd(h, f.points.data(), f.points.size() * sizeof(Vec3));
-    fnv1aAdd(h, f.radii.data(), f.radii.size() * sizeof(double));
-  }
-  return static_cast<unsigned long long>(h);
-}
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -107,33 +90,23 @@ int main(int argc, char** argv)
   FiberModel model = generateCube(c);
   o.periodicCell = cubeCell(c);
   std::printf("generate %.1f s: %zu fibers, %zu points, hash %016llx\n", bench::seconds() - t0,
-    model.fibers.size(), model.numberOfPoints(), modelHash(model));
+    model.fibers.size(), model.numberOfPoints(), bench::modelHash(model));
   CollisionSolverRun run(model, o);
   t0 = bench::seconds();
   const double c0 = bench::cpuSeconds();
-  double tl = t0, cl = c0;
-  if (run.start())
-  {
-    while (run.step())
+  bench::stepWithTimings(run, every,
+    [&](int s, double elapsed, double wall, double cpu)
     {
-      const int s = run.state().steps;
-      if (every > 0 && s % every == 0)
-      {
-        const double t = bench::seconds(), cpu = bench::cpuSeconds();
-        std::printf("step %5d  %.1f s  %.4f s/step wall  %.4f s/step cpu  best %zu pairs  loud "
-                    "%zu of %zu links\n",
-          s, t - t0, (t - tl) / every, (cpu - cl) / every, run.state().bestCollisions,
-          run.loudLinks(), run.detectedLinks());
-        std::fflush(stdout);
-        tl = t;
-        cl = cpu;
-      }
-    }
-  }
+      std::printf("step %5d  %.1f s  %.4f s/step wall  %.4f s/step cpu  best %zu pairs  loud "
+                  "%zu of %zu links\n",
+        s, elapsed, wall, cpu, run.state().bestCollisions, run.loudLinks(), run.detectedLinks());
+      std::fflush(stdout);
+    });
   const CollisionSolverResult r = run.finish();
   std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, volume fraction %.4f, "
               "peak RSS %.0f MB, hash %016llx%s%s\n",
     bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, r.volumeFraction,
-    bench::peakRssMB(), modelHash(model), r.error.empty() ? "" : " error: ", r.error.c_str());
+    bench::peakRssMB(), bench::modelHash(model),
+    r.error.empty() ? "" : " error: ", r.error.c_str());
   return r.error.empty() ? 0 : 1;
 }

@@ -9,11 +9,9 @@
 // fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2] [--ranks 1]
 //        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
 //        [--seed-candidates M] (FiberFieldSource's SeedCandidates, 1)
-#include "BenchUtil.h"
+#include "BenchSolve.h"
 #include "Field/FieldFibers.h"
-#include "Solver/CollisionSolver.h"
 #include "ThreadComm.h"
-#include "Util/Fnv1a.h"
 
 #include <cmath>
 #include <cstdio>
@@ -54,22 +52,6 @@ std::vector<OrientationField> sectionFields(double L, double T, double band)
   normalizeOrientationField(a);
   normalizeOrientationField(b);
   return { a, b };
-}
-
-void addToHash(std::uint64_t& h, const FiberModel& model)
-{
-  for (const Fiber& f : model.fibers)
-  {
-    fnv1aAdd(h, f.points.data(), f.points.size() * sizeof(Vec3));
-    fnv1aAdd(h, f.radii.data(), f.radii.size() * sizeof(double));
-  }
-}
-
-std::uint64_t modelHash(const FiberModel& model)
-{
-  std::uint64_t h = kFnv1aOffset;
-  addToHash(h, model);
-  return h;
 }
 
 // CPU seconds of the calling thread.
@@ -186,7 +168,7 @@ int main(int argc, char** argv)
   }
   FiberModel& model = traced.model;
   std::printf("trace %.1f s: %zu fibers, %zu points, traced hash %016llx\n", bench::seconds() - t0,
-    model.fibers.size(), model.numberOfPoints(), static_cast<unsigned long long>(modelHash(model)));
+    model.fibers.size(), model.numberOfPoints(), bench::modelHash(model));
   CollisionSolverOptions o;
   o.segmentLength = 2.0;
   o.maxSteps = maxSteps;
@@ -231,7 +213,7 @@ int main(int argc, char** argv)
     }
     std::uint64_t h = kFnv1aOffset;
     for (const FiberModel& p : pieces)
-      addToHash(h, p);
+      bench::addToHash(h, p);
     double critical = 0.0;
     for (std::size_t i = 0; i < stretches[0].size(); ++i)
     {
@@ -266,30 +248,19 @@ int main(int argc, char** argv)
   CollisionSolverRun run(model, o);
   t0 = bench::seconds();
   const double c0 = bench::cpuSeconds();
-  double tl = t0, cl = c0;
-  if (run.start())
-  {
-    while (run.step())
+  bench::stepWithTimings(run, every,
+    [&](int s, double, double wall, double cpu)
     {
-      const int s = run.state().steps;
-      if (every > 0 && s % every == 0)
-      {
-        const double t = bench::seconds(), c = bench::cpuSeconds();
-        std::printf("step %5d  %.3f s/step wall  %.3f s/step cpu  loud %zu of %zu links\n", s,
-          (t - tl) / every, (c - cl) / every, run.loudLinks(), run.detectedLinks());
-        std::fflush(stdout);
-        tl = t;
-        cl = c;
-      }
-    }
-  }
+      std::printf("step %5d  %.3f s/step wall  %.3f s/step cpu  loud %zu of %zu links\n", s, wall,
+        cpu, run.loudLinks(), run.detectedLinks());
+      std::fflush(stdout);
+    });
   const CollisionSolverResult r = run.finish();
   std::printf("loud links %zu of %zu over all detections\n", static_cast<std::size_t>(r.loudLinks),
     static_cast<std::size_t>(r.detectedLinks));
   std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
               "solved hash %016llx%s%s\n",
     bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, bench::peakRssMB(),
-    static_cast<unsigned long long>(modelHash(model)),
-    r.error.empty() ? "" : " error: ", r.error.c_str());
+    bench::modelHash(model), r.error.empty() ? "" : " error: ", r.error.c_str());
   return r.error.empty() ? 0 : 1;
 }

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -62,10 +63,13 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
     { "Tortuosity", o.tortuosity }, { "TortuosityWavelength", o.tortuosityWavelength } };
 }
 
-// Options added after the format: a file without one was written at this value (its default).
+// Options added after the format, with their defaults: a file without one was written at that.
+constexpr std::pair<const char*, double> kLaterOptions[] = { { "TortuosityWavelength", 0.0 } };
+
 bool laterOptionAtDefault(const std::string& name, double value)
 {
-  return name == "TortuosityWavelength" && value == 0.0;
+  return std::any_of(std::begin(kLaterOptions), std::end(kLaterOptions),
+    [&](const auto& o) { return name == o.first && bitsOf(o.second) == bitsOf(value); });
 }
 
 class Writer

@@ -963,7 +963,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
     publish(true);
     work += boxTests + kExactTestWork * exactTests;
   }
-  work_ = work.load() + kLinkWork * links.size();
+  work_ = work.load();
   if (overflow.load())
   {
     for (auto& v : perThread_)

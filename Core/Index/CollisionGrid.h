@@ -97,18 +97,10 @@ public:
     const std::vector<char>* loud = nullptr);
 
   /// The work of the last findPairs (broad-phase box tests + kExactTestWork × exact segment
-  /// tests + kLinkWork × links; the same for any thread count): what the distributed solver
-  /// balances its ranks by.
+  /// tests; the same for any thread count): what the distributed solver balances its ranks by.
   std::uint64_t work() const { return work_; }
   /// An exact test costs about as much as this many box tests (1000-fiber cube profile).
   static constexpr std::uint64_t kExactTestWork = 10;
-  /// Each link costs a step about as much as this many box tests whether or not it is tested
-  /// (built, boxed, sorted and compared with the last step's, here and in the solver): late in a
-  /// solve, when few links are loud, that is nearly all of a step (0.34 s a step for 5.8 M links,
-  /// about 60 ns a link). Without it, balancing the pair work alone moved the cut between two
-  /// ranks of a section far from its owner cut, and each rank held a quarter of its links for the
-  /// other (bench/README.md).
-  static constexpr std::uint64_t kLinkWork = 30;
 
   /// Bytes the grid keeps per link (its buffers), for memory estimates.
   static double bytesPerLink();

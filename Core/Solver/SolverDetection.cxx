@@ -195,6 +195,7 @@ bool SolverEngine::searchPairs(double limit, bool& overflow)
   const auto maxPairs = static_cast<std::size_t>(limit);
   const std::vector<char>* tested = comm_ ? &held_.tested : nullptr;
   overflow = false;
+  pairWork_ += kHeldLinkWork * links_.size();
   if (periodic())
   {
     detectError_ = periodic_.findPairs(

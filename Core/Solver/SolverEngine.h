@@ -26,6 +26,13 @@ namespace fiberpli
 
 // Steps between re-cuts of the distributed solver's tester boxes (two sums each time).
 constexpr int kBalanceSteps = 32;
+// What a held link costs a step whether or not its pairs are tested (built, boxed, sorted,
+// compared with the last step's), in box tests (CollisionGrid::work): late in a solve, when few
+// links are loud, that is nearly all of a step (0.34 s a step for 5.8 M links, about 60 ns a
+// link). The re-cuts balance it with the pair work; the pair work alone let the few loud links
+// drag the cut between two ranks of a section far from its owner cut, and each rank held a
+// quarter of its links for the other (bench/README.md).
+constexpr std::uint64_t kHeldLinkWork = 30;
 // Pairs per link below which the packing bound (>= 27 per link, Index/CollisionGrid.h) cannot be
 // exceeded, so its exact sum over all links is skipped.
 constexpr int kPairsPerLinkBelowBound = 26;
@@ -72,8 +79,9 @@ public:
   // for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
   bool migrationDue_ = false; // some rank holds a fiber another rank's box owns (last step's move)
-  std::uint64_t pairWork_ =
-    0; // the pair search's work (CollisionGrid::work) since the tester boxes were cut
+  // The detections' work since the tester boxes were cut: CollisionGrid::work plus
+  // kHeldLinkWork per held link.
+  std::uint64_t pairWork_ = 0;
   std::size_t testerRecuts_ = 0; // balanceTesters calls that moved a cut ...
   double testerCutMove_ = 0.0;   // ... and the largest move, as a fraction of the axis' span
   std::size_t migrations_ = 0, haloExchanges_ = 0, haloBytes_ = 0, peakHaloLinks_ = 0,

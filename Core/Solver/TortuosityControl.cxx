@@ -68,8 +68,9 @@ bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove
   {
     minWavelength = 5.0 * tau * span / static_cast<double>(n - 1);
   }
-  // Mode m has wavelength span/m over a closure, 2·span/m in the sine series of an open fiber.
-  const double period = (closure ? 1.0 : 2.0) * span; // mode m has wavelength period / m
+  // Mode m has wavelength period/m: span/m over a closure, 2·span/m in the sine series of an open
+  // fiber.
+  const double period = (closure ? 1.0 : 2.0) * span;
   const int modes = std::max(1, static_cast<int>(period / minWavelength));
   // The longest wavelength scaled: the first mode at or below maxWavelength.
   const int firstMode = maxWavelength > 0.0

@@ -156,23 +156,24 @@ void undulationDeviation(const Undulation& und, double t, bool closed, double& d
 namespace
 {
 // The dense samples of the curve base(s) + amplitude·(du(s)·u(s) + dv(s)·v(s)) that do not depend
-// on the amplitude: the base point and the deviation direction du·u + dv·v of each. The sines are
-// nearly all of an undulated fiber's cost, and the calibration evaluates the curve at some fifty
-// amplitudes: it samples once.
+// on the amplitude: the base point and the deviation direction du·u + dv·v of each (left empty for
+// amplitude 0). The sines are nearly all of an undulated fiber's cost, and the calibration
+// evaluates the curve at some fifty amplitudes: it samples once.
 struct DenseUndulation
 {
   std::vector<Vec3> base;
   std::vector<Vec3> deviation;
 };
 
-DenseUndulation sampleDense(const BasePath& base, const Undulation& und, std::size_t points)
+DenseUndulation sampleDense(
+  const BasePath& base, const Undulation& und, std::size_t points, bool withDeviation)
 {
   const std::vector<double> baseCum = arcLengths(base.points);
   const double baseLength = baseCum.back();
   const std::size_t dense = kDensity * std::max(points, base.points.size());
   DenseUndulation d;
   d.base.resize(dense + 1);
-  d.deviation.resize(dense + 1);
+  d.deviation.resize(withDeviation ? dense + 1 : 0);
   std::size_t k = 0;
   for (std::size_t j = 0; j <= dense; ++j)
   {
@@ -180,6 +181,8 @@ DenseUndulation sampleDense(const BasePath& base, const Undulation& und, std::si
     double f = 0.0;
     k = locate(baseCum, t * baseLength, k, f);
     d.base[j] = lerp(base.points[k], base.points[k + 1], f);
+    if (!withDeviation)
+      continue;
     const Vec3 u = normalized(lerp(base.u[k], base.u[k + 1], f));
     const Vec3 v = normalized(lerp(base.v[k], base.v[k + 1], f));
     double du = 0.0, dv = 0.0;
@@ -223,7 +226,7 @@ std::vector<Vec3> undulatedPath(
   const BasePath& base, const Undulation& und, double amplitude, std::size_t points)
 {
   points = std::max<std::size_t>(points, 2);
-  return resampleDense(sampleDense(base, und, points), base, amplitude, points);
+  return resampleDense(sampleDense(base, und, points, amplitude != 0.0), base, amplitude, points);
 }
 
 double jitteredLength(const std::vector<Vec3>& p, const std::vector<Vec3>* jitter)
@@ -253,7 +256,7 @@ bool calibrateUndulation(const BasePath& base, Undulation& und, double tortuosit
       baseLength *= moved / norm(ends);
   }
   points = std::max<std::size_t>(points, 2);
-  const DenseUndulation dense = sampleDense(base, und, points);
+  const DenseUndulation dense = sampleDense(base, und, points, true);
   const auto ratio = [&](double a)
   { return jitteredLength(resampleDense(dense, base, a, points), jitter) / baseLength; };
   und.amplitude = 0.0;
