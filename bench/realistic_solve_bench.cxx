@@ -8,7 +8,7 @@
 // fiberpli_realistic_solve_bench [--edge 40] [--threads 2] [--volume-fraction 0.89]
 //        [--tortuosity 1.03] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength 15]
 //        [--separation-speed 0.0125] [--max-steps 20000] [--every 100]
-//        [--seed 42] [--coherence 5]
+//        [--seed 42] [--coherence 5] [--beading-cv 0.16]
 #include "BenchSolve.h"
 #include "Solver/SolverState.h"
 #include "Tissue/CubeGenerator.h"
@@ -73,6 +73,8 @@ int main(int argc, char** argv)
       c.seed = static_cast<std::uint64_t>(std::atoll(next()));
     else if (a == "--coherence")
       c.undulationCoherence = std::atof(next());
+    else if (a == "--beading-cv")
+      c.realism.beadingCV = std::atof(next());
     else
     {
       std::fprintf(stderr, "unknown argument %s\n", argv[i]);

@@ -1,5 +1,6 @@
 #include "Solver/LinkExchange.h"
 
+#include "Solver/SolverLinks.h"
 #include "Util/ByteBuffer.h"
 
 #include <algorithm>
@@ -95,22 +96,68 @@ double layerHi(const BoxLayout& layout, int d, int i, bool owners)
   return !layout.periodic() && i + 1 == layout.boxes(d) ? HUGE_VAL : layout.cut(d, i + 1, owners);
 }
 
-// Writes the run of own[first, first + count) (links of one fiber, consecutive).
-void writeRun(std::vector<char>& out, const std::vector<CapsuleLink>& own, std::size_t first,
-  std::size_t count, const FiberModel& model, const std::vector<std::int64_t>& global)
+// The owned fibers' links as buildLinks makes them (the same bits), read from the model where they
+// are needed instead of built into a list first: own link i is link k of fiber f, i = begin[f] + k.
+// A rank's links are most of what it holds, and a list of them would be written, read for the
+// routing and copied into the held links every step.
+struct OwnLinks
 {
-  const CapsuleLink& l = own[first];
-  const Fiber& fib = model.fibers[l.fiber];
+  const FiberModel& model;
+  std::vector<std::size_t> begin;   // per fiber, its first own link (+ the total)
+  std::vector<double> closedLength; // per fiber: its arc length when closed through the cell, or 0
+
+  OwnLinks(const FiberModel& m, const std::vector<char>* active, const std::vector<char>* closed)
+    : model(m)
+    , begin(m.fibers.size() + 1, 0)
+    , closedLength(m.fibers.size(), 0.0)
+  {
+    for (std::size_t f = 0; f < m.fibers.size(); ++f)
+    {
+      const std::size_t n = linksOf(m, active, f);
+      begin[f + 1] = begin[f] + n;
+      if (n > 0 && closed && (*closed)[f])
+        closedLength[f] = arcTo(f, n);
+    }
+  }
+  std::size_t size() const { return begin.back(); }
+  std::size_t links(std::size_t f) const { return begin[f + 1] - begin[f]; }
+  const Vec3* points(std::size_t f) const { return model.fibers[f].points.data(); }
+  // The arc length from fiber f's first point to its point k, summed as buildLinks sums it.
+  double arcTo(std::size_t f, std::size_t k) const { return arcFrom(f, 0, 0.0, k); }
+  double arcFrom(std::size_t f, std::size_t from, double arc, std::size_t k) const
+  {
+    const Vec3* p = points(f);
+    for (std::size_t j = from; j < k; ++j)
+      arc += distance(p[j], p[j + 1]);
+    return arc;
+  }
+};
+
+// A run of own links: links k0, …, k0 + count − 1 of fiber f (own links i, …), arc0 the arc length
+// at its first point.
+struct OwnRun
+{
+  std::size_t i = 0;
+  std::uint32_t f = 0, k0 = 0;
+  std::size_t count = 0;
+  double arc0 = 0.0;
+};
+
+// Writes an own run as it travels.
+void writeRun(std::vector<char>& out, const OwnLinks& own, const OwnRun& run,
+  const std::vector<std::int64_t>& global)
+{
+  const Fiber& fib = own.model.fibers[run.f];
   RunHeader h;
   std::memset(&h, 0, sizeof h); // its padding bytes too: nothing uninitialised goes out
-  h.fiber = static_cast<std::uint32_t>(global[l.fiber]);
-  h.k0 = l.k;
-  h.count = static_cast<std::uint32_t>(count);
-  h.arc0 = l.arc0;
-  h.closedLength = l.closedLength;
+  h.fiber = static_cast<std::uint32_t>(global[run.f]);
+  h.k0 = run.k0;
+  h.count = static_cast<std::uint32_t>(run.count);
+  h.arc0 = run.arc0;
+  h.closedLength = own.closedLength[run.f];
   appendBytes(out, &h, 1);
-  appendBytes(out, fib.points.data() + l.k, count + 1);
-  appendBytes(out, fib.radii.data() + l.k, count + 1);
+  appendBytes(out, fib.points.data() + run.k0, run.count + 1);
+  appendBytes(out, fib.radii.data() + run.k0, run.count + 1);
 }
 } // namespace
 
@@ -120,12 +167,14 @@ double capsuleRadius(double r0, double r1, double scale)
   return scale == 1.0 ? rho : scale * rho;
 }
 
-TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
-  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners)
+TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* active,
+  const std::vector<char>* closed, const std::vector<std::int64_t>& global, double scale,
+  const BoxLayout& layout, double reach, Comm& comm, std::vector<CapsuleLink>& held,
+  HeldLinkInfo& info, std::vector<int>& partners)
 {
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
+  const OwnLinks own(model, active, closed);
   // How far links reach beyond the faces of their tester box (`grow`, each link shifted as
   // wrapping its centre shifts it) and beyond the owner box of the rank owning their fiber
   // (`spread`, shifted as wrapping the fiber's middle shifts it): below / above, per axis, the
@@ -153,8 +202,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   constexpr std::size_t kBlock = 16;
   struct Block
   {
-    std::size_t begin, end;
-    bool inside; // in tester layers `layer`, by the margin
+    std::uint32_t f, k0, k1; // links k0, …, k1 − 1 of fiber f
+    bool inside;             // in tester layers `layer`, by the margin
     int layer[3];
     Vec3 lo, hi; // the bounding box of its points
   };
@@ -162,80 +211,75 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   double rounding[3];
   for (int d = 0; d < 3; ++d)
     rounding[d] = 1e-9 * layout.span(d);
-  std::uint32_t fiber = UINT32_MAX;
-  Vec3 fiberShift;
-  for (std::size_t i = 0; i < own.size();)
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
-    std::size_t e = i + 1;
-    while (e < own.size() && e - i < kBlock && own[e].fiber == own[e - 1].fiber &&
-      own[e].k == own[e - 1].k + 1)
-      ++e;
-    Block block{ i, e, false, { 0, 0, 0 }, {}, {} };
-    if (!periodic)
+    const std::size_t nl = own.links(f);
+    const Vec3* p = own.points(f);
+    const Vec3 fiberShift =
+      periodic && nl > 0 ? layout.wrapShift(BoxLayout::middle(model.fibers[f])) : Vec3{};
+    for (std::size_t k0 = 0; k0 < nl; k0 += kBlock)
     {
-      // The points of links i..e-1: each link's p0, and the last one's p1 (consecutive links
-      // share a point).
-      block.lo = block.hi = own[e - 1].p1;
-      for (std::size_t j = i; j < e; ++j)
+      const std::size_t k1 = std::min(nl, k0 + kBlock);
+      Block block{ static_cast<std::uint32_t>(f), static_cast<std::uint32_t>(k0),
+        static_cast<std::uint32_t>(k1), false, { 0, 0, 0 }, {}, {} };
+      const std::size_t i0 = own.begin[f];
+      if (!periodic)
       {
-        block.lo = componentMin(block.lo, own[j].p0);
-        block.hi = componentMax(block.hi, own[j].p0);
+        // The points of links k0..k1-1: k0..k1 (consecutive links share a point).
+        block.lo = block.hi = p[k1];
+        for (std::size_t k = k0; k < k1; ++k)
+        {
+          block.lo = componentMin(block.lo, p[k]);
+          block.hi = componentMax(block.hi, p[k]);
+        }
+        block.inside = true;
+        for (int d = 0; d < 3; ++d)
+        {
+          const int j = layout.layerOf(d, 0.5 * (block.lo[d] + block.hi[d]));
+          block.layer[d] = j;
+          block.inside = block.inside &&
+            block.lo[d] >= faceLo[d][static_cast<std::size_t>(j)] + rounding[d] &&
+            block.hi[d] <= faceHi[d][static_cast<std::size_t>(j)] - rounding[d];
+        }
       }
-      block.inside = true;
-      for (int d = 0; d < 3; ++d)
+      if (block.inside)
       {
-        const int j = layout.layerOf(d, 0.5 * (block.lo[d] + block.hi[d]));
-        block.layer[d] = j;
-        block.inside = block.inside &&
-          block.lo[d] >= faceLo[d][static_cast<std::size_t>(j)] + rounding[d] &&
-          block.hi[d] <= faceHi[d][static_cast<std::size_t>(j)] - rounding[d];
+        // Every link's centre is in the block's layers; no link reaches beyond their faces (its
+        // growth is negative: the maxima, which start at 0, stay), and its spread beyond the owner
+        // box is the block's.
+        std::fill(tester.begin() + static_cast<std::ptrdiff_t>(i0 + k0),
+          tester.begin() + static_cast<std::ptrdiff_t>(i0 + k1),
+          layout.rankOf(block.layer[0], block.layer[1], block.layer[2]));
+        for (int d = 0; d < 3; ++d)
+        {
+          m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - block.lo[d]);
+          m[9 + d] = std::max(m[9 + d], block.hi[d] - ownerBox.hi[d]);
+        }
+        blocks.push_back(block);
+        continue;
       }
-    }
-    if (block.inside)
-    {
-      // Every link's centre is in the block's layers; no link reaches beyond their faces (its
-      // growth is negative: the maxima, which start at 0, stay), and its spread beyond the owner
-      // box is the block's.
-      std::fill(tester.begin() + static_cast<std::ptrdiff_t>(i),
-        tester.begin() + static_cast<std::ptrdiff_t>(e),
-        layout.rankOf(block.layer[0], block.layer[1], block.layer[2]));
-      for (int d = 0; d < 3; ++d)
+      for (std::size_t k = k0; k < k1; ++k)
       {
-        m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - block.lo[d]);
-        m[9 + d] = std::max(m[9 + d], block.hi[d] - ownerBox.hi[d]);
+        const std::size_t i = i0 + k;
+        const Vec3 c = 0.5 * (p[k] + p[k + 1]);
+        int layer[3];
+        for (int d = 0; d < 3; ++d)
+          layer[d] = layout.layerOf(d, c[d]);
+        tester[i] = layout.rankOf(layer[0], layer[1], layer[2]); // layout.testerOf(c)
+        Vec3 s;
+        if (periodic)
+          s = shift[i] = layout.wrapShift(c);
+        for (int d = 0; d < 3; ++d)
+        {
+          const double lo = std::min(p[k][d], p[k + 1][d]), hi = std::max(p[k][d], p[k + 1][d]);
+          m[d] = std::max(m[d], faceLo[d][static_cast<std::size_t>(layer[d])] - (lo + s[d]));
+          m[3 + d] = std::max(m[3 + d], hi + s[d] - faceHi[d][static_cast<std::size_t>(layer[d])]);
+          m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - (lo + fiberShift[d]));
+          m[9 + d] = std::max(m[9 + d], hi + fiberShift[d] - ownerBox.hi[d]);
+        }
       }
       blocks.push_back(block);
-      i = e;
-      continue;
     }
-    for (; i < e; ++i)
-    {
-      const CapsuleLink& l = own[i];
-      const Vec3 c = centre(l);
-      int layer[3];
-      for (int d = 0; d < 3; ++d)
-        layer[d] = layout.layerOf(d, c[d]);
-      tester[i] = layout.rankOf(layer[0], layer[1], layer[2]); // layout.testerOf(c)
-      Vec3 s;
-      if (periodic)
-      {
-        if (l.fiber != fiber)
-        {
-          fiber = l.fiber;
-          fiberShift = layout.wrapShift(BoxLayout::middle(model.fibers[l.fiber]));
-        }
-        s = shift[i] = layout.wrapShift(c);
-      }
-      for (int d = 0; d < 3; ++d)
-      {
-        const double lo = std::min(l.p0[d], l.p1[d]), hi = std::max(l.p0[d], l.p1[d]);
-        m[d] = std::max(m[d], faceLo[d][static_cast<std::size_t>(layer[d])] - (lo + s[d]));
-        m[3 + d] = std::max(m[3 + d], hi + s[d] - faceHi[d][static_cast<std::size_t>(layer[d])]);
-        m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - (lo + fiberShift[d]));
-        m[9 + d] = std::max(m[9 + d], hi + fiberShift[d] - ownerBox.hi[d]);
-      }
-    }
-    blocks.push_back(block);
   }
   comm.max(m);
   for (int d = 0; d < 3; ++d) // the rounding of the cuts and shifts
@@ -282,18 +326,35 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // Without a cell a pair is tested by the lower of its links' tester boxes: a link goes to no
   // box above its own.
   const bool downOnly = testedPairs(layout) == TestedPairs::EitherLink;
-  // Per destination, the run of links being collected (first link, length); `open`: those with
-  // a run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
+  // Per destination, the run of links being collected (run[q].count > 0); `open`: those with a
+  // run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
   std::vector<std::vector<char>> out(nr);
-  std::vector<std::size_t> first(nr), count(nr, 0), stamp(nr, SIZE_MAX), open, dests;
-  std::vector<std::pair<std::size_t, std::size_t>> mine;
+  std::vector<OwnRun> run(nr);
+  std::vector<std::size_t> stamp(nr, SIZE_MAX), open, dests;
+  std::vector<OwnRun> mine;
+  // The arc length at the first point of each run, summed along the fiber up to it as buildLinks
+  // sums it (runs open in link order: one pass per fiber at most, none for a run starting it).
+  std::size_t arcFiber = SIZE_MAX, arcK = 0;
+  double arcAt = 0.0;
+  const auto arcTo = [&](std::size_t f, std::size_t k)
+  {
+    if (f != arcFiber)
+    {
+      arcFiber = f;
+      arcK = 0;
+      arcAt = 0.0;
+    }
+    arcAt = own.arcFrom(f, arcK, arcAt, k);
+    arcK = k;
+    return arcAt;
+  };
   const auto closeRun = [&](std::size_t q)
   {
     if (q == static_cast<std::size_t>(me))
-      mine.emplace_back(first[q], count[q]);
+      mine.push_back(run[q]);
     else
-      writeRun(out[q], own, first[q], count[q], model, global);
-    count[q] = 0;
+      writeRun(out[q], own, run[q], global);
+    run[q].count = 0;
   };
   // The layers this rank's owner box sends to, per axis, with their faces grown by the growth.
   struct Grown
@@ -310,12 +371,11 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
         faceHi[d][static_cast<std::size_t>(j)] + m[3 + d] });
     }
   }
-  // Link i goes to the ranks in `dests` (stamped i): the runs it does not continue are closed,
-  // those it starts are opened.
-  const auto route = [&](std::size_t i)
+  // Link k of fiber f (own link i) goes to the ranks in `dests` (stamped i): the runs it does not
+  // continue are closed, those it starts are opened.
+  const auto route = [&](std::size_t i, std::uint32_t f, std::uint32_t k)
   {
-    const CapsuleLink& l = own[i];
-    const bool continues = i > 0 && own[i - 1].fiber == l.fiber && own[i - 1].k + 1 == l.k;
+    const bool continues = k > 0; // own links are consecutive along a fiber
     std::size_t kept = 0;
     for (std::size_t q : open)
     {
@@ -329,9 +389,12 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     open.resize(kept);
     for (std::size_t q : dests)
     {
-      if (count[q]++ == 0)
+      if (run[q].count++ == 0)
       {
-        first[q] = i;
+        run[q].i = i;
+        run[q].f = f;
+        run[q].k0 = k;
+        run[q].arc0 = arcTo(f, k);
         open.push_back(q);
       }
     }
@@ -339,6 +402,8 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   std::vector<int> along[3];
   for (const Block& block : blocks)
   {
+    const std::size_t i0 = own.begin[block.f];
+    const Vec3* p = own.points(block.f);
     if (block.inside)
     {
       // The block's box within reach of its own tester layer only, along every axis: so is each
@@ -359,25 +424,25 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
       }
       if (alone)
       {
-        const std::size_t t = static_cast<std::size_t>(tester[block.begin]);
+        const std::size_t t = static_cast<std::size_t>(tester[i0 + block.k0]);
         dests.assign(1, t);
-        stamp[t] = block.begin;
-        route(block.begin);
+        stamp[t] = i0 + block.k0;
+        route(i0 + block.k0, block.f, block.k0);
         // The block's further links continue the same run to t.
-        count[t] += block.end - block.begin - 1;
+        run[t].count += block.k1 - block.k0 - 1;
         continue;
       }
     }
-    for (std::size_t i = block.begin; i < block.end; ++i)
+    for (std::uint32_t k = block.k0; k < block.k1; ++k)
     {
-      const CapsuleLink& l = own[i];
+      const std::size_t i = i0 + k;
       // The tester boxes (grown by the growth) the link comes within reach of, among the layers
       // this rank's owner box sends to.
       for (int d = 0; d < 3; ++d)
       {
         const double s = periodic ? shift[i][d] : 0.0;
-        const double lo = std::min(l.p0[d], l.p1[d]) + s;
-        const double hi = std::max(l.p0[d], l.p1[d]) + s;
+        const double lo = std::min(p[k][d], p[k + 1][d]) + s;
+        const double hi = std::max(p[k][d], p[k + 1][d]) + s;
         along[d].clear();
         for (const Grown& g : grown[d])
         {
@@ -398,7 +463,7 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
               stamp[q] = i;
             }
           }
-      route(i);
+      route(i, block.f, k);
     }
   }
   for (std::size_t q : open)
@@ -408,29 +473,46 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
   // Each sender's runs come in its link order, which is global order (an owner's fibers are in
   // global order), and no two senders send links of one fiber: taking the run with the lowest
   // first link among the senders' next ones gives global link order without a sort. This
-  // rank's own links are copied from `own` as buildLinks made them (the receivers rebuild the
-  // same bits).
-  held.clear();
-  info.pointRadius.clear();
-  info.owner.clear();
-  info.local.clear();
-  info.tested.clear();
+  // rank's own runs are built from the model as buildLinks builds links (the receivers rebuild
+  // the same bits).
+  // Every list is sized once to all the links held and filled in place: `held` keeps the size
+  // it had (a buffer of an earlier step, about as long), so growing it constructs few links.
+  std::size_t total = 0;
+  for (const OwnRun& o : mine)
+    total += o.count;
+  for (const std::vector<char>& b : in)
+  {
+    Reader rd(b);
+    while (!rd.done())
+    {
+      const RunHeader h = rd.get<RunHeader>();
+      rd.skip<Vec3>(h.count + 1);
+      rd.skip<double>(h.count + 1);
+      total += h.count;
+    }
+  }
+  held.resize(total);
+  info.pointRadius.resize(total);
+  info.owner.resize(total);
+  info.local.resize(total);
+  info.tested.resize(total);
+  std::size_t at = 0; // the next link to fill
   std::vector<Reader> readers;
   readers.reserve(nr);
   for (const std::vector<char>& b : in)
     readers.emplace_back(b);
   std::vector<RunHeader> head(nr);
   std::size_t nextMine = 0;
-  std::vector<Vec3> p;
-  std::vector<double> r;
+  std::vector<Vec3> pts;
+  std::vector<double> rad;
   const auto peek = [&](std::size_t q, std::uint64_t& key)
   {
     if (q == static_cast<std::size_t>(me))
     {
       if (nextMine == mine.size())
         return false;
-      const CapsuleLink& l = own[mine[nextMine].first];
-      key = linkKey(static_cast<std::uint32_t>(global[l.fiber]), l.k);
+      const OwnRun& r = mine[nextMine];
+      key = linkKey(static_cast<std::uint32_t>(global[r.f]), r.k0);
       return true;
     }
     if (readers[q].done())
@@ -439,53 +521,51 @@ TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel
     key = linkKey(head[q].fiber, head[q].k0);
     return true;
   };
+  // Fills the next count links: fiber `fiber` (global index) from its points p[0..count] and radii
+  // r[0..count], link k0 first, at arc length arc0; tested(j, link): whether link j is this
+  // rank's to test.
+  const auto fill = [&](const Vec3* p, const double* r, std::uint32_t fiber, std::uint32_t k0,
+                      std::size_t count, double arc0, double closedLength, int owner,
+                      std::uint32_t local, auto tested)
+  {
+    double arc = arc0;
+    for (std::size_t j = 0; j < count; ++j, ++at)
+    {
+      CapsuleLink& l = held[at];
+      l.p0 = p[j];
+      l.p1 = p[j + 1];
+      l.rho = capsuleRadius(r[j], r[j + 1], scale);
+      l.fiber = fiber;
+      l.k = k0 + static_cast<std::uint32_t>(j);
+      l.arc0 = arc;
+      arc += distance(l.p0, l.p1);
+      l.arc1 = arc;
+      l.closedLength = closedLength;
+      info.pointRadius[at] = std::min(r[j], r[j + 1]);
+      info.owner[at] = owner;
+      info.local[at] = local;
+      info.tested[at] = tested(j, l) ? 1 : 0;
+    }
+  };
   const auto take = [&](std::size_t q)
   {
     if (q == static_cast<std::size_t>(me))
     {
-      // A run is links of one fiber: copied at once, then given the global fiber index.
-      const auto [at, n] = mine[nextMine++];
-      const std::uint32_t f = own[at].fiber;
-      const auto g = static_cast<std::uint32_t>(global[f]);
-      const std::vector<double>& radii = model.fibers[f].radii;
-      const std::size_t base = held.size();
-      held.insert(held.end(), own.begin() + static_cast<std::ptrdiff_t>(at),
-        own.begin() + static_cast<std::ptrdiff_t>(at + n));
-      info.owner.insert(info.owner.end(), n, me);
-      info.local.insert(info.local.end(), n, f);
-      for (std::size_t j = 0; j < n; ++j)
-      {
-        CapsuleLink& l = held[base + j];
-        l.fiber = g;
-        info.pointRadius.push_back(std::min(radii[l.k], radii[l.k + 1]));
-        info.tested.push_back(tester[at + j] == me ? 1 : 0);
-      }
+      const OwnRun& o = mine[nextMine++];
+      const Fiber& fib = model.fibers[o.f];
+      fill(fib.points.data() + o.k0, fib.radii.data() + o.k0,
+        static_cast<std::uint32_t>(global[o.f]), o.k0, o.count, o.arc0, own.closedLength[o.f], me,
+        o.f, [&](std::size_t j, const CapsuleLink&) { return tester[o.i + j] == me; });
       return;
     }
     const RunHeader& h = head[q];
-    p.resize(h.count + 1);
-    r.resize(h.count + 1);
-    readers[q].get(p.data(), p.size());
-    readers[q].get(r.data(), r.size());
-    double arc = h.arc0;
-    for (std::uint32_t k = 0; k < h.count; ++k)
-    {
-      CapsuleLink l;
-      l.p0 = p[k];
-      l.p1 = p[k + 1];
-      l.rho = capsuleRadius(r[k], r[k + 1], scale);
-      l.fiber = h.fiber;
-      l.k = h.k0 + k;
-      l.arc0 = arc;
-      arc += distance(l.p0, l.p1);
-      l.arc1 = arc;
-      l.closedLength = h.closedLength;
-      held.push_back(l);
-      info.pointRadius.push_back(std::min(r[k], r[k + 1]));
-      info.owner.push_back(static_cast<int>(q));
-      info.local.push_back(kNotOwned);
-      info.tested.push_back(layout.testerOf(centre(l)) == me ? 1 : 0);
-    }
+    pts.resize(h.count + 1);
+    rad.resize(h.count + 1);
+    readers[q].get(pts.data(), pts.size());
+    readers[q].get(rad.data(), rad.size());
+    fill(pts.data(), rad.data(), h.fiber, h.k0, h.count, h.arc0, h.closedLength,
+      static_cast<int>(q), kNotOwned,
+      [&](std::size_t, const CapsuleLink& l) { return layout.testerOf(centre(l)) == me; });
   };
   mergeStreams<std::uint64_t>(nr, peek, take);
   return sent;

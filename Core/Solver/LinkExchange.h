@@ -63,18 +63,20 @@ double capsuleRadius(double r0, double r1, double scale);
 /// The links and pushes go to `partners` only (set here, ascending, without this rank): the ranks
 /// whose tester box comes within reach of this rank's owner box grown by how far any fiber reaches
 /// beyond its owner's box, or whose owner box does so with this rank's tester box; every rank
-/// computes the same symmetric relation from the boxes and four maxima per axis. own: the links of
-/// `model` (CapsuleLink::fiber = index in model), in link order; global: the fibers' global
-/// indices, ascending (so `own` is in global link order); scale: the capsule radius scale they
-/// were built with. Consecutive links of a fiber travel as one run of points (about 32 bytes a
-/// link); the links a rank keeps of its own are copied, not serialised. Returns in `held`
-/// (CapsuleLink::fiber = global fiber index, in global link order, merged from the senders' runs;
-/// the buffers' capacity is kept) and `info` what this rank receives: with reach at least 2·ρmax +
-/// gap every colliding partner of a link tested here is held here. Collective (a maximum of 12
-/// values, one exchange with the partners); returns what was sent to other ranks.
-TrafficCount exchangeLinks(const std::vector<CapsuleLink>& own, const FiberModel& model,
-  const std::vector<std::int64_t>& global, double scale, const BoxLayout& layout, double reach,
-  Comm& comm, std::vector<CapsuleLink>& held, HeldLinkInfo& info, std::vector<int>& partners);
+/// computes the same symmetric relation from the boxes and four maxima per axis. The owned links
+/// are those buildLinks(model, active, …, closed, scale) makes, read from the model as they are
+/// routed (no list of them is built); global: the fibers' global indices, ascending (so the
+/// owned links are in global link order). Consecutive links of a fiber travel as one run of
+/// points (about 32 bytes a link). Returns in `held` (CapsuleLink::fiber = global fiber index,
+/// in global link order, merged from the senders' runs and this rank's own, which have the bits
+/// buildLinks gives them; the buffers' capacity is kept) and `info` what this rank holds: with
+/// reach at least 2·ρmax + gap every colliding partner of a link tested here is held here.
+/// Collective (a maximum of 12 values, one exchange with the partners); returns what was sent to
+/// other ranks.
+TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* active,
+  const std::vector<char>* closed, const std::vector<std::int64_t>& global, double scale,
+  const BoxLayout& layout, double reach, Comm& comm, std::vector<CapsuleLink>& held,
+  HeldLinkInfo& info, std::vector<int>& partners);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).

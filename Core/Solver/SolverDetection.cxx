@@ -105,10 +105,18 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
   return true;
 }
 
-// The packing bound of all links (of every rank: collective when distributed).
+// The packing bound of all links (of every rank: collective when distributed, where each rank
+// builds its owned fibers' links for it: links_ holds the links near its box instead).
 PairBound SolverEngine::wholeModelPairBound() const
 {
-  return packingPairBound(comm_ ? ownLinks_ : links_, o_.minimumGap, comm_);
+  if (!comm_)
+  {
+    return packingPairBound(links_, o_.minimumGap, nullptr);
+  }
+  std::vector<CapsuleLink> own;
+  buildLinks(
+    model_, &st_.active, threads_, own, nullptr, periodic() ? &st_.closed : nullptr, st_.scale);
+  return packingPairBound(own, o_.minimumGap, comm_);
 }
 
 std::string SolverEngine::packingMessage(const PairBound& bound) const

@@ -86,14 +86,20 @@ void SolverEngine::migrate()
 void SolverEngine::gatherLinks(
   const std::vector<char>* active, const std::vector<char>* closed, double scale, bool forGapProbe)
 {
-  buildLinks(model_, active, threads_, comm_ ? ownLinks_ : links_, &pointOffset_, closed, scale);
   if (!comm_)
   {
+    buildLinks(model_, active, threads_, links_, &pointOffset_, closed, scale);
     return;
+  }
+  pointOffsets(model_, pointOffset_);
+  ownLinkCount_ = 0;
+  for (std::size_t f = 0; f < model_.fibers.size(); ++f)
+  {
+    ownLinkCount_ += linksOf(model_, active, f);
   }
   const double reach = forGapProbe ? probeReach_ : pairReach_;
   const TrafficCount sent = exchangeLinks(
-    ownLinks_, model_, st_.global, scale, layout_, reach, *comm_, links_, held_, partners_);
+    model_, active, closed, st_.global, scale, layout_, reach, *comm_, links_, held_, partners_);
   if (forGapProbe)
   {
     return;
@@ -116,7 +122,12 @@ std::int64_t SolverEngine::leavingFibers() const
   std::int64_t n = 0;
   const int me = comm_->rank();
   for (std::size_t f = 0; f < model_.fibers.size(); ++f)
-    n += layout_.owner(model_.fibers[f]) != me ? 1 : 0;
+  {
+    const int owner = f < movedOwner_.size() && movedOwner_[f] >= 0
+      ? movedOwner_[f]
+      : layout_.owner(model_.fibers[f]);
+    n += owner != me ? 1 : 0;
+  }
   return n;
 }
 

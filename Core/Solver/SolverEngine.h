@@ -67,14 +67,18 @@ public:
   // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
   // fibers this rank owns; the pairs are found among the links near its box (LinkExchange.h).
   Comm* comm_ = nullptr;
-  std::vector<CapsuleLink> ownLinks_; // the owned fibers' links (fiber = index in the model)
-  HeldLinkInfo held_;                 // per link of links_
+  std::size_t ownLinkCount_ =
+    0;                // distributed: the owned fibers' links (links_ holds the held ones)
+  HeldLinkInfo held_; // per link of links_
   BoxLayout layout_;
   // The tester boxes of the last detection when a re-cut moved them since (testersMoved_): a link
   // whose tester box changed is loud at the next detection (§3.4, §13).
   BoxLayout testersBefore_;
   bool testersMoved_ = false;
   std::vector<int> partners_; // the ranks the last gatherLinks exchanged with (pushes go back)
+  // Per fiber, the owner box its middle lies in after the last move (separate() finds it while
+  // the fiber's points are at hand; leavingFibers() counts those that left), -1: not moved.
+  std::vector<int> movedOwner_;
   // Links closer than this to a rank's grown tester box go there: for the pairs of a step, and
   // for the minimum-gap probe at the end.
   double pairReach_ = 0.0, probeReach_ = 0.0;
@@ -108,7 +112,7 @@ public:
   // This rank's share of the counts: pairs, links, changed.
   std::vector<std::int64_t> localCounts(bool changed) const
   {
-    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinks_.size()),
+    return { static_cast<std::int64_t>(pairs_.size()), static_cast<std::int64_t>(ownLinkCount_),
       changed ? 1 : 0 };
   }
   static Counts countsOf(const std::vector<std::int64_t>& v)

@@ -19,29 +19,15 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
   std::vector<std::size_t> linkOffset(nf + 1, 0);
   if (pointOffset)
   {
-    pointOffset->assign(nf + 1, 0);
+    pointOffsets(model, *pointOffset);
   }
-  std::size_t points = 0;
   std::size_t nLinks = 0;
   for (std::size_t f = 0; f < nf; ++f)
   {
-    const Fiber& fib = model.fibers[f];
-    if (pointOffset)
-    {
-      (*pointOffset)[f] = points;
-    }
-    points += fib.points.size();
     linkOffset[f] = nLinks;
-    if (fib.points.size() >= 2 && !(active && !(*active)[f]))
-    {
-      nLinks += fib.points.size() - 1;
-    }
+    nLinks += linksOf(model, active, f);
   }
   linkOffset[nf] = nLinks;
-  if (pointOffset)
-  {
-    (*pointOffset)[nf] = points;
-  }
   links.resize(nLinks);
   const std::int64_t n = static_cast<std::int64_t>(nf);
 #pragma omp parallel for num_threads(threads) schedule(static)
@@ -70,6 +56,15 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
     {
       links[linkOffset[f] + k].closedLength = closedLength;
     }
+  }
+}
+
+void pointOffsets(const FiberModel& model, std::vector<std::size_t>& offsets)
+{
+  offsets.assign(model.fibers.size() + 1, 0);
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+  {
+    offsets[f + 1] = offsets[f] + model.fibers[f].points.size();
   }
 }
 

@@ -13,6 +13,14 @@
 namespace fiberpli
 {
 
+/// The links buildLinks makes of fiber f of `model`: one fewer than its points when it has two or
+/// more and is active (active optional), else none.
+inline std::size_t linksOf(const FiberModel& model, const std::vector<char>* active, std::size_t f)
+{
+  const std::size_t n = model.fibers[f].points.size();
+  return n >= 2 && !(active && !(*active)[f]) ? n - 1 : 0;
+}
+
 /// Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
 /// active (optional): only these fibers; pointOffset (optional): each fiber's first point in a
 /// flat point array; closed (optional): fibers closed through a periodic cell; scale: capsule
@@ -20,6 +28,10 @@ namespace fiberpli
 void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
   std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset,
   const std::vector<char>* closed = nullptr, double scale = 1.0);
+
+/// Each fiber's first point in a flat point array of all fibers (+ the total): the slots of the
+/// solver's per-point forces.
+void pointOffsets(const FiberModel& model, std::vector<std::size_t>& offsets);
 
 /// Median point radius of the fibers with >= 2 points; distributed (comm): of all ranks' fibers,
 /// exactly the same value.

@@ -173,6 +173,10 @@ void SolverEngine::separate()
       { apply(p, own(fa), own(fb)); });
   }
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
+  if (comm_)
+  {
+    movedOwner_.assign(model_.fibers.size(), -1);
+  }
   const double drag = o_.drag;
   const double vMax = moveCap();
   const EndPointRule rule = o_.endPoints;
@@ -216,6 +220,10 @@ void SolverEngine::separate()
       fib.points[i] += vel[i];
     }
     close(static_cast<std::size_t>(f));
+    if (comm_)
+    {
+      movedOwner_[static_cast<std::size_t>(f)] = layout_.owner(fib);
+    }
   }
 }
 

@@ -73,6 +73,12 @@ public:
       std::memcpy(v, in_->data() + at_, n * sizeof(T));
     at_ += n * sizeof(T);
   }
+  /// Passes over n values of T without reading them.
+  template <class T>
+  void skip(std::size_t n)
+  {
+    at_ += n * sizeof(T);
+  }
   /// What putVector wrote.
   template <class T>
   void getVector(std::vector<T>& v)
