@@ -528,10 +528,17 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
                       std::size_t count, double arc0, double closedLength, int owner,
                       std::uint32_t local, auto tested)
   {
+    // Raw pointers and a local index: the char stores of `tested` may alias anything, and the
+    // vectors' data and `at` would be reloaded after each of them.
+    CapsuleLink* links = held.data() + at;
+    double* pointRadius = info.pointRadius.data() + at;
+    int* owners = info.owner.data() + at;
+    std::uint32_t* locals = info.local.data() + at;
+    char* testedHere = info.tested.data() + at;
     double arc = arc0;
-    for (std::size_t j = 0; j < count; ++j, ++at)
+    for (std::size_t j = 0; j < count; ++j)
     {
-      CapsuleLink& l = held[at];
+      CapsuleLink& l = links[j];
       l.p0 = p[j];
       l.p1 = p[j + 1];
       l.rho = capsuleRadius(r[j], r[j + 1], scale);
@@ -541,11 +548,12 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
       l.closedLength = closedLength;
-      info.pointRadius[at] = std::min(r[j], r[j + 1]);
-      info.owner[at] = owner;
-      info.local[at] = local;
-      info.tested[at] = tested(j, l) ? 1 : 0;
+      pointRadius[j] = std::min(r[j], r[j + 1]);
+      owners[j] = owner;
+      locals[j] = local;
+      testedHere[j] = tested(j, l) ? 1 : 0;
     }
+    at += count;
   };
   const auto take = [&](std::size_t q)
   {
