@@ -336,7 +336,7 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   // sums it (runs open in link order: one pass per fiber at most, none for a run starting it).
   std::size_t arcFiber = SIZE_MAX, arcK = 0;
   double arcAt = 0.0;
-  const auto arcTo = [&](std::size_t f, std::size_t k)
+  const auto runArc0 = [&](std::size_t f, std::size_t k)
   {
     if (f != arcFiber)
     {
@@ -394,7 +394,7 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
         run[q].i = i;
         run[q].f = f;
         run[q].k0 = k;
-        run[q].arc0 = arcTo(f, k);
+        run[q].arc0 = runArc0(f, k);
         open.push_back(q);
       }
     }

@@ -67,8 +67,8 @@ public:
   // Distributed run (docs/solver.md §13); comm_ null: this process alone. The model holds the
   // fibers this rank owns; the pairs are found among the links near its box (LinkExchange.h).
   Comm* comm_ = nullptr;
-  std::size_t ownLinkCount_ =
-    0;                // distributed: the owned fibers' links (links_ holds the held ones)
+  // Distributed: the links of the fibers this rank owns (links_ holds those near its box).
+  std::size_t ownLinkCount_ = 0;
   HeldLinkInfo held_; // per link of links_
   BoxLayout layout_;
   // The tester boxes of the last detection when a re-cut moved them since (testersMoved_): a link
