@@ -245,6 +245,8 @@ std::string vtkFiberCollisionSolver::CheckInput(
   options.periodicCell = cache.cell;
   options.initialRadiusScale = this->InitialRadiusScale;
   options.pushBoost = this->PushBoost;
+  options.drag = this->Drag;
+  options.dragSteps = this->DragSteps;
   options.maxDisplacement = this->MaxDisplacement;
   options.tortuosity = this->Tortuosity;
   options.tortuosityWavelength = this->TortuosityWavelength;
@@ -433,6 +435,8 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "InitialRadiusScale: " << this->InitialRadiusScale << "\n";
   os << indent << "PushBoost: " << this->PushBoost << "\n";
+  os << indent << "Drag: " << this->Drag << "\n";
+  os << indent << "DragSteps: " << this->DragSteps << "\n";
   os << indent << "MaxDisplacement: " << this->MaxDisplacement << "\n";
   os << indent << "Tortuosity: " << this->Tortuosity << "\n";
   os << indent << "TortuosityWavelength: " << this->TortuosityWavelength << "\n";

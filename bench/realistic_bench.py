@@ -1,5 +1,5 @@
 """Realistic periodic substrates (bench/README.md "Realistic substrates"):
-    pvpython bench/realistic_bench.py <FiberPLI.so> [case ...] [--edge L] [--threads T]
+    pvpython bench/realistic_bench.py <FiberPLI.so> [case ...] [--edge L] [--threads T] [--save PREFIX]
 Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.03 at wavelength
 10 µm, beading CV 0.16 over 16 µm, `VolumeFraction` 0.87), cc-coherent (the same with
 `UndulationCoherence` 5 µm), cc-dense (cc-coherent at `VolumeFraction` 0.89 with `Tortuosity`
@@ -26,6 +26,7 @@ from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from scipy.spatial import cKDTree
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 CASES = {
     "cc": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03, UndulationWavelength=10.0,
@@ -70,6 +71,8 @@ parser.add_argument("--volume-fraction", type=float, default=0.0, help="instead 
 parser.add_argument("--min-curvature-radius", type=float, default=0.0, help="the solver's MinCurvatureRadius (µm)")
 parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a FiberCubeSource property instead of the case's (repeatable), e.g. --set Tortuosity=1.25")
+parser.add_argument("--save", default="", metavar="PREFIX",
+                    help="also write each solved cell to PREFIX<case>.vtp (binary VTK XML)")
 parser.add_argument("--solver-set", action="append", default=[], metavar="KEY=VALUE",
                     help="a FiberCollisionSolver property (repeatable), e.g. --solver-set Tortuosity=1.2")
 args = parser.parse_args()
@@ -142,6 +145,12 @@ def collisions(a, b, rho, fid):
     half = 0.5 * np.linalg.norm(b - a, axis=1)
     pairs = tree.query_pairs(2 * (half.max() + rho.max()), output_type="ndarray")
     pairs = pairs[fid[pairs[:, 0]] != fid[pairs[:, 1]]]
+    # Exact prefilter: two capsules can only touch when their midpoints (nearest images) are within
+    # the sum of their half-lengths and radii.
+    gap = mid[pairs[:, 1]] - mid[pairs[:, 0]]
+    gap -= L * np.round(gap / L)
+    reach = half[pairs[:, 0]] + half[pairs[:, 1]] + rho[pairs[:, 0]] + rho[pairs[:, 1]]
+    pairs = pairs[np.einsum("ij,ij->i", gap, gap) <= reach ** 2]
     t = np.linspace(0.0, 1.0, 33)
     worst, count = np.inf, 0
     for chunk in np.array_split(pairs, max(1, len(pairs) // 2000)):
@@ -185,19 +194,22 @@ def population_figures(fibers, pop):
         order = np.argsort(s)
         dev.append(np.stack([np.interp(ts, s[order], dd[order, k], period=L) for k in range(3)], 1))
         centre.append(c)
-    corr, corr_near = [], []
-    for i in range(len(dev)):
-        for j in range(i + 1, len(dev)):
-            dc = wrap(centre[i] - centre[j])
-            dc -= (dc @ axis) * axis
-            den = np.sqrt(np.sum(dev[i] ** 2) * np.sum(dev[j] ** 2))
-            if np.linalg.norm(dc) > 4.0 and den > 0:
-                corr.append(np.sum(dev[i] * dev[j]) / den)
-                if np.linalg.norm(dc) <= 8.0:
-                    corr_near.append(corr[-1])
+    corr, corr_near = np.array([]), np.array([])
+    if len(dev) > 1:
+        flat = np.array(dev).reshape(len(dev), -1)
+        norms = np.sqrt(np.einsum("ij,ij->i", flat, flat))
+        centre = np.array(centre)
+        i, j = np.triu_indices(len(dev), 1)
+        dc = wrap(centre[i] - centre[j])
+        dc -= np.outer(dc @ axis, axis)
+        apart = np.linalg.norm(dc, axis=1)
+        den = norms[i] * norms[j]
+        keep = (apart > 4.0) & (den > 0)
+        values = (flat @ flat.T)[i[keep], j[keep]] / den[keep]
+        corr, corr_near = values, values[apart[keep] <= 8.0]
     return dict(tau=np.mean(tau), tau_min=np.min(tau), tau_max=np.max(tau), c2_seg=seg_num / seg_den,
-                c2_e2e=np.mean((units @ axis) ** 2), cv=cv_num / cv_den, corr=np.mean(corr) if corr else np.nan,
-                corr_near=np.mean(corr_near) if corr_near else np.nan)
+                c2_e2e=np.mean((units @ axis) ** 2), cv=cv_num / cv_den, corr=np.mean(corr) if len(corr) else np.nan,
+                corr_near=np.mean(corr_near) if len(corr_near) else np.nan)
 
 
 def mixing(fibers, pops, samples=200000, seed=1):
@@ -234,6 +246,12 @@ for case in args.cases:
     solver.UpdatePipeline()
     wall, cpu = time.time() - wall, time.process_time() - cpu
     out = servermanager.Fetch(solver)
+    if args.save:
+        writer = vtkXMLPolyDataWriter()
+        writer.SetInputData(out)
+        writer.SetDataModeToBinary()
+        writer.SetFileName(args.save + case + ".vtp")
+        writer.Write()
     steps = out.GetFieldData().GetArray("steps").GetValue(0)
     fibers = fibers_of(out)
     a, b, rho, fid = capsules(fibers)

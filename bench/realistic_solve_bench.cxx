@@ -8,7 +8,8 @@
 // fiberpli_realistic_solve_bench [--edge 40] [--threads 2] [--volume-fraction 0.89]
 //        [--tortuosity 1.03] [--solver-tortuosity T (the source's)] [--tortuosity-wavelength 15]
 //        [--separation-speed 0.0125] [--max-steps 20000] [--every 100]
-//        [--seed 42] [--coherence 5] [--beading-cv 0.16]
+//        [--seed 42] [--coherence 5] [--beading-cv 0.16] [--beading-length 16]
+//        [--drag 0 --drag-steps 0] [--max-displacement 0.4]
 #include "BenchSolve.h"
 #include "Solver/SolverState.h"
 #include "Tissue/CubeGenerator.h"
@@ -73,6 +74,14 @@ int main(int argc, char** argv)
       c.seed = static_cast<std::uint64_t>(std::atoll(next()));
     else if (a == "--coherence")
       c.undulationCoherence = std::atof(next());
+    else if (a == "--beading-length")
+      c.realism.beadingLength = std::atof(next());
+    else if (a == "--drag")
+      o.drag = std::atof(next());
+    else if (a == "--drag-steps")
+      o.dragSteps = std::atoi(next());
+    else if (a == "--max-displacement")
+      o.maxDisplacement = std::atof(next());
     else if (a == "--beading-cv")
       c.realism.beadingCV = std::atof(next());
     else
@@ -89,7 +98,10 @@ int main(int argc, char** argv)
     return 2;
   }
   double t0 = bench::seconds();
-  FiberModel model = generateCube(c);
+  std::string warning;
+  FiberModel model = generateCube(c, 0, 1, &warning);
+  if (!warning.empty())
+    std::printf("warning: %s\n", warning.c_str());
   o.periodicCell = cubeCell(c);
   std::printf("generate %.1f s: %zu fibers, %zu points, hash %016llx\n", bench::seconds() - t0,
     model.fibers.size(), model.numberOfPoints(), bench::modelHash(model));

@@ -60,11 +60,13 @@ std::vector<std::pair<std::string, double>> optionList(const CollisionSolverOpti
     { "periodic_cell xmax", c.hi.x }, { "periodic_cell ymin", c.lo.y },
     { "periodic_cell ymax", c.hi.y }, { "periodic_cell zmin", c.lo.z },
     { "periodic_cell zmax", c.hi.z }, { "InitialRadiusScale", o.initialRadiusScale },
-    { "Tortuosity", o.tortuosity }, { "TortuosityWavelength", o.tortuosityWavelength } };
+    { "Tortuosity", o.tortuosity }, { "TortuosityWavelength", o.tortuosityWavelength },
+    { "DragSteps", o.dragSteps } };
 }
 
 // Options added after the format, with their defaults: a file without one was written at that.
-constexpr std::pair<const char*, double> kLaterOptions[] = { { "TortuosityWavelength", 0.0 } };
+constexpr std::pair<const char*, double> kLaterOptions[] = { { "TortuosityWavelength", 0.0 },
+  { "DragSteps", 0.0 } };
 
 bool laterOptionAtDefault(const std::string& name, double value)
 {

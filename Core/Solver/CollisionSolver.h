@@ -58,6 +58,10 @@ struct CollisionSolverOptions
   double pushBoost = 3.0;
   /// Velocity retention per step in [0, 1): 0 = no memory (paper, fastPLI default). Default 0.
   double drag = 0.0;
+  /// [ours] The moves that keep velocity (drag > 0): the first dragSteps moves, then none, so
+  /// that what momentum carried past contact settles (docs/solver.md §4.2); 0 = every move.
+  /// Default 0.
+  int dragSteps = 0;
   /// Threads for detection, pushes and shape control; 0 = all cores. Default 0.
   int numberOfThreads = 0;
   /// [ours] Extra clearance g >= 0 (µm): a pair collides iff δ < ρa + ρb + g. Default 0.

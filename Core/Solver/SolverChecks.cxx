@@ -94,6 +94,7 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
     .require(finite(o.pushBoost) && o.pushBoost >= 1.0 && o.pushBoost <= 4.0, "PushBoost",
       o.pushBoost, "in [1, 4] (1 = off)")
     .require(finite(o.drag) && o.drag >= 0.0 && o.drag < 1.0, "Drag", o.drag, "in [0, 1)")
+    .require(o.dragSteps >= 0, "DragSteps", o.dragSteps, ">= 0 (0 = every step)")
     .then(validateThreadCount(o.numberOfThreads))
     .require(finite(o.minimumGap) && o.minimumGap >= 0.0, "MinimumGap", o.minimumGap, ">= 0")
     .require(o.stallSteps >= 0, "StallSteps", o.stallSteps, ">= 0 (0 = off)")

@@ -177,7 +177,8 @@ void SolverEngine::separate()
   {
     movedOwner_.assign(model_.fibers.size(), -1);
   }
-  const double drag = o_.drag;
+  const bool remembers = o_.dragSteps == 0 || st_.steps < o_.dragSteps;
+  const double drag = remembers ? o_.drag : 0.0;
   const double vMax = moveCap();
   const EndPointRule rule = o_.endPoints;
 #pragma omp parallel for num_threads(threads_) schedule(static)

@@ -587,6 +587,50 @@ TEST(CollisionSolver, DragKeepsVelocityAndStillSolves)
   EXPECT_TRUE(bitwiseEqual(a, b));
 }
 
+// DragSteps N: the first N moves keep momentum, the rest have none. So the run equals one with
+// momentum stopped after N steps and resumed (model and state, velocities included) by a run
+// without momentum, bit for bit; and it differs from momentum to the end.
+TEST(CollisionSolver, DragStepsEndsMomentumAfterThatManyMoves)
+{
+  const FiberModel in = paperCube(2, 80, 3);
+  CollisionSolverOptions o;
+  o.minCurvatureRadius = 4.0;
+  o.drag = 0.6;
+  FiberModel always = in;
+  const CollisionSolverResult rAlways = solveCollisions(always, o);
+  ASSERT_TRUE(rAlways.solved);
+  const int n = 15;
+  ASSERT_GT(rAlways.steps, n + 5);
+  o.dragSteps = n;
+  FiberModel limited = in;
+  const CollisionSolverResult rLimited = solveCollisions(limited, o);
+  ASSERT_TRUE(rLimited.solved) << rLimited.error;
+  EXPECT_EQ(fiberpli_test::refCollisionCount(limited), 0u);
+  EXPECT_FALSE(rLimited.steps == rAlways.steps && bitwiseEqual(limited, always));
+
+  o.dragSteps = 0;
+  FiberModel m = in;
+  CollisionSolverState saved;
+  {
+    CollisionSolverRun run(m, o);
+    ASSERT_TRUE(run.start());
+    while (run.state().steps < n && run.step())
+    {
+    }
+    ASSERT_EQ(run.state().steps, n);
+    saved = run.state();
+  }
+  o.drag = 0.0;
+  CollisionSolverRun plain(m, o);
+  ASSERT_EQ(plain.resume(saved), "");
+  while (plain.step())
+  {
+  }
+  const CollisionSolverResult rPlain = plain.finish();
+  EXPECT_EQ(rPlain.steps, rLimited.steps);
+  EXPECT_TRUE(bitwiseEqual(m, limited));
+}
+
 TEST(CollisionSolver, SourceIndexLocatesSplitPoints)
 {
   // One 2-point fiber of length 10 with radii 1 → 2, L̄ = 2 (l_max 8/3): halved twice into links
@@ -917,6 +961,16 @@ TEST(CollisionSolver, PushBoostOutOfRangeIsRefused)
     o.pushBoost = bad;
     EXPECT_NE(validateCollisionSolverOptions(o).find("PushBoost"), std::string::npos) << bad;
   }
+}
+
+TEST(CollisionSolver, NegativeDragStepsAreRefused)
+{
+  CollisionSolverOptions o;
+  o.drag = 0.5;
+  o.dragSteps = -1;
+  const std::string error = validateCollisionSolverOptions(o);
+  EXPECT_NE(error.find("DragSteps"), std::string::npos) << error;
+  EXPECT_NE(error.find("-1"), std::string::npos) << error;
 }
 
 // min_gap (§9) is the smallest surface gap of any two capsules, looked for up to one median

@@ -62,6 +62,23 @@ solver.PushBoost = 3.0
 solver.UpdatePipeline()
 check(field(solver, "solved") == 1 and points(solver) == plain, "pipeline must recover after a bad PushBoost")
 
+# Drag and DragSteps (momentum, off by default): with momentum for the first steps only the
+# solve still ends with no collisions and differs from the plain one; a bad value names the
+# property and the pipeline recovers.
+check(solver.Drag == 0.0 and solver.DragSteps == 0, "Drag and DragSteps must default to 0")
+solver.Drag = 0.8
+solver.DragSteps = 5
+solver.UpdatePipeline()
+check(field(solver, "solved") == 1 and field(solver, "collisions") == 0, "solve with momentum left collisions")
+check(points(solver) != plain, "Drag had no effect")
+solver.DragSteps = -2
+solver.UpdatePipeline()
+check("DragSteps" in catcher.text() and "-2" in catcher.text(), "error must name DragSteps: %r" % catcher.text())
+solver.Drag = 0.0
+solver.DragSteps = 0
+solver.UpdatePipeline()
+check(field(solver, "solved") == 1 and points(solver) == plain, "pipeline must recover after a bad DragSteps")
+
 # MaxDisplacement (default 0.125 of the smallest radius): a bad value names the property; 0.4
 # solves a dense periodic cell with Gamma radii (smallest ~0.25 µm) seeded for its radii
 # (docs/periodic-cells.md, "Polydisperse seeding").
