@@ -4,6 +4,8 @@ Cases: cc (corpus-callosum-like: 1 population, Lattice seeding, tortuosity 1.03 
 10 µm, beading CV 0.16 over 16 µm, `VolumeFraction` 0.87), cc-coherent (the same with
 `UndulationCoherence` 5 µm), cc-dense (cc-coherent at `VolumeFraction` 0.89 with `Tortuosity`
 1.03, the solver's `SeparationSpeed` 0.0125 and `TortuosityWavelength` 15 µm: the cell above 80 %),
+cc-large (the recipe for large cells, run with --edge 100: cc-dense with beading CV 0.17 over
+8 µm and the solver's momentum `Drag` 0.8 for `DragSteps` 500),
 cc-straight (tortuosity 1.04 without beading, 0.78), crossing-90 and
 crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
 `VolumeFraction` 0.65), crossing-90-layers (the 90° crossing on the lattice's alternating
@@ -35,6 +37,8 @@ CASES = {
                         UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
     "cc-dense": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.03,
                      UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.16, BeadingLength=16.0),
+    "cc-large": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.03,
+                     UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.17, BeadingLength=8.0),
     "cc-straight": dict(Populations=1, Seeding="Lattice", VolumeFraction=0.78, Tortuosity=1.04,
                         UndulationWavelength=10.0),
     "crossing-90": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
@@ -58,6 +62,7 @@ CASES = {
 # overrides them).
 SOLVER = {
     "cc-dense": dict(SeparationSpeed=0.0125, TortuosityWavelength=15.0),
+    "cc-large": dict(SeparationSpeed=0.0125, TortuosityWavelength=15.0, Drag=0.8, DragSteps=500),
 }
 
 parser = argparse.ArgumentParser()
