@@ -8,7 +8,12 @@ g-ratio, myelin and axon fractions, mixing) and renders every cell: outer tubes 
 and the axons inside the myelin (FiberTubes InnerTubes) in a cut-away view.
 
     pvbatch Examples/realistic_substrates.py <FiberPLI.so> <output folder> [--edge 40] [--threads 2]
-        [--size 480]
+        [--size 480] [--cells NAME ...]
+
+Cells: corpus_callosum, crossing, crossing_45, three_populations (the default: all four), and
+corpus_callosum_large, the corpus-callosum recipe for large cells above 80 % (beads over 8 µm and
+the solver's momentum for its first 500 steps; `--cells corpus_callosum_large --edge 100` takes
+about 4 minutes on two threads).
 
 The figures and how they compare with the targets are in bench/README.md, "Realistic substrates"
 (measured there by the benchmark's own code); this example is the user's version of the recipe.
@@ -28,6 +33,7 @@ parser.add_argument("--edge", type=float, default=40.0)
 parser.add_argument("--threads", type=int, default=2)
 parser.add_argument("--max-steps", type=int, default=6000)
 parser.add_argument("--size", type=int, default=480, help="pixels of every picture (square)")
+parser.add_argument("--cells", nargs="*", default=["corpus_callosum", "crossing", "crossing_45", "three_populations"])
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 os.makedirs(args.out, exist_ok=True)
@@ -37,6 +43,14 @@ CELLS = {
     "corpus_callosum": (dict(Populations=1, Seeding="Lattice", VolumeFraction=0.87, Tortuosity=1.03,
                              UndulationWavelength=10.0, BeadingCV=0.16, BeadingLength=16.0, GRatio=0.7),
                         dict(Tortuosity=1.03)),
+    # the same for large cells, denser: coherent undulation, beads over 8 µm (a periodic cell bounds
+    # the beads' length, so longer ones would differ between cell sizes), half the push, and momentum
+    # for the first 500 steps (docs/tissue-models.md §10.6)
+    "corpus_callosum_large": (dict(Populations=1, Seeding="Lattice", VolumeFraction=0.89, Tortuosity=1.03,
+                                   UndulationWavelength=10.0, UndulationCoherence=5.0, BeadingCV=0.17,
+                                   BeadingLength=8.0, GRatio=0.7),
+                              dict(Tortuosity=1.03, SeparationSpeed=0.0125, TortuosityWavelength=15.0, Drag=0.8,
+                                   DragSteps=500)),
     # crossing region: two populations interwoven at 90° (or 45°: population 1 along (1, 1, 0)); in
     # a dense crossing the fibers weave over and under each other, which adds about 0.1 to the
     # tortuosity asked for
@@ -89,7 +103,11 @@ def render(solved, name):
 print("| cell | population | fibers | steps | solve [s] | volume fraction | collisions | tortuosity mean [min, max] "
       "| c2 segments | radius CV | g-ratio | myelin / axon fraction | mixing |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-for name, (knobs, solver_knobs) in CELLS.items():
+unknown = [name for name in args.cells if name not in CELLS]
+if unknown:
+    raise SystemExit("unknown cell %s; cells: %s" % (", ".join(unknown), ", ".join(CELLS)))
+for name in args.cells:
+    knobs, solver_knobs = CELLS[name]
     cell = FiberCubeSource(Periodic=1, EdgeLength=args.edge, FiberRadius=1.0, RadiusDistribution="Gamma",
                            RadiusSpread=0.5, SegmentLength=2.0, Displacement=0.0, Seed=42, **knobs)
     cell.UpdatePipeline()
