@@ -11,6 +11,7 @@
 #include "Parallel/Collectives.h"
 #include "Solver/CollisionSolver.h"
 #include "Solver/SolverSnapshots.h"
+#include "Solver/TortuosityHold.h"
 #include "Util/MemoryBudget.h"
 #include "Util/ValueCheck.h"
 
@@ -215,6 +216,14 @@ std::string vtkFiberCollisionSolver::CheckInput(
   {
     fiberpliWarningMacro(<< threadWarning);
   }
+  if (this->HoldTortuosity &&
+    (this->IterationsAsTime || this->CheckpointInterval > 0 || this->ResumeFromCheckpoint))
+  {
+    return fiberpli::ProxyMessage(this,
+      "HoldTortuosity solves again from the input until the tortuosity is held, so it cannot be "
+      "combined with IterationsAsTime, CheckpointInterval " +
+        std::to_string(this->CheckpointInterval) + " or ResumeFromCheckpoint; turn those off");
+  }
   if (this->IterationsAsTime)
   {
     const std::string badSnapshots = fiberpli::ValueChecks()
@@ -250,6 +259,7 @@ std::string vtkFiberCollisionSolver::CheckInput(
   options.maxDisplacement = this->MaxDisplacement;
   options.tortuosity = this->Tortuosity;
   options.tortuosityWavelength = this->TortuosityWavelength;
+  options.holdTortuosity = this->HoldTortuosity;
   options.keepBeads = this->KeepBeads;
   options.segmentLength = this->SegmentLength;
   options.minCurvatureRadius = this->MinCurvatureRadius;
@@ -291,8 +301,11 @@ std::string vtkFiberCollisionSolver::RunSolve(
   // Progress: the larger of the steps' share of MaxSteps and the collisions resolved (solver).
   const fiberpli::CheckpointOptions checkpoint{ this->CheckpointFile, this->CheckpointInterval,
     this->ResumeFromCheckpoint };
-  cache.result = fiberpli::solveWithCheckpoints(
-    model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
+  // A hold solves again from the input (Solver/TortuosityHold.h): no checkpoints or snapshots.
+  cache.result = options.holdTortuosity
+    ? fiberpli::solveHoldingTortuosity(model, options, fiberpli::MakeProgress(this), comm)
+    : fiberpli::solveWithCheckpoints(
+        model, options, checkpoint, fiberpli::MakeProgress(this), observer, comm);
   if (!cache.result.error.empty())
   {
     return fiberpli::ProxyMessage(this, cache.result.error);
@@ -400,6 +413,11 @@ int vtkFiberCollisionSolver::RequestData(
       {
         fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kMinGap, { r.minGap });
         fiberpli::AddFieldDoubles(output, fiberpli::fiberfield::kRadiusScale, { r.radiusScale });
+        if (r.tortuositySolves > 0)
+        {
+          fiberpli::AddFieldInt(
+            output, fiberpli::fiberfield::kTortuositySolves, r.tortuositySolves);
+        }
       }
       if (comm) // this rank's share of the distributed solve (docs/solver.md §13)
       {
@@ -440,6 +458,7 @@ void vtkFiberCollisionSolver::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxDisplacement: " << this->MaxDisplacement << "\n";
   os << indent << "Tortuosity: " << this->Tortuosity << "\n";
   os << indent << "TortuosityWavelength: " << this->TortuosityWavelength << "\n";
+  os << indent << "HoldTortuosity: " << this->HoldTortuosity << "\n";
   os << indent << "KeepBeads: " << this->KeepBeads << "\n";
   os << indent << "IterationsAsTime: " << this->IterationsAsTime << "\n";
   os << indent << "TimeStepInterval: " << this->TimeStepInterval << "\n";

@@ -173,6 +173,18 @@ public:
 
   ///@{
   /**
+   * With Tortuosity: hold it from above too (docs/solver.md §5.3). A fiber more than 5 % of the
+   * excess above the target gives up smooth undulation (down to none) for the bumps and the weave
+   * the pushes add, so a dense interwoven crossing solves at the tortuosity asked rather than the
+   * asked one plus its weave. Default is off (the rule only lengthens).
+   */
+  vtkSetMacro(HoldTortuosity, bool);
+  vtkGetMacro(HoldTortuosity, bool);
+  vtkBooleanMacro(HoldTortuosity, bool);
+  ///@}
+
+  ///@{
+  /**
    * Beaded fibers closed through a periodic cell keep their radius profile along their arc length
    * (docs/solver.md §5.4): every step a point takes the input profile at its arc fraction plus one
    * phase per fiber, so pushes slide a fiber's beads along it as a whole instead of squeezing them
@@ -272,6 +284,7 @@ private:
   double MaxDisplacement = 0.125;
   double Tortuosity = 0.0;
   double TortuosityWavelength = 0.0;
+  bool HoldTortuosity = false;
   bool KeepBeads = false;
   bool IterationsAsTime = false;
   int TimeStepInterval = 50;

@@ -10,7 +10,10 @@ cc-straight (tortuosity 1.04 without beading, 0.78), crossing-90 and
 crossing-45 (2 interwoven populations, Random seeding, tortuosity 1.25 at 15 µm, beading 0.22,
 `VolumeFraction` 0.65), crossing-90-layers (the 90° crossing on the lattice's alternating
 one-fiber layers, tortuosity 1.15), crossing-90-target and crossing-45-target (tortuosity 1.13 and
-1.14 asked of source and solver, so that with the weave the solved tortuosity is 1.25), three (3 interwoven populations, tortuosity 1.15, `VolumeFraction` 0.58). Outer radii Gamma with mean 1 µm and spread 0.5
+1.14 asked of source and solver, so that with the weave the solved tortuosity is 1.25),
+crossing-90-hold and crossing-45-hold (tortuosity 1.25 held by the solver's `HoldTortuosity`,
+`VolumeFraction` 0.72), three (3 interwoven populations, tortuosity 1.15, `VolumeFraction` 0.58),
+three-hold (the same held, `VolumeFraction` 0.62). Outer radii Gamma with mean 1 µm and spread 0.5
 (α 4, β 0.25 µm); FiberCollisionSolver with the same Tortuosity and MaxDisplacement 0.4.
 Every figure is measured here with numpy, sharing no code with FiberPLI: φ = the union of the
 outer capsules with all their periodic images over the cell (Monte Carlo, 4·10⁵ points),
@@ -55,6 +58,14 @@ CASES = {
     "crossing-45-target": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=45.0,
                                VolumeFraction=0.65, Tortuosity=1.14, UndulationWavelength=15.0, BeadingCV=0.22,
                                BeadingLength=8.0),
+    "crossing-90-hold": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=90.0,
+                             VolumeFraction=0.72, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
+                             BeadingLength=8.0),
+    "crossing-45-hold": dict(Populations=2, Seeding="Random", Arrangement="Interwoven", CrossingAngle=45.0,
+                             VolumeFraction=0.72, Tortuosity=1.25, UndulationWavelength=15.0, BeadingCV=0.22,
+                             BeadingLength=8.0),
+    "three-hold": dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.62,
+                       Tortuosity=1.15, UndulationWavelength=15.0),
     "three": dict(Populations=3, Seeding="Random", Arrangement="Interwoven", VolumeFraction=0.58, Tortuosity=1.15,
                   UndulationWavelength=15.0),
 }
@@ -63,6 +74,9 @@ CASES = {
 SOLVER = {
     "cc-dense": dict(SeparationSpeed=0.0125, TortuosityWavelength=15.0),
     "cc-large": dict(SeparationSpeed=0.0125, TortuosityWavelength=15.0, Drag=0.8, DragSteps=500),
+    "crossing-90-hold": dict(HoldTortuosity=1),
+    "crossing-45-hold": dict(HoldTortuosity=1),
+    "three-hold": dict(HoldTortuosity=1),
 }
 
 parser = argparse.ArgumentParser()
@@ -258,6 +272,8 @@ for case in args.cases:
         writer.SetFileName(args.save + case + ".vtp")
         writer.Write()
     steps = out.GetFieldData().GetArray("steps").GetValue(0)
+    solves = out.GetFieldData().GetArray("tortuosity_solves")
+    steps = "%d" % steps if solves is None else "%d (solve %d)" % (steps, solves.GetValue(0))
     fibers = fibers_of(out)
     a, b, rho, fid = capsules(fibers)
     phi, err = union_fraction(a, b, rho)
@@ -269,7 +285,7 @@ for case in args.cases:
         per.append("%.3f [%.3f, %.3f] / %.3f / %.3f / %.3f / %.2f (4–8 µm %.2f)" % (
             f["tau"], f["tau_min"], f["tau_max"], f["c2_seg"], f["c2_e2e"], f["cv"], f["corr"], f["corr_near"]))
     mix = mixing(fibers, pops) if pops > 1 else float("nan")
-    print("| %s (%.2f) | %d | %d | %.1f | %.1f | %.1f ± %.1f %% | %d (min gap %.3f µm) | %s | %.2f |" % (
+    print("| %s (%.2f) | %d | %s | %.1f | %.1f | %.1f ± %.1f %% | %d (min gap %.3f µm) | %s | %.2f |" % (
         case, knobs["VolumeFraction"], len(fibers), steps, wall, cpu, 100 * phi, 100 * err, count, worst, "; ".join(per), mix), flush=True)
     Delete(solver)
     Delete(source)

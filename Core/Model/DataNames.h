@@ -41,6 +41,7 @@ constexpr const char* kShapeOk = "shape_ok";       ///< int 0/1
 constexpr const char* kVolumeFraction = "volume_fraction";
 constexpr const char* kMinGap = "min_gap"; ///< µm
 constexpr const char* kRadiusScale = "radius_scale";
+constexpr const char* kTortuositySolves = "tortuosity_solves"; ///< int, with HoldTortuosity
 constexpr const char* kRankPoints = "rank_points"; ///< this rank's share of a distributed solve …
 constexpr const char* kHaloLinks = "halo_links";
 constexpr const char* kHeldLinks = "held_links";

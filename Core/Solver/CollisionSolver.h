@@ -92,6 +92,11 @@ struct CollisionSolverOptions
   /// fewer steps and pack denser, bench/README.md "Realistic substrates"); about 1.5 × the
   /// source's UndulationWavelength. 0 = every mode (any fiber length). Default 0.
   double tortuosityWavelength = 0.0;
+  /// [ours] With tortuosity: hold each bundle's mean solved tortuosity at it, from above too
+  /// (docs/solver.md §5.5): the solve is repeated from the input with the bundle's undulation
+  /// scaled by what the weave of a dense crossing added. Honoured by solveHoldingTortuosity
+  /// (Solver/TortuosityHold.h); solveCollisions solves once. Default false.
+  bool holdTortuosity = false;
   /// [ours] Beaded closed fibers keep their radius profile along their arc length (docs/solver.md
   /// §5.4, Solver/BeadProfile.h): every step each point takes the input profile at its arc
   /// fraction plus one phase per fiber, so pushes slide a fiber's beads along it as a whole
@@ -147,6 +152,8 @@ struct CollisionSolverResult : Status
   /// ones whose pairs were tested (docs/solver.md §3.4; all of them with quietLinks off).
   std::uint64_t detectedLinks = 0;
   std::uint64_t loudLinks = 0;
+  /// [ours] Solves a tortuosity hold ran (solveHoldingTortuosity; 0: no hold).
+  int tortuositySolves = 0;
 };
 
 /// Called after every move step with the step number (1, 2, …) and the current model (in a

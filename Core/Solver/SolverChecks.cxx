@@ -105,6 +105,8 @@ std::string validateCollisionSolverOptions(const CollisionSolverOptions& o)
       o.tortuosity, "in [0, 3] (0 or 1 = off)")
     .require(finite(o.tortuosityWavelength) && o.tortuosityWavelength >= 0.0,
       "TortuosityWavelength", o.tortuosityWavelength, ">= 0 (0 = every wavelength)")
+    .require(!o.holdTortuosity || o.tortuosity > 1.0, "Tortuosity", o.tortuosity,
+      "above 1 with HoldTortuosity (the tortuosity to hold)")
     // Model/PeriodicCellRule.h: "" when usable
     .then(checkCell ? validatePeriodicCell(o.periodicCell) : std::string())
     .error();

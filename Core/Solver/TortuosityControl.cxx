@@ -24,6 +24,36 @@ double fiberTortuosity(const Fiber& f, const Vec3* closure)
   return chord > 0.0 ? length / chord : 0.0;
 }
 
+FiberDeviation fiberDeviation(const Fiber& f, const Vec3* closure)
+{
+  const std::size_t n = f.size();
+  FiberDeviation fd;
+  const Vec3 chord = closure ? *closure : f.points.back() - f.points.front();
+  fd.span = std::sqrt(norm2(chord));
+  fd.axis = chord * (1.0 / fd.span);
+  // The axis passes through the ends of an open fiber (they stay) or the points' mean of a closed
+  // one (its first and last point are one point: counted once).
+  Vec3 origin = f.points.front();
+  if (closure)
+  {
+    origin = Vec3{};
+    for (std::size_t i = 0; i + 1 < n; ++i)
+    {
+      origin += f.points[i];
+    }
+    origin *= 1.0 / static_cast<double>(n - 1);
+  }
+  fd.t.resize(n);
+  fd.deviation.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Vec3 r = f.points[i] - origin;
+    fd.t[i] = dot(f.points[i] - f.points.front(), fd.axis);
+    fd.deviation[i] = r - dot(r, fd.axis) * fd.axis;
+  }
+  return fd;
+}
+
 bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove,
   double minWavelength, const Vec3* closure, double maxWavelength)
 {
@@ -37,33 +67,15 @@ bool controlTortuosity(Fiber& f, double target, double tolerance, double maxMove
   {
     return false; // straight (nothing to scale), degenerate, or undulating enough
   }
-  const Vec3 chord = closure ? *closure : f.points.back() - f.points.front();
-  const Vec3 axis = chord * (1.0 / std::sqrt(norm2(chord)));
-  // The axis passes through the ends of an open fiber (they stay) or the points' mean of a closed
-  // one (its first and last point are one point: counted once).
-  Vec3 origin = f.points.front();
-  if (closure)
-  {
-    origin = Vec3{};
-    for (std::size_t i = 0; i + 1 < n; ++i)
-    {
-      origin += f.points[i];
-    }
-    origin *= 1.0 / static_cast<double>(n - 1);
-  }
   // The deviations' smooth part: the fiber's lowest Fourier modes along the axis (periodic over
   // the closure; a sine series between the fixed ends of an open fiber), wavelengths down to
   // minWavelength. Scaling only these leaves the small bumps the pushes make (which the fiber's
   // neighbours caused) as they are instead of amplifying them into kinks.
-  const double span = std::sqrt(norm2(chord));
-  std::vector<double> t(n);
-  std::vector<Vec3> deviation(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const Vec3 r = f.points[i] - origin;
-    t[i] = dot(f.points[i] - f.points.front(), axis);
-    deviation[i] = r - dot(r, axis) * axis;
-  }
+  const FiberDeviation fd = fiberDeviation(f, closure);
+  const Vec3& axis = fd.axis;
+  const double span = fd.span;
+  const std::vector<double>& t = fd.t;
+  const std::vector<Vec3>& deviation = fd.deviation;
   if (!(minWavelength > 0.0)) // no segment length: five mean links
   {
     minWavelength = 5.0 * tau * span / static_cast<double>(n - 1);

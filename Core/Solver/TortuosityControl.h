@@ -9,6 +9,8 @@
 #include "Geometry/Vec3.h"
 #include "Model/FiberModel.h"
 
+#include <vector>
+
 namespace fiberpli
 {
 
@@ -16,6 +18,20 @@ namespace fiberpli
 /// cell (closure non-null), else over |p_{n−1} − p_0|. 1 for a straight fiber; 0 when the fiber
 /// has fewer than 2 points or its ends coincide.
 double fiberTortuosity(const Fiber& f, const Vec3* closure = nullptr);
+
+/// A fiber's deviation from its axis (docs/solver.md §5.3): the axis is the chord through the end
+/// points of an open fiber or the line along the closure through the points' mean of a closed
+/// one; per point its position t along the axis (from the first point) and its deviation, the
+/// component of its offset from the axis across it. The fiber must have >= 2 points and a chord
+/// (or closure) of non-zero length.
+struct FiberDeviation
+{
+  Vec3 axis;         ///< unit vector along the chord or closure
+  double span = 0.0; ///< |chord| or |closure|
+  std::vector<double> t;
+  std::vector<Vec3> deviation;
+};
+FiberDeviation fiberDeviation(const Fiber& f, const Vec3* closure = nullptr);
 
 /// When the fiber's tortuosity τ is below target − tolerance, scales the smooth part of its
 /// deviation from its axis up (docs/solver.md §5.3): the axis is the chord through the end points
