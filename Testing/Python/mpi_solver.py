@@ -1,5 +1,6 @@
 """pvbatch: FiberCollisionSolver distributed over the MPI ranks (docs/solver.md §13) gives the
-one-process result bit for bit, for 1, 2, 3 and 4 ranks x 1 and 2 threads.
+one-process result bit for bit, for 1, 2, 3 and 4 ranks x 1 and 2 threads; so does a solve that
+holds the tortuosity (HoldTortuosity, several solves, docs/solver.md §5.5).
 
 Usage: pvbatch mpi_solver.py <plugin> <tmp dir> serial          (one process: writes the reference)
        mpiexec -n R pvbatch mpi_solver.py <plugin> <tmp dir> R  (compares with the reference)
@@ -27,7 +28,7 @@ ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartit
 check(ranks == (1 if serial else int(sys.argv[3])), "expected %s ranks, got %d" % (sys.argv[3], ranks))
 
 FIELDS = ["steps", "collisions", "solved", "max_overlap", "shape_ok", "segment_length", "volume_fraction",
-          "min_gap", "radius_scale"]
+          "min_gap", "radius_scale", "tortuosity_solves"]
 
 
 def digest(pieces):
@@ -87,10 +88,18 @@ def solve(source, threads, **properties):
 
 cube = FiberCubeSource(Populations=2, NumberOfFibers=120, EdgeLength=18.0, Seed=5)
 cell = FiberCubeSource(Populations=2, Periodic=1, VolumeFraction=0.45, EdgeLength=14.0, Displacement=0.3, Seed=8)
+crossing = FiberCubeSource(Populations=2, Periodic=1, VolumeFraction=0.55, EdgeLength=16.0, FiberRadius=0.8,
+                           SegmentLength=1.0, Displacement=0.0, Seed=5, Seeding="Random", Arrangement="Interwoven",
+                           Tortuosity=1.25, UndulationWavelength=8.0)
 results = {}
 for threads in (1, 2):
     results["cube"] = solve(cube, threads, MaxSteps=60, MinCurvatureRadius=4.0, SegmentLength=0.0)
     results["cell"] = solve(cell, threads, MaxSteps=60, MinCurvatureRadius=4.0)
+    if threads == 1:  # four solves of up to 120 steps each: once is enough
+        results["held"] = solve(crossing, threads, MaxSteps=120, SegmentLength=1.0, MaxDisplacement=0.4,
+                                Tortuosity=1.25, HoldTortuosity=1)
+        check(results["held"]["fields"]["tortuosity_solves"] >= 2,
+              "the held crossing solved once: %s" % results["held"]["fields"])
     for name, r in results.items():
         print("mpi_solver: %d ranks x %d threads, %s: %s" % (ranks, threads, name, r))
     if serial and threads == 1:
