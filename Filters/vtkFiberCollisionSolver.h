@@ -173,10 +173,12 @@ public:
 
   ///@{
   /**
-   * With Tortuosity: hold it from above too (docs/solver.md §5.3). A fiber more than 5 % of the
-   * excess above the target gives up smooth undulation (down to none) for the bumps and the weave
-   * the pushes add, so a dense interwoven crossing solves at the tortuosity asked rather than the
-   * asked one plus its weave. Default is off (the rule only lengthens).
+   * With Tortuosity: hold each population's mean solved tortuosity at it, from above too
+   * (docs/solver.md §5.5). The weave of a dense interwoven crossing adds 0.1–0.15 to the
+   * undulation its fibers were made with; while a population is more than 5 % of the excess off
+   * after a solve, the solve is repeated from the input with that population's undulation scaled
+   * by what was measured (at most four solves, field data tortuosity_solves). Not with
+   * IterationsAsTime or checkpoints. Default is off (one solve; the rule only lengthens).
    */
   vtkSetMacro(HoldTortuosity, bool);
   vtkGetMacro(HoldTortuosity, bool);
