@@ -4,8 +4,8 @@
 /// during the solve fights the packing (the fibers crumple). So the hold works on the input: it
 /// solves, measures each bundle's mean solved tortuosity, and while a bundle is off its target by
 /// more than the tolerance it solves again from the input with that bundle's undulation scaled
-/// down (or up) by the excess measured, a secant step per solve. The shapes are then generated
-/// with room for their weave from the start, as a denser crossing needs.
+/// down (or up) by the excess measured, a secant step per solve: the fibers start from shapes
+/// that leave room for their weave.
 #pragma once
 
 #include "Model/FiberModel.h"
