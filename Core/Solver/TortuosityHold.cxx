@@ -67,9 +67,10 @@ BundleIndex bundleIndex(const FiberModel& model, const std::vector<char>& undula
 }
 
 // Each bundle's mean tortuosity over its undulating fibers, over all ranks (0 for a bundle
-// without any).
+// without any). closures: per fiber its closure through the cell, null for an open fiber (a solve
+// keeps a closure exactly).
 std::vector<double> bundleMeans(const FiberModel& model, const std::vector<char>& undulating,
-  const BundleIndex& index, const PeriodicCell& cell, Comm* comm)
+  const std::vector<const Vec3*>& closures, const BundleIndex& index, Comm* comm)
 {
   const std::size_t nb = static_cast<std::size_t>(index.count);
   std::vector<std::int64_t> sums(2 * nb, 0); // excess sum, fibers
@@ -80,9 +81,7 @@ std::vector<double> bundleMeans(const FiberModel& model, const std::vector<char>
     {
       continue;
     }
-    Vec3 closure;
-    const bool closed = cell.enabled() && isClosedFiber(fib, cell, closure);
-    const double tau = fiberTortuosity(fib, closed ? &closure : nullptr);
+    const double tau = fiberTortuosity(fib, closures[f]);
     const std::size_t b = index.of(fib.bundle);
     sums[2 * b] += static_cast<std::int64_t>(std::llround((tau - 1.0) * kFixedPoint));
     sums[2 * b + 1] += 1;
@@ -164,20 +163,22 @@ CollisionSolverResult solveHoldingTortuosity(
   const PeriodicCell& cell = options.periodicCell;
   // The fibers that undulate in the input: the ones the hold scales and measures.
   std::vector<char> undulating(model.fibers.size(), 0);
-  std::vector<Vec3> closures(model.fibers.size());
-  std::vector<char> closed(model.fibers.size(), 0);
+  std::vector<Vec3> closure(model.fibers.size());
+  std::vector<const Vec3*> closures(model.fibers.size(), nullptr); // null: open
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
     const Fiber& fib = model.fibers[f];
-    closed[f] = cell.enabled() && isClosedFiber(fib, cell, closures[f]) ? 1 : 0;
-    undulating[f] =
-      fib.size() >= 3 && fiberTortuosity(fib, closed[f] ? &closures[f] : nullptr) > 1.0 ? 1 : 0;
+    if (cell.enabled() && isClosedFiber(fib, cell, closure[f]))
+    {
+      closures[f] = &closure[f];
+    }
+    undulating[f] = fib.size() >= 3 && fiberTortuosity(fib, closures[f]) > 1.0 ? 1 : 0;
   }
   const BundleIndex index = bundleIndex(model, undulating, comm);
   const std::size_t nb = static_cast<std::size_t>(index.count);
   const double tolerance = kTortuosityHoldTolerance * (target - 1.0);
   // Per bundle: the input tortuosity of this solve (x) and the last solve's (x, solved y).
-  std::vector<double> x = bundleMeans(model, undulating, index, cell, comm);
+  std::vector<double> x = bundleMeans(model, undulating, closures, index, comm);
   std::vector<double> lastX(nb, 0.0), lastY(nb, 0.0);
   for (int solve = 0; solve < kTortuosityHoldSolves; ++solve)
   {
@@ -190,8 +191,7 @@ CollisionSolverResult solveHoldingTortuosity(
       {
         if (undulating[f])
         {
-          scaleUndulation(trial.fibers[f], x[index.of(trial.fibers[f].bundle)],
-            closed[f] ? &closures[f] : nullptr);
+          scaleUndulation(trial.fibers[f], x[index.of(trial.fibers[f].bundle)], closures[f]);
         }
       }
       for (std::size_t b = 0; b < nb; ++b)
@@ -210,7 +210,7 @@ CollisionSolverResult solveHoldingTortuosity(
     {
       return result; // the model stays the input
     }
-    const std::vector<double> y = bundleMeans(trial, undulating, index, cell, comm);
+    const std::vector<double> y = bundleMeans(trial, undulating, closures, index, comm);
     bool off = false;
     std::vector<double> next = x;
     for (std::size_t b = 0; b < nb; ++b)

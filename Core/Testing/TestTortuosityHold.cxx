@@ -6,19 +6,20 @@
 #include "Solver/TortuosityHold.h"
 
 #include "PeriodicReference.h"
+#include "SolverTestModels.h"
 #include "ThreadComm.h"
 #include "Tissue/CubeGenerator.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <vector>
 
 namespace
 {
 using namespace fiberpli;
+using fiberpli_test::bitwiseEqual;
 using fiberpli_test::refPeriodicCount;
 using fiberpli_test::runRanks;
 
@@ -204,26 +205,6 @@ TEST(TortuosityHold, ACrossingSolvesAtTheTortuosityAskedInsteadOfAskedPlusItsWea
   }
 }
 
-bool sameFibers(const FiberModel& a, const FiberModel& b)
-{
-  if (a.fibers.size() != b.fibers.size())
-  {
-    return false;
-  }
-  for (std::size_t f = 0; f < a.fibers.size(); ++f)
-  {
-    const Fiber& x = a.fibers[f];
-    const Fiber& y = b.fibers[f];
-    if (x.size() != y.size() ||
-      std::memcmp(x.points.data(), y.points.data(), x.size() * sizeof(Vec3)) != 0 ||
-      std::memcmp(x.radii.data(), y.radii.data(), x.size() * sizeof(double)) != 0)
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
 TEST(TortuosityHold, SameBitsForAnyThreadAndRankCount)
 {
   const CubeOptions c = crossing();
@@ -236,7 +217,7 @@ TEST(TortuosityHold, SameBitsForAnyThreadAndRankCount)
   o.numberOfThreads = 2;
   FiberModel threads = in;
   EXPECT_EQ(solveHoldingTortuosity(threads, o).steps, s.steps);
-  EXPECT_TRUE(sameFibers(threads, serial));
+  EXPECT_TRUE(bitwiseEqual(threads, serial));
   for (int ranks : { 2, 3 })
   {
     // Pieces of consecutive fibers, in rank order.
@@ -263,7 +244,7 @@ TEST(TortuosityHold, SameBitsForAnyThreadAndRankCount)
         joined.fibers.push_back(f);
       }
     }
-    EXPECT_TRUE(sameFibers(joined, serial)) << ranks << " ranks";
+    EXPECT_TRUE(bitwiseEqual(joined, serial)) << ranks << " ranks";
   }
 }
 
@@ -277,7 +258,7 @@ TEST(TortuosityHold, NeedsATortuosityToHold)
   const CollisionSolverResult r = solveHoldingTortuosity(m, o);
   EXPECT_NE(r.error.find("Tortuosity"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("HoldTortuosity"), std::string::npos) << r.error;
-  EXPECT_TRUE(sameFibers(m, in));
+  EXPECT_TRUE(bitwiseEqual(m, in));
   EXPECT_EQ(validateCollisionSolverOptions(o), r.error);
 }
 
