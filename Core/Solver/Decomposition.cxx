@@ -291,27 +291,6 @@ double BoxLayout::largestCutMove(const BoxLayout& before) const
   return moved;
 }
 
-double BoxLayout::fraction(int d, double x) const
-{
-  const double t = (x - lo_[d]) / (hi_[d] - lo_[d]);
-  return periodic_ ? t - std::floor(t) : t;
-}
-
-int BoxLayout::layerOf(int d, double x, bool owners) const
-{
-  if (n_[d] == 1 || !(hi_[d] > lo_[d]))
-  {
-    return 0;
-  }
-  const double t = fraction(d, x);
-  if (owners)
-  {
-    const double layer = std::floor(t * n_[d]);
-    return layer < 0.0 ? 0 : layer >= n_[d] ? n_[d] - 1 : static_cast<int>(layer);
-  }
-  return static_cast<int>(std::upper_bound(cuts_[d].begin(), cuts_[d].end(), t) - cuts_[d].begin());
-}
-
 double BoxLayout::cut(int d, int i, bool owners) const
 {
   const double t = i <= 0 ? 0.0
@@ -334,16 +313,6 @@ LayoutBox BoxLayout::box(int r, bool owners) const
   return b;
 }
 
-int BoxLayout::testerOf(const Vec3& x) const
-{
-  return rankOf(layerOf(0, x[0]), layerOf(1, x[1]), layerOf(2, x[2]));
-}
-
-int BoxLayout::ownerOf(const Vec3& x) const
-{
-  return rankOf(layerOf(0, x[0], true), layerOf(1, x[1], true), layerOf(2, x[2], true));
-}
-
 Vec3 BoxLayout::middle(const Fiber& f)
 {
   // One pass over the points for the three axes (the solver asks every step).
@@ -353,7 +322,7 @@ Vec3 BoxLayout::middle(const Fiber& f)
     lo = componentMin(lo, p);
     hi = componentMax(hi, p);
   }
-  return 0.5 * (lo + hi);
+  return middleOf(lo, hi);
 }
 
 int BoxLayout::owner(const Fiber& f) const

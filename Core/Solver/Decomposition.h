@@ -12,6 +12,8 @@
 #include "Parallel/Comm.h"
 #include "Solver/SolverState.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -62,12 +64,35 @@ public:
   int owner(const Fiber& f) const;
   /// Middle of a fiber's extent along each axis (the point its owner box holds).
   static Vec3 middle(const Fiber& f);
+  /// The middle of an extent [lo, hi] (middle() of a fiber whose points span it).
+  static Vec3 middleOf(const Vec3& lo, const Vec3& hi) { return 0.5 * (lo + hi); }
   /// Owner box (rank) of point x (in a periodic cell after wrapping x into it).
-  int ownerOf(const Vec3& x) const;
+  int ownerOf(const Vec3& x) const
+  {
+    return rankOf(layerOf(0, x[0], true), layerOf(1, x[1], true), layerOf(2, x[2], true));
+  }
   /// Tester box (rank) of point x (in a periodic cell after wrapping x into it).
-  int testerOf(const Vec3& x) const;
-  /// Index along axis d of the tester (owner: owners = true) layer holding coordinate x.
-  int layerOf(int d, double x, bool owners = false) const;
+  int testerOf(const Vec3& x) const
+  {
+    return rankOf(layerOf(0, x[0]), layerOf(1, x[1]), layerOf(2, x[2]));
+  }
+  /// Index along axis d of the tester (owner: owners = true) layer holding coordinate x. Inline:
+  /// the link exchange asks it for most links of every step.
+  int layerOf(int d, double x, bool owners = false) const
+  {
+    if (n_[d] == 1 || !(hi_[d] > lo_[d]))
+    {
+      return 0;
+    }
+    const double t = fraction(d, x);
+    if (owners)
+    {
+      const double layer = std::floor(t * n_[d]);
+      return layer < 0.0 ? 0 : layer >= n_[d] ? n_[d] - 1 : static_cast<int>(layer);
+    }
+    return static_cast<int>(
+      std::upper_bound(cuts_[d].begin(), cuts_[d].end(), t) - cuts_[d].begin());
+  }
   /// Lower bound along d of tester (owner) layer i (i = boxes(d): the upper bound of the last).
   double cut(int d, int i, bool owners = false) const;
   /// Tester (owner) box of rank r; open models: the outermost faces are infinite.
@@ -97,7 +122,11 @@ private:
   // Per axis the n_d − 1 inner cuts of the tester layers, as fractions of [lo, hi].
   std::vector<double> cuts_[3];
   // x as a fraction of [lo, hi] along d, wrapped into [0, 1) in a cell.
-  double fraction(int d, double x) const;
+  double fraction(int d, double x) const
+  {
+    const double t = (x - lo_[d]) / (hi_[d] - lo_[d]);
+    return periodic_ ? t - std::floor(t) : t;
+  }
   // Collective: the tester cuts from all ranks' link centres, each link weighing 1 (work < 0 on
   // every rank) or its box's measured work per link (every rank passes its work >= 0).
   void cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t work);

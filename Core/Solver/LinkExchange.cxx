@@ -208,6 +208,10 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
     Vec3 lo, hi; // the bounding box of its points
   };
   std::vector<Block> blocks;
+  std::size_t blockCount = 0; // sized once: growing it copied every block made so far
+  for (std::size_t f = 0; f < model.fibers.size(); ++f)
+    blockCount += (own.links(f) + kBlock - 1) / kBlock;
+  blocks.reserve(blockCount);
   double rounding[3];
   for (int d = 0; d < 3; ++d)
     rounding[d] = 1e-9 * layout.span(d);
