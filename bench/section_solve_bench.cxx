@@ -8,7 +8,11 @@
 // wall time with free, instant communication and a core per rank). Usage:
 // fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2] [--ranks 1]
 //        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
-//        [--seed-candidates M] (FiberFieldSource's SeedCandidates, 1)
+//        [--seed-candidates M] (FiberFieldSource's SeedCandidates, 1) [--stretches FILE]
+// --ranks takes a list (--ranks 1,2,1,2): the traced fibers are solved once per entry, one after
+// the other, each from the same traced model, so that the runs to compare are taken in the same
+// minutes without tracing again (each distributed run's stretches go to FILE.<i>, i its place in
+// the list; the peak RSS printed is the process's, over the runs so far).
 #include "BenchSolve.h"
 #include "Field/FieldFibers.h"
 #include "ThreadComm.h"
@@ -119,7 +123,8 @@ private:
 int main(int argc, char** argv)
 {
   double L = 250.0, T = 60.0, fa = 0.57, fb = 0.10, band = 0.3;
-  int threads = 2, maxSteps = 20000, every = 100, ranks = 1, seedCandidates = 1;
+  int threads = 2, maxSteps = 20000, every = 100, seedCandidates = 1;
+  std::vector<int> rankList{ 1 };
   std::string stretchFile;
   bool quiet = true;
   for (int i = 1; i < argc; ++i)
@@ -133,7 +138,15 @@ int main(int argc, char** argv)
     else if (a == "--threads")
       threads = std::atoi(next());
     else if (a == "--ranks")
-      ranks = std::max(1, std::atoi(next()));
+    {
+      rankList.clear();
+      for (const char* p = next(); *p;)
+      {
+        char* end = nullptr;
+        rankList.push_back(std::max(1, static_cast<int>(std::strtol(p, &end, 10))));
+        p = *end == ',' ? end + 1 : "";
+      }
+    }
     else if (a == "--stretches")
       stretchFile = next();
     else if (a == "--max-steps")
@@ -166,9 +179,9 @@ int main(int argc, char** argv)
     std::fprintf(stderr, "trace: %s\n", traced.error.c_str());
     return 1;
   }
-  FiberModel& model = traced.model;
+  const FiberModel& tracedModel = traced.model;
   std::printf("trace %.1f s: %zu fibers, %zu points, traced hash %016llx\n", bench::seconds() - t0,
-    model.fibers.size(), model.numberOfPoints(), bench::modelHash(model));
+    tracedModel.fibers.size(), tracedModel.numberOfPoints(), bench::modelHash(tracedModel));
   CollisionSolverOptions o;
   o.segmentLength = 2.0;
   o.maxSteps = maxSteps;
@@ -176,15 +189,17 @@ int main(int argc, char** argv)
   o.separationSpeed = 0.1;
   o.maxDisplacement = 0.4;
   o.quietLinks = quiet;
-  if (ranks > 1)
+  // Solves a copy of the traced fibers on `ranks` thread ranks; returns the critical path
+  // (seconds), < 0 on an error.
+  const auto solveDistributed = [&](int ranks, const std::string& stretchesTo)
   {
     // Pieces of consecutive fibers, as a reader would hand them out; the output pieces in rank
     // order are the solved model.
     std::vector<FiberModel> pieces(static_cast<std::size_t>(ranks));
-    const std::size_t nf = model.fibers.size();
+    const std::size_t nf = tracedModel.fibers.size();
     for (int r = 0; r < ranks; ++r)
       for (std::size_t f = nf * r / ranks; f < nf * (r + 1) / ranks; ++f)
-        pieces[static_cast<std::size_t>(r)].fibers.push_back(model.fibers[f]);
+        pieces[static_cast<std::size_t>(r)].fibers.push_back(tracedModel.fibers[f]);
     std::vector<CollisionSolverResult> results(pieces.size());
     std::vector<std::vector<double>> stretches(pieces.size());
     t0 = bench::seconds();
@@ -198,9 +213,9 @@ int main(int argc, char** argv)
         stretches[r] = comm.finish();
       });
     const double wall = bench::seconds() - t0, cpu = bench::cpuSeconds() - c0;
-    if (!stretchFile.empty())
+    if (!stretchesTo.empty())
     {
-      if (FILE* f = std::fopen(stretchFile.c_str(), "w"))
+      if (FILE* f = std::fopen(stretchesTo.c_str(), "w"))
       {
         for (std::size_t i = 0; i < stretches[0].size(); ++i)
         {
@@ -243,24 +258,56 @@ int main(int argc, char** argv)
         q, results[q].peakHeldLinks, results[q].peakHaloLinks, results[q].haloBytesPerStep,
         results[q].peakPartners, static_cast<std::size_t>(results[q].loudLinks),
         static_cast<std::size_t>(results[q].detectedLinks));
-    return r.error.empty() ? 0 : 1;
+    return r.error.empty() ? critical : -1.0;
+  };
+  // Solves a copy of the traced fibers on one rank (the serial solver); returns its CPU seconds,
+  // < 0 on an error.
+  const auto solveSerial = [&]()
+  {
+    FiberModel model = tracedModel;
+    CollisionSolverRun run(model, o);
+    t0 = bench::seconds();
+    const double c0 = bench::cpuSeconds();
+    bench::stepWithTimings(run, every,
+      [&](int s, double, double wall, double cpu)
+      {
+        std::printf("step %5d  %.3f s/step wall  %.3f s/step cpu  loud %zu of %zu links\n", s, wall,
+          cpu, run.loudLinks(), run.detectedLinks());
+        std::fflush(stdout);
+      });
+    const CollisionSolverResult r = run.finish();
+    const double cpu = bench::cpuSeconds() - c0;
+    std::printf("loud links %zu of %zu over all detections\n",
+      static_cast<std::size_t>(r.loudLinks), static_cast<std::size_t>(r.detectedLinks));
+    std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
+                "solved hash %016llx%s%s\n",
+      bench::seconds() - t0, cpu, r.steps, r.collisions, bench::peakRssMB(),
+      bench::modelHash(model), r.error.empty() ? "" : " error: ", r.error.c_str());
+    return r.error.empty() ? cpu : -1.0;
+  };
+  std::vector<double> serialCpu, critical;
+  for (std::size_t i = 0; i < rankList.size(); ++i)
+  {
+    const int ranks = rankList[i];
+    const std::string to = stretchFile.empty() || rankList.size() == 1
+      ? stretchFile
+      : stretchFile + "." + std::to_string(i);
+    const double s = ranks > 1 ? solveDistributed(ranks, to) : solveSerial();
+    if (s < 0.0)
+      return 1;
+    (ranks > 1 ? critical : serialCpu).push_back(s);
+    std::fflush(stdout);
   }
-  CollisionSolverRun run(model, o);
-  t0 = bench::seconds();
-  const double c0 = bench::cpuSeconds();
-  bench::stepWithTimings(run, every,
-    [&](int s, double, double wall, double cpu)
-    {
-      std::printf("step %5d  %.3f s/step wall  %.3f s/step cpu  loud %zu of %zu links\n", s, wall,
-        cpu, run.loudLinks(), run.detectedLinks());
-      std::fflush(stdout);
-    });
-  const CollisionSolverResult r = run.finish();
-  std::printf("loud links %zu of %zu over all detections\n", static_cast<std::size_t>(r.loudLinks),
-    static_cast<std::size_t>(r.detectedLinks));
-  std::printf("solve %.1f s wall, %.1f s cpu: %d steps, %zu collisions, peak RSS %.0f MB, "
-              "solved hash %016llx%s%s\n",
-    bench::seconds() - t0, bench::cpuSeconds() - c0, r.steps, r.collisions, bench::peakRssMB(),
-    bench::modelHash(model), r.error.empty() ? "" : " error: ", r.error.c_str());
-  return r.error.empty() ? 0 : 1;
+  if (!serialCpu.empty() && !critical.empty())
+  {
+    double one = 0.0;
+    for (double c : serialCpu)
+      one += c;
+    one /= static_cast<double>(serialCpu.size());
+    std::printf("speed-up against the mean one-rank CPU (%.1f s), by critical path:", one);
+    for (double c : critical)
+      std::printf(" %.3f", one / c);
+    std::printf("\n");
+  }
+  return 0;
 }
