@@ -216,17 +216,22 @@ void SolverEngine::separate()
       vel[0] = constrainEndMove(fib, 0, vel[0], rule);
       vel[n - 1] = constrainEndMove(fib, n - 1, vel[n - 1], rule);
     }
-    if (!comm_)
+    // Distributed: the owner box of the fiber's middle after the move. An open fiber's extent is
+    // taken while the moved points are at hand rather than in a pass of its own; a closed fiber's
+    // last point is set by close(), so its extent is taken afterwards.
+    if (!comm_ || closed)
     {
       for (std::size_t i = 0; i < n; ++i)
       {
         fib.points[i] += vel[i];
       }
       close(static_cast<std::size_t>(f));
+      if (comm_)
+      {
+        movedOwner_[static_cast<std::size_t>(f)] = layout_.owner(fib);
+      }
       continue;
     }
-    // Distributed: the extent of the moved points, for the owner box of the fiber's middle, taken
-    // while they are at hand rather than in a pass of its own.
     Vec3 lo{ HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi{ -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -234,10 +239,7 @@ void SolverEngine::separate()
       lo = componentMin(lo, fib.points[i]);
       hi = componentMax(hi, fib.points[i]);
     }
-    close(static_cast<std::size_t>(f));
-    // A closed fiber's last point was set by close(): its extent is taken again.
-    movedOwner_[static_cast<std::size_t>(f)] =
-      closed ? layout_.owner(fib) : layout_.ownerOf(BoxLayout::middleOf(lo, hi));
+    movedOwner_[static_cast<std::size_t>(f)] = layout_.ownerOf(BoxLayout::middleOf(lo, hi));
   }
 }
 
