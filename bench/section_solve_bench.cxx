@@ -9,10 +9,12 @@
 // fiberpli_section_solve_bench [--size 250] [--thickness 60] [--threads 2] [--ranks 1]
 //        [--max-steps N] [--every N] (a line of timings every N steps, 100) [--no-quiet]
 //        [--seed-candidates M] (FiberFieldSource's SeedCandidates, 1) [--stretches FILE]
+// (--stretches: a line per stretch, each rank's CPU seconds, then the collective that ends it)
 // --ranks takes a list (--ranks 1,2,1,2): the traced fibers are solved once per entry, one after
 // the other, each from the same traced model, so that the runs to compare are taken in the same
 // minutes without tracing again (each distributed run's stretches go to FILE.<i>, i its place in
-// the list; the peak RSS printed is the process's, over the runs so far).
+// the list; the peak RSS printed is the process's, over the runs so far). An entry d1 runs the
+// distributed solver on one rank: what its code costs without a halo or a partner.
 #include "BenchSolve.h"
 #include "Field/FieldFibers.h"
 #include "ThreadComm.h"
@@ -22,6 +24,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -80,19 +83,19 @@ public:
   int size() const override { return inner_.size(); }
   void sum(std::vector<std::int64_t>& v) override
   {
-    note();
+    note("sum");
     inner_.sum(v);
     last_ = threadCpuSeconds();
   }
   void max(std::vector<double>& v) override
   {
-    note();
+    note("max");
     inner_.max(v);
     last_ = threadCpuSeconds();
   }
   std::vector<std::vector<char>> exchange(const std::vector<std::vector<char>>& send) override
   {
-    note();
+    note("exchange");
     std::vector<std::vector<char>> in = inner_.exchange(send);
     last_ = threadCpuSeconds();
     return in;
@@ -100,7 +103,7 @@ public:
   std::vector<std::vector<char>> exchangeWith(
     const std::vector<int>& partners, const std::vector<std::vector<char>>& send) override
   {
-    note();
+    note("exchangeWith");
     std::vector<std::vector<char>> in = inner_.exchangeWith(partners, send);
     last_ = threadCpuSeconds();
     return in;
@@ -108,15 +111,24 @@ public:
   // The stretches, the last one (after the last collective) included.
   std::vector<double> finish()
   {
-    note();
+    note("end");
     return stretches_;
   }
 
 private:
-  void note() { stretches_.push_back(threadCpuSeconds() - last_); }
+  // kind: the collective that ends the stretch.
+  void note(const char* kind)
+  {
+    stretches_.push_back(threadCpuSeconds() - last_);
+    kinds_.push_back(kind);
+  }
   Comm& inner_;
   double last_;
   std::vector<double> stretches_;
+  std::vector<const char*> kinds_;
+
+public:
+  const std::vector<const char*>& kinds() const { return kinds_; }
 };
 } // namespace
 
@@ -143,7 +155,13 @@ int main(int argc, char** argv)
       for (const char* p = next(); *p;)
       {
         char* end = nullptr;
-        rankList.push_back(std::max(1, static_cast<int>(std::strtol(p, &end, 10))));
+        if (*p == 'd' && p[1] == '1') // the distributed solver on one rank
+        {
+          rankList.push_back(0);
+          end = const_cast<char*>(p + 2);
+        }
+        else
+          rankList.push_back(std::max(1, static_cast<int>(std::strtol(p, &end, 10))));
         p = *end == ',' ? end + 1 : "";
       }
     }
@@ -202,6 +220,7 @@ int main(int argc, char** argv)
         pieces[static_cast<std::size_t>(r)].fibers.push_back(tracedModel.fibers[f]);
     std::vector<CollisionSolverResult> results(pieces.size());
     std::vector<std::vector<double>> stretches(pieces.size());
+    std::vector<const char*> kinds; // rank 0's: every rank calls the same collectives
     t0 = bench::seconds();
     const double c0 = bench::cpuSeconds();
     fiberpli_test::runRanks(ranks,
@@ -211,6 +230,8 @@ int main(int argc, char** argv)
         const auto r = static_cast<std::size_t>(comm.rank());
         results[r] = solveCollisions(pieces[r], o, {}, {}, &comm);
         stretches[r] = comm.finish();
+        if (r == 0)
+          kinds = comm.kinds();
       });
     const double wall = bench::seconds() - t0, cpu = bench::cpuSeconds() - c0;
     if (!stretchesTo.empty())
@@ -221,7 +242,7 @@ int main(int argc, char** argv)
         {
           for (const std::vector<double>& s : stretches)
             std::fprintf(f, " %.6f", i < s.size() ? s[i] : 0.0);
-          std::fprintf(f, "\n");
+          std::fprintf(f, " %s\n", i < kinds.size() ? kinds[i] : "");
         }
         std::fclose(f);
       }
@@ -285,17 +306,17 @@ int main(int argc, char** argv)
       bench::modelHash(model), r.error.empty() ? "" : " error: ", r.error.c_str());
     return r.error.empty() ? cpu : -1.0;
   };
-  std::vector<double> serialCpu, critical;
+  std::vector<double> serialCpu, critical, oneRankDistributed;
   for (std::size_t i = 0; i < rankList.size(); ++i)
   {
     const int ranks = rankList[i];
     const std::string to = stretchFile.empty() || rankList.size() == 1
       ? stretchFile
       : stretchFile + "." + std::to_string(i);
-    const double s = ranks > 1 ? solveDistributed(ranks, to) : solveSerial();
+    const double s = ranks != 1 ? solveDistributed(std::max(1, ranks), to) : solveSerial();
     if (s < 0.0)
       return 1;
-    (ranks > 1 ? critical : serialCpu).push_back(s);
+    (ranks > 1 ? critical : ranks == 1 ? serialCpu : oneRankDistributed).push_back(s);
     std::fflush(stdout);
   }
   if (!serialCpu.empty() && !critical.empty())
@@ -307,6 +328,15 @@ int main(int argc, char** argv)
     std::printf("speed-up against the mean one-rank CPU (%.1f s), by critical path:", one);
     for (double c : critical)
       std::printf(" %.3f", one / c);
+    std::printf("\n");
+  }
+  if (!serialCpu.empty() && !oneRankDistributed.empty())
+  {
+    std::printf("the distributed solver on one rank against the serial one, CPU:");
+    for (double c : oneRankDistributed)
+      std::printf(" %.3f",
+        c * static_cast<double>(serialCpu.size()) /
+          std::accumulate(serialCpu.begin(), serialCpu.end(), 0.0));
     std::printf("\n");
   }
   return 0;

@@ -1,6 +1,7 @@
 #include "Index/CollisionGrid.h"
 
 #include "Geometry/SegmentDistance.h"
+#include "Util/Refill.h"
 #include "Util/Threads.h"
 
 #include <algorithm>
@@ -348,7 +349,7 @@ void CollisionGrid::countByCell(const Layout& grid, std::size_t nCells, int nThr
   const std::size_t chunks = std::max<std::size_t>(1,
     std::min<std::size_t>(
       static_cast<std::size_t>(nThreads), n / std::max<std::size_t>(1, nCells)));
-  count_.assign(chunks * nCells, 0);
+  refill(count_, chunks * nCells, std::uint32_t{ 0 });
   const auto chunkBegin = [n, chunks](std::size_t c) { return n * c / chunks; };
   const std::int64_t nChunks = static_cast<std::int64_t>(chunks);
 #pragma omp parallel for num_threads(nThreads) schedule(static, 1)
@@ -594,7 +595,7 @@ void CollisionGrid::buildCellArrays(const std::vector<CapsuleLink>& links, const
   fill_.clear();
   if (!all)
   {
-    need_.assign(nCells, 0);
+    refill(need_, nCells, char{ 0 });
     for (const std::uint32_t ci : visit_)
     {
       need_[ci] = 1;
@@ -981,7 +982,7 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
 // 6 % of a distributed solver step on the 1000-fiber cube.
 void CollisionGrid::mergePairs(std::size_t nLinks, int nThreads, std::vector<CapsulePair>& pairs)
 {
-  pairEnd_.assign(nLinks + 1, 0);
+  refill(pairEnd_, nLinks + 1, std::size_t{ 0 });
   std::size_t total = 0;
   for (const auto& v : perThread_)
   {

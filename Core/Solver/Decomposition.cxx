@@ -201,16 +201,55 @@ void BoxLayout::cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t
   // Per axis a histogram of all ranks' link centres (exact integer sums, the same on every rank),
   // cut where its running sum passes k/n_d of the links: within one bin (1/4096 of the axis) of
   // the balanced cut. With the boxes' pair work, each link weighs its box's work per link instead
-  // of 1, in fixed point (2^20 for the costliest box) so that the sums stay exact integers.
+  // of 1, in fixed point (2^20 for the costliest box) so that the sums stay exact integers. One
+  // pass over the links makes a histogram per tester box they lie in (a rank's links lie in a few)
+  // along the axes that are cut; the weights, known once every rank's boxes are counted, then
+  // scale them: the same integer sums as weighing each link.
   constexpr std::size_t kBins = 4096;
   const std::size_t nr = static_cast<std::size_t>(ranks_);
-  std::vector<std::int64_t> weight; // per box, empty: 1
+  std::vector<int> axes; // the axes with more than one layer and a span
+  for (int d = 0; d < 3; ++d)
+    if (n_[d] > 1 && hi_[d] > lo_[d])
+      axes.push_back(d);
+  const std::size_t na = axes.size();
+  std::vector<int> boxOfSlot;           // the tester box of each histogram
+  std::vector<std::int64_t> histograms; // per slot, per cut axis, kBins counts
+  std::vector<std::int64_t> linksOfSlot;
+  int lastBox = -1;
+  std::size_t lastSlot = 0;
+  for (const Fiber& f : local.fibers)
+  {
+    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
+    {
+      const Vec3 c = 0.5 * (f.points[k] + f.points[k + 1]);
+      const int box = work >= 0 ? testerOf(c) : 0; // unweighed: one histogram
+      if (box != lastBox)
+      {
+        lastBox = box;
+        lastSlot = static_cast<std::size_t>(
+          std::find(boxOfSlot.begin(), boxOfSlot.end(), box) - boxOfSlot.begin());
+        if (lastSlot == boxOfSlot.size())
+        {
+          boxOfSlot.push_back(box);
+          linksOfSlot.push_back(0);
+          histograms.resize(histograms.size() + na * kBins, 0);
+        }
+      }
+      ++linksOfSlot[lastSlot];
+      std::int64_t* h = histograms.data() + lastSlot * na * kBins;
+      for (std::size_t a = 0; a < na; ++a)
+      {
+        const double bin = std::floor(fraction(axes[a], c[axes[a]]) * static_cast<double>(kBins));
+        ++h[a * kBins + (bin < 0.0 ? 0 : bin >= kBins ? kBins - 1 : static_cast<std::size_t>(bin))];
+      }
+    }
+  }
+  std::vector<std::int64_t> weight(nr, 1); // per box
   if (work >= 0)
   {
     std::vector<std::int64_t> perBox(2 * nr, 0); // links (current cuts), then work
-    for (const Fiber& f : local.fibers)
-      for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
-        ++perBox[static_cast<std::size_t>(testerOf(0.5 * (f.points[k] + f.points[k + 1])))];
+    for (std::size_t s = 0; s < boxOfSlot.size(); ++s)
+      perBox[static_cast<std::size_t>(boxOfSlot[s])] += linksOfSlot[s];
     perBox[nr + static_cast<std::size_t>(comm.rank())] = work;
     comm.sum(perBox);
     double most = 0.0;
@@ -223,30 +262,19 @@ void BoxLayout::cutTesterBoxes(const FiberModel& local, Comm& comm, std::int64_t
     }
     if (!(most > 0.0))
       return;
-    weight.assign(nr, 0);
     for (std::size_t q = 0; q < nr; ++q)
-      if (perBox[q] > 0)
-        weight[q] = std::llround(
-          static_cast<double>(perBox[nr + q]) / static_cast<double>(perBox[q]) / most * 1048576.0);
+      weight[q] = perBox[q] > 0 ? std::llround(static_cast<double>(perBox[nr + q]) /
+                                    static_cast<double>(perBox[q]) / most * 1048576.0)
+                                : 0;
   }
   std::vector<std::int64_t> count(3 * kBins, 0);
-  for (const Fiber& f : local.fibers)
+  for (std::size_t s = 0; s < boxOfSlot.size(); ++s)
   {
-    for (std::size_t k = 0; k + 1 < f.points.size(); ++k)
-    {
-      const Vec3 c = 0.5 * (f.points[k] + f.points[k + 1]);
-      const std::int64_t w = weight.empty() ? 1 : weight[static_cast<std::size_t>(testerOf(c))];
-      for (int d = 0; d < 3; ++d)
-      {
-        if (!(hi_[d] > lo_[d]))
-          continue;
-        const double bin = std::floor(fraction(d, c[d]) * static_cast<double>(kBins));
-        count[d * kBins +
-          (bin < 0.0         ? 0
-              : bin >= kBins ? kBins - 1
-                             : static_cast<std::size_t>(bin))] += w;
-      }
-    }
+    const std::int64_t w = weight[static_cast<std::size_t>(boxOfSlot[s])];
+    const std::int64_t* h = histograms.data() + s * na * kBins;
+    for (std::size_t a = 0; a < na; ++a)
+      for (std::size_t b = 0; b < kBins; ++b)
+        count[static_cast<std::size_t>(axes[a]) * kBins + b] += w * h[a * kBins + b];
   }
   comm.sum(count);
   for (int d = 0; d < 3; ++d)

@@ -170,8 +170,10 @@ double capsuleRadius(double r0, double r1, double scale)
 TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* active,
   const std::vector<char>* closed, const std::vector<std::int64_t>& global, double scale,
   const BoxLayout& layout, double reach, Comm& comm, std::vector<CapsuleLink>& held,
-  HeldLinkInfo& info, std::vector<int>& partners)
+  HeldLinkInfo& info, std::vector<int>& partners, LinkExchangeBuffers* buffers)
 {
+  LinkExchangeBuffers ownBuffers;
+  LinkExchangeBuffers& buf = buffers ? *buffers : ownBuffers;
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
   const OwnLinks own(model, active, closed);
@@ -192,22 +194,19 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   }
   const LayoutBox ownerBox = layout.box(me, true);
   std::vector<double> m(12, 0.0); // grow below, grow above, spread below, spread above
-  std::vector<int> tester(own.size());
-  std::vector<Vec3> shift(periodic ? own.size() : 0); // without a cell no link is shifted
+  std::vector<int>& tester = buf.tester;
+  tester.resize(own.size()); // every entry is set below
+  std::vector<Vec3>& shift = buf.shift;
+  shift.resize(periodic ? own.size() : 0); // without a cell no link is shifted
   // Without a cell the links go in blocks of up to kBlock consecutive links of one fiber. A block
   // whose points lie inside one tester box by more than the rounding of layerOf (1e-9 of the
   // span, far above it) has that tester for every link and no link reaching beyond its faces;
   // the routing below then sends it whole when its bounding box comes within reach of that box
   // alone. Most links lie so (a box is much wider than a link): each costs its points' extremes.
   constexpr std::size_t kBlock = 16;
-  struct Block
-  {
-    std::uint32_t f, k0, k1; // links k0, …, k1 − 1 of fiber f
-    bool inside;             // in tester layers `layer`, by the margin
-    int layer[3];
-    Vec3 lo, hi; // the bounding box of its points
-  };
-  std::vector<Block> blocks;
+  using Block = LinkBlock;
+  std::vector<Block>& blocks = buf.blocks;
+  blocks.clear();
   std::size_t blockCount = 0; // sized once: growing it copied every block made so far
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
     blockCount += (own.links(f) + kBlock - 1) / kBlock;
@@ -229,9 +228,10 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
       const std::size_t i0 = own.begin[f];
       if (!periodic)
       {
-        // The points of links k0..k1-1: k0..k1 (consecutive links share a point).
-        block.lo = block.hi = p[k1];
-        for (std::size_t k = k0; k < k1; ++k)
+        // The points of links k0..k1-1: k0..k1 (consecutive links share a point), read in
+        // order (a first read of p[k1] missed the cache once per block, ahead of the stream).
+        block.lo = block.hi = p[k0];
+        for (std::size_t k = k0 + 1; k <= k1; ++k)
         {
           block.lo = componentMin(block.lo, p[k]);
           block.hi = componentMax(block.hi, p[k]);
@@ -332,7 +332,10 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   const bool downOnly = testedPairs(layout) == TestedPairs::EitherLink;
   // Per destination, the run of links being collected (run[q].count > 0); `open`: those with a
   // run, `stamp[q] == i`: link i goes to q. This rank's own runs are only noted (mine).
-  std::vector<std::vector<char>> out(nr);
+  std::vector<std::vector<char>>& out = buf.out;
+  out.resize(nr);
+  for (std::vector<char>& b : out)
+    b.clear(); // the capacity is kept
   std::vector<OwnRun> run(nr);
   std::vector<std::size_t> stamp(nr, SIZE_MAX), open, dests;
   std::vector<OwnRun> mine;
@@ -501,6 +504,8 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   info.local.resize(total);
   info.tested.resize(total);
   std::size_t at = 0; // the next link to fill
+  info.fiberRuns.clear();
+  std::uint32_t lastFiber = 0; // of the last link filled (at > 0)
   std::vector<Reader> readers;
   readers.reserve(nr);
   for (const std::vector<char>& b : in)
@@ -539,6 +544,10 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
     int* owners = info.owner.data() + at;
     std::uint32_t* locals = info.local.data() + at;
     char* testedHere = info.tested.data() + at;
+    if (count > 0 && (at == 0 || fiber != lastFiber))
+      info.fiberRuns.push_back(at); // runs of one fiber arrive one after the other
+    if (count > 0)
+      lastFiber = fiber;
     double arc = arc0;
     for (std::size_t j = 0; j < count; ++j)
     {
@@ -580,6 +589,7 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
       [&](std::size_t, const CapsuleLink& l) { return layout.testerOf(centre(l)) == me; });
   };
   mergeStreams<std::uint64_t>(nr, peek, take);
+  info.fiberRuns.push_back(at);
   return sent;
 }
 

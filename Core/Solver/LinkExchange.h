@@ -42,6 +42,9 @@ struct HeldLinkInfo
   std::vector<std::uint32_t> local; ///< the fiber's index in this rank's model, or kNotOwned
   std::vector<char> tested; ///< 1: a link of this rank's tester box (testedPairs says which of its
                             ///< pairs the rank tests)
+  /// The first held link of each fiber's links (they are consecutive: global link order), + the
+  /// total.
+  std::vector<std::size_t> fiberRuns;
 };
 
 /// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester
@@ -56,6 +59,26 @@ inline TestedPairs testedPairs(const BoxLayout& layout)
 /// A link's capsule radius from its points' radii at radius scale `scale` (radius growth); the
 /// solver's links and the received ones use this one formula, so they have the same bits.
 double capsuleRadius(double r0, double r1, double scale);
+
+/// A block of up to 16 consecutive own links of one fiber as exchangeLinks routes them.
+struct LinkBlock
+{
+  std::uint32_t f, k0, k1; ///< links k0, …, k1 − 1 of fiber f
+  bool inside;             ///< in tester layers `layer`, by the rounding margin
+  int layer[3];
+  Vec3 lo, hi; ///< the bounding box of its points
+};
+
+/// What exchangeLinks builds per own link and block every step, kept from call to call by the
+/// caller: at millions of links these are tens of megabytes, which allocated afresh every step had
+/// every page faulted in again.
+struct LinkExchangeBuffers
+{
+  std::vector<int> tester;            ///< per own link, the box testing its pairs
+  std::vector<Vec3> shift;            ///< per own link in a periodic cell, its wrap
+  std::vector<LinkBlock> blocks;      ///< the own links in blocks (without a cell)
+  std::vector<std::vector<char>> out; ///< per rank, the runs sent to it
+};
 
 /// Sends every owned link to every rank whose tester box, grown by how far any link reaches beyond
 /// the faces of its own tester box, comes within `reach` of the link's bounding box (modulo the
@@ -72,11 +95,11 @@ double capsuleRadius(double r0, double r1, double scale);
 /// buildLinks gives them; the buffers' capacity is kept) and `info` what this rank holds: with
 /// reach at least 2·ρmax + gap every colliding partner of a link tested here is held here.
 /// Collective (a maximum of 12 values, one exchange with the partners); returns what was sent to
-/// other ranks.
+/// other ranks. buffers: the routing tables' storage, reused between calls (null: a call's own).
 TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* active,
   const std::vector<char>* closed, const std::vector<std::int64_t>& global, double scale,
   const BoxLayout& layout, double reach, Comm& comm, std::vector<CapsuleLink>& held,
-  HeldLinkInfo& info, std::vector<int>& partners);
+  HeldLinkInfo& info, std::vector<int>& partners, LinkExchangeBuffers* buffers = nullptr);
 
 /// The pushes of one pair on the end points of its links (§4.1): link a (fiber, k) gets a0 and
 /// a1, link b gets b0 and b1. Pair order is that of (fiberA, kA, fiberB, kB).

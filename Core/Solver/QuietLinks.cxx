@@ -27,6 +27,8 @@
 
 #include "Solver/QuietLinks.h"
 
+#include "Util/Refill.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -75,7 +77,7 @@ void QuietLinks::forget()
 
 void QuietLinks::remember(std::size_t links, const std::vector<CapsulePair>& pairs)
 {
-  prevColliding_.assign(links, 0);
+  refill(prevColliding_, links, char{ 0 });
   for (const CapsulePair& p : pairs)
   {
     prevColliding_[p.a] = 1;
@@ -84,7 +86,8 @@ void QuietLinks::remember(std::size_t links, const std::vector<CapsulePair>& pai
   recorded_ = true;
 }
 
-const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links, int threads)
+const std::vector<char>* QuietLinks::mark(
+  const std::vector<CapsuleLink>& links, int threads, const std::vector<std::size_t>* fiberRuns)
 {
   const std::size_t n = links.size();
   if (!havePrev_ || prevColliding_.size() != prev_.size())
@@ -93,13 +96,20 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
     return nullptr;
   }
   // The runs of one fiber's links (both lists come fiber by fiber, fibers and links ascending).
-  runStart_.clear();
-  for (std::size_t i = 0; i < n; ++i)
+  if (fiberRuns && !fiberRuns->empty() && fiberRuns->back() == n)
   {
-    if (i == 0 || links[i].fiber != links[i - 1].fiber)
-      runStart_.push_back(i);
+    runStart_ = *fiberRuns;
   }
-  runStart_.push_back(n);
+  else
+  {
+    runStart_.clear();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (i == 0 || links[i].fiber != links[i - 1].fiber)
+        runStart_.push_back(i);
+    }
+    runStart_.push_back(n);
+  }
   loud_.resize(n);
   match_.resize(n);
   const auto runs = static_cast<std::int64_t>(runStart_.size()) - 1;
@@ -113,12 +123,13 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
     const auto first = std::lower_bound(prev_.begin(), prev_.end(), fiber,
       [](const CapsuleLink& l, std::uint32_t f) { return l.fiber < f; });
     const auto pb = static_cast<std::size_t>(first - prev_.begin());
-    std::size_t pe = pb;
-    double rhoMax = 0.0; // of the fiber's links at the last detection
-    while (pe < prev_.size() && prev_[pe].fiber == fiber)
-      rhoMax = std::max(rhoMax, prev_[pe++].rho);
-    if (pe - pb == ce - cb &&
-      std::memcmp(&links[cb], &prev_[pb], (ce - cb) * sizeof(CapsuleLink)) == 0)
+    // The fiber had as many links at the last detection exactly when its run there ends where
+    // this run's length says: two links read instead of a pass over that run (the comparison
+    // below reads it anyway when the counts agree).
+    const std::size_t pSame = pb + (ce - cb);
+    const bool sameCount = pSame <= prev_.size() && prev_[pSame - 1].fiber == fiber &&
+      (pSame == prev_.size() || prev_[pSame].fiber != fiber);
+    if (sameCount && std::memcmp(&links[cb], &prev_[pb], (ce - cb) * sizeof(CapsuleLink)) == 0)
     {
       // The fiber's links are bitwise those of the last detection, arc lengths and indices
       // included: every same-fiber decision is the same, only the colliding links are loud.
@@ -129,6 +140,10 @@ const std::vector<char>* QuietLinks::mark(const std::vector<CapsuleLink>& links,
       }
       continue;
     }
+    std::size_t pe = pb;
+    double rhoMax = 0.0; // of the fiber's links at the last detection
+    while (pe < prev_.size() && prev_[pe].fiber == fiber)
+      rhoMax = std::max(rhoMax, prev_[pe++].rho);
     // Link (fiber, k) now against link (fiber, k) then: a split or merge shifts the indices
     // behind it, and those links then differ (loud).
     for (std::size_t i = cb, p = pb; i < ce; ++i)

@@ -22,7 +22,10 @@ public:
   void keep(std::vector<CapsuleLink>& links);
   /// The loud flag of every link of `links` (1 = test its pairs), null when every link is loud
   /// (no usable last detection). Call once per detection, after keep() and the rebuild.
-  const std::vector<char>* mark(const std::vector<CapsuleLink>& links, int threads);
+  /// fiberRuns (optional): the first link of each fiber's links in `links` (+ the total), as the
+  /// builder of the links knows them; without it they are found by a pass over the links.
+  const std::vector<char>* mark(const std::vector<CapsuleLink>& links, int threads,
+    const std::vector<std::size_t>* fiberRuns = nullptr);
   /// After mark() returned flags: makes loud every quiet link i for which alsoLoud(i) holds (the
   /// distributed solver's links whose tester box moved, docs/solver.md §13). Loud links stay loud.
   template <class AlsoLoud>

@@ -43,7 +43,7 @@ bool SolverEngine::detect(Counts* counts, bool changed, bool boundFirst)
     quiet_.keep(links_);
   }
   gatherLinks(&st_.active, periodic() ? &st_.closed : nullptr, st_.scale);
-  loud_ = quiet ? quiet_.mark(links_, threads_) : nullptr;
+  loud_ = quiet ? quiet_.mark(links_, threads_, &held_.fiberRuns) : nullptr;
   if (loud_ && testersMoved_)
   {
     quiet_.makeLoud(

@@ -88,7 +88,7 @@ void SolverEngine::gatherLinks(
 {
   if (!comm_)
   {
-    buildLinks(model_, active, threads_, links_, &pointOffset_, closed, scale);
+    buildLinks(model_, active, threads_, links_, &pointOffset_, closed, scale, &held_.fiberRuns);
     return;
   }
   pointOffsets(model_, pointOffset_);
@@ -98,8 +98,8 @@ void SolverEngine::gatherLinks(
     ownLinkCount_ += linksOf(model_, active, f);
   }
   const double reach = forGapProbe ? probeReach_ : pairReach_;
-  const TrafficCount sent = exchangeLinks(
-    model_, active, closed, st_.global, scale, layout_, reach, *comm_, links_, held_, partners_);
+  const TrafficCount sent = exchangeLinks(model_, active, closed, st_.global, scale, layout_, reach,
+    *comm_, links_, held_, partners_, &exchangeBuffers_);
   if (forGapProbe)
   {
     return;

@@ -76,6 +76,7 @@ public:
   BoxLayout testersBefore_;
   bool testersMoved_ = false;
   std::vector<int> partners_; // the ranks the last gatherLinks exchanged with (pushes go back)
+  LinkExchangeBuffers exchangeBuffers_; // the routing tables, kept from step to step
   // Per fiber, the owner box its middle lies in after the last move (separate() finds it while
   // the fiber's points are at hand; leavingFibers() counts those that left), -1: not moved.
   std::vector<int> movedOwner_;

@@ -13,7 +13,7 @@ namespace fiberpli
 // Offsets first (serial prefix sums), then the fibers in parallel: each writes its own range.
 void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
   std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset,
-  const std::vector<char>* closed, double scale)
+  const std::vector<char>* closed, double scale, std::vector<std::size_t>* fiberRuns)
 {
   const std::size_t nf = model.fibers.size();
   std::vector<std::size_t> linkOffset(nf + 1, 0);
@@ -28,6 +28,14 @@ void buildLinks(const FiberModel& model, const std::vector<char>* active, int th
     nLinks += linksOf(model, active, f);
   }
   linkOffset[nf] = nLinks;
+  if (fiberRuns)
+  {
+    fiberRuns->clear();
+    for (std::size_t f = 0; f < nf; ++f)
+      if (linkOffset[f + 1] > linkOffset[f])
+        fiberRuns->push_back(linkOffset[f]);
+    fiberRuns->push_back(nLinks);
+  }
   links.resize(nLinks);
   const std::int64_t n = static_cast<std::int64_t>(nf);
 #pragma omp parallel for num_threads(threads) schedule(static)

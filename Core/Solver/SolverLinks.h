@@ -24,10 +24,12 @@ inline std::size_t linksOf(const FiberModel& model, const std::vector<char>* act
 /// Flat link array of all fibers with >= 2 points; the index is the global link id (§1).
 /// active (optional): only these fibers; pointOffset (optional): each fiber's first point in a
 /// flat point array; closed (optional): fibers closed through a periodic cell; scale: capsule
-/// radii × scale (growth).
+/// radii × scale (growth); fiberRuns (optional): the first link of each fiber that has links (+ the
+/// total), so that no pass over the links has to find where one fiber's links end.
 void buildLinks(const FiberModel& model, const std::vector<char>* active, int threads,
   std::vector<CapsuleLink>& links, std::vector<std::size_t>* pointOffset,
-  const std::vector<char>* closed = nullptr, double scale = 1.0);
+  const std::vector<char>* closed = nullptr, double scale = 1.0,
+  std::vector<std::size_t>* fiberRuns = nullptr);
 
 /// Each fiber's first point in a flat point array of all fibers (+ the total): the slots of the
 /// solver's per-point forces.

@@ -5,6 +5,7 @@
 #include "Solver/BeadProfile.h"
 #include "Solver/PushBoost.h"
 #include "Solver/TortuosityControl.h"
+#include "Util/Refill.h"
 
 #include <cmath>
 
@@ -116,7 +117,7 @@ void SolverEngine::separate()
     out.b0 = -((1.0 - p.t) * n);
     out.b1 = -(p.t * n);
   }
-  force_.assign(pointOffset_.back(), Vec3{});
+  refill(force_, pointOffset_.back(), Vec3{});
   const double spread = o_.pushSpread;
   // One pair's pushes onto the points of its links that this rank owns (fa, fb: the links'
   // fibers in the model, SIZE_MAX: another rank's; that side is added there, in the same order).
@@ -175,7 +176,7 @@ void SolverEngine::separate()
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
   if (comm_)
   {
-    movedOwner_.assign(model_.fibers.size(), -1);
+    refill(movedOwner_, model_.fibers.size(), -1);
   }
   const bool remembers = o_.dragSteps == 0 || st_.steps < o_.dragSteps;
   const double drag = remembers ? o_.drag : 0.0;

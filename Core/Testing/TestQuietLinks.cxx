@@ -342,3 +342,47 @@ TEST(QuietLinks, RadiusGrowthAndResumeAreBitForBitAsWithoutSkipping)
   EXPECT_EQ(r2.steps, r1.steps);
   EXPECT_EQ(r2.collisions, r1.collisions);
 }
+
+// The runs of each fiber's links as the link builder hands them to mark() give the flags that
+// mark() finds by itself: an unchanged fiber is quiet, a moved point makes its two links loud, a
+// fiber that gained a link keeps its unchanged links quiet, and a fiber with no links then is loud.
+TEST(QuietLinks, TheBuildersFiberRunsGiveTheFlagsOfAPassOverTheLinks)
+{
+  const auto straight = [](double y, int points)
+  {
+    Fiber f;
+    for (int i = 0; i < points; ++i)
+    {
+      f.points.push_back({ 2.0 * i, y, 0.0 });
+      f.radii.push_back(0.5);
+    }
+    return f;
+  };
+  FiberModel before;
+  before.fibers = { straight(0.0, 6), straight(5.0, 6), straight(10.0, 6), straight(15.0, 1) };
+  FiberModel after = before;
+  after.fibers[1].points[3].z = 0.25;                    // links 2 and 3 of fiber 1
+  after.fibers[2].points.push_back({ 12.0, 10.0, 0.0 }); // fiber 2 gains link 5
+  after.fibers[2].radii.push_back(0.5);
+  after.fibers[3] = straight(15.0, 3); // fiber 3 had no link
+  const std::vector<char> expected{ 0, 0, 0, 0, 0, /**/ 0, 0, 1, 1, 0, /**/ 0, 0, 0, 0, 0, 1,
+    /**/ 1, 1 };
+  for (bool given : { true, false })
+  {
+    QuietLinks quiet;
+    std::vector<CapsuleLink> links;
+    std::vector<std::size_t> runs;
+    buildLinks(before, nullptr, 1, links, nullptr, nullptr, 1.0, &runs);
+    EXPECT_EQ(runs, (std::vector<std::size_t>{ 0, 5, 10, 15 }));
+    quiet.keep(links);
+    quiet.mark(links, 1, given ? &runs : nullptr);
+    quiet.remember(links.size(), {}); // no pair collided
+    quiet.keep(links);
+    buildLinks(after, nullptr, 1, links, nullptr, nullptr, 1.0, &runs);
+    EXPECT_EQ(runs, (std::vector<std::size_t>{ 0, 5, 10, 16, 18 }));
+    const std::vector<char>* loud = quiet.mark(links, 1, given ? &runs : nullptr);
+    ASSERT_NE(loud, nullptr);
+    EXPECT_EQ(*loud, expected) << (given ? "runs given" : "runs found");
+    EXPECT_EQ(quiet.loudLinks(), 5u);
+  }
+}
