@@ -487,6 +487,7 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   std::size_t total = 0;
   for (const OwnRun& o : mine)
     total += o.count;
+  const std::size_t mineTotal = total;
   for (const std::vector<char>& b : in)
   {
     Reader rd(b);
@@ -561,10 +562,16 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
       arc += distance(l.p0, l.p1);
       l.arc1 = arc;
       l.closedLength = closedLength;
-      pointRadius[j] = std::min(r[j], r[j + 1]);
-      owners[j] = owner;
       locals[j] = local;
       testedHere[j] = tested(j, l) ? 1 : 0;
+    }
+    if (local == kNotOwned) // another rank's links: what this rank's model does not tell
+    {
+      for (std::size_t j = 0; j < count; ++j)
+      {
+        pointRadius[j] = std::min(r[j], r[j + 1]);
+        owners[j] = owner;
+      }
     }
     at += count;
   };
@@ -590,13 +597,16 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   };
   mergeStreams<std::uint64_t>(nr, peek, take);
   info.fiberRuns.push_back(at);
+  info.received = total - mineTotal;
   return sent;
 }
 
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
   const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
-  std::vector<std::vector<ReceivedPush>>& received)
+  std::vector<std::vector<ReceivedPush>>& received, LinkExchangeBuffers* buffers)
 {
+  std::vector<std::vector<char>> ownOut;
+  std::vector<std::vector<char>>& out = buffers ? buffers->out : ownOut;
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   const int me = comm.rank();
   // Sizes first, so that every buffer is written once into its final place (no regrowth).
@@ -624,9 +634,12 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
   for (const LinkPairPush& p : tested)
     route(
       p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
-  std::vector<std::vector<char>> out(nr);
+  out.resize(nr);
   for (std::size_t q = 0; q < nr; ++q)
+  {
+    out[q].clear(); // the capacity is kept
     out[q].reserve(size[q]);
+  }
   for (const LinkPairPush& p : tested)
   {
     route(p,

@@ -34,7 +34,9 @@ inline std::uint64_t linkKey(std::uint32_t fiber, std::uint32_t k)
   return (static_cast<std::uint64_t>(fiber) << 32) | k;
 }
 
-/// What a rank knows of each link it holds, besides its capsule.
+/// What a rank knows of each link it holds, besides its capsule. pointRadius and owner are set
+/// only for the links of other ranks' fibers (local kNotOwned): this rank's own are its model's
+/// and its own, and leaving them unwritten spares the exchange a tenth of what it writes.
 struct HeldLinkInfo
 {
   std::vector<double> pointRadius;  ///< the smaller radius of the link's two points (unscaled)
@@ -45,6 +47,7 @@ struct HeldLinkInfo
   /// The first held link of each fiber's links (they are consecutive: global link order), + the
   /// total.
   std::vector<std::size_t> fiberRuns;
+  std::size_t received = 0; ///< the held links of other ranks' fibers (local kNotOwned)
 };
 
 /// Which pairs a rank tests among the links it holds (HeldLinkInfo::tested flags its own tester
@@ -77,7 +80,7 @@ struct LinkExchangeBuffers
   std::vector<int> tester;            ///< per own link, the box testing its pairs
   std::vector<Vec3> shift;            ///< per own link in a periodic cell, its wrap
   std::vector<LinkBlock> blocks;      ///< the own links in blocks (without a cell)
-  std::vector<std::vector<char>> out; ///< per rank, the runs sent to it
+  std::vector<std::vector<char>> out; ///< per rank, the runs (later the pushes) sent to it
 };
 
 /// Sends every owned link to every rank whose tester box, grown by how far any link reaches beyond
@@ -123,10 +126,11 @@ struct ReceivedPush
 /// buffers reused) the pushes other ranks tested on this rank's links, each sender's in pair
 /// order (a side not received is zero). `tested` must be in pair order; global: this rank's
 /// fibers' global indices, ascending; partners: those of the exchangeLinks that sent the links.
-/// Collective; `sent` counts what went to other ranks.
+/// Collective; `sent` counts what went to other ranks. buffers (optional): its `out` holds the
+/// buffers sent, reused between calls (early in a solve they are tens of megabytes a step).
 void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
   const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
-  std::vector<std::vector<ReceivedPush>>& received);
+  std::vector<std::vector<ReceivedPush>>& received, LinkExchangeBuffers* buffers = nullptr);
 
 /// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):
 /// take(push, fa, fb) with the model indices of its links' fibers (kNotOwned: another rank's).

@@ -106,9 +106,7 @@ void SolverEngine::gatherLinks(
   }
   haloBytes_ += sent.bytes;
   ++haloExchanges_;
-  std::size_t halo = 0;
-  for (std::uint32_t f : held_.local)
-    halo += f == kNotOwned ? 1 : 0;
+  const std::size_t halo = held_.received;
   peakHeldLinks_ = std::max(peakHeldLinks_, links_.size());
   peakPartners_ = std::max(peakPartners_, partners_.size());
   peakHaloLinks_ = std::max(peakHaloLinks_, halo);

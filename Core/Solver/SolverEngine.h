@@ -77,6 +77,9 @@ public:
   bool testersMoved_ = false;
   std::vector<int> partners_; // the ranks the last gatherLinks exchanged with (pushes go back)
   LinkExchangeBuffers exchangeBuffers_; // the routing tables, kept from step to step
+  // Per sender, the pushes other ranks tested on this rank's links (kept from step to step: early
+  // in a solve they are tens of megabytes, allocated afresh every step).
+  std::vector<std::vector<ReceivedPush>> pushesReceived_;
   // Per fiber, the owner box its middle lies in after the last move (separate() finds it while
   // the fiber's points are at hand; leavingFibers() counts those that left), -1: not moved.
   std::vector<int> movedOwner_;
@@ -183,16 +186,25 @@ public:
     return periodic() && st_.closed[f] ? base + 1 : SIZE_MAX;
   }
 
-  // The smaller radius of the two points of link i of links_.
+  // The smaller radius of the two points of link i of links_ (its fiber's points in this rank's
+  // model, or as another rank sent them).
   double smallerPointRadius(std::size_t i) const
   {
+    const CapsuleLink& l = links_[i];
+    std::size_t f = l.fiber;
     if (comm_)
     {
-      return held_.pointRadius[i];
+      if (held_.local[i] == kNotOwned)
+        return held_.pointRadius[i];
+      f = held_.local[i];
     }
-    const CapsuleLink& l = links_[i];
-    const Fiber& fib = model_.fibers[l.fiber];
+    const Fiber& fib = model_.fibers[f];
     return std::min(fib.radii[l.k], fib.radii[l.k + 1]);
+  }
+  // The rank owning the fiber of link i of links_ (distributed).
+  int ownerOfLink(std::size_t i) const
+  {
+    return held_.local[i] == kNotOwned ? held_.owner[i] : comm_->rank();
   }
 };
 

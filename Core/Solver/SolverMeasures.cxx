@@ -34,11 +34,13 @@ double SolverEngine::maxOverlap() const
 // Distributed, the links are gathered again with the probe's reach (the pairs found before no
 // longer index them), and each rank examines only the pairs it tests (the minimum over the ranks
 // is the serial one). This search set a solve's peak memory (bench/README.md "Memory per rank"):
-// the step's pair and push lists, no longer needed, are released before it.
+// the step's pair and push lists (and the pushes received), no longer needed, are released
+// before it.
 double smallestGap(SolverEngine& s, double probe)
 {
   std::vector<CapsulePair>().swap(s.pairs_);
   std::vector<LinkPairPush>().swap(s.push_);
+  std::vector<std::vector<ReceivedPush>>().swap(s.pushesReceived_);
   if (s.comm_)
   {
     s.quiet_.forget(); // links_ no longer holds the last detection's links

@@ -110,8 +110,8 @@ void SolverEngine::separate()
     out.kA = la.k;
     out.fiberB = lb.fiber;
     out.kB = lb.k;
-    out.ownerA = comm_ ? held_.owner[p.a] : 0;
-    out.ownerB = comm_ ? held_.owner[p.b] : 0;
+    out.ownerA = comm_ ? ownerOfLink(p.a) : 0;
+    out.ownerB = comm_ ? ownerOfLink(p.b) : 0;
     out.a0 = (1.0 - p.s) * n;
     out.a1 = p.s * n;
     out.b0 = -((1.0 - p.t) * n);
@@ -162,10 +162,8 @@ void SolverEngine::separate()
   else
   {
     TrafficCount sent;
-    // Per sender, the pushes others tested on this rank's links (not kept between steps: the
-    // peak memory stays the pair search's).
-    std::vector<std::vector<ReceivedPush>> received;
-    returnPushes(push_, st_.global, partners_, *comm_, sent, received);
+    std::vector<std::vector<ReceivedPush>>& received = pushesReceived_;
+    returnPushes(push_, st_.global, partners_, *comm_, sent, received, &exchangeBuffers_);
     haloBytes_ += sent.bytes;
     const auto own = [](std::uint32_t f)
     { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
