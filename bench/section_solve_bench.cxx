@@ -108,6 +108,8 @@ public:
     last_ = threadCpuSeconds();
     return in;
   }
+  // Per stretch, the collective that ends it.
+  const std::vector<const char*>& kinds() const { return kinds_; }
   // The stretches, the last one (after the last collective) included.
   std::vector<double> finish()
   {
@@ -126,9 +128,6 @@ private:
   double last_;
   std::vector<double> stretches_;
   std::vector<const char*> kinds_;
-
-public:
-  const std::vector<const char*>& kinds() const { return kinds_; }
 };
 } // namespace
 
@@ -152,17 +151,14 @@ int main(int argc, char** argv)
     else if (a == "--ranks")
     {
       rankList.clear();
-      for (const char* p = next(); *p;)
+      const std::string list = next();
+      for (std::size_t at = 0; at <= list.size();)
       {
-        char* end = nullptr;
-        if (*p == 'd' && p[1] == '1') // the distributed solver on one rank
-        {
-          rankList.push_back(0);
-          end = const_cast<char*>(p + 2);
-        }
-        else
-          rankList.push_back(std::max(1, static_cast<int>(std::strtol(p, &end, 10))));
-        p = *end == ',' ? end + 1 : "";
+        const std::size_t comma = std::min(list.find(',', at), list.size());
+        const std::string entry = list.substr(at, comma - at);
+        // 0: the distributed solver on one rank (d1)
+        rankList.push_back(entry == "d1" ? 0 : std::max(1, std::atoi(entry.c_str())));
+        at = comma + 1;
       }
     }
     else if (a == "--stretches")
@@ -319,24 +315,22 @@ int main(int argc, char** argv)
     (ranks > 1 ? critical : ranks == 1 ? serialCpu : oneRankDistributed).push_back(s);
     std::fflush(stdout);
   }
-  if (!serialCpu.empty() && !critical.empty())
+  if (serialCpu.empty())
+    return 0;
+  const double one = std::accumulate(serialCpu.begin(), serialCpu.end(), 0.0) /
+    static_cast<double>(serialCpu.size()); // the mean one-rank CPU
+  if (!critical.empty())
   {
-    double one = 0.0;
-    for (double c : serialCpu)
-      one += c;
-    one /= static_cast<double>(serialCpu.size());
     std::printf("speed-up against the mean one-rank CPU (%.1f s), by critical path:", one);
     for (double c : critical)
       std::printf(" %.3f", one / c);
     std::printf("\n");
   }
-  if (!serialCpu.empty() && !oneRankDistributed.empty())
+  if (!oneRankDistributed.empty())
   {
     std::printf("the distributed solver on one rank against the serial one, CPU:");
     for (double c : oneRankDistributed)
-      std::printf(" %.3f",
-        c * static_cast<double>(serialCpu.size()) /
-          std::accumulate(serialCpu.begin(), serialCpu.end(), 0.0));
+      std::printf(" %.3f", c / one);
     std::printf("\n");
   }
   return 0;

@@ -545,10 +545,11 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
     int* owners = info.owner.data() + at;
     std::uint32_t* locals = info.local.data() + at;
     char* testedHere = info.tested.data() + at;
-    if (count > 0 && (at == 0 || fiber != lastFiber))
-      info.fiberRuns.push_back(at); // runs of one fiber arrive one after the other
-    if (count > 0)
+    if (count > 0 && (at == 0 || fiber != lastFiber)) // runs of one fiber arrive one after another
+    {
+      info.fiberRuns.push_back(at);
       lastFiber = fiber;
+    }
     double arc = arc0;
     for (std::size_t j = 0; j < count; ++j)
     {

@@ -96,11 +96,8 @@ const std::vector<char>* QuietLinks::mark(
     return nullptr;
   }
   // The runs of one fiber's links (both lists come fiber by fiber, fibers and links ascending).
-  if (fiberRuns && !fiberRuns->empty() && fiberRuns->back() == n)
-  {
-    runStart_ = *fiberRuns;
-  }
-  else
+  const bool given = fiberRuns && !fiberRuns->empty() && fiberRuns->back() == n;
+  if (!given)
   {
     runStart_.clear();
     for (std::size_t i = 0; i < n; ++i)
@@ -110,15 +107,16 @@ const std::vector<char>* QuietLinks::mark(
     }
     runStart_.push_back(n);
   }
+  const std::vector<std::size_t>& runStart = given ? *fiberRuns : runStart_;
   loud_.resize(n);
   match_.resize(n);
-  const auto runs = static_cast<std::int64_t>(runStart_.size()) - 1;
+  const auto runs = static_cast<std::int64_t>(runStart.size()) - 1;
   std::int64_t loudTotal = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 64) reduction(+ : loudTotal)
   for (std::int64_t run = 0; run < runs; ++run)
   {
-    const std::size_t cb = runStart_[static_cast<std::size_t>(run)];
-    const std::size_t ce = runStart_[static_cast<std::size_t>(run) + 1];
+    const std::size_t cb = runStart[static_cast<std::size_t>(run)];
+    const std::size_t ce = runStart[static_cast<std::size_t>(run) + 1];
     const std::uint32_t fiber = links[cb].fiber;
     const auto first = std::lower_bound(prev_.begin(), prev_.end(), fiber,
       [](const CapsuleLink& l, std::uint32_t f) { return l.fiber < f; });

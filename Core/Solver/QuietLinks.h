@@ -55,7 +55,8 @@ private:
   bool havePrev_ = false;           // prev_ and prevColliding_ describe the last detection
   bool recorded_ = false;           // remember() followed the last mark()
   std::vector<char> loud_;
-  std::vector<std::size_t> runStart_; // the first link of each fiber's run in the links (+ end)
+  std::vector<std::size_t> runStart_; // mark() without the builder's runs: each fiber's first link
+                                      // in the links (+ end)
   std::vector<std::size_t> match_;    // per link, the same (fiber, k) in prev_, or none
   std::size_t loudCount_ = 0;
 };

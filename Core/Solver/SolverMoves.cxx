@@ -162,12 +162,11 @@ void SolverEngine::separate()
   else
   {
     TrafficCount sent;
-    std::vector<std::vector<ReceivedPush>>& received = pushesReceived_;
-    returnPushes(push_, st_.global, partners_, *comm_, sent, received, &exchangeBuffers_);
+    returnPushes(push_, st_.global, partners_, *comm_, sent, pushesReceived_, &exchangeBuffers_);
     haloBytes_ += sent.bytes;
     const auto own = [](std::uint32_t f)
     { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
-    forPushesInPairOrder(push_, pairs_, held_.local, received,
+    forPushesInPairOrder(push_, pairs_, held_.local, pushesReceived_,
       [&](const LinkPairPush& p, std::uint32_t fa, std::uint32_t fb)
       { apply(p, own(fa), own(fb)); });
   }
