@@ -161,6 +161,23 @@ void writeRun(std::vector<char>& out, const OwnLinks& own, const OwnRun& run,
 }
 } // namespace
 
+void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out)
+{
+  out.resize((links + kLinkBlock - 1) / kLinkBlock);
+  for (std::size_t b = 0; b < out.size(); ++b)
+  {
+    // The points of links k0..k1-1 are k0..k1 (consecutive links share a point), read in order.
+    const std::size_t k0 = b * kLinkBlock, k1 = std::min(links, k0 + kLinkBlock);
+    BlockBox box{ p[k0], p[k0] };
+    for (std::size_t k = k0 + 1; k <= k1; ++k)
+    {
+      box.lo = componentMin(box.lo, p[k]);
+      box.hi = componentMax(box.hi, p[k]);
+    }
+    out[b] = box;
+  }
+}
+
 double capsuleRadius(double r0, double r1, double scale)
 {
   const double rho = r0 > r1 ? r0 : r1;
@@ -198,18 +215,21 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   tester.resize(own.size()); // every entry is set below
   std::vector<Vec3>& shift = buf.shift;
   shift.resize(periodic ? own.size() : 0); // without a cell no link is shifted
-  // Without a cell the links go in blocks of up to kBlock consecutive links of one fiber. A block
-  // whose points lie inside one tester box by more than the rounding of layerOf (1e-9 of the
+  // Without a cell the links go in blocks of up to kLinkBlock consecutive links of one fiber. A
+  // block whose points lie inside one tester box by more than the rounding of layerOf (1e-9 of the
   // span, far above it) has that tester for every link and no link reaching beyond its faces;
   // the routing below then sends it whole when its bounding box comes within reach of that box
-  // alone. Most links lie so (a box is much wider than a link): each costs its points' extremes.
-  constexpr std::size_t kBlock = 16;
+  // alone. Most links lie so (a box is much wider than a link): each costs its points' extremes,
+  // which the caller may have taken already (LinkExchangeBuffers::blockBoxes).
   using Block = LinkBlock;
+  const bool boxesGiven = buf.blockBoxesCurrent && buf.blockBoxes.size() == model.fibers.size();
+  buf.blockBoxesCurrent = false;
+  std::vector<BlockBox> fiberBoxes; // one fiber's, when not given
   std::vector<Block>& blocks = buf.blocks;
   blocks.clear();
   std::size_t blockCount = 0; // sized once: growing it copied every block made so far
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
-    blockCount += (own.links(f) + kBlock - 1) / kBlock;
+    blockCount += (own.links(f) + kLinkBlock - 1) / kLinkBlock;
   blocks.reserve(blockCount);
   double rounding[3];
   for (int d = 0; d < 3; ++d)
@@ -220,22 +240,25 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
     const Vec3* p = own.points(f);
     const Vec3 fiberShift =
       periodic && nl > 0 ? layout.wrapShift(BoxLayout::middle(model.fibers[f])) : Vec3{};
-    for (std::size_t k0 = 0; k0 < nl; k0 += kBlock)
+    const std::vector<BlockBox>* boxes = nullptr;
+    if (!periodic)
     {
-      const std::size_t k1 = std::min(nl, k0 + kBlock);
+      const std::size_t nb = (nl + kLinkBlock - 1) / kLinkBlock;
+      boxes = boxesGiven && buf.blockBoxes[f].size() == nb ? &buf.blockBoxes[f] : &fiberBoxes;
+      if (boxes == &fiberBoxes)
+        linkBlockBoxes(p, nl, fiberBoxes);
+    }
+    for (std::size_t k0 = 0; k0 < nl; k0 += kLinkBlock)
+    {
+      const std::size_t k1 = std::min(nl, k0 + kLinkBlock);
       Block block{ static_cast<std::uint32_t>(f), static_cast<std::uint32_t>(k0),
         static_cast<std::uint32_t>(k1), false, { 0, 0, 0 }, {}, {} };
       const std::size_t i0 = own.begin[f];
       if (!periodic)
       {
-        // The points of links k0..k1-1: k0..k1 (consecutive links share a point), read in
-        // order (a first read of p[k1] missed the cache once per block, ahead of the stream).
-        block.lo = block.hi = p[k0];
-        for (std::size_t k = k0 + 1; k <= k1; ++k)
-        {
-          block.lo = componentMin(block.lo, p[k]);
-          block.hi = componentMax(block.hi, p[k]);
-        }
+        const BlockBox& box = (*boxes)[k0 / kLinkBlock];
+        block.lo = box.lo;
+        block.hi = box.hi;
         block.inside = true;
         for (int d = 0; d < 3; ++d)
         {
@@ -602,14 +625,14 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   return sent;
 }
 
-void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
-  std::vector<std::vector<ReceivedPush>>& received, LinkExchangeBuffers* buffers)
+void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<PairLocals>& locals,
+  const std::vector<std::int64_t>& global, const std::vector<int>& partners, Comm& comm,
+  TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received,
+  LinkExchangeBuffers* buffers)
 {
   std::vector<std::vector<char>> ownOut;
   std::vector<std::vector<char>>& out = buffers ? buffers->out : ownOut;
   const std::size_t nr = static_cast<std::size_t>(comm.size());
-  const int me = comm.rank();
   // Sizes first, so that every buffer is written once into its final place (no regrowth).
   std::vector<std::size_t> size(nr, 0);
   const auto bytes = [](std::uint32_t sides)
@@ -617,35 +640,39 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std
     return sizeof(PushHeader) + ((sides & 1) ? 2 * sizeof(Vec3) : 0) +
       ((sides & 2) ? 2 * sizeof(Vec3) : 0);
   };
-  const auto route = [me](const LinkPairPush& p, auto send)
+  // A side whose fiber is this rank's stays here; the record is read only for a side that leaves
+  // (most pairs have both links here: their records are not touched).
+  const auto route = [&](std::size_t i, auto send)
   {
-    if (p.ownerA == p.ownerB)
-    {
-      if (p.ownerA != me)
-        send(p.ownerA, 3u);
-    }
+    const PairLocals& l = locals[i];
+    if (l.a != kNotOwned && l.b != kNotOwned)
+      return;
+    const LinkPairPush& p = tested[i];
+    if (p.ownerA == p.ownerB) // neither is this rank's
+      send(p.ownerA, 3u);
     else // each owner gets its side only
     {
-      if (p.ownerA != me)
+      if (l.a == kNotOwned)
         send(p.ownerA, 1u);
-      if (p.ownerB != me)
+      if (l.b == kNotOwned)
         send(p.ownerB, 2u);
     }
   };
-  for (const LinkPairPush& p : tested)
+  for (std::size_t i = 0; i < tested.size(); ++i)
     route(
-      p, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
+      i, [&](int to, std::uint32_t sides) { size[static_cast<std::size_t>(to)] += bytes(sides); });
   out.resize(nr);
   for (std::size_t q = 0; q < nr; ++q)
   {
     out[q].clear(); // the capacity is kept
     out[q].reserve(size[q]);
   }
-  for (const LinkPairPush& p : tested)
+  for (std::size_t i = 0; i < tested.size(); ++i)
   {
-    route(p,
+    route(i,
       [&](int to, std::uint32_t sides)
       {
+        const LinkPairPush& p = tested[i];
         ByteWriter w(out[static_cast<std::size_t>(to)]);
         w.put(PushHeader{ p.fiberA, p.kA, p.fiberB, p.kB, sides });
         if (sides & 1)

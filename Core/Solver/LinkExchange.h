@@ -63,7 +63,20 @@ inline TestedPairs testedPairs(const BoxLayout& layout)
 /// solver's links and the received ones use this one formula, so they have the same bits.
 double capsuleRadius(double r0, double r1, double scale);
 
-/// A block of up to 16 consecutive own links of one fiber as exchangeLinks routes them.
+/// exchangeLinks routes a fiber's links (without a cell) in blocks of this many consecutive links.
+constexpr std::size_t kLinkBlock = 16;
+
+/// The bounding box of the points of a block of links.
+struct BlockBox
+{
+  Vec3 lo, hi;
+};
+
+/// The boxes of the blocks of the first `links` links of a fiber with points p (block b: links
+/// kLinkBlock·b, … and their points), in order; `out` is overwritten, its capacity kept.
+void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out);
+
+/// A block of up to kLinkBlock consecutive own links of one fiber as exchangeLinks routes them.
 struct LinkBlock
 {
   std::uint32_t f, k0, k1; ///< links k0, …, k1 − 1 of fiber f
@@ -81,6 +94,13 @@ struct LinkExchangeBuffers
   std::vector<Vec3> shift;            ///< per own link in a periodic cell, its wrap
   std::vector<LinkBlock> blocks;      ///< the own links in blocks (without a cell)
   std::vector<std::vector<char>> out; ///< per rank, the runs (later the pushes) sent to it
+  /// Per fiber of the model, its blocks' boxes (linkBlockBoxes of its own links), for the caller
+  /// to fill while it has the final points of a step at hand (the solver's shape control): the
+  /// routing then reads two corners per block instead of a pass over all own points. Read by the
+  /// next exchangeLinks only if blockBoxesCurrent, which that call clears (they describe the
+  /// points of one moment); whoever changes the points before it must clear it too.
+  std::vector<std::vector<BlockBox>> blockBoxes;
+  bool blockBoxesCurrent = false;
 };
 
 /// Sends every owned link to every rank whose tester box, grown by how far any link reaches beyond
@@ -113,6 +133,13 @@ struct LinkPairPush
   Vec3 a0, a1, b0, b1;
 };
 
+/// The model indices on this rank of the fibers of a tested pair's two links (kNotOwned: another
+/// rank's, the one its LinkPairPush names).
+struct PairLocals
+{
+  std::uint32_t a = kNotOwned, b = kNotOwned;
+};
+
 /// A push another tester sent here, with the model indices on this rank of its links' fibers
 /// (kNotOwned: that side was not sent here, its fiber is another rank's).
 struct ReceivedPush
@@ -124,30 +151,33 @@ struct ReceivedPush
 /// Sends every tested pair's pushes to the owners of its two links on other ranks (each owner
 /// its side; both sides once when one rank owns both) and returns in `received` (per sender, the
 /// buffers reused) the pushes other ranks tested on this rank's links, each sender's in pair
-/// order (a side not received is zero). `tested` must be in pair order; global: this rank's
-/// fibers' global indices, ascending; partners: those of the exchangeLinks that sent the links.
-/// Collective; `sent` counts what went to other ranks. buffers (optional): its `out` holds the
-/// buffers sent, reused between calls (early in a solve they are tens of megabytes a step).
-void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<std::int64_t>& global,
-  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
-  std::vector<std::vector<ReceivedPush>>& received, LinkExchangeBuffers* buffers = nullptr);
+/// order (a side not received is zero). `tested` must be in pair order, `locals` its pairs' fibers
+/// on this rank (a side with a local fiber stays here); global: this rank's fibers' global indices,
+/// ascending; partners: those of the exchangeLinks that sent the links. Collective; `sent` counts
+/// what went to other ranks. buffers (optional): its `out` holds the buffers sent, reused between
+/// calls (early in a solve they are tens of megabytes a step).
+void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<PairLocals>& locals,
+  const std::vector<std::int64_t>& global, const std::vector<int>& partners, Comm& comm,
+  TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received,
+  LinkExchangeBuffers* buffers = nullptr);
 
-/// Every push on rank `me`'s links in pair order, as the serial solver adds them (§4.4):
+/// Every push on this rank's links in pair order, as the serial solver adds them (§4.4):
 /// take(push, fa, fb) with the model indices of its links' fibers (kNotOwned: another rank's).
-/// The pairs this rank tested (tested[i] of pairs[i], held links' HeldLinkInfo::local) with a
-/// link of `me` are merged with those received: every tester sends in pair order, the global
-/// one (its held links are in global link order), and each pair comes from one tester only.
+/// The pairs this rank tested (tested[i], its fibers here locals[i]) with a link of this rank are
+/// merged with those received: every tester sends in pair order, the global one (its held links
+/// are in global link order), and each pair comes from one tester only.
 template <class Take>
 void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
-  const std::vector<CapsulePair>& pairs, const std::vector<std::uint32_t>& local,
-  const std::vector<std::vector<ReceivedPush>>& received, Take take)
+  const std::vector<PairLocals>& locals, const std::vector<std::vector<ReceivedPush>>& received,
+  Take take)
 {
   using Key = std::pair<std::uint64_t, std::uint64_t>;
   const auto key = [](const LinkPairPush& x)
   { return Key(linkKey(x.fiberA, x.kA), linkKey(x.fiberB, x.kB)); };
-  // Each record's key is computed once: the senders' next ones are kept, as is the next own one.
-  // Only the senders with records left are searched (a rank hears from its partners only, a few
-  // of R).
+  const auto mine = [&locals](std::size_t i)
+  { return locals[i].a != kNotOwned || locals[i].b != kNotOwned; };
+  // Each sender's next key is kept; only the senders with records left are searched (a rank
+  // hears from its partners only, a few of R).
   std::vector<std::size_t> at(received.size(), 0); // next record of each sender
   std::vector<Key> next(received.size());          // its key
   std::vector<std::size_t> live;                   // the senders with records left
@@ -159,13 +189,10 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
       live.push_back(q);
     }
   }
-  std::size_t i = 0;            // next pair tested here
-  std::size_t keyed = SIZE_MAX; // the pair whose key mine holds
-  Key mine;
+  const std::size_t n = tested.size();
+  std::size_t i = 0; // next pair tested here
   for (;;)
   {
-    while (i < tested.size() && local[pairs[i].a] == kNotOwned && local[pairs[i].b] == kNotOwned)
-      ++i;                       // neither link is this rank's
     std::size_t from = SIZE_MAX; // the sender with the least next pair, SIZE_MAX: none left
     std::size_t where = 0;       // its place in live
     for (std::size_t j = 0; j < live.size(); ++j)
@@ -176,29 +203,29 @@ void forPushesInPairOrder(const std::vector<LinkPairPush>& tested,
         where = j;
       }
     }
-    if (i < tested.size() && keyed != i)
+    if (from == SIZE_MAX) // the rest are this rank's own tests: no key to compare
     {
-      mine = key(tested[i]);
-      keyed = i;
-    }
-    if (i < tested.size() && (from == SIZE_MAX || mine < next[from]))
-    {
-      take(tested[i], local[pairs[i].a], local[pairs[i].b]);
-      ++i;
-    }
-    else if (from != SIZE_MAX)
-    {
-      const ReceivedPush& r = received[from][at[from]++];
-      if (at[from] < received[from].size())
-        next[from] = key(received[from][at[from]].push);
-      else
-        live.erase(live.begin() + static_cast<std::ptrdiff_t>(where));
-      take(r.push, r.localA, r.localB);
-    }
-    else
-    {
+      for (; i < n; ++i)
+        if (mine(i))
+          take(tested[i], locals[i].a, locals[i].b);
       return;
     }
+    // Most pairs are tested by the rank owning their links: the run of own tests before the
+    // next received pair goes in one loop.
+    for (; i < n; ++i)
+    {
+      if (!mine(i))
+        continue;
+      if (next[from] < key(tested[i]))
+        break;
+      take(tested[i], locals[i].a, locals[i].b);
+    }
+    const ReceivedPush& r = received[from][at[from]++];
+    if (at[from] < received[from].size())
+      next[from] = key(received[from][at[from]].push);
+    else
+      live.erase(live.begin() + static_cast<std::ptrdiff_t>(where));
+    take(r.push, r.localA, r.localB);
   }
 }
 

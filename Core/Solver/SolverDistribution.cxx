@@ -77,6 +77,7 @@ void SolverEngine::migrate()
     }
     migrations_ += redistribute(r, dest, *comm_).fibers;
     migrationDue_ = false;
+    exchangeBuffers_.blockBoxesCurrent = false; // they were taken of the fibers before
   }
 }
 

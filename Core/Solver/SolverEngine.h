@@ -54,7 +54,8 @@ public:
   std::vector<CapsuleLink> links_; // what the pairs are found among (distributed: the held links)
   std::vector<std::size_t> pointOffset_;
   std::vector<CapsulePair> pairs_;
-  std::vector<LinkPairPush> push_; // per pair found here, in pair order
+  std::vector<LinkPairPush> push_;     // per pair found here, in pair order
+  std::vector<PairLocals> pairLocals_; // distributed: per pair of push_, its fibers on this rank
   std::vector<Vec3> force_;
   CollisionGrid grid_;
   PeriodicPairs periodic_; // [ours] the image-aware detector of a periodic cell
@@ -186,25 +187,23 @@ public:
     return periodic() && st_.closed[f] ? base + 1 : SIZE_MAX;
   }
 
-  // The smaller radius of the two points of link i of links_ (its fiber's points in this rank's
-  // model, or as another rank sent them).
-  double smallerPointRadius(std::size_t i) const
+  // Link i of links_ as its pairs' pushes need it: its fiber's index in this rank's model
+  // (kNotOwned: another rank's; serial: the link's fiber), the rank owning that fiber (`me`: this
+  // rank's) and the smaller radius of its two points (from the model, or as another rank sent it).
+  struct LinkSide
+  {
+    std::uint32_t local;
+    int owner;
+    double pointRadius;
+  };
+  LinkSide sideOf(std::size_t i, int me) const
   {
     const CapsuleLink& l = links_[i];
-    std::size_t f = l.fiber;
-    if (comm_)
-    {
-      if (held_.local[i] == kNotOwned)
-        return held_.pointRadius[i];
-      f = held_.local[i];
-    }
+    const std::uint32_t f = comm_ ? held_.local[i] : l.fiber;
+    if (f == kNotOwned)
+      return { f, held_.owner[i], held_.pointRadius[i] };
     const Fiber& fib = model_.fibers[f];
-    return std::min(fib.radii[l.k], fib.radii[l.k + 1]);
-  }
-  // The rank owning the fiber of link i of links_ (distributed).
-  int ownerOfLink(std::size_t i) const
-  {
-    return held_.local[i] == kNotOwned ? held_.owner[i] : comm_->rank();
+    return { f, me, std::min(fib.radii[l.k], fib.radii[l.k + 1]) };
   }
 };
 

@@ -40,6 +40,7 @@ double smallestGap(SolverEngine& s, double probe)
 {
   std::vector<CapsulePair>().swap(s.pairs_);
   std::vector<LinkPairPush>().swap(s.push_);
+  std::vector<PairLocals>().swap(s.pairLocals_);
   std::vector<std::vector<ReceivedPush>>().swap(s.pushesReceived_);
   if (s.comm_)
   {

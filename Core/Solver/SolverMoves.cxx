@@ -18,6 +18,13 @@ bool SolverEngine::shapeControl()
 {
   const std::int64_t nf = static_cast<std::int64_t>(model_.fibers.size());
   int changed = 0;
+  // Distributed without a cell: the link exchange routes blocks of links by their boxes, taken
+  // here while each fiber's final points are in cache (a pass of their own read them again from
+  // memory, a few percent of a step).
+  const bool boxes = comm_ && !periodic();
+  std::vector<std::vector<BlockBox>>& blockBoxes = exchangeBuffers_.blockBoxes;
+  if (boxes)
+    blockBoxes.resize(model_.fibers.size());
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(| : changed)
   for (std::int64_t f = 0; f < nf; ++f)
   {
@@ -38,8 +45,12 @@ bool SolverEngine::shapeControl()
     }
     c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
     close(static_cast<std::size_t>(f));
+    if (boxes)
+      linkBlockBoxes(fib.points.data(), linksOf(model_, &st_.active, static_cast<std::size_t>(f)),
+        blockBoxes[static_cast<std::size_t>(f)]);
     changed |= c ? 1 : 0;
   }
+  exchangeBuffers_.blockBoxesCurrent = boxes;
   return changed != 0;
 }
 
@@ -94,13 +105,17 @@ void SolverEngine::separate()
 {
   const std::int64_t np = static_cast<std::int64_t>(pairs_.size());
   push_.resize(pairs_.size());
+  if (comm_)
+    pairLocals_.resize(pairs_.size());
+  const int me = comm_ ? comm_->rank() : 0;
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::int64_t pi = 0; pi < np; ++pi)
   {
     const CapsulePair& p = pairs_[static_cast<std::size_t>(pi)];
     const CapsuleLink& la = links_[p.a];
     const CapsuleLink& lb = links_[p.b];
-    const double rMin = std::min(smallerPointRadius(p.a), smallerPointRadius(p.b));
+    const LinkSide sa = sideOf(p.a, me), sb = sideOf(p.b, me);
+    const double rMin = std::min(sa.pointRadius, sb.pointRadius);
     const double overlap = la.rho + lb.rho + o_.minimumGap - p.distance;
     const double sigma = boostedPush(
       std::max(o_.separationSpeed * rMin, o_.overlapPush * overlap), st_.pushScale, overlap);
@@ -110,8 +125,10 @@ void SolverEngine::separate()
     out.kA = la.k;
     out.fiberB = lb.fiber;
     out.kB = lb.k;
-    out.ownerA = comm_ ? ownerOfLink(p.a) : 0;
-    out.ownerB = comm_ ? ownerOfLink(p.b) : 0;
+    out.ownerA = sa.owner;
+    out.ownerB = sb.owner;
+    if (comm_)
+      pairLocals_[static_cast<std::size_t>(pi)] = PairLocals{ sa.local, sb.local };
     out.a0 = (1.0 - p.s) * n;
     out.a1 = p.s * n;
     out.b0 = -((1.0 - p.t) * n);
@@ -162,11 +179,12 @@ void SolverEngine::separate()
   else
   {
     TrafficCount sent;
-    returnPushes(push_, st_.global, partners_, *comm_, sent, pushesReceived_, &exchangeBuffers_);
+    returnPushes(
+      push_, pairLocals_, st_.global, partners_, *comm_, sent, pushesReceived_, &exchangeBuffers_);
     haloBytes_ += sent.bytes;
     const auto own = [](std::uint32_t f)
     { return f == kNotOwned ? SIZE_MAX : static_cast<std::size_t>(f); };
-    forPushesInPairOrder(push_, pairs_, held_.local, pushesReceived_,
+    forPushesInPairOrder(push_, pairLocals_, pushesReceived_,
       [&](const LinkPairPush& p, std::uint32_t fa, std::uint32_t fb)
       { apply(p, own(fa), own(fb)); });
   }

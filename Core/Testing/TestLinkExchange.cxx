@@ -1,0 +1,149 @@
+// The link exchange of the distributed solver (Solver/LinkExchange.h) where the caller hands it
+// the boxes of the blocks of links it routes: the boxes hold their blocks' points, and the
+// exchange reads them exactly once, when they are marked current, with the same links held as
+// when it takes the boxes itself. The solve as a whole is checked against the serial one in
+// TestDistributedSolver.
+#include "Solver/LinkExchange.h"
+
+#include "SolverTestModels.h"
+#include "ThreadComm.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+using namespace fiberpli;
+using fiberpli_test::runRanks;
+
+namespace
+{
+// A wavy fiber along y, so that consecutive blocks of links have different boxes.
+Fiber wave(double x, double z, int n, std::int64_t id)
+{
+  Fiber f;
+  for (int i = 0; i < n; ++i)
+  {
+    const double t = 0.5 * i;
+    f.points.push_back(Vec3{ x + 0.8 * std::sin(0.3 * t), t, z + 0.5 * std::cos(0.2 * t) });
+  }
+  f.radii.assign(f.points.size(), 0.4);
+  f.id = id;
+  return f;
+}
+
+// The fibers a rank owns of a model of 6 × 4 waves in x and z (every other one), with their global
+// indices.
+void ownFibers(int rank, int ranks, FiberModel& local, std::vector<std::int64_t>& global)
+{
+  std::int64_t g = 0;
+  for (int ix = 0; ix < 6; ++ix)
+  {
+    for (int iz = 0; iz < 4; ++iz, ++g)
+    {
+      if (g % ranks == rank)
+      {
+        local.fibers.push_back(wave(3.0 * ix, 2.5 * iz, 61, g));
+        global.push_back(g);
+      }
+    }
+  }
+}
+
+bool sameLinks(const std::vector<CapsuleLink>& a, const std::vector<CapsuleLink>& b)
+{
+  if (a.size() != b.size())
+    return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    if (!(a[i].p0 == b[i].p0) || !(a[i].p1 == b[i].p1) || a[i].rho != b[i].rho ||
+      a[i].fiber != b[i].fiber || a[i].k != b[i].k)
+      return false;
+  }
+  return true;
+}
+} // namespace
+
+TEST(LinkExchange, BlockBoxesHoldTheirBlocksPointsAndTouchThemOnEveryFace)
+{
+  const Fiber f = wave(1.0, 2.0, 38, 0); // 37 links: blocks of 16, 16 and 5
+  std::vector<BlockBox> boxes{ BlockBox{}, BlockBox{}, BlockBox{}, BlockBox{}, BlockBox{} };
+  linkBlockBoxes(f.points.data(), 37, boxes);
+  ASSERT_EQ(boxes.size(), 3u);
+  for (std::size_t b = 0; b < boxes.size(); ++b)
+  {
+    const std::size_t k0 = 16 * b, k1 = std::min<std::size_t>(37, k0 + 16);
+    for (int d = 0; d < 3; ++d)
+    {
+      bool touchesLo = false, touchesHi = false;
+      for (std::size_t k = k0; k <= k1; ++k) // the links' points, the last one included
+      {
+        EXPECT_LE(boxes[b].lo[d], f.points[k][d]);
+        EXPECT_GE(boxes[b].hi[d], f.points[k][d]);
+        touchesLo = touchesLo || boxes[b].lo[d] == f.points[k][d];
+        touchesHi = touchesHi || boxes[b].hi[d] == f.points[k][d];
+      }
+      EXPECT_TRUE(touchesLo && touchesHi) << "block " << b << " axis " << d;
+    }
+  }
+  linkBlockBoxes(f.points.data(), 16, boxes);
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes[0].hi[1], f.points[16][1]); // the block's last point bounds it
+  linkBlockBoxes(f.points.data(), 0, boxes);
+  EXPECT_TRUE(boxes.empty());
+}
+
+TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
+{
+  constexpr int kRanks = 2;
+  std::array<bool, kRanks> sameWithBoxes{}, flagCleared{}, sameWhenNotCurrent{},
+    differentWithWrongBoxes{};
+  runRanks(kRanks,
+    [&](Comm& comm)
+    {
+      const int r = comm.rank();
+      FiberModel local;
+      std::vector<std::int64_t> global;
+      ownFibers(r, kRanks, local, global);
+      const BoxLayout layout = BoxLayout::make(local, PeriodicCell{}, comm);
+      const double reach = 2.0 * 0.4 + 0.1;
+      const auto exchange = [&](LinkExchangeBuffers& buffers)
+      {
+        std::vector<CapsuleLink> held;
+        HeldLinkInfo info;
+        std::vector<int> partners;
+        exchangeLinks(local, nullptr, nullptr, global, 1.0, layout, reach, comm, held, info,
+          partners, &buffers);
+        return held;
+      };
+      LinkExchangeBuffers own;
+      const std::vector<CapsuleLink> reference = exchange(own);
+
+      LinkExchangeBuffers given;
+      given.blockBoxes.resize(local.fibers.size());
+      for (std::size_t f = 0; f < local.fibers.size(); ++f)
+        linkBlockBoxes(
+          local.fibers[f].points.data(), local.fibers[f].size() - 1, given.blockBoxes[f]);
+      given.blockBoxesCurrent = true;
+      sameWithBoxes[r] = sameLinks(exchange(given), reference);
+      flagCleared[r] = !given.blockBoxesCurrent;
+
+      // Boxes that do not describe the points: each block shrunk to its fiber's first point, which
+      // lies inside one tester box, so the routing believes every block lies there.
+      for (std::size_t f = 0; f < local.fibers.size(); ++f)
+        for (BlockBox& b : given.blockBoxes[f])
+          b = BlockBox{ local.fibers[f].points[0], local.fibers[f].points[0] };
+      sameWhenNotCurrent[r] = sameLinks(exchange(given), reference);
+      given.blockBoxesCurrent = true;
+      differentWithWrongBoxes[r] = !sameLinks(exchange(given), reference);
+    });
+  for (int r = 0; r < kRanks; ++r)
+  {
+    EXPECT_TRUE(sameWithBoxes[r]) << "rank " << r;
+    EXPECT_TRUE(flagCleared[r]) << "rank " << r;
+    EXPECT_TRUE(sameWhenNotCurrent[r]) << "rank " << r;
+  }
+  // The wrong boxes send fewer links to the other rank: some rank holds different links, which
+  // shows that current boxes are what the routing reads.
+  EXPECT_TRUE(differentWithWrongBoxes[0] || differentWithWrongBoxes[1]);
+}
