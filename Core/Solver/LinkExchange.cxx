@@ -163,7 +163,7 @@ void writeRun(std::vector<char>& out, const OwnLinks& own, const OwnRun& run,
 
 void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out)
 {
-  out.resize((links + kLinkBlock - 1) / kLinkBlock);
+  out.resize(linkBlockCount(links));
   for (std::size_t b = 0; b < out.size(); ++b)
   {
     // The points of links k0..k1-1 are k0..k1 (consecutive links share a point), read in order.
@@ -229,7 +229,7 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   blocks.clear();
   std::size_t blockCount = 0; // sized once: growing it copied every block made so far
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
-    blockCount += (own.links(f) + kLinkBlock - 1) / kLinkBlock;
+    blockCount += linkBlockCount(own.links(f));
   blocks.reserve(blockCount);
   double rounding[3];
   for (int d = 0; d < 3; ++d)
@@ -240,14 +240,11 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
     const Vec3* p = own.points(f);
     const Vec3 fiberShift =
       periodic && nl > 0 ? layout.wrapShift(BoxLayout::middle(model.fibers[f])) : Vec3{};
-    const std::vector<BlockBox>* boxes = nullptr;
-    if (!periodic)
-    {
-      const std::size_t nb = (nl + kLinkBlock - 1) / kLinkBlock;
-      boxes = boxesGiven && buf.blockBoxes[f].size() == nb ? &buf.blockBoxes[f] : &fiberBoxes;
-      if (boxes == &fiberBoxes)
-        linkBlockBoxes(p, nl, fiberBoxes);
-    }
+    const std::vector<BlockBox>* boxes = &fiberBoxes;
+    if (!periodic && boxesGiven && buf.blockBoxes[f].size() == linkBlockCount(nl))
+      boxes = &buf.blockBoxes[f];
+    else if (!periodic)
+      linkBlockBoxes(p, nl, fiberBoxes);
     for (std::size_t k0 = 0; k0 < nl; k0 += kLinkBlock)
     {
       const std::size_t k1 = std::min(nl, k0 + kLinkBlock);

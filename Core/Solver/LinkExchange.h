@@ -66,6 +66,12 @@ double capsuleRadius(double r0, double r1, double scale);
 /// exchangeLinks routes a fiber's links (without a cell) in blocks of this many consecutive links.
 constexpr std::size_t kLinkBlock = 16;
 
+/// The blocks of a fiber with `links` links (the last one may be shorter).
+inline std::size_t linkBlockCount(std::size_t links)
+{
+  return (links + kLinkBlock - 1) / kLinkBlock;
+}
+
 /// The bounding box of the points of a block of links.
 struct BlockBox
 {
