@@ -161,9 +161,12 @@ void writeRun(std::vector<char>& out, const OwnLinks& own, const OwnRun& run,
 }
 } // namespace
 
-void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out)
+BlockBox linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out)
 {
   out.resize(linkBlockCount(links));
+  if (links == 0)
+    return BlockBox{};
+  BlockBox all{ p[0], p[0] };
   for (std::size_t b = 0; b < out.size(); ++b)
   {
     // The points of links k0..k1-1 are k0..k1 (consecutive links share a point), read in order.
@@ -175,7 +178,10 @@ void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out
       box.hi = componentMax(box.hi, p[k]);
     }
     out[b] = box;
+    all.lo = componentMin(all.lo, box.lo);
+    all.hi = componentMax(all.hi, box.hi);
   }
+  return all;
 }
 
 double capsuleRadius(double r0, double r1, double scale)
@@ -220,11 +226,15 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   // span, far above it) has that tester for every link and no link reaching beyond its faces;
   // the routing below then sends it whole when its bounding box comes within reach of that box
   // alone. Most links lie so (a box is much wider than a link): each costs its points' extremes,
-  // which the caller may have taken already (LinkExchangeBuffers::blockBoxes).
+  // which the caller may have taken already (LinkExchangeBuffers::blockBoxes). A fiber whose
+  // points all lie so (every fiber on one rank; on more, those that cross no cut) is one block of
+  // all its links when the caller gave the boxes: a test per fiber instead of one per block, and
+  // the routing looks at its blocks only when the fiber comes within reach of another box.
   using Block = LinkBlock;
-  const bool boxesGiven = buf.blockBoxesCurrent && buf.blockBoxes.size() == model.fibers.size();
+  const bool boxesGiven = buf.blockBoxesCurrent && buf.blockBoxes.size() == model.fibers.size() &&
+    buf.fiberBoxes.size() == model.fibers.size();
   buf.blockBoxesCurrent = false;
-  std::vector<BlockBox> fiberBoxes; // one fiber's, when not given
+  std::vector<BlockBox> computedBoxes; // one fiber's, when not given
   std::vector<Block>& blocks = buf.blocks;
   blocks.clear();
   std::size_t blockCount = 0; // sized once: growing it copied every block made so far
@@ -234,17 +244,60 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   double rounding[3];
   for (int d = 0; d < 3; ++d)
     rounding[d] = 1e-9 * layout.span(d);
+  // The layers of the box's centre, and whether the box lies inside them by the rounding.
+  const auto placeInLayers = [&](Block& block, const BlockBox& box)
+  {
+    block.lo = box.lo;
+    block.hi = box.hi;
+    block.inside = true;
+    for (int d = 0; d < 3; ++d)
+    {
+      const int j = layout.layerOf(d, 0.5 * (block.lo[d] + block.hi[d]));
+      block.layer[d] = j;
+      block.inside = block.inside &&
+        block.lo[d] >= faceLo[d][static_cast<std::size_t>(j)] + rounding[d] &&
+        block.hi[d] <= faceHi[d][static_cast<std::size_t>(j)] - rounding[d];
+    }
+  };
+  // An inside block: every link's centre is in its layers; no link reaches beyond their faces
+  // (its growth is negative: the maxima, which start at 0, stay), and its spread beyond the owner
+  // box is the block's.
+  const auto addInside = [&](const Block& block)
+  {
+    const std::size_t i0 = own.begin[block.f];
+    std::fill(tester.begin() + static_cast<std::ptrdiff_t>(i0 + block.k0),
+      tester.begin() + static_cast<std::ptrdiff_t>(i0 + block.k1),
+      layout.rankOf(block.layer[0], block.layer[1], block.layer[2]));
+    for (int d = 0; d < 3; ++d)
+    {
+      m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - block.lo[d]);
+      m[9 + d] = std::max(m[9 + d], block.hi[d] - ownerBox.hi[d]);
+    }
+    blocks.push_back(block);
+  };
   for (std::size_t f = 0; f < model.fibers.size(); ++f)
   {
     const std::size_t nl = own.links(f);
+    if (nl == 0)
+      continue;
     const Vec3* p = own.points(f);
     const Vec3 fiberShift =
-      periodic && nl > 0 ? layout.wrapShift(BoxLayout::middle(model.fibers[f])) : Vec3{};
-    const std::vector<BlockBox>* boxes = &fiberBoxes;
+      periodic ? layout.wrapShift(BoxLayout::middle(model.fibers[f])) : Vec3{};
+    const std::vector<BlockBox>* boxes = &computedBoxes;
     if (!periodic && boxesGiven && buf.blockBoxes[f].size() == linkBlockCount(nl))
+    {
       boxes = &buf.blockBoxes[f];
+      Block whole{ static_cast<std::uint32_t>(f), 0, static_cast<std::uint32_t>(nl), false,
+        { 0, 0, 0 }, {}, {} };
+      placeInLayers(whole, buf.fiberBoxes[f]);
+      if (whole.inside)
+      {
+        addInside(whole);
+        continue;
+      }
+    }
     else if (!periodic)
-      linkBlockBoxes(p, nl, fiberBoxes);
+      linkBlockBoxes(p, nl, computedBoxes);
     for (std::size_t k0 = 0; k0 < nl; k0 += kLinkBlock)
     {
       const std::size_t k1 = std::min(nl, k0 + kLinkBlock);
@@ -252,34 +305,10 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
         static_cast<std::uint32_t>(k1), false, { 0, 0, 0 }, {}, {} };
       const std::size_t i0 = own.begin[f];
       if (!periodic)
-      {
-        const BlockBox& box = (*boxes)[k0 / kLinkBlock];
-        block.lo = box.lo;
-        block.hi = box.hi;
-        block.inside = true;
-        for (int d = 0; d < 3; ++d)
-        {
-          const int j = layout.layerOf(d, 0.5 * (block.lo[d] + block.hi[d]));
-          block.layer[d] = j;
-          block.inside = block.inside &&
-            block.lo[d] >= faceLo[d][static_cast<std::size_t>(j)] + rounding[d] &&
-            block.hi[d] <= faceHi[d][static_cast<std::size_t>(j)] - rounding[d];
-        }
-      }
+        placeInLayers(block, (*boxes)[k0 / kLinkBlock]);
       if (block.inside)
       {
-        // Every link's centre is in the block's layers; no link reaches beyond their faces (its
-        // growth is negative: the maxima, which start at 0, stay), and its spread beyond the owner
-        // box is the block's.
-        std::fill(tester.begin() + static_cast<std::ptrdiff_t>(i0 + k0),
-          tester.begin() + static_cast<std::ptrdiff_t>(i0 + k1),
-          layout.rankOf(block.layer[0], block.layer[1], block.layer[2]));
-        for (int d = 0; d < 3; ++d)
-        {
-          m[6 + d] = std::max(m[6 + d], ownerBox.lo[d] - block.lo[d]);
-          m[9 + d] = std::max(m[9 + d], block.hi[d] - ownerBox.hi[d]);
-        }
-        blocks.push_back(block);
+        addInside(block);
         continue;
       }
       for (std::size_t k = k0; k < k1; ++k)
@@ -426,45 +455,48 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
       }
     }
   };
+  // An inside block's box within reach of its own tester layer only, along every axis: so is
+  // each of its links (it lies in that layer), which then goes to its tester box alone.
+  const auto alone = [&](const Block& block)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      int reached = 0;
+      for (const Grown& g : grown[d])
+      {
+        if (within(block.lo[d], block.hi[d], g.lo, g.hi, reach, layout.period(d)))
+        {
+          ++reached;
+          if (g.layer != block.layer[d])
+            return false;
+        }
+      }
+      if (reached != 1)
+        return false;
+    }
+    return true;
+  };
+  // All the block's links to its tester box, one run.
+  const auto routeWhole = [&](const Block& block)
+  {
+    const std::size_t i0 = own.begin[block.f];
+    const std::size_t t = static_cast<std::size_t>(tester[i0 + block.k0]);
+    dests.assign(1, t);
+    stamp[t] = i0 + block.k0;
+    route(i0 + block.k0, block.f, block.k0);
+    // The block's further links continue the same run to t.
+    run[t].count += block.k1 - block.k0 - 1;
+  };
   std::vector<int> along[3];
-  for (const Block& block : blocks)
+  // Each of the block's links to the tester boxes (grown by the growth) it comes within reach
+  // of, among the layers this rank's owner box sends to.
+  const auto routeLinks = [&](const Block& block)
   {
     const std::size_t i0 = own.begin[block.f];
     const Vec3* p = own.points(block.f);
-    if (block.inside)
-    {
-      // The block's box within reach of its own tester layer only, along every axis: so is each
-      // of its links (it lies in that layer), which then goes to its tester box alone.
-      bool alone = true;
-      for (int d = 0; d < 3 && alone; ++d)
-      {
-        int reached = 0;
-        for (const Grown& g : grown[d])
-        {
-          if (within(block.lo[d], block.hi[d], g.lo, g.hi, reach, layout.period(d)))
-          {
-            ++reached;
-            alone = alone && g.layer == block.layer[d];
-          }
-        }
-        alone = alone && reached == 1;
-      }
-      if (alone)
-      {
-        const std::size_t t = static_cast<std::size_t>(tester[i0 + block.k0]);
-        dests.assign(1, t);
-        stamp[t] = i0 + block.k0;
-        route(i0 + block.k0, block.f, block.k0);
-        // The block's further links continue the same run to t.
-        run[t].count += block.k1 - block.k0 - 1;
-        continue;
-      }
-    }
     for (std::uint32_t k = block.k0; k < block.k1; ++k)
     {
       const std::size_t i = i0 + k;
-      // The tester boxes (grown by the growth) the link comes within reach of, among the layers
-      // this rank's owner box sends to.
       for (int d = 0; d < 3; ++d)
       {
         const double s = periodic ? shift[i][d] : 0.0;
@@ -491,6 +523,33 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
             }
           }
       route(i, block.f, k);
+    }
+  };
+  for (const Block& block : blocks)
+  {
+    if (!block.inside)
+      routeLinks(block);
+    else if (alone(block))
+      routeWhole(block);
+    else if (block.k1 - block.k0 <= kLinkBlock)
+      routeLinks(block);
+    else
+    {
+      // A whole fiber in one layer, within reach of another: its blocks, in the same layer, as
+      // they come (each routed as it would be as a block of its own).
+      const std::vector<BlockBox>& boxes = buf.blockBoxes[block.f];
+      for (std::uint32_t k0 = block.k0; k0 < block.k1; k0 += kLinkBlock)
+      {
+        Block part = block;
+        part.k0 = k0;
+        part.k1 = std::min<std::uint32_t>(block.k1, k0 + kLinkBlock);
+        part.lo = boxes[k0 / kLinkBlock].lo;
+        part.hi = boxes[k0 / kLinkBlock].hi;
+        if (alone(part))
+          routeWhole(part);
+        else
+          routeLinks(part);
+      }
     }
   }
   for (std::size_t q : open)

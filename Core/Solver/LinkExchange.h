@@ -79,10 +79,12 @@ struct BlockBox
 };
 
 /// The boxes of the blocks of the first `links` links of a fiber with points p (block b: links
-/// kLinkBlock·b, … and their points), in order; `out` is overwritten, its capacity kept.
-void linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out);
+/// kLinkBlock·b, … and their points), in order; `out` is overwritten, its capacity kept. Returns
+/// the box of all of them (of points 0, …, links; an empty box without links).
+BlockBox linkBlockBoxes(const Vec3* p, std::size_t links, std::vector<BlockBox>& out);
 
-/// A block of up to kLinkBlock consecutive own links of one fiber as exchangeLinks routes them.
+/// A block of consecutive own links of one fiber as exchangeLinks routes them: up to kLinkBlock,
+/// or all of a fiber's links when they lie in one tester box.
 struct LinkBlock
 {
   std::uint32_t f, k0, k1; ///< links k0, …, k1 − 1 of fiber f
@@ -106,6 +108,8 @@ struct LinkExchangeBuffers
   /// next exchangeLinks only if blockBoxesCurrent, which that call clears (they describe the
   /// points of one moment); whoever changes the points before it must clear it too.
   std::vector<std::vector<BlockBox>> blockBoxes;
+  std::vector<BlockBox> fiberBoxes; ///< per fiber, the box of all its blocks (what linkBlockBoxes
+                                    ///< returns), current with blockBoxes
   bool blockBoxesCurrent = false;
 };
 

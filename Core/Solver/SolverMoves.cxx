@@ -23,8 +23,12 @@ bool SolverEngine::shapeControl()
   // memory, a few percent of a step).
   const bool boxes = comm_ && !periodic();
   std::vector<std::vector<BlockBox>>& blockBoxes = exchangeBuffers_.blockBoxes;
+  std::vector<BlockBox>& fiberBoxes = exchangeBuffers_.fiberBoxes;
   if (boxes)
+  {
     blockBoxes.resize(model_.fibers.size());
+    fiberBoxes.resize(model_.fibers.size());
+  }
 #pragma omp parallel for num_threads(threads_) schedule(dynamic, 16) reduction(| : changed)
   for (std::int64_t f = 0; f < nf; ++f)
   {
@@ -46,8 +50,9 @@ bool SolverEngine::shapeControl()
     c = controlCurvature(fib, o_.minCurvatureRadius, moveCap(), o_.endPoints, closure) || c;
     close(static_cast<std::size_t>(f));
     if (boxes)
-      linkBlockBoxes(fib.points.data(), linksOf(model_, &st_.active, static_cast<std::size_t>(f)),
-        blockBoxes[static_cast<std::size_t>(f)]);
+      fiberBoxes[static_cast<std::size_t>(f)] =
+        linkBlockBoxes(fib.points.data(), linksOf(model_, &st_.active, static_cast<std::size_t>(f)),
+          blockBoxes[static_cast<std::size_t>(f)]);
     changed |= c ? 1 : 0;
   }
   exchangeBuffers_.blockBoxesCurrent = boxes;

@@ -1,7 +1,7 @@
 // The link exchange of the distributed solver (Solver/LinkExchange.h) where the caller hands it
-// the boxes of the blocks of links it routes: the boxes hold their blocks' points, and the
-// exchange reads them exactly once, when they are marked current, with the same links held as
-// when it takes the boxes itself. The solve as a whole is checked against the serial one in
+// the boxes of the blocks of links it routes and of whole fibers: the boxes hold their points,
+// and the exchange reads them exactly once, when they are marked current, with the same links
+// held as when it takes the boxes itself. The solve as a whole is checked against the serial one in
 // TestDistributedSolver.
 #include "Solver/LinkExchange.h"
 
@@ -32,22 +32,51 @@ Fiber wave(double x, double z, int n, std::int64_t id)
   return f;
 }
 
-// The fibers a rank owns of a model of 6 × 4 waves in x and z (every other one), with their global
-// indices.
+// A straight fiber along x from x0 to x1 at (y, z), points 0.5 apart.
+Fiber alongX(double x0, double x1, double y, double z, std::int64_t id)
+{
+  Fiber f;
+  for (double x = x0; x <= x1; x += 0.5)
+    f.points.push_back(Vec3{ x, y, z });
+  f.radii.assign(f.points.size(), 0.4);
+  f.id = id;
+  return f;
+}
+
+// The fibers a rank owns (every other one), with their global indices, of a model of 8 × 4 waves
+// along y in x and z (each 0.8 to either side), then 3 straight fibers along x across all of them
+// above the waves. It is wider in x than long in y and symmetric about x = 24, so two ranks cut
+// it across x between the waves at x = 22.4 and 25.6: every wave lies in one tester box, those
+// two within reach of the other box along some of their length, and the straight fibers cross
+// the cut.
 void ownFibers(int rank, int ranks, FiberModel& local, std::vector<std::int64_t>& global)
 {
   std::int64_t g = 0;
-  for (int ix = 0; ix < 6; ++ix)
+  const auto add = [&](Fiber f)
   {
-    for (int iz = 0; iz < 4; ++iz, ++g)
+    if (g % ranks == rank)
     {
-      if (g % ranks == rank)
-      {
-        local.fibers.push_back(wave(3.0 * ix, 2.5 * iz, 61, g));
-        global.push_back(g);
-      }
+      local.fibers.push_back(std::move(f));
+      global.push_back(g);
     }
-  }
+    ++g;
+  };
+  for (double x : { 0.0, 8.0, 16.0, 22.4, 25.6, 32.0, 40.0, 48.0 })
+    for (int iz = 0; iz < 4; ++iz)
+      add(wave(x, 2.5 * iz, 61, g));
+  for (int iy = 0; iy < 3; ++iy)
+    add(alongX(-0.5, 48.5, 5.0 + 10.0 * iy, 9.5, g));
+}
+
+// What shape control hands the exchange: every fiber's block boxes and its whole box.
+void takeBoxes(const FiberModel& local, LinkExchangeBuffers& buffers)
+{
+  buffers.blockBoxes.resize(local.fibers.size());
+  buffers.fiberBoxes.resize(local.fibers.size());
+  for (std::size_t f = 0; f < local.fibers.size(); ++f)
+    buffers.fiberBoxes[f] = linkBlockBoxes(
+      local.fibers[f].points.data(), local.fibers[f].size() - 1, buffers.blockBoxes[f]);
+  buffers.blockBoxesCurrent = true;
 }
 
 bool sameLinks(const std::vector<CapsuleLink>& a, const std::vector<CapsuleLink>& b)
@@ -93,11 +122,32 @@ TEST(LinkExchange, BlockBoxesHoldTheirBlocksPointsAndTouchThemOnEveryFace)
   EXPECT_TRUE(boxes.empty());
 }
 
+TEST(LinkExchange, BlockBoxesReturnTheBoxOfAllTheirPoints)
+{
+  const Fiber f = wave(1.0, 2.0, 38, 0);
+  std::vector<BlockBox> boxes;
+  const BlockBox all = linkBlockBoxes(f.points.data(), 37, boxes);
+  for (int d = 0; d < 3; ++d)
+  {
+    double lo = f.points[0][d], hi = f.points[0][d];
+    for (const Vec3& p : f.points)
+    {
+      lo = std::min(lo, p[d]);
+      hi = std::max(hi, p[d]);
+    }
+    EXPECT_EQ(all.lo[d], lo);
+    EXPECT_EQ(all.hi[d], hi);
+  }
+  const BlockBox first = linkBlockBoxes(f.points.data(), 1, boxes); // one link: its two points
+  EXPECT_EQ(first.lo[1], f.points[0][1]);
+  EXPECT_EQ(first.hi[1], f.points[1][1]);
+}
+
 TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
 {
   constexpr int kRanks = 2;
   std::array<bool, kRanks> sameWithBoxes{}, flagCleared{}, sameWhenNotCurrent{},
-    differentWithWrongBoxes{};
+    differentWithWrongFiberBoxes{}, differentWithWrongBoxes{};
   runRanks(kRanks,
     [&](Comm& comm)
     {
@@ -120,16 +170,18 @@ TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
       const std::vector<CapsuleLink> reference = exchange(own);
 
       LinkExchangeBuffers given;
-      given.blockBoxes.resize(local.fibers.size());
-      for (std::size_t f = 0; f < local.fibers.size(); ++f)
-        linkBlockBoxes(
-          local.fibers[f].points.data(), local.fibers[f].size() - 1, given.blockBoxes[f]);
-      given.blockBoxesCurrent = true;
+      takeBoxes(local, given);
       sameWithBoxes[r] = sameLinks(exchange(given), reference);
       flagCleared[r] = !given.blockBoxesCurrent;
 
-      // Boxes that do not describe the points: each block shrunk to its fiber's first point, which
-      // lies inside one tester box, so the routing believes every block lies there.
+      // Whole-fiber boxes that do not describe the points (each shrunk to its fiber's first point,
+      // inside one tester box): the routing believes every fiber lies there, far from the other.
+      takeBoxes(local, given);
+      for (std::size_t f = 0; f < local.fibers.size(); ++f)
+        given.fiberBoxes[f] = BlockBox{ local.fibers[f].points[0], local.fibers[f].points[0] };
+      differentWithWrongFiberBoxes[r] = !sameLinks(exchange(given), reference);
+
+      // The blocks' boxes shrunk so too.
       for (std::size_t f = 0; f < local.fibers.size(); ++f)
         for (BlockBox& b : given.blockBoxes[f])
           b = BlockBox{ local.fibers[f].points[0], local.fibers[f].points[0] };
@@ -144,6 +196,7 @@ TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
     EXPECT_TRUE(sameWhenNotCurrent[r]) << "rank " << r;
   }
   // The wrong boxes send fewer links to the other rank: some rank holds different links, which
-  // shows that current boxes are what the routing reads.
+  // shows that current boxes are what the routing reads, the fibers' as well as the blocks'.
+  EXPECT_TRUE(differentWithWrongFiberBoxes[0] || differentWithWrongFiberBoxes[1]);
   EXPECT_TRUE(differentWithWrongBoxes[0] || differentWithWrongBoxes[1]);
 }
