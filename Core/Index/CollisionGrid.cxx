@@ -732,7 +732,12 @@ bool CollisionGrid::collectPairs(const std::vector<CapsuleLink>& links, const ch
         mk[j] = static_cast<std::uint8_t>((rhx > qlx[j]) & (qhx[j] > rlx) & (rhy > qly[j]) &
           (qhy[j] > rly) & (rhz > qlz[j]) & (qhz[j] > rlz));
       }
-      c.resize(len);
+      // Grown only, like the mask: resize() to a smaller length would shrink the size, and the
+      // next longer row would zero the elements in between again (millions of rows a step).
+      if (c.size() < len)
+      {
+        c.resize(len);
+      }
       std::uint32_t* cp = c.data();
       std::size_t nc = 0;
       // Few boxes overlap (about one in twenty in a dense model): eight mask bytes at a time,
