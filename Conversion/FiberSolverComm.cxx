@@ -212,6 +212,22 @@ std::vector<std::vector<char>> FiberSolverComm::exchangeWith(
   return received;
 }
 
+void FiberSolverComm::exchangeWithInto(const std::vector<int>& partners,
+  const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& received)
+{
+  auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
+  if (this->size() == 1 || !mpi)
+  {
+    this->Comm::exchangeWithInto(partners, send, received);
+    return;
+  }
+  // ExchangeMPI sizes every other rank's buffer to what it sent here (resize keeps capacity).
+  received.resize(send.size());
+  const auto me = static_cast<std::size_t>(this->rank());
+  received[me].assign(send[me].begin(), send[me].end());
+  ExchangeMPI(*mpi, send, received, &partners);
+}
+
 std::vector<long long> FiberSolverComm::allToAll(const std::vector<long long>& send, int per)
 {
   std::vector<long long> received(send.size());

@@ -37,6 +37,9 @@ public:
   /// non-empty buffers as in exchange; no all-to-all. Other controllers: exchange().
   std::vector<std::vector<char>> exchangeWith(
     const std::vector<int>& partners, const std::vector<std::vector<char>>& send) override;
+  /// exchangeWith into the caller's buffers, their capacity kept (Comm::exchangeWithInto).
+  void exchangeWithInto(const std::vector<int>& partners,
+    const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& received) override;
   /// send holds `per` numbers for each rank in rank order; returns the `per` numbers every rank
   /// addressed to this one, in rank order (MPI_Alltoall under MPI; collective).
   std::vector<long long> allToAll(const std::vector<long long>& send, int per);

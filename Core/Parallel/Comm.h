@@ -7,6 +7,7 @@
 /// calls in the same order.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,21 @@ public:
   {
     (void)partners;
     return exchange(send);
+  }
+  /// exchangeWith into `received` (size() buffers afterwards), keeping the buffers' capacity: a
+  /// caller that passes the same buffers at every step gets no new memory from the allocator
+  /// once they are large enough. Messages of megabytes are freshly mapped pages otherwise, each
+  /// page a fault on first touch, and returned to the system when freed. The default copies
+  /// exchangeWith's result into them.
+  virtual void exchangeWithInto(const std::vector<int>& partners,
+    const std::vector<std::vector<char>>& send, std::vector<std::vector<char>>& received)
+  {
+    const std::vector<std::vector<char>> in = exchangeWith(partners, send);
+    received.resize(in.size());
+    for (std::size_t q = 0; q < in.size(); ++q)
+    {
+      received[q].assign(in[q].begin(), in[q].end());
+    }
   }
 };
 

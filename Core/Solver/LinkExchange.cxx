@@ -34,13 +34,15 @@ struct PushHeader
 using Reader = ByteReader;
 
 // The exchange of the buffers with the partners (this rank's own links and pushes never go
-// into a buffer: out[me] stays empty, as does every buffer for a rank that is no partner).
-std::vector<std::vector<char>> exchangeWithPartners(const std::vector<std::vector<char>>& out,
-  const std::vector<int>& partners, Comm& comm, TrafficCount& sent)
+// into a buffer: out[me] stays empty, as does every buffer for a rank that is no partner), into
+// `in`, whose capacity is kept.
+void exchangeWithPartners(const std::vector<std::vector<char>>& out,
+  const std::vector<int>& partners, Comm& comm, TrafficCount& sent,
+  std::vector<std::vector<char>>& in)
 {
   for (const std::vector<char>& b : out)
     sent.bytes += b.size();
-  return comm.exchangeWith(partners, out);
+  comm.exchangeWithInto(partners, out, in);
 }
 
 // Merges streams of records, each in ascending key order (keys unique across streams), into one
@@ -555,7 +557,8 @@ TrafficCount exchangeLinks(const FiberModel& model, const std::vector<char>* act
   for (std::size_t q : open)
     closeRun(q);
   TrafficCount sent;
-  const std::vector<std::vector<char>> in = exchangeWithPartners(out, partners, comm, sent);
+  std::vector<std::vector<char>>& in = buf.in;
+  exchangeWithPartners(out, partners, comm, sent, in);
   // Each sender's runs come in its link order, which is global order (an owner's fibers are in
   // global order), and no two senders send links of one fiber: taking the run with the lowest
   // first link among the senders' next ones gives global link order without a sort. This
@@ -686,8 +689,9 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<Pai
   TrafficCount& sent, std::vector<std::vector<ReceivedPush>>& received,
   LinkExchangeBuffers* buffers)
 {
-  std::vector<std::vector<char>> ownOut;
+  std::vector<std::vector<char>> ownOut, ownIn;
   std::vector<std::vector<char>>& out = buffers ? buffers->out : ownOut;
+  std::vector<std::vector<char>>& in = buffers ? buffers->in : ownIn;
   const std::size_t nr = static_cast<std::size_t>(comm.size());
   // Sizes first, so that every buffer is written once into its final place (no regrowth).
   std::vector<std::size_t> size(nr, 0);
@@ -743,7 +747,7 @@ void returnPushes(const std::vector<LinkPairPush>& tested, const std::vector<Pai
         }
       });
   }
-  const std::vector<std::vector<char>> in = exchangeWithPartners(out, partners, comm, sent);
+  exchangeWithPartners(out, partners, comm, sent, in);
   // A side not sent stays zero: its fiber is not this rank's. A sender's pairs come in pair
   // order, so their first fibers ascend: one cursor through `global` finds them.
   const auto localOf = [&global](std::uint32_t fiber)

@@ -102,6 +102,7 @@ struct LinkExchangeBuffers
   std::vector<Vec3> shift;            ///< per own link in a periodic cell, its wrap
   std::vector<LinkBlock> blocks;      ///< the own links in blocks (without a cell)
   std::vector<std::vector<char>> out; ///< per rank, the runs (later the pushes) sent to it
+  std::vector<std::vector<char>> in;  ///< per rank, the runs (later the pushes) it sent here
   /// Per fiber of the model, its blocks' boxes (linkBlockBoxes of its own links), for the caller
   /// to fill while it has the final points of a step at hand (the solver's shape control): the
   /// routing then reads two corners per block instead of a pass over all own points. Read by the

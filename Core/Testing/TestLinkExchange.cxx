@@ -200,3 +200,46 @@ TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
   EXPECT_TRUE(differentWithWrongFiberBoxes[0] || differentWithWrongFiberBoxes[1]);
   EXPECT_TRUE(differentWithWrongBoxes[0] || differentWithWrongBoxes[1]);
 }
+
+// The received runs land in the caller's buffers, which keep their storage: a second exchange of
+// the same links needs no new memory (under MPI, megabytes a step that would otherwise be fresh
+// pages), and the buffers do not change what is held.
+TEST(LinkExchange, ReceivesIntoTheCallersBuffersAndKeepsTheirStorage)
+{
+  constexpr int kRanks = 2;
+  std::array<bool, kRanks> received{}, storageKept{}, sameHeld{};
+  runRanks(kRanks,
+    [&](Comm& comm)
+    {
+      const int r = comm.rank();
+      FiberModel local;
+      std::vector<std::int64_t> global;
+      ownFibers(r, kRanks, local, global);
+      const BoxLayout layout = BoxLayout::make(local, PeriodicCell{}, comm);
+      const double reach = 2.0 * 0.4 + 0.1;
+      const auto exchange = [&](LinkExchangeBuffers* buffers)
+      {
+        std::vector<CapsuleLink> held;
+        HeldLinkInfo info;
+        std::vector<int> partners;
+        exchangeLinks(
+          local, nullptr, nullptr, global, 1.0, layout, reach, comm, held, info, partners, buffers);
+        return held;
+      };
+      const std::vector<CapsuleLink> reference = exchange(nullptr);
+      LinkExchangeBuffers buffers;
+      const std::vector<CapsuleLink> first = exchange(&buffers);
+      const std::vector<char>& fromOther = buffers.in[static_cast<std::size_t>(1 - r)];
+      received[r] = !fromOther.empty();
+      const char* storage = fromOther.data();
+      const std::vector<CapsuleLink> second = exchange(&buffers);
+      storageKept[r] = buffers.in[static_cast<std::size_t>(1 - r)].data() == storage;
+      sameHeld[r] = sameLinks(first, reference) && sameLinks(second, reference);
+    });
+  for (int r = 0; r < kRanks; ++r)
+  {
+    EXPECT_TRUE(received[r]) << "rank " << r << " got no runs from the other: the test is void";
+    EXPECT_TRUE(storageKept[r]) << "rank " << r;
+    EXPECT_TRUE(sameHeld[r]) << "rank " << r;
+  }
+}
