@@ -11,7 +11,11 @@ update (the source is updated first and not timed) and prints one line: ranks, t
 seconds, seconds per step, collisions left, per rank its fibers, peak points held, of them halo,
 the most links held for its pair tests, halo bytes sent per step, per rank its peak resident memory during the run (VmHWM) and its resident
 memory before the solve (VmRSS after the source), per rank the CPU seconds of its solve, and a hash of the joined output (the same for
-every R and T)."""
+every R and T). --timeline also prints to stderr, per rank, the minor page faults of its solve (pages
+the kernel handed it, each one's first touch) and, of rank 0's solver, the wall seconds since the
+update began of every progress report (the solver reports at the end of every step and, from
+200 000 links on, after every step's detection too; the last report is the finished solve), so
+that the start, the steps and the end of a solve can be compared between rank counts."""
 import argparse
 import hashlib
 import os
@@ -33,6 +37,8 @@ parser.add_argument("--max-fiber-length", type=float, default=0.0,
                     help="section: FiberFieldSource's MaxFiberLength (µm; 0 = lines end at the faces only)")
 parser.add_argument("--seed-candidates", type=int, default=1,
                     help="section: FiberFieldSource's SeedCandidates (section_bench.py uses 64)")
+parser.add_argument("--timeline", action="store_true",
+                    help="also print the page faults per rank and rank 0's progress reports with their times (stderr)")
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
@@ -76,7 +82,8 @@ from vtkmodules.vtkCommonCore import vtkDoubleArray
 with open("/proc/self/status") as status:
     kb = dict((l.split(":")[0], float(l.split()[1])) for l in status if l.startswith(("VmRSS", "VmHWM")))
 usage = resource.getrusage(resource.RUSAGE_SELF)
-values = {"VmRSS": kb["VmRSS"] / 1024.0, "VmHWM": kb["VmHWM"] / 1024.0, "cpu": usage.ru_utime + usage.ru_stime}
+values = {"VmRSS": kb["VmRSS"] / 1024.0, "VmHWM": kb["VmHWM"] / 1024.0, "cpu": usage.ru_utime + usage.ru_stime,
+          "minflt": float(usage.ru_minflt)}
 for name, value in values.items():
     a = vtkDoubleArray()
     a.SetName(name)
@@ -92,6 +99,10 @@ def memory_probe(upstream):
 
 
 before = memory_probe(source)
+reports = []  # (seconds since the update began, progress) of rank 0's solver
+if args.timeline:
+    solver.GetClientSideObject().AddObserver(
+        "ProgressEvent", lambda algorithm, event: reports.append((time.perf_counter(), algorithm.GetProgress())))
 start = time.perf_counter()
 solver.UpdatePipeline()
 wall = time.perf_counter() - start
@@ -106,6 +117,11 @@ memory = ["%.0f / %.0f MiB" % (probed(after, r, "VmHWM"), probed(before, r, "VmR
 # CPU seconds of each rank's process during the solve (user + system): what a rank costs when the
 # machine is shared and wall time is not its own.
 cpu = ["%.1f" % (probed(after, r, "cpu") - probed(before, r, "cpu")) for r in range(ranks)]
+if args.timeline:
+    sys.stderr.write("page faults per rank: %s\n" % " / ".join(
+        "%.0f" % (probed(after, r, "minflt") - probed(before, r, "minflt")) for r in range(ranks)))
+    for at, progress in reports:
+        sys.stderr.write("progress %.6f at %.3f s\n" % (progress, at - start))
 
 pieces = [servermanager.Fetch(solver, r) for r in range(ranks)]
 h = hashlib.sha256()
