@@ -201,14 +201,8 @@ std::vector<std::vector<char>> FiberSolverComm::exchange(const std::vector<std::
 std::vector<std::vector<char>> FiberSolverComm::exchangeWith(
   const std::vector<int>& partners, const std::vector<std::vector<char>>& send)
 {
-  auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
-  if (this->size() == 1 || !mpi)
-  {
-    return this->exchange(send);
-  }
-  std::vector<std::vector<char>> received(send.size());
-  received[static_cast<std::size_t>(this->rank())] = send[static_cast<std::size_t>(this->rank())];
-  ExchangeMPI(*mpi, send, received, &partners);
+  std::vector<std::vector<char>> received;
+  this->exchangeWithInto(partners, send, received);
   return received;
 }
 
@@ -218,7 +212,7 @@ void FiberSolverComm::exchangeWithInto(const std::vector<int>& partners,
   auto* mpi = vtkMPICommunicator::SafeDownCast(this->Controller->GetCommunicator());
   if (this->size() == 1 || !mpi)
   {
-    this->Comm::exchangeWithInto(partners, send, received);
+    received = this->exchange(send);
     return;
   }
   // ExchangeMPI sizes every other rank's buffer to what it sent here (resize keeps capacity).

@@ -68,6 +68,33 @@ void ownFibers(int rank, int ranks, FiberModel& local, std::vector<std::int64_t>
     add(alongX(-0.5, 48.5, 5.0 + 10.0 * iy, 9.5, g));
 }
 
+// One rank's share of the model above and its exchange: the links it holds after exchangeLinks
+// with the given buffers (null: the call's own).
+struct RankExchange
+{
+  Comm& comm;
+  FiberModel local;
+  std::vector<std::int64_t> global;
+  BoxLayout layout;
+
+  explicit RankExchange(Comm& c, int ranks)
+    : comm(c)
+  {
+    ownFibers(comm.rank(), ranks, local, global);
+    layout = BoxLayout::make(local, PeriodicCell{}, comm);
+  }
+  std::vector<CapsuleLink> held(LinkExchangeBuffers* buffers)
+  {
+    const double reach = 2.0 * 0.4 + 0.1; // twice the radius, and a gap
+    std::vector<CapsuleLink> links;
+    HeldLinkInfo info;
+    std::vector<int> partners;
+    exchangeLinks(
+      local, nullptr, nullptr, global, 1.0, layout, reach, comm, links, info, partners, buffers);
+    return links;
+  }
+};
+
 // What shape control hands the exchange: every fiber's block boxes and its whole box.
 void takeBoxes(const FiberModel& local, LinkExchangeBuffers& buffers)
 {
@@ -152,20 +179,9 @@ TEST(LinkExchange, GivenBlockBoxesAreReadOnlyWhenCurrentAndOnlyOnce)
     [&](Comm& comm)
     {
       const int r = comm.rank();
-      FiberModel local;
-      std::vector<std::int64_t> global;
-      ownFibers(r, kRanks, local, global);
-      const BoxLayout layout = BoxLayout::make(local, PeriodicCell{}, comm);
-      const double reach = 2.0 * 0.4 + 0.1;
-      const auto exchange = [&](LinkExchangeBuffers& buffers)
-      {
-        std::vector<CapsuleLink> held;
-        HeldLinkInfo info;
-        std::vector<int> partners;
-        exchangeLinks(local, nullptr, nullptr, global, 1.0, layout, reach, comm, held, info,
-          partners, &buffers);
-        return held;
-      };
+      RankExchange rank(comm, kRanks);
+      const FiberModel& local = rank.local;
+      const auto exchange = [&](LinkExchangeBuffers& buffers) { return rank.held(&buffers); };
       LinkExchangeBuffers own;
       const std::vector<CapsuleLink> reference = exchange(own);
 
@@ -212,20 +228,8 @@ TEST(LinkExchange, ReceivesIntoTheCallersBuffersAndKeepsTheirStorage)
     [&](Comm& comm)
     {
       const int r = comm.rank();
-      FiberModel local;
-      std::vector<std::int64_t> global;
-      ownFibers(r, kRanks, local, global);
-      const BoxLayout layout = BoxLayout::make(local, PeriodicCell{}, comm);
-      const double reach = 2.0 * 0.4 + 0.1;
-      const auto exchange = [&](LinkExchangeBuffers* buffers)
-      {
-        std::vector<CapsuleLink> held;
-        HeldLinkInfo info;
-        std::vector<int> partners;
-        exchangeLinks(
-          local, nullptr, nullptr, global, 1.0, layout, reach, comm, held, info, partners, buffers);
-        return held;
-      };
+      RankExchange rank(comm, kRanks);
+      const auto exchange = [&](LinkExchangeBuffers* buffers) { return rank.held(buffers); };
       const std::vector<CapsuleLink> reference = exchange(nullptr);
       LinkExchangeBuffers buffers;
       const std::vector<CapsuleLink> first = exchange(&buffers);
